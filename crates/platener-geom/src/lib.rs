@@ -1,1 +1,28 @@
-//! geom
+//! platener's geometry kernel.
+//!
+//! Everything that must be exact or shared lives here, so the pipeline crates never reason about
+//! epsilons or call i_overlay themselves:
+//!
+//! | module | what |
+//! |---|---|
+//! | [`tolerance`] | the one [`Tolerances`] value, scaled to the model |
+//! | [`grid`] | the project-wide fixed grid all 2D booleans snap to |
+//! | [`polygon`] | polygons with holes, areas, orientation |
+//! | [`boolean`] | union / intersection / difference, even-odd hole detection (i_overlay) |
+//! | [`offset`] | outward/inward offsets with miter joins (i_overlay) |
+//! | [`frame`] | rigid 3D ↔ 2D frames of planes |
+//! | [`weld`] | merging nearby points in 2D or 3D (spatial hash) |
+
+pub mod boolean;
+pub mod frame;
+pub mod grid;
+pub mod offset;
+pub mod polygon;
+pub mod tolerance;
+pub mod weld;
+
+pub use frame::Frame;
+pub use glam;
+pub use grid::GridError;
+pub use polygon::{Polygon, Ring};
+pub use tolerance::Tolerances;

@@ -1,0 +1,140 @@
+//! Polygons with holes in a plane's 2D frame.
+//!
+//! Convention (as in plan.json): the outer ring is counter-clockwise, holes are clockwise,
+//! rings are not closed (last ≠ first). Areas are exact up to float rounding (shoelace).
+
+use glam::DVec2;
+use serde::Serialize;
+
+/// A closed ring of points, not repeating the first at the end.
+pub type Ring = Vec<DVec2>;
+
+/// One polygon: an outer ring and its holes.
+#[derive(Debug, Clone, PartialEq, Serialize, Default)]
+pub struct Polygon {
+    /// Outer boundary, counter-clockwise.
+    pub outer: Ring,
+    /// Holes, each clockwise.
+    pub holes: Vec<Ring>,
+}
+
+/// Twice the signed area of a ring: positive when counter-clockwise.
+pub fn signed_area2(ring: &[DVec2]) -> f64 {
+    let n = ring.len();
+    if n < 3 {
+        return 0.0;
+    }
+    // Relative to the first point: keeps precision far from the origin.
+    let o = ring[0];
+    let mut sum = 0.0;
+    for i in 1..n - 1 {
+        sum += (ring[i] - o).perp_dot(ring[i + 1] - o);
+    }
+    sum
+}
+
+/// Signed area of a ring (positive when counter-clockwise).
+pub fn signed_area(ring: &[DVec2]) -> f64 {
+    0.5 * signed_area2(ring)
+}
+
+/// Perimeter of a closed ring.
+pub fn perimeter(ring: &[DVec2]) -> f64 {
+    let n = ring.len();
+    (0..n).map(|i| ring[i].distance(ring[(i + 1) % n])).sum()
+}
+
+/// Even-odd point-in-ring test (the boundary counts as either side).
+pub fn ring_contains(ring: &[DVec2], p: DVec2) -> bool {
+    let n = ring.len();
+    let mut inside = false;
+    let mut j = n.wrapping_sub(1);
+    for i in 0..n {
+        let (a, b) = (ring[i], ring[j]);
+        if (a.y > p.y) != (b.y > p.y) {
+            let x = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
+            if p.x < x {
+                inside = !inside;
+            }
+        }
+        j = i;
+    }
+    inside
+}
+
+impl Polygon {
+    /// A polygon without holes.
+    pub fn new(outer: Ring) -> Self {
+        Self { outer, holes: Vec::new() }
+    }
+
+    /// Area: outer minus holes (holes given clockwise or not, their absolute area is removed).
+    pub fn area(&self) -> f64 {
+        signed_area(&self.outer).abs() - self.holes.iter().map(|h| signed_area(h).abs()).sum::<f64>()
+    }
+
+    /// Whether `p` is inside the outer ring and outside every hole.
+    pub fn contains(&self, p: DVec2) -> bool {
+        ring_contains(&self.outer, p) && !self.holes.iter().any(|h| ring_contains(h, p))
+    }
+
+    /// Number of vertices over all rings.
+    pub fn vertex_count(&self) -> usize {
+        self.outer.len() + self.holes.iter().map(Vec::len).sum::<usize>()
+    }
+
+    /// Axis-aligned bounds `(min, max)` of the outer ring.
+    pub fn bounds(&self) -> (DVec2, DVec2) {
+        self.outer.iter().fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+        )
+    }
+
+    /// Puts the rings in the plan.json orientation: outer counter-clockwise, holes clockwise.
+    pub fn normalize_orientation(&mut self) {
+        if signed_area2(&self.outer) < 0.0 {
+            self.outer.reverse();
+        }
+        for h in &mut self.holes {
+            if signed_area2(h) > 0.0 {
+                h.reverse();
+            }
+        }
+    }
+}
+
+/// Total area of several polygons.
+pub fn total_area(polygons: &[Polygon]) -> f64 {
+    polygons.iter().map(Polygon::area).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(x: f64, y: f64, s: f64) -> Ring {
+        vec![
+            DVec2::new(x, y),
+            DVec2::new(x + s, y),
+            DVec2::new(x + s, y + s),
+            DVec2::new(x, y + s),
+        ]
+    }
+
+    #[test]
+    fn area_with_hole() {
+        let mut p = Polygon { outer: square(0.0, 0.0, 10.0), holes: vec![square(2.0, 2.0, 3.0)] };
+        p.normalize_orientation();
+        assert!((p.area() - 91.0).abs() < 1e-12);
+        assert!(signed_area(&p.holes[0]) < 0.0);
+        assert!(p.contains(DVec2::new(1.0, 1.0)));
+        assert!(!p.contains(DVec2::new(3.0, 3.0)));
+    }
+
+    #[test]
+    fn far_from_origin_area_keeps_precision() {
+        let r = square(1.0e5, -1.0e5, 0.001);
+        assert!((signed_area(&r) - 1e-6).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,176 @@
+//! Welding: merging points closer than a distance, for any 2D or 3D point set.
+//!
+//! Near-linear and deterministic: points are visited in input order and joined to the nearest
+//! existing cluster *leader* closer than the distance (found through a spatial hash whose
+//! cells are twice the distance wide, so at most 2^D cells are probed), or start a new
+//! cluster. Leaders are never chained, so a cluster is at most twice the distance across:
+//! a finely tessellated curve is coarsened, never collapsed into one point. Each cluster
+//! becomes the weighted mean of its members. Because means can drift closer than the
+//! distance, rounds repeat until none merges (so welding twice changes nothing).
+
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
+/// Rounds of re-welding at most; real meshes settle in two or three.
+const MAX_ROUNDS: usize = 16;
+
+/// Result of welding `n` points into `m` clusters.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Welded<const D: usize> {
+    /// One point per cluster (weighted mean of its members).
+    pub points: Vec<[f64; D]>,
+    /// Summed weight of each cluster.
+    pub weights: Vec<f64>,
+    /// For each input point, the index of its cluster.
+    pub map: Vec<u32>,
+}
+
+/// A fast, deterministic hasher for integer cell keys (Fx-style multiply-rotate).
+#[derive(Default, Clone, Copy)]
+pub struct CellHasher(u64);
+
+impl Hasher for CellHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for b in bytes {
+            self.write_u64(u64::from(*b));
+        }
+    }
+    fn write_u64(&mut self, i: u64) {
+        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+    fn write_i64(&mut self, i: i64) {
+        self.write_u64(i as u64);
+    }
+}
+
+/// A `HashMap` with [`CellHasher`] (iteration order is never relied upon for output).
+pub type CellMap<K, V> = HashMap<K, V, BuildHasherDefault<CellHasher>>;
+
+/// Merges exactly equal points (bitwise, with -0.0 == 0.0). Returns the unique points in
+/// first-seen order, how many inputs each stands for, and each input's unique index.
+pub fn dedup_exact<const D: usize>(points: &[[f64; D]]) -> (Vec<[f64; D]>, Vec<f64>, Vec<u32>) {
+    let mut index: CellMap<[u64; D], u32> = CellMap::default();
+    index.reserve(points.len() / 4);
+    let mut unique = Vec::new();
+    let mut counts: Vec<f64> = Vec::new();
+    let map = points
+        .iter()
+        .map(|p| {
+            let key = p.map(|c| (c + 0.0).to_bits());
+            let id = *index.entry(key).or_insert_with(|| {
+                unique.push(*p);
+                counts.push(0.0);
+                (unique.len() - 1) as u32
+            });
+            counts[id as usize] += 1.0;
+            id
+        })
+        .collect();
+    (unique, counts, map)
+}
+
+fn cell_of<const D: usize>(p: &[f64; D], inv_cell: f64) -> [i64; D] {
+    p.map(|c| (c * inv_cell).floor() as i64)
+}
+
+fn dist2<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
+    (0..D).map(|i| (a[i] - b[i]) * (a[i] - b[i])).sum()
+}
+
+/// One round of leader clustering; `None` when nothing merged.
+fn cluster_round<const D: usize>(points: &[[f64; D]], weights: &[f64], distance: f64) -> Option<Welded<D>> {
+    let inv_cell = 1.0 / (2.0 * distance);
+    let d2 = distance * distance;
+    let mut grid: CellMap<[i64; D], Vec<u32>> = CellMap::default();
+    let mut leaders: Vec<[f64; D]> = Vec::new();
+    let mut map = Vec::with_capacity(points.len());
+    for p in points {
+        let lo = cell_of(&p.map(|c| c - distance), inv_cell);
+        let hi = cell_of(&p.map(|c| c + distance), inv_cell);
+        let mut best: Option<(f64, u32)> = None;
+        // Probe every cell of the box [lo, hi] (at most 2 per axis).
+        for combo in 0..(1usize << D) {
+            let mut key = lo;
+            let mut valid = true;
+            for (axis, k) in key.iter_mut().enumerate() {
+                if combo >> axis & 1 == 1 {
+                    if hi[axis] == lo[axis] {
+                        valid = false;
+                        break;
+                    }
+                    *k = hi[axis];
+                }
+            }
+            if !valid {
+                continue;
+            }
+            for &l in grid.get(&key).map_or(&[][..], Vec::as_slice) {
+                let dd = dist2(p, &leaders[l as usize]);
+                if dd < d2 && best.is_none_or(|(bd, bl)| dd < bd || (dd == bd && l < bl)) {
+                    best = Some((dd, l));
+                }
+            }
+        }
+        let id = match best {
+            Some((_, l)) => l,
+            None => {
+                leaders.push(*p);
+                let id = (leaders.len() - 1) as u32;
+                grid.entry(cell_of(p, inv_cell)).or_default().push(id);
+                id
+            }
+        };
+        map.push(id);
+    }
+    if leaders.len() == points.len() {
+        return None;
+    }
+    let mut sums = vec![[0.0; D]; leaders.len()];
+    let mut wsum = vec![0.0; leaders.len()];
+    for ((p, w), &c) in points.iter().zip(weights).zip(&map) {
+        let c = c as usize;
+        // Relative to the leader: keeps precision far from the origin.
+        for i in 0..D {
+            sums[c][i] += (p[i] - leaders[c][i]) * w;
+        }
+        wsum[c] += w;
+    }
+    let points = leaders
+        .iter()
+        .zip(&sums)
+        .zip(&wsum)
+        .map(|((l, s), w)| std::array::from_fn(|i| if *w > 0.0 { l[i] + s[i] / w } else { l[i] }))
+        .collect();
+    Some(Welded { points, weights: wsum, map })
+}
+
+/// Welds `points` (with per-point `weights`, e.g. how many mesh corners each stands for) so
+/// that no two results are closer than `distance`. `distance <= 0` merges exact duplicates
+/// only.
+pub fn weld<const D: usize>(points: &[[f64; D]], weights: &[f64], distance: f64) -> Welded<D> {
+    debug_assert_eq!(points.len(), weights.len());
+    let (mut current, mut cur_weights, mut map) = dedup_exact(points);
+    // Exact duplicates add their weights.
+    let mut w = vec![0.0; current.len()];
+    for (i, &m) in map.iter().enumerate() {
+        w[m as usize] += weights.get(i).copied().unwrap_or(1.0);
+    }
+    cur_weights.copy_from_slice(&w);
+    if distance > 0.0 && distance.is_finite() {
+        for _ in 0..MAX_ROUNDS {
+            let Some(round) = cluster_round(&current, &cur_weights, distance) else { break };
+            for m in &mut map {
+                *m = round.map[*m as usize];
+            }
+            current = round.points;
+            cur_weights = round.weights;
+        }
+    }
+    Welded { points: current, weights: cur_weights, map }
+}
+
+#[cfg(test)]
+mod tests;
