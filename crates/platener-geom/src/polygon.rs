@@ -109,8 +109,63 @@ pub fn total_area(polygons: &[Polygon]) -> f64 {
     polygons.iter().map(Polygon::area).sum()
 }
 
+/// Removes vertices lying on straight runs: a vertex goes when it is within `tolerance` of the
+/// segment between its neighbours *and* between them (so a spike that folds back is kept).
+/// Runs in linear time with a stack; the ring's wrap-around is handled.
+pub fn remove_straight_vertices(ring: &[DVec2], tolerance: f64) -> Ring {
+    let between = |a: DVec2, b: DVec2, c: DVec2| {
+        let ac = c - a;
+        let len2 = ac.length_squared();
+        if len2 == 0.0 {
+            return false;
+        }
+        let t = (b - a).dot(ac) / len2;
+        t > 0.0 && t < 1.0 && ac.perp_dot(b - a).abs() / len2.sqrt() <= tolerance
+    };
+    let mut out: Ring = Vec::with_capacity(ring.len());
+    for &p in ring {
+        while out.len() >= 2 && between(out[out.len() - 2], out[out.len() - 1], p) {
+            out.pop();
+        }
+        out.push(p);
+    }
+    // Close the ring: the last and first vertices may lie on the run through the seam.
+    loop {
+        let n = out.len();
+        if n < 3 {
+            break;
+        }
+        if between(out[n - 2], out[n - 1], out[0]) {
+            out.pop();
+        } else if between(out[n - 1], out[0], out[1]) {
+            out.remove(0);
+        } else {
+            break;
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn straight_runs_go_spikes_stay() {
+        let ring = vec![
+            DVec2::new(0.0, 0.0),
+            DVec2::new(5.0, 0.0),
+            DVec2::new(10.0, 0.0),
+            DVec2::new(10.0, 10.0),
+            DVec2::new(5.0, 10.0 + 1e-9),
+            DVec2::new(0.0, 10.0),
+            DVec2::new(0.0, 5.0),
+        ];
+        let out = remove_straight_vertices(&ring, 1e-6);
+        assert_eq!(out, vec![DVec2::new(0.0, 0.0), DVec2::new(10.0, 0.0), DVec2::new(10.0, 10.0), DVec2::new(0.0, 10.0)]);
+        // A vertex that folds back along the same line is not "between" its neighbours.
+        let spike = vec![DVec2::new(0.0, 0.0), DVec2::new(10.0, 0.0), DVec2::new(5.0, 0.0), DVec2::new(5.0, 5.0)];
+        assert_eq!(remove_straight_vertices(&spike, 1e-6).len(), 4);
+    }
+
     use super::*;
 
     fn square(x: f64, y: f64, s: f64) -> Ring {

@@ -1,6 +1,31 @@
 //! platener turns 3D-printing models into laser-cut construction plans.
 //!
-//! The modules read in pipeline order; each pipeline step is one module named like its entry in
-//! the conversion report.
+//! The modules below read in pipeline order; each pipeline step is one module named like its
+//! entry in the conversion report, and adds one immutable snapshot to the [`pipeline::State`]:
+//!
+//! | step | module | what it adds |
+//! |---|---|---|
+//! | `read` | [`read`] | triangles in mm from STL / OBJ / 3MF |
+//! | `cleanup` | [`cleanup`] | zero-area and duplicate triangles removed |
+//! | `weld` | [`weld`] | nearby vertices merged, an indexed triangle list |
+//! | `mesh` | [`mesh`] | topology, consistent winding, health report |
+//! | `coplanar` | [`coplanar`] | groups of connected faces in one plane |
+//! | `shapes` | [`shapes`] | each group's outline with holes in its own 2D frame |
+//!
+//! [`inspect`] runs these and summarises them (`platener inspect`).
 
+pub mod cleanup;
+pub mod coplanar;
+pub mod error;
+pub mod inspect;
+pub mod mesh;
+pub mod pipeline;
 pub mod read;
+pub mod samples;
+pub mod settings;
+pub mod shapes;
+pub mod weld;
+
+pub use error::{Error, Result};
+pub use pipeline::{Cancel, Source, State};
+pub use settings::{Settings, Units, Weld};

@@ -155,3 +155,6 @@ pub fn read_file(path: &Path) -> Result<(Format, RawMesh), ReadError> {
     }
     Ok((format, mesh))
 }
+
+mod step;
+pub use step::{Bounds, Model, ReadStep, SUSPICIOUSLY_LARGE, SUSPICIOUSLY_SMALL};

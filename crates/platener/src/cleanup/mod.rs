@@ -1,0 +1,121 @@
+//! Step `cleanup` (the thesis' MeshCleanup): drops zero-area and duplicate triangles.
+//!
+//! Both are common in real files (OpenSCAD T-junction slivers, facets stored several times) and
+//! both break topology: a zero-area triangle makes an edge look non-manifold, a duplicate makes
+//! every one of its edges non-manifold. A triangle and its mirror (same corners, opposite
+//! winding) count as duplicates: together they enclose nothing.
+
+use std::sync::Arc;
+
+use platener_geom::weld::CellMap;
+use platener_geom::Tolerances;
+use serde::Serialize;
+
+use crate::error::Result;
+use crate::pipeline::{State, Step, StepContext, WarningKind, need};
+use crate::read::Triangle;
+
+/// The snapshot of step `cleanup`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Cleaned {
+    /// The triangles kept, in input order.
+    #[serde(skip)]
+    pub triangles: Arc<Vec<Triangle>>,
+    /// Zero-area triangles removed (a repeated corner or no height).
+    pub degenerate_removed: usize,
+    /// Duplicate triangles removed.
+    pub duplicates_removed: usize,
+    /// The tolerances derived from the model's size, used by every later step.
+    pub tolerances: Tolerances,
+}
+
+/// Whether a triangle has (numerically) no area: its height over the longest edge is below
+/// `min_height`.
+pub fn is_degenerate(t: &Triangle, min_height: f64) -> bool {
+    let e = [t[1] - t[0], t[2] - t[1], t[0] - t[2]];
+    let longest2 = e.iter().map(|v| v.length_squared()).fold(0.0, f64::max);
+    if longest2 == 0.0 {
+        return true;
+    }
+    let area2 = e[0].cross(-e[2]).length();
+    area2 / longest2.sqrt() < min_height
+}
+
+/// Removes degenerate and duplicate triangles; returns the kept ones and the two counts.
+pub fn clean(triangles: &[Triangle], tolerances: &Tolerances) -> (Vec<Triangle>, usize, usize) {
+    let mut seen: CellMap<[u64; 9], ()> = CellMap::default();
+    seen.reserve(triangles.len());
+    let (mut degenerate, mut duplicates) = (0, 0);
+    let mut kept = Vec::with_capacity(triangles.len());
+    for t in triangles {
+        if is_degenerate(t, tolerances.degenerate_height) {
+            degenerate += 1;
+            continue;
+        }
+        let mut corners = t.map(|p| [(p.x + 0.0).to_bits(), (p.y + 0.0).to_bits(), (p.z + 0.0).to_bits()]);
+        corners.sort_unstable();
+        let mut key = [0u64; 9];
+        for (i, c) in corners.iter().enumerate() {
+            key[3 * i..3 * i + 3].copy_from_slice(c);
+        }
+        if seen.insert(key, ()).is_some() {
+            duplicates += 1;
+            continue;
+        }
+        kept.push(*t);
+    }
+    (kept, degenerate, duplicates)
+}
+
+/// Step `cleanup`.
+pub struct CleanupStep;
+
+impl Step for CleanupStep {
+    fn name(&self) -> &'static str {
+        "cleanup"
+    }
+
+    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
+        let model = need(&state.read, self.name(), "read")?;
+        let tolerances = Tolerances::for_model(model.bounds.diagonal());
+        let (kept, degenerate, duplicates) = clean(&model.triangles, &tolerances);
+        if degenerate > 0 {
+            cx.warn(WarningKind::DegenerateFaces, format!("{degenerate} degenerate (zero-area) triangles removed"));
+        }
+        if duplicates > 0 {
+            cx.warn(WarningKind::DuplicateFaces, format!("{duplicates} duplicate triangles removed"));
+        }
+        state.cleanup = Some(Arc::new(Cleaned {
+            triangles: Arc::new(kept),
+            degenerate_removed: degenerate,
+            duplicates_removed: duplicates,
+            tolerances,
+        }));
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    #[test]
+    fn removes_slivers_and_duplicates() {
+        let a = DVec3::ZERO;
+        let b = DVec3::new(10.0, 0.0, 0.0);
+        let c = DVec3::new(0.0, 10.0, 0.0);
+        let tris = vec![
+            [a, b, c],
+            [b, c, a],                          // same triangle, rotated: duplicate
+            [a, c, b],                          // mirrored: duplicate
+            [a, DVec3::new(0.0, 0.0, 5.0), DVec3::new(0.0, 0.0, 10.0)], // collinear sliver
+            [a, a, b],                          // repeated corner
+            [a, b, DVec3::new(0.0, 0.0, 1.0)],
+        ];
+        let (kept, degenerate, duplicates) = clean(&tris, &Tolerances::default());
+        assert_eq!((kept.len(), degenerate, duplicates), (2, 2, 2));
+        assert_eq!(kept[0], tris[0]);
+        assert_eq!(kept[1], tris[5]);
+    }
+}

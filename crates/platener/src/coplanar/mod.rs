@@ -1,0 +1,123 @@
+//! Step `coplanar` (the thesis' CoplanarFaces): groups connected faces that lie in one plane.
+//!
+//! Faces are grown into groups breadth-first across shared edges, starting from the largest
+//! face not yet grouped. A face joins when its normal is within the coplanar angle of the
+//! *seed's* normal (not its neighbour's): comparing with the neighbour would let a finely
+//! faceted cylinder drift all the way round into one "plane".
+
+use std::collections::VecDeque;
+use std::sync::Arc;
+
+use glam::DVec3;
+use rayon::slice::ParallelSliceMut;
+use serde::Serialize;
+
+use crate::error::Result;
+use crate::mesh::Mesh;
+use crate::pipeline::{State, Step, StepContext, need};
+
+/// Connected faces in one plane.
+#[derive(Debug, Clone, Serialize)]
+pub struct PlanarGroup {
+    /// The faces (mesh triangle indices), in the order they were reached.
+    #[serde(skip)]
+    pub faces: Vec<u32>,
+    /// Area-weighted mean unit normal (pointing out of the solid).
+    pub normal: DVec3,
+    /// Plane offset: `normal · x` for points x on the plane (area-weighted mean).
+    pub offset: f64,
+    /// Total area in mm².
+    pub area: f64,
+}
+
+/// The snapshot of step `coplanar`.
+#[derive(Debug, Clone, Serialize)]
+pub struct PlanarGroups {
+    /// Groups, largest area first.
+    pub groups: Vec<PlanarGroup>,
+    /// The group of each mesh triangle.
+    #[serde(skip)]
+    pub face_group: Vec<u32>,
+    /// The angle used, in degrees.
+    pub angle_deg: f64,
+}
+
+/// Groups the faces of `mesh` whose normals are within `angle` (radians) of their seed's.
+pub fn group_faces(mesh: &Mesh, angle: f64) -> PlanarGroups {
+    let n = mesh.triangles.len();
+    let cos_max = angle.cos();
+    let mut order: Vec<u32> = (0..n as u32).collect();
+    order.par_sort_unstable_by(|&a, &b| mesh.areas[b as usize].total_cmp(&mesh.areas[a as usize]).then(a.cmp(&b)));
+    let mut face_group = vec![u32::MAX; n];
+    let mut groups = Vec::new();
+    let mut queue = VecDeque::new();
+    for &seed in &order {
+        if face_group[seed as usize] != u32::MAX {
+            continue;
+        }
+        let id = groups.len() as u32;
+        let seed_normal = mesh.normals[seed as usize];
+        face_group[seed as usize] = id;
+        let mut faces = vec![seed];
+        queue.push_back(seed);
+        while let Some(f) = queue.pop_front() {
+            for &e in &mesh.topology.face_edges[f as usize] {
+                for &fc in mesh.topology.edge_corners(e) {
+                    let g = fc / 3;
+                    if face_group[g as usize] == u32::MAX && mesh.normals[g as usize].dot(seed_normal) >= cos_max {
+                        face_group[g as usize] = id;
+                        faces.push(g);
+                        queue.push_back(g);
+                    }
+                }
+            }
+        }
+        groups.push(summarise(mesh, faces));
+    }
+    // Largest first; ties by smallest face index, so the order is deterministic.
+    let mut ranked: Vec<usize> = (0..groups.len()).collect();
+    let key = |g: &PlanarGroup| g.faces.iter().copied().min().unwrap_or(u32::MAX);
+    ranked.sort_by(|&a, &b| groups[b].area.total_cmp(&groups[a].area).then(key(&groups[a]).cmp(&key(&groups[b]))));
+    let mut rank_of = vec![0u32; groups.len()];
+    for (rank, &g) in ranked.iter().enumerate() {
+        rank_of[g] = rank as u32;
+    }
+    face_group.iter_mut().for_each(|g| *g = rank_of[*g as usize]);
+    let mut slots: Vec<Option<PlanarGroup>> = groups.into_iter().map(Some).collect();
+    let groups = ranked.iter().filter_map(|&g| slots[g].take()).collect();
+    PlanarGroups { groups, face_group, angle_deg: angle.to_degrees() }
+}
+
+fn summarise(mesh: &Mesh, faces: Vec<u32>) -> PlanarGroup {
+    let (mut weighted, mut area) = (DVec3::ZERO, 0.0);
+    for &f in &faces {
+        weighted += mesh.normals[f as usize] * mesh.areas[f as usize];
+        area += mesh.areas[f as usize];
+    }
+    let normal = weighted.try_normalize().unwrap_or(mesh.normals[faces[0] as usize]);
+    let offset = faces
+        .iter()
+        .map(|&f| {
+            let [a, b, c] = mesh.corners(f as usize);
+            normal.dot((a + b + c) / 3.0) * mesh.areas[f as usize]
+        })
+        .sum::<f64>()
+        / area;
+    PlanarGroup { faces, normal, offset, area }
+}
+
+/// Step `coplanar`.
+pub struct CoplanarStep;
+
+impl Step for CoplanarStep {
+    fn name(&self) -> &'static str {
+        "coplanar"
+    }
+
+    fn run(&self, state: &mut State, _cx: &mut StepContext<'_>) -> Result<()> {
+        let mesh = need(&state.mesh, self.name(), "mesh")?;
+        let groups = group_faces(mesh, state.settings.coplanar_angle_deg.to_radians());
+        state.coplanar = Some(Arc::new(groups));
+        Ok(())
+    }
+}

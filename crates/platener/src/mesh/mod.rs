@@ -1,0 +1,165 @@
+//! Step `mesh` (the thesis' MeshSetup): the indexed mesh with its topology and a health report.
+//!
+//! Later steps need to walk the surface: which edges a face has, which faces share an edge.
+//! Building that also tells how healthy the model is (open and non-manifold edges, bodies), and
+//! lets us make the winding consistent so every normal points out of the solid, which plate
+//! finding depends on (two faces of a plate must face apart).
+
+mod orient;
+mod topology;
+
+use std::sync::Arc;
+
+use glam::DVec3;
+use serde::Serialize;
+
+use crate::cleanup::is_degenerate;
+use crate::error::{Error, Result};
+use crate::pipeline::{State, Step, StepContext, WarningKind, need};
+
+pub use topology::Topology;
+
+/// How healthy the surface is.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Health {
+    /// Edges used by exactly one triangle (holes in the surface).
+    pub open_edges: usize,
+    /// Edges used by three or more triangles.
+    pub non_manifold_edges: usize,
+    /// Connected bodies (faces connected through shared edges).
+    pub components: usize,
+    /// Triangles whose winding was turned round to agree with their neighbours / point out.
+    pub flipped_faces: usize,
+    /// Edges whose two triangles still disagree (a non-orientable surface, e.g. a Möbius strip).
+    pub non_orientable_edges: usize,
+    /// Triangles that welding left with no area, removed here.
+    pub degenerate_after_weld: usize,
+    /// Whether every edge has exactly two triangles (a closed, manifold surface).
+    pub closed: bool,
+    /// Enclosed volume in mm³ when the surface is closed.
+    pub volume: Option<f64>,
+}
+
+/// The snapshot of step `mesh`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Mesh {
+    /// Vertex positions in mm.
+    #[serde(skip)]
+    pub vertices: Vec<DVec3>,
+    /// Triangles, wound consistently (normals out where the surface allows).
+    #[serde(skip)]
+    pub triangles: Vec<[u32; 3]>,
+    /// Unit normal of each triangle, from its winding.
+    #[serde(skip)]
+    pub normals: Vec<DVec3>,
+    /// Area of each triangle in mm².
+    #[serde(skip)]
+    pub areas: Vec<f64>,
+    /// Edges and their faces.
+    #[serde(skip)]
+    pub topology: Topology,
+    /// Body index of each triangle.
+    #[serde(skip)]
+    pub component: Vec<u32>,
+    /// The health report.
+    pub health: Health,
+    /// Total surface area in mm².
+    pub surface_area: f64,
+}
+
+impl Mesh {
+    /// Builds the mesh from an indexed triangle list: removes zero-area triangles, builds the
+    /// topology, orients, and reports health.
+    pub fn build(vertices: Vec<DVec3>, triangles: &[[u32; 3]], min_height: f64) -> Self {
+        let mut kept: Vec<[u32; 3]> = Vec::with_capacity(triangles.len());
+        let mut degenerate = 0;
+        for t in triangles {
+            let corners = t.map(|i| vertices[i as usize]);
+            if is_degenerate(&corners, min_height) {
+                degenerate += 1;
+            } else {
+                kept.push(*t);
+            }
+        }
+        let topology = Topology::build(&kept);
+        let oriented = orient::orient(&vertices, &kept, &topology);
+        let (normals, areas): (Vec<DVec3>, Vec<f64>) = oriented
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| vertices[i as usize]);
+                let cross = (b - a).cross(c - a);
+                let len = cross.length();
+                (cross / len, 0.5 * len)
+            })
+            .unzip();
+        let (open_edges, non_manifold_edges) = topology.edge_counts();
+        let closed = open_edges == 0 && non_manifold_edges == 0 && !kept.is_empty();
+        let volume = closed.then(|| orient::signed_volume(&vertices, &oriented.triangles, None));
+        let health = Health {
+            open_edges,
+            non_manifold_edges,
+            components: oriented.components,
+            flipped_faces: oriented.flipped,
+            non_orientable_edges: oriented.non_orientable_edges,
+            degenerate_after_weld: degenerate,
+            closed,
+            volume,
+        };
+        Self {
+            surface_area: areas.iter().sum(),
+            vertices,
+            triangles: oriented.triangles,
+            normals,
+            areas,
+            topology,
+            component: oriented.component,
+            health,
+        }
+    }
+
+    /// The three corners of triangle `f`.
+    pub fn corners(&self, f: usize) -> [DVec3; 3] {
+        self.triangles[f].map(|i| self.vertices[i as usize])
+    }
+}
+
+/// Step `mesh`.
+pub struct MeshStep;
+
+impl Step for MeshStep {
+    fn name(&self) -> &'static str {
+        "mesh"
+    }
+
+    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
+        let welded = need(&state.weld, self.name(), "weld")?;
+        let cleaned = need(&state.cleanup, self.name(), "cleanup")?;
+        let mesh = Mesh::build(welded.vertices.clone(), &welded.triangles, cleaned.tolerances.degenerate_height);
+        if mesh.triangles.is_empty() {
+            let model = need(&state.read, self.name(), "read")?;
+            return Err(Error::Model { model: model.name.clone(), message: "no triangle with an area is left after welding; try --weld 0".into() });
+        }
+        let h = &mesh.health;
+        if h.open_edges > 0 {
+            cx.warn(WarningKind::OpenEdges, format!("{} open edges: the surface has holes (not watertight)", h.open_edges));
+        }
+        if h.non_manifold_edges > 0 {
+            cx.warn(
+                WarningKind::NonManifoldEdges,
+                format!("{} non-manifold edges: some edges are shared by more than two triangles", h.non_manifold_edges),
+            );
+        }
+        if h.flipped_faces > 0 {
+            cx.warn(WarningKind::FlippedFaces, format!("{} flipped faces were turned round to agree with their neighbours", h.flipped_faces));
+        }
+        if h.degenerate_after_weld > 0 {
+            cx.warn(WarningKind::DegenerateFaces, format!("{} triangles lost their area in welding and were removed", h.degenerate_after_weld));
+        }
+        state.mesh = Some(Arc::new(mesh));
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests;

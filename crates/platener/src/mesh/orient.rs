@@ -1,0 +1,149 @@
+//! Consistent winding: neighbours across a two-face edge must run the edge in opposite
+//! directions. We spread one face's winding over each orientable patch (breadth-first, from the
+//! lowest face index, so the result does not depend on threads), then turn closed bodies so
+//! their volume is positive (normals out) and open patches so the fewest faces change.
+
+use std::collections::VecDeque;
+
+use glam::DVec3;
+
+use super::topology::Topology;
+
+pub(super) struct Oriented {
+    pub triangles: Vec<[u32; 3]>,
+    pub component: Vec<u32>,
+    pub components: usize,
+    pub flipped: usize,
+    pub non_orientable_edges: usize,
+}
+
+/// Whether corner `c` of `t` runs its edge from the smaller to the larger vertex index.
+fn forward(t: &[u32; 3], c: usize) -> bool {
+    t[c] < t[(c + 1) % 3]
+}
+
+/// Six times the signed volume enclosed, over `faces` (all when `None`), divided by 6.
+pub(super) fn signed_volume(vertices: &[DVec3], triangles: &[[u32; 3]], faces: Option<&[u32]>) -> f64 {
+    let vol = |t: &[u32; 3]| {
+        let [a, b, c] = t.map(|i| vertices[i as usize]);
+        a.dot(b.cross(c))
+    };
+    let sum: f64 = match faces {
+        Some(fs) => fs.iter().map(|&f| vol(&triangles[f as usize])).sum(),
+        None => triangles.iter().map(vol).sum(),
+    };
+    sum / 6.0
+}
+
+/// Breadth-first labelling of faces connected through edges accepted by `cross`.
+fn label(topology: &Topology, n: usize, cross: impl Fn(u32) -> bool) -> (Vec<u32>, Vec<Vec<u32>>) {
+    let mut label = vec![u32::MAX; n];
+    let mut groups = Vec::new();
+    let mut queue = VecDeque::new();
+    for start in 0..n {
+        if label[start] != u32::MAX {
+            continue;
+        }
+        let id = groups.len() as u32;
+        let mut members = vec![start as u32];
+        label[start] = id;
+        queue.push_back(start);
+        while let Some(f) = queue.pop_front() {
+            for &e in &topology.face_edges[f] {
+                if !cross(e) {
+                    continue;
+                }
+                for &fc in topology.edge_corners(e) {
+                    let g = (fc / 3) as usize;
+                    if label[g] == u32::MAX {
+                        label[g] = id;
+                        members.push(g as u32);
+                        queue.push_back(g);
+                    }
+                }
+            }
+        }
+        groups.push(members);
+    }
+    (label, groups)
+}
+
+pub(super) fn orient(vertices: &[DVec3], triangles: &[[u32; 3]], topology: &Topology) -> Oriented {
+    let n = triangles.len();
+    let (component, bodies) = label(topology, n, |e| topology.edge_valence(e) >= 2);
+    // Spread winding over two-face edges.
+    let mut flip = vec![false; n];
+    let mut seen = vec![false; n];
+    let mut queue = VecDeque::new();
+    let mut patches: Vec<Vec<u32>> = Vec::new();
+    let mut non_orientable_edges = 0;
+    for start in 0..n {
+        if seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        let mut members = vec![start as u32];
+        queue.push_back(start);
+        while let Some(f) = queue.pop_front() {
+            for c in 0..3 {
+                let e = topology.face_edges[f][c];
+                let corners = topology.edge_corners(e);
+                if corners.len() != 2 {
+                    continue;
+                }
+                let other = if corners[0] / 3 == f as u32 && corners[0] % 3 == c as u32 { corners[1] } else { corners[0] };
+                let (g, cg) = ((other / 3) as usize, (other % 3) as usize);
+                if g == f {
+                    continue;
+                }
+                let dir_f = forward(&triangles[f], c) ^ flip[f];
+                if seen[g] {
+                    if forward(&triangles[g], cg) ^ flip[g] == dir_f && f < g {
+                        non_orientable_edges += 1;
+                    }
+                    continue;
+                }
+                flip[g] = forward(&triangles[g], cg) ^ !dir_f;
+                seen[g] = true;
+                members.push(g as u32);
+                queue.push_back(g);
+            }
+        }
+        patches.push(members);
+    }
+    let mut out: Vec<[u32; 3]> = triangles
+        .iter()
+        .zip(&flip)
+        .map(|(t, &fl)| if fl { [t[0], t[2], t[1]] } else { *t })
+        .collect();
+    // Decide each patch's overall direction.
+    let body_closed: Vec<bool> = bodies
+        .iter()
+        .map(|faces| {
+            faces.iter().all(|&f| topology.face_edges[f as usize].iter().all(|&e| topology.edge_valence(e) == 2))
+        })
+        .collect();
+    for members in &patches {
+        let body = component[members[0] as usize] as usize;
+        let single_patch = bodies[body].len() == members.len();
+        let turn = if body_closed[body] && single_patch {
+            signed_volume(vertices, &out, Some(members)) < 0.0
+        } else {
+            2 * members.iter().filter(|&&f| flip[f as usize]).count() > members.len()
+        };
+        if turn {
+            for &f in members {
+                let t = &mut out[f as usize];
+                t.swap(1, 2);
+                flip[f as usize] = !flip[f as usize];
+            }
+        }
+    }
+    Oriented {
+        flipped: flip.iter().filter(|&&f| f).count(),
+        triangles: out,
+        components: bodies.len(),
+        component,
+        non_orientable_edges,
+    }
+}

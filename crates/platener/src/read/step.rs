@@ -1,0 +1,145 @@
+//! The `read` step: file → triangles in mm, with unit conversion and size sanity checks.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+use serde::Serialize;
+
+use super::{Format, Triangle, read_file};
+use crate::error::{Error, Result};
+use crate::pipeline::{Source, State, Step, StepContext, WarningKind};
+
+/// Models smaller than this (largest extent, mm) are probably in cm, inches or metres.
+pub const SUSPICIOUSLY_SMALL: f64 = 1.0;
+/// Models larger than this (largest extent, mm) are probably in microns or tenths of mm.
+pub const SUSPICIOUSLY_LARGE: f64 = 5000.0;
+
+/// An axis-aligned bounding box.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Bounds {
+    /// Smallest corner.
+    pub min: DVec3,
+    /// Largest corner.
+    pub max: DVec3,
+}
+
+impl Bounds {
+    /// The bounds of some triangles (`None` when there are none).
+    pub fn of(triangles: &[Triangle]) -> Option<Self> {
+        let mut it = triangles.iter().flatten();
+        let first = *it.next()?;
+        let (min, max) = it.fold((first, first), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+        Some(Self { min, max })
+    }
+
+    /// Extent along each axis.
+    pub fn size(&self) -> DVec3 {
+        self.max - self.min
+    }
+
+    /// Length of the diagonal.
+    pub fn diagonal(&self) -> f64 {
+        self.size().length()
+    }
+
+    /// The largest extent.
+    pub fn largest_extent(&self) -> f64 {
+        self.size().max_element()
+    }
+}
+
+/// The snapshot of step `read`: the model as converted, in mm.
+#[derive(Debug, Clone, Serialize)]
+pub struct Model {
+    /// The model's name (file stem).
+    pub name: String,
+    /// The file format, `None` for models made in code.
+    pub format: Option<Format>,
+    /// Triangles in mm, after units and scale.
+    #[serde(skip)]
+    pub triangles: Arc<Vec<Triangle>>,
+    /// Objects / solids in the file.
+    pub solids: usize,
+    /// Bounding box in mm.
+    pub bounds: Bounds,
+    /// Facets whose stored normal disagreed with the winding.
+    pub normals_against_winding: usize,
+    /// The factor applied to the file's numbers.
+    pub unit_factor: f64,
+}
+
+/// Step `read`.
+pub struct ReadStep;
+
+impl Step for ReadStep {
+    fn name(&self) -> &'static str {
+        "read"
+    }
+
+    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
+        let name = state.source.name();
+        let factor = state.settings.unit_factor();
+        let (format, solids, against, triangles) = match &state.source {
+            Source::File(path) => {
+                let (format, raw) = read_file(path)?;
+                for note in &raw.notes {
+                    cx.warn(WarningKind::Reader, note.clone());
+                }
+                let mut tris = raw.triangles;
+                if factor != 1.0 {
+                    tris.iter_mut().flatten().for_each(|p| *p *= factor);
+                }
+                (Some(format), raw.solids, raw.normals_against_winding, Arc::new(tris))
+            }
+            Source::Triangles { triangles, .. } if factor == 1.0 => (None, 1, 0, triangles.clone()),
+            Source::Triangles { triangles, .. } => {
+                let scaled = triangles.iter().map(|t| t.map(|p| p * factor)).collect();
+                (None, 1, 0, Arc::new(scaled))
+            }
+        };
+        if against > 0 {
+            cx.warn(
+                WarningKind::StoredNormals,
+                format!("{against} stored facet normals point against the winding; the winding is used"),
+            );
+        }
+        validate_finite(&name, &triangles)?;
+        let bounds = Bounds::of(&triangles)
+            .ok_or_else(|| Error::Model { model: name.clone(), message: "the model has no triangles".into() })?;
+        let extent = bounds.largest_extent();
+        if extent < SUSPICIOUSLY_SMALL {
+            cx.warn(
+                WarningKind::Units,
+                format!(
+                    "the model is only {extent:.4} mm across: if its unit is not mm, use --units cm|in or --scale F"
+                ),
+            );
+        } else if extent > SUSPICIOUSLY_LARGE {
+            cx.warn(
+                WarningKind::Units,
+                format!("the model is {:.1} m across: if its unit is not mm, use --scale F (e.g. 0.001 for µm)", extent / 1000.0),
+            );
+        }
+        state.read = Some(Arc::new(Model {
+            name,
+            format,
+            triangles,
+            solids,
+            bounds,
+            normals_against_winding: against,
+            unit_factor: factor,
+        }));
+        Ok(())
+    }
+}
+
+/// Refuses NaN/infinite coordinates (also those a huge `--scale` produces), naming the triangle.
+fn validate_finite(name: &str, triangles: &[Triangle]) -> Result<()> {
+    match triangles.iter().position(|t| !t.iter().all(|p| p.is_finite())) {
+        None => Ok(()),
+        Some(i) => Err(Error::Model {
+            model: name.to_string(),
+            message: format!("triangle {i} has a coordinate that is not a finite number after scaling; check --scale"),
+        }),
+    }
+}

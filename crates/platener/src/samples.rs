@@ -1,0 +1,196 @@
+//! Named shapes made in code, shared by tests, benchmarks and the shipped examples.
+//!
+//! Each generator returns a closed, outward-wound triangle list in mm, so tests can assert
+//! exact areas and positions against a model whose true geometry is known.
+
+use glam::{DVec2, DVec3};
+
+use crate::read::Triangle;
+
+/// An axis-aligned box from `min` to `max`, 12 triangles, normals out.
+pub fn cuboid(min: DVec3, max: DVec3) -> Vec<Triangle> {
+    let xs = [min.x, max.x];
+    let ys = [min.y, max.y];
+    let zs = [min.z, max.z];
+    voxels(&xs, &ys, &zs, |_, _, _| true)
+}
+
+/// A rectilinear solid: the union of the grid cells `[xs[i], xs[i+1]] × …` for which
+/// `filled(i, j, k)` holds. Only faces between a filled and an empty cell are emitted, so the
+/// surface is closed and conforming (cells must not touch along an edge only).
+pub fn voxels(xs: &[f64], ys: &[f64], zs: &[f64], filled: impl Fn(usize, usize, usize) -> bool) -> Vec<Triangle> {
+    let (nx, ny, nz) = (xs.len() - 1, ys.len() - 1, zs.len() - 1);
+    let at = |i: isize, j: isize, k: isize| {
+        i >= 0 && j >= 0 && k >= 0 && (i as usize) < nx && (j as usize) < ny && (k as usize) < nz && filled(i as usize, j as usize, k as usize)
+    };
+    let mut out = Vec::new();
+    let p = |i: usize, j: usize, k: usize| DVec3::new(xs[i], ys[j], zs[k]);
+    for i in 0..nx {
+        for j in 0..ny {
+            for k in 0..nz {
+                if !at(i as isize, j as isize, k as isize) {
+                    continue;
+                }
+                let (ii, jj, kk) = (i as isize, j as isize, k as isize);
+                // Each face as a quad wound counter-clockwise seen from outside.
+                let mut quad = |q: [DVec3; 4]| {
+                    out.push([q[0], q[1], q[2]]);
+                    out.push([q[0], q[2], q[3]]);
+                };
+                if !at(ii - 1, jj, kk) {
+                    quad([p(i, j, k), p(i, j, k + 1), p(i, j + 1, k + 1), p(i, j + 1, k)]);
+                }
+                if !at(ii + 1, jj, kk) {
+                    quad([p(i + 1, j, k), p(i + 1, j + 1, k), p(i + 1, j + 1, k + 1), p(i + 1, j, k + 1)]);
+                }
+                if !at(ii, jj - 1, kk) {
+                    quad([p(i, j, k), p(i + 1, j, k), p(i + 1, j, k + 1), p(i, j, k + 1)]);
+                }
+                if !at(ii, jj + 1, kk) {
+                    quad([p(i, j + 1, k), p(i, j + 1, k + 1), p(i + 1, j + 1, k + 1), p(i + 1, j + 1, k)]);
+                }
+                if !at(ii, jj, kk - 1) {
+                    quad([p(i, j, k), p(i, j + 1, k), p(i + 1, j + 1, k), p(i + 1, j, k)]);
+                }
+                if !at(ii, jj, kk + 1) {
+                    quad([p(i, j, k + 1), p(i + 1, j, k + 1), p(i + 1, j + 1, k + 1), p(i, j + 1, k + 1)]);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// An open-top box (a tray) `w × d × h` with walls and floor `t` thick, outer corner at the
+/// origin: five plates.
+pub fn open_box(w: f64, d: f64, h: f64, t: f64) -> Vec<Triangle> {
+    voxels(&[0.0, t, w - t, w], &[0.0, t, d - t, d], &[0.0, t, h], |i, j, k| k == 0 || i != 1 || j != 1)
+}
+
+/// Ear-clipping triangulation of a simple counter-clockwise polygon (no holes).
+fn triangulate(poly: &[DVec2]) -> Vec<[usize; 3]> {
+    let mut idx: Vec<usize> = (0..poly.len()).collect();
+    let mut out = Vec::new();
+    let mut guard = 0;
+    while idx.len() > 3 && guard < 10 * poly.len() * poly.len() {
+        guard += 1;
+        let n = idx.len();
+        let ear = (0..n).find(|&i| {
+            let (a, b, c) = (poly[idx[(i + n - 1) % n]], poly[idx[i]], poly[idx[(i + 1) % n]]);
+            if (b - a).perp_dot(c - b) <= 0.0 {
+                return false;
+            }
+            idx.iter().all(|&j| {
+                let q = poly[j];
+                q == a || q == b || q == c || !((b - a).perp_dot(q - a) > 0.0 && (c - b).perp_dot(q - b) > 0.0 && (a - c).perp_dot(q - c) > 0.0)
+            })
+        });
+        let Some(i) = ear else { break };
+        out.push([idx[(i + n - 1) % n], idx[i], idx[(i + 1) % n]]);
+        idx.remove(i);
+    }
+    if idx.len() == 3 {
+        out.push([idx[0], idx[1], idx[2]]);
+    }
+    out
+}
+
+/// A prism: the simple counter-clockwise `profile` drawn in the XZ plane (x right, z up, seen
+/// from −y), extruded from y = 0 to y = `width`.
+pub fn prism(profile: &[DVec2], width: f64) -> Vec<Triangle> {
+    let at = |p: DVec2, y: f64| DVec3::new(p.x, y, p.y);
+    let mut out = Vec::new();
+    for [a, b, c] in triangulate(profile) {
+        // Seen from −y, CCW in (x, z) is clockwise around +y: the y = 0 cap faces −y.
+        out.push([at(profile[a], 0.0), at(profile[c], 0.0), at(profile[b], 0.0)]);
+        out.push([at(profile[a], width), at(profile[b], width), at(profile[c], width)]);
+    }
+    let n = profile.len();
+    for i in 0..n {
+        let (p, q) = (profile[i], profile[(i + 1) % n]);
+        out.push([at(p, 0.0), at(q, 0.0), at(q, width)]);
+        out.push([at(p, 0.0), at(q, width), at(p, width)]);
+    }
+    out
+}
+
+/// A phone stand of 3 mm plates, one bent profile extruded 70 mm wide: an 85 mm base, a
+/// 12 mm front lip, and a 90 mm back plate leaning back at 65° from the base.
+pub fn phone_stand() -> Vec<Triangle> {
+    let t = 3.0;
+    let (len, lip, back, x0) = (85.0, 12.0, 90.0, 35.0);
+    let a = 65f64.to_radians();
+    let dir = DVec2::new(a.cos(), a.sin());
+    let front_foot = DVec2::new(x0, t);
+    // A slanted plate t thick is t / sin(a) wide where it meets the base.
+    let back_foot = front_foot + DVec2::new(t / a.sin(), 0.0);
+    let profile = [
+        DVec2::new(0.0, 0.0),
+        DVec2::new(len, 0.0),
+        DVec2::new(len, t),
+        back_foot,
+        back_foot + dir * back,
+        front_foot + dir * back,
+        front_foot,
+        DVec2::new(t, t),
+        DVec2::new(t, lip),
+        DVec2::new(0.0, lip),
+    ];
+    prism(&profile, 70.0)
+}
+
+/// A box `size` with rounded edges of `radius`, each face cut into an `n × n` grid before
+/// rounding: `12·n²` triangles, flat where the faces are flat. The benchmark model.
+pub fn rounded_box(size: DVec3, radius: f64, n: usize) -> Vec<Triangle> {
+    let half = size / 2.0;
+    let inner = (half - DVec3::splat(radius)).max(DVec3::ZERO);
+    let map = |p: DVec3| {
+        let q = p * half;
+        let c = q.clamp(-inner, inner);
+        let d = q - c;
+        if d.length_squared() > 0.0 { c + d.normalize() * radius } else { q }
+    };
+    let faces = [
+        (DVec3::X, DVec3::Y, DVec3::Z),
+        (-DVec3::X, DVec3::Z, DVec3::Y),
+        (DVec3::Y, DVec3::Z, DVec3::X),
+        (-DVec3::Y, DVec3::X, DVec3::Z),
+        (DVec3::Z, DVec3::X, DVec3::Y),
+        (-DVec3::Z, DVec3::Y, DVec3::X),
+    ];
+    let mut out = Vec::with_capacity(12 * n * n);
+    for (normal, u, v) in faces {
+        let p = |i: usize, j: usize| {
+            let s = 2.0 * i as f64 / n as f64 - 1.0;
+            let t = 2.0 * j as f64 / n as f64 - 1.0;
+            map(normal + u * s + v * t)
+        };
+        for i in 0..n {
+            for j in 0..n {
+                out.push([p(i, j), p(i + 1, j), p(i + 1, j + 1)]);
+                out.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
+            }
+        }
+    }
+    out
+}
+
+/// Serialises triangles as a binary STL (normals from the winding), for tests and examples.
+pub fn to_binary_stl(triangles: &[Triangle], header: &str) -> Vec<u8> {
+    let mut out = Vec::with_capacity(84 + 50 * triangles.len());
+    let mut h = [b' '; 80];
+    let bytes = header.as_bytes();
+    h[..bytes.len().min(80)].copy_from_slice(&bytes[..bytes.len().min(80)]);
+    out.extend_from_slice(&h);
+    out.extend_from_slice(&(triangles.len() as u32).to_le_bytes());
+    for t in triangles {
+        let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
+        for v in std::iter::once(n).chain(t.iter().copied()) {
+            for c in v.to_array() {
+                out.extend_from_slice(&(c as f32).to_le_bytes());
+            }
+        }
+        out.extend_from_slice(&[0, 0]);
+    }
+    out
+}

@@ -1,0 +1,131 @@
+//! Conversion settings: what the user chooses, with documented defaults.
+//!
+//! The CLI and the web service only fill this struct; every default lives here.
+
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+
+/// The unit a model file's numbers are in. STL has no unit; we take millimetres.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Units {
+    /// Millimetres (the default).
+    #[default]
+    Mm,
+    /// Centimetres.
+    Cm,
+    /// Inches.
+    In,
+}
+
+impl Units {
+    /// How many millimetres one file unit is.
+    pub fn to_mm(self) -> f64 {
+        match self {
+            Units::Mm => 1.0,
+            Units::Cm => 10.0,
+            Units::In => 25.4,
+        }
+    }
+}
+
+/// How vertices are welded (the thesis' Simplification step).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
+#[serde(rename_all = "lowercase", tag = "mode", content = "distance")]
+pub enum Weld {
+    /// Chosen from the model's size and the thinnest sheet (see [`Settings::weld_distance`]).
+    #[default]
+    Auto,
+    /// Merge exact duplicates only (keeps every surface detail; the stacked method uses this).
+    Off,
+    /// Merge vertices closer than this many mm.
+    Distance(f64),
+}
+
+/// All settings of a conversion.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Settings {
+    /// The unit of the model file's numbers.
+    pub units: Units,
+    /// Extra scale factor applied after the unit conversion.
+    pub scale: f64,
+    /// Vertex welding.
+    pub weld: Weld,
+    /// Sheet thicknesses the user has, in mm (the thinnest bounds the automatic weld distance).
+    pub thicknesses: Vec<f64>,
+    /// Connected faces whose normals differ by less than this many degrees form one planar
+    /// group. 1° keeps a 200-sided cylinder (1.8° per facet) from becoming one "plane".
+    pub coplanar_angle_deg: f64,
+    /// Vertices closer than this (mm) to the line through their neighbours are removed from
+    /// outlines; `None` derives it from the model size (1e-4 of the diagonal, 1 µm–10 µm).
+    pub straight_tolerance: Option<f64>,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            units: Units::Mm,
+            scale: 1.0,
+            weld: Weld::Auto,
+            thicknesses: vec![3.0],
+            coplanar_angle_deg: 1.0,
+            straight_tolerance: None,
+        }
+    }
+}
+
+/// Models whose largest extent is below this (mm) are not welded automatically: their
+/// details are all smaller than any bevel we would want to remove.
+pub const AUTO_WELD_MIN_EXTENT: f64 = 20.0;
+/// The automatic weld distance never exceeds this (mm): bevels editors add are ≤ 2 mm.
+pub const AUTO_WELD_MAX: f64 = 2.0;
+
+impl Settings {
+    /// Checks ranges; the error names the setting and what is allowed.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |name, message: String| Err(Error::Setting { name, message });
+        if !(self.scale.is_finite() && self.scale > 0.0) {
+            return bad("scale", format!("{} is not a positive number", self.scale));
+        }
+        if let Weld::Distance(d) = self.weld {
+            if !(d.is_finite() && d >= 0.0) {
+                return bad("weld", format!("{d} is not a distance ≥ 0 mm"));
+            }
+        }
+        if self.thicknesses.is_empty() || self.thicknesses.iter().any(|t| !(t.is_finite() && *t > 0.0)) {
+            return bad("thickness", format!("{:?} must be positive numbers of mm", self.thicknesses));
+        }
+        if !(self.coplanar_angle_deg.is_finite() && (0.0..45.0).contains(&self.coplanar_angle_deg)) {
+            return bad("coplanar angle", format!("{}° must be in [0, 45)", self.coplanar_angle_deg));
+        }
+        if let Some(t) = self.straight_tolerance {
+            if !(t.is_finite() && t >= 0.0) {
+                return bad("straight tolerance", format!("{t} is not a distance ≥ 0 mm"));
+            }
+        }
+        Ok(())
+    }
+
+    /// The factor from file units to mm.
+    pub fn unit_factor(&self) -> f64 {
+        self.units.to_mm() * self.scale
+    }
+
+    /// The weld distance for a model whose largest bounding-box extent is `extent` mm.
+    ///
+    /// Automatic rule: none below [`AUTO_WELD_MIN_EXTENT`]; otherwise `extent / 50`, at most
+    /// [`AUTO_WELD_MAX`] and at most 0.6 × the thinnest sheet, so the two faces of a plate we
+    /// are looking for are never welded together. A 100 mm model with 3 mm sheets gets 1.8 mm.
+    pub fn weld_distance(&self, extent: f64) -> f64 {
+        match self.weld {
+            Weld::Off => 0.0,
+            Weld::Distance(d) => d,
+            Weld::Auto if !(extent >= AUTO_WELD_MIN_EXTENT) => 0.0,
+            Weld::Auto => {
+                let thinnest = self.thicknesses.iter().copied().fold(f64::INFINITY, f64::min);
+                (extent / 50.0).min(AUTO_WELD_MAX).min(0.6 * thinnest)
+            }
+        }
+    }
+}
