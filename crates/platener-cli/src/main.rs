@@ -1,1 +1,24 @@
-fn main() {}
+//! The `platener` command line: parses flags, resolves them into library settings, prints.
+//!
+//! Exit codes: 0 success, 1 a model failed, 2 usage error (clap's default).
+
+mod args;
+mod inspect;
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+fn main() -> ExitCode {
+    let cli = args::Cli::parse();
+    let result = match cli.command {
+        args::Command::Inspect(a) => inspect::run(&a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(1)
+        }
+    }
+}

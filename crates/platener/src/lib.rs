@@ -29,3 +29,4 @@ pub mod weld;
 pub use error::{Error, Result};
 pub use pipeline::{Cancel, Source, State};
 pub use settings::{Settings, Units, Weld};
+pub use platener_geom::glam;

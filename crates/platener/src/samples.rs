@@ -101,15 +101,16 @@ pub fn prism(profile: &[DVec2], width: f64) -> Vec<Triangle> {
     let at = |p: DVec2, y: f64| DVec3::new(p.x, y, p.y);
     let mut out = Vec::new();
     for [a, b, c] in triangulate(profile) {
-        // Seen from −y, CCW in (x, z) is clockwise around +y: the y = 0 cap faces −y.
-        out.push([at(profile[a], 0.0), at(profile[c], 0.0), at(profile[b], 0.0)]);
-        out.push([at(profile[a], width), at(profile[b], width), at(profile[c], width)]);
+        // Counter-clockwise in (x, z) turns around −y (x × z = −y): that is the y = 0 cap.
+        out.push([at(profile[a], 0.0), at(profile[b], 0.0), at(profile[c], 0.0)]);
+        out.push([at(profile[a], width), at(profile[c], width), at(profile[b], width)]);
     }
     let n = profile.len();
     for i in 0..n {
         let (p, q) = (profile[i], profile[(i + 1) % n]);
-        out.push([at(p, 0.0), at(q, 0.0), at(q, width)]);
-        out.push([at(p, 0.0), at(q, width), at(p, width)]);
+        // The solid lies left of p → q, so the side faces right: (q − p) × ŷ.
+        out.push([at(p, 0.0), at(q, width), at(q, 0.0)]);
+        out.push([at(p, 0.0), at(p, width), at(q, width)]);
     }
     out
 }
@@ -193,4 +194,57 @@ pub fn to_binary_stl(triangles: &[Triangle], header: &str) -> Vec<u8> {
         out.extend_from_slice(&[0, 0]);
     }
     out
+}
+
+/// A closed box `w × d × h` whose six walls are `t` thick (a hollow cube as CAD draws it).
+pub fn closed_box(w: f64, d: f64, h: f64, t: f64) -> Vec<Triangle> {
+    voxels(&[0.0, t, w - t, w], &[0.0, t, d - t, d], &[0.0, t, h - t, h], |i, j, k| (i, j, k) != (1, 1, 1))
+}
+
+/// The models shipped in `examples/`: file name, STL header, triangles.
+pub fn shipped_examples() -> Vec<(&'static str, &'static str, Vec<Triangle>)> {
+    vec![
+        ("box-3mm.stl", "platener example: closed box 100x80x60 mm of 3 mm plates", closed_box(100.0, 80.0, 60.0, 3.0)),
+        ("tray-3mm.stl", "platener example: open tray 120x80x40 mm of 3 mm plates", open_box(120.0, 80.0, 40.0, 3.0)),
+        ("phone-stand.stl", "platener example: phone stand of 3 mm plates, back at 65 deg", phone_stand()),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::weld::weld_soup;
+
+    #[test]
+    fn generated_samples_are_closed_and_wound_outwards() {
+        for (name, _, tris) in shipped_examples() {
+            let w = weld_soup(&tris, 0.0);
+            let m = crate::mesh::Mesh::build(w.vertices, &w.triangles, 1e-9);
+            assert!(m.health.closed, "{name}");
+            assert_eq!(m.health.flipped_faces, 0, "{name}");
+        }
+        let rb = rounded_box(DVec3::new(40.0, 30.0, 20.0), 4.0, 12);
+        assert_eq!(rb.len(), 12 * 12 * 12);
+    }
+
+    #[test]
+    fn shipped_example_files_match_their_generators() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+        for (name, header, tris) in shipped_examples() {
+            let on_disk = std::fs::read(dir.join(name)).expect("examples/ is part of the repository");
+            assert!(on_disk == to_binary_stl(&tris, header), "examples/{name} is stale: run `cargo run -p platener --example make_examples`");
+        }
+    }
+
+    #[test]
+    fn phone_stand_back_plate_leans_at_65_degrees() {
+        let tris = phone_stand();
+        let w = weld_soup(&tris, 0.0);
+        let m = crate::mesh::Mesh::build(w.vertices, &w.triangles, 1e-9);
+        let expect = DVec3::new(-(65f64.to_radians().sin()), 0.0, 65f64.to_radians().cos());
+        assert!(m.normals.iter().any(|n| (n.dot(expect) - 1.0).abs() < 1e-12), "front face of the back plate");
+        // 85×3 base + lip 3×9 + back plate 90×3: cross-section area × width.
+        let volume = (85.0 * 3.0 + 3.0 * 9.0 + 90.0 * 3.0) * 70.0;
+        assert!((m.health.volume.expect("closed") - volume).abs() < 1e-6);
+    }
 }

@@ -81,8 +81,9 @@ impl Mesh {
                 kept.push(*t);
             }
         }
-        let topology = Topology::build(&kept);
+        let mut topology = Topology::build(&kept);
         let oriented = orient::orient(&vertices, &kept, &topology);
+        topology.reverse_faces(&oriented.reversed);
         let (normals, areas): (Vec<DVec3>, Vec<f64>) = oriented
             .triangles
             .iter()

@@ -11,6 +11,8 @@ use super::topology::Topology;
 
 pub(super) struct Oriented {
     pub triangles: Vec<[u32; 3]>,
+    /// Which input faces were reversed (corners 1 and 2 swapped).
+    pub reversed: Vec<bool>,
     pub component: Vec<u32>,
     pub components: usize,
     pub flipped: usize,
@@ -116,34 +118,102 @@ pub(super) fn orient(vertices: &[DVec3], triangles: &[[u32; 3]], topology: &Topo
         .zip(&flip)
         .map(|(t, &fl)| if fl { [t[0], t[2], t[1]] } else { *t })
         .collect();
-    // Decide each patch's overall direction.
+    // Decide each patch's overall direction. A closed body is turned so its volume is
+    // positive, unless it lies inside an odd number of other closed bodies: then it is a
+    // cavity and its normals must point into the void (negative volume).
     let body_closed: Vec<bool> = bodies
         .iter()
-        .map(|faces| {
-            faces.iter().all(|&f| topology.face_edges[f as usize].iter().all(|&e| topology.edge_valence(e) == 2))
+        .zip(&patches_per_body(&component, &patches, bodies.len()))
+        .map(|(faces, &np)| {
+            np == 1 && faces.iter().all(|&f| topology.face_edges[f as usize].iter().all(|&e| topology.edge_valence(e) == 2))
         })
         .collect();
+    let depth = nesting_depth(vertices, &out, &bodies, &body_closed);
     for members in &patches {
         let body = component[members[0] as usize] as usize;
-        let single_patch = bodies[body].len() == members.len();
-        let turn = if body_closed[body] && single_patch {
-            signed_volume(vertices, &out, Some(members)) < 0.0
+        let turn = if body_closed[body] {
+            (signed_volume(vertices, &out, Some(members)) < 0.0) != (depth[body] % 2 == 1)
         } else {
             2 * members.iter().filter(|&&f| flip[f as usize]).count() > members.len()
         };
         if turn {
             for &f in members {
-                let t = &mut out[f as usize];
-                t.swap(1, 2);
+                out[f as usize].swap(1, 2);
                 flip[f as usize] = !flip[f as usize];
             }
         }
     }
     Oriented {
         flipped: flip.iter().filter(|&&f| f).count(),
+        reversed: flip,
         triangles: out,
         components: bodies.len(),
         component,
         non_orientable_edges,
     }
+}
+
+fn patches_per_body(component: &[u32], patches: &[Vec<u32>], n_bodies: usize) -> Vec<usize> {
+    let mut count = vec![0; n_bodies];
+    for p in patches {
+        count[component[p[0] as usize] as usize] += 1;
+    }
+    count
+}
+
+/// For each closed body, how many other closed bodies enclose it (ray parity from one of its
+/// vertices). Bodies are compared only when one's box lies inside the other's, so models of
+/// many separate parts stay fast.
+fn nesting_depth(vertices: &[DVec3], triangles: &[[u32; 3]], bodies: &[Vec<u32>], closed: &[bool]) -> Vec<usize> {
+    let boxes: Vec<(DVec3, DVec3)> = bodies
+        .iter()
+        .map(|faces| {
+            faces.iter().flat_map(|&f| triangles[f as usize]).fold(
+                (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+                |(lo, hi), v| (lo.min(vertices[v as usize]), hi.max(vertices[v as usize])),
+            )
+        })
+        .collect();
+    // An irrational-looking direction: rays along it almost never graze an edge of a
+    // CAD model, whose edges run along axes and simple angles.
+    let dir = DVec3::new(0.573_615_6, 0.692_048_1, 0.438_371_1).normalize();
+    (0..bodies.len())
+        .map(|a| {
+            if !closed[a] {
+                return 0;
+            }
+            let p = vertices[triangles[bodies[a][0] as usize][0] as usize];
+            (0..bodies.len())
+                .filter(|&b| {
+                    b != a
+                        && closed[b]
+                        && boxes[a].0.cmpge(boxes[b].0).all()
+                        && boxes[a].1.cmple(boxes[b].1).all()
+                        && bodies[b].iter().filter(|&&f| ray_hits(p, dir, triangles[f as usize].map(|v| vertices[v as usize]))).count() % 2 == 1
+                })
+                .count()
+        })
+        .collect()
+}
+
+/// Whether the ray `origin + t·dir`, t > 0, crosses the triangle (Möller–Trumbore).
+fn ray_hits(origin: DVec3, dir: DVec3, [a, b, c]: [DVec3; 3]) -> bool {
+    let (e1, e2) = (b - a, c - a);
+    let p = dir.cross(e2);
+    let det = e1.dot(p);
+    if det.abs() < 1e-300 {
+        return false;
+    }
+    let inv = 1.0 / det;
+    let s = origin - a;
+    let u = s.dot(p) * inv;
+    if !(0.0..=1.0).contains(&u) {
+        return false;
+    }
+    let q = s.cross(e1);
+    let v = dir.dot(q) * inv;
+    if v < 0.0 || u + v > 1.0 {
+        return false;
+    }
+    e2.dot(q) * inv > 0.0
 }

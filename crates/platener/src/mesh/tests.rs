@@ -67,3 +67,38 @@ fn three_faces_on_one_edge_are_non_manifold() {
     assert_eq!(m.health.non_manifold_edges, 1);
     assert_eq!(m.health.open_edges, 6);
 }
+
+#[test]
+fn a_cavity_keeps_its_normals_pointing_into_the_void() {
+    let soup = crate::samples::closed_box(100.0, 80.0, 60.0, 3.0);
+    let want = 100.0 * 80.0 * 60.0 - 94.0 * 74.0 * 54.0;
+    let m = build(&soup);
+    assert_eq!((m.health.components, m.health.flipped_faces), (2, 0));
+    assert!((m.health.volume.expect("closed") - want).abs() < 1e-6);
+    // Turn the whole model inside out: both shells are put right again.
+    let inverted: Vec<_> = soup.iter().map(|t| [t[0], t[2], t[1]]).collect();
+    let m = build(&inverted);
+    assert_eq!(m.health.flipped_faces, soup.len());
+    assert!((m.health.volume.expect("closed") - want).abs() < 1e-6);
+}
+
+#[test]
+fn corners_follow_flipped_faces() {
+    // After orientation, each face's corner c must still run along its edge c.
+    let mut soup = cuboid(DVec3::ZERO, DVec3::splat(4.0));
+    soup[3].swap(1, 2);
+    soup[7].swap(0, 1);
+    let m = build(&soup);
+    for (f, t) in m.triangles.iter().enumerate() {
+        for c in 0..3 {
+            let mut want = [t[c], t[(c + 1) % 3]];
+            want.sort_unstable();
+            assert_eq!(m.topology.edges[m.topology.face_edges[f][c] as usize], want);
+        }
+    }
+    for e in 0..m.topology.edges.len() as u32 {
+        for &fc in m.topology.edge_corners(e) {
+            assert_eq!(m.topology.face_edges[(fc / 3) as usize][(fc % 3) as usize], e);
+        }
+    }
+}

@@ -47,6 +47,22 @@ impl Topology {
         Self { edges, face_edges, offsets, edge_face_list }
     }
 
+    /// Follows faces whose winding was reversed by swapping corners 1 and 2: corner 0 then
+    /// runs the old corner 2's edge and corner 2 the old corner 0's, corner 1 keeps its edge.
+    pub fn reverse_faces(&mut self, reversed: &[bool]) {
+        for (f, fe) in self.face_edges.iter_mut().enumerate() {
+            if reversed[f] {
+                fe.swap(0, 2);
+            }
+        }
+        for fc in &mut self.edge_face_list {
+            let (f, c) = (*fc / 3, *fc % 3);
+            if reversed[f as usize] {
+                *fc = 3 * f + (2 - c);
+            }
+        }
+    }
+
     /// The face-corners (`3·face + corner`) using edge `e`; corner `c` of a face runs from
     /// its vertex `c` to vertex `c + 1`.
     pub fn edge_corners(&self, e: u32) -> &[u32] {
