@@ -69,7 +69,7 @@ impl ModelArgs {
         let weld = match self.weld.trim() {
             "auto" => Weld::Auto,
             s => match s.parse::<f64>() {
-                Ok(d) if d == 0.0 => Weld::Off,
+                Ok(0.0) => Weld::Off,
                 Ok(d) => Weld::Distance(d),
                 Err(_) => anyhow::bail!("--weld takes `auto` or a distance in mm, not {s:?}"),
             },

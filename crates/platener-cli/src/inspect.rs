@@ -41,9 +41,10 @@ pub fn render(r: &Inspection) -> String {
         r.weld_distance, r.vertices_merged, r.triangles_welded_away
     );
     let _ = writeln!(s, "size       {:.2} × {:.2} × {:.2} mm, from {} to {}", size.x, size.y, size.z, v3(r.bounds.min), v3(r.bounds.max));
+    let _ = writeln!(s, "model mesh {} open edges, {} non-manifold edges (as given, before welding)", r.input_open_edges, r.input_non_manifold_edges);
     let _ = writeln!(
         s,
-        "health     {}; {} bod{}, {} open edges, {} non-manifold edges, {} flipped faces fixed{}",
+        "health     {}; {} bod{}, {} open edges, {} non-manifold edges, {} flipped faces fixed{} (after welding)",
         if h.closed { "closed" } else { "not closed" },
         h.components,
         if h.components == 1 { "y" } else { "ies" },

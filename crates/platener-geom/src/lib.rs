@@ -11,9 +11,11 @@
 //! | [`boolean`] | union / intersection / difference, even-odd hole detection (i_overlay) |
 //! | [`offset`] | outward/inward offsets with miter joins (i_overlay) |
 //! | [`frame`] | rigid 3D ↔ 2D frames of planes |
+//! | [`dedup`] | finding equal items among millions (sorted fingerprints) |
 //! | [`weld`] | merging nearby points in 2D or 3D (spatial hash) |
 
 pub mod boolean;
+pub mod dedup;
 pub mod frame;
 pub mod grid;
 pub mod offset;

@@ -42,7 +42,7 @@ mod tests {
             DVec2::new(10.0, 10.0),
             DVec2::new(0.0, 10.0),
         ]);
-        let out = offset(&[sq.clone()], 0.5).expect("grid");
+        let out = offset(std::slice::from_ref(&sq), 0.5).expect("grid");
         assert!((total_area(&out) - 121.0).abs() < 1e-6, "{}", total_area(&out));
         assert_eq!(out[0].outer.len(), 4);
         let inner = offset(&[sq], -0.5).expect("grid");

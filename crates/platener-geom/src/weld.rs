@@ -25,18 +25,39 @@ pub struct Welded<const D: usize> {
     pub map: Vec<u32>,
 }
 
-/// A fast, deterministic hasher for integer cell keys (Fx-style multiply-rotate).
+/// A fast, deterministic hasher for integer and float-bit keys (multiply-rotate, with a
+/// splitmix64 finaliser: coordinates read from f32 have ~29 trailing zero bits, and without
+/// mixing the high bits down every key would land in the same hash bucket).
 #[derive(Default, Clone, Copy)]
 pub struct CellHasher(u64);
 
 impl Hasher for CellHasher {
     fn finish(&self) -> u64 {
-        self.0
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
     }
     fn write(&mut self, bytes: &[u8]) {
-        for b in bytes {
-            self.write_u64(u64::from(*b));
+        // Slices of integers arrive here as one byte string: take them 8 bytes at a time.
+        let mut chunks = bytes.chunks_exact(8);
+        for c in &mut chunks {
+            let mut word = [0u8; 8];
+            word.copy_from_slice(c);
+            self.write_u64(u64::from_le_bytes(word));
         }
+        let rest = chunks.remainder();
+        if !rest.is_empty() {
+            let mut word = [0u8; 8];
+            word[..rest.len()].copy_from_slice(rest);
+            self.write_u64(u64::from_le_bytes(word));
+        }
+    }
+    fn write_usize(&mut self, i: usize) {
+        self.write_u64(i as u64);
+    }
+    fn write_u32(&mut self, i: u32) {
+        self.write_u64(u64::from(i));
     }
     fn write_u64(&mut self, i: u64) {
         self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
@@ -52,23 +73,13 @@ pub type CellMap<K, V> = HashMap<K, V, BuildHasherDefault<CellHasher>>;
 /// Merges exactly equal points (bitwise, with -0.0 == 0.0). Returns the unique points in
 /// first-seen order, how many inputs each stands for, and each input's unique index.
 pub fn dedup_exact<const D: usize>(points: &[[f64; D]]) -> (Vec<[f64; D]>, Vec<f64>, Vec<u32>) {
-    let mut index: CellMap<[u64; D], u32> = CellMap::default();
-    index.reserve(points.len() / 4);
-    let mut unique = Vec::new();
-    let mut counts: Vec<f64> = Vec::new();
-    let map = points
-        .iter()
-        .map(|p| {
-            let key = p.map(|c| (c + 0.0).to_bits());
-            let id = *index.entry(key).or_insert_with(|| {
-                unique.push(*p);
-                counts.push(0.0);
-                (unique.len() - 1) as u32
-            });
-            counts[id as usize] += 1.0;
-            id
-        })
-        .collect();
+    let keys: Vec<[u64; D]> = points.iter().map(|p| p.map(|c| (c + 0.0).to_bits())).collect();
+    let (map, firsts) = crate::dedup::number_distinct(&keys);
+    let unique = firsts.iter().map(|&i| points[i as usize]).collect();
+    let mut counts = vec![0.0; firsts.len()];
+    for &m in &map {
+        counts[m as usize] += 1.0;
+    }
     (unique, counts, map)
 }
 

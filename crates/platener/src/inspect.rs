@@ -52,6 +52,10 @@ pub struct Inspection {
     pub vertices_merged: usize,
     /// Triangles that welding collapsed or merged.
     pub triangles_welded_away: usize,
+    /// Open edges of the model as given (before welding).
+    pub input_open_edges: usize,
+    /// Non-manifold edges of the model as given (before welding).
+    pub input_non_manifold_edges: usize,
     /// Triangles in the final mesh.
     pub triangles: usize,
     /// Mesh health.
@@ -104,6 +108,8 @@ pub fn inspect(source: Source, settings: Settings, cancel: &Cancel) -> Result<In
         weld_distance: welded.distance,
         vertices_merged: welded.vertices_merged,
         triangles_welded_away: welded.triangles_collapsed + welded.triangles_merged,
+        input_open_edges: welded.input_open_edges,
+        input_non_manifold_edges: welded.input_non_manifold_edges,
         triangles: mesh.triangles.len(),
         health: mesh.health.clone(),
         surface_area: mesh.surface_area,

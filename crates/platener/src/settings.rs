@@ -88,10 +88,10 @@ impl Settings {
         if !(self.scale.is_finite() && self.scale > 0.0) {
             return bad("scale", format!("{} is not a positive number", self.scale));
         }
-        if let Weld::Distance(d) = self.weld {
-            if !(d.is_finite() && d >= 0.0) {
-                return bad("weld", format!("{d} is not a distance ≥ 0 mm"));
-            }
+        if let Weld::Distance(d) = self.weld
+            && !(d.is_finite() && d >= 0.0)
+        {
+            return bad("weld", format!("{d} is not a distance ≥ 0 mm"));
         }
         if self.thicknesses.is_empty() || self.thicknesses.iter().any(|t| !(t.is_finite() && *t > 0.0)) {
             return bad("thickness", format!("{:?} must be positive numbers of mm", self.thicknesses));
@@ -99,10 +99,10 @@ impl Settings {
         if !(self.coplanar_angle_deg.is_finite() && (0.0..45.0).contains(&self.coplanar_angle_deg)) {
             return bad("coplanar angle", format!("{}° must be in [0, 45)", self.coplanar_angle_deg));
         }
-        if let Some(t) = self.straight_tolerance {
-            if !(t.is_finite() && t >= 0.0) {
-                return bad("straight tolerance", format!("{t} is not a distance ≥ 0 mm"));
-            }
+        if let Some(t) = self.straight_tolerance
+            && !(t.is_finite() && t >= 0.0)
+        {
+            return bad("straight tolerance", format!("{t} is not a distance ≥ 0 mm"));
         }
         Ok(())
     }
@@ -121,7 +121,7 @@ impl Settings {
         match self.weld {
             Weld::Off => 0.0,
             Weld::Distance(d) => d,
-            Weld::Auto if !(extent >= AUTO_WELD_MIN_EXTENT) => 0.0,
+            Weld::Auto if extent.is_nan() || extent < AUTO_WELD_MIN_EXTENT => 0.0,
             Weld::Auto => {
                 let thinnest = self.thicknesses.iter().copied().fold(f64::INFINITY, f64::min);
                 (extent / 50.0).min(AUTO_WELD_MAX).min(0.6 * thinnest)

@@ -7,7 +7,7 @@
 
 use std::sync::Arc;
 
-use platener_geom::weld::CellMap;
+use platener_geom::dedup::first_equal;
 use platener_geom::Tolerances;
 use serde::Serialize;
 
@@ -41,29 +41,24 @@ pub fn is_degenerate(t: &Triangle, min_height: f64) -> bool {
     area2 / longest2.sqrt() < min_height
 }
 
-/// Removes degenerate and duplicate triangles; returns the kept ones and the two counts.
+/// Removes degenerate and duplicate triangles; returns the kept ones (in input order) and the
+/// two counts.
 pub fn clean(triangles: &[Triangle], tolerances: &Tolerances) -> (Vec<Triangle>, usize, usize) {
-    let mut seen: CellMap<[u64; 9], ()> = CellMap::default();
-    seen.reserve(triangles.len());
-    let (mut degenerate, mut duplicates) = (0, 0);
-    let mut kept = Vec::with_capacity(triangles.len());
-    for t in triangles {
-        if is_degenerate(t, tolerances.degenerate_height) {
-            degenerate += 1;
-            continue;
-        }
-        let mut corners = t.map(|p| [(p.x + 0.0).to_bits(), (p.y + 0.0).to_bits(), (p.z + 0.0).to_bits()]);
-        corners.sort_unstable();
-        let mut key = [0u64; 9];
-        for (i, c) in corners.iter().enumerate() {
-            key[3 * i..3 * i + 3].copy_from_slice(c);
-        }
-        if seen.insert(key, ()).is_some() {
-            duplicates += 1;
-            continue;
-        }
-        kept.push(*t);
-    }
+    let candidates: Vec<&Triangle> = triangles.iter().filter(|t| !is_degenerate(t, tolerances.degenerate_height)).collect();
+    let degenerate = triangles.len() - candidates.len();
+    // A triangle's identity: its corners' bits (−0 taken as +0), sorted, so rotated and
+    // mirrored copies compare equal.
+    let keys: Vec<[[u64; 3]; 3]> = candidates
+        .iter()
+        .map(|t| {
+            let mut k = t.map(|p| [(p.x + 0.0).to_bits(), (p.y + 0.0).to_bits(), (p.z + 0.0).to_bits()]);
+            k.sort_unstable();
+            k
+        })
+        .collect();
+    let first = first_equal(&keys);
+    let kept: Vec<Triangle> = candidates.iter().enumerate().filter(|&(i, _)| first[i] as usize == i).map(|(_, t)| **t).collect();
+    let duplicates = candidates.len() - kept.len();
     (kept, degenerate, duplicates)
 }
 

@@ -87,7 +87,7 @@ proptest! {
     #[test]
     fn shapes_do_not_depend_on_placement(
         ax in (-1.0f64..1.0, -1.0f64..1.0, 0.1f64..1.0),
-        angle in 0.0f64..6.28,
+        angle in 0.0f64..std::f64::consts::TAU,
         shift in (-500.0f64..500.0, -500.0f64..500.0, -500.0f64..500.0),
     ) {
         let model = open_box(100.0, 60.0, 40.0, 3.0);

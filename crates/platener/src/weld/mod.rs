@@ -9,7 +9,9 @@
 use std::sync::Arc;
 
 use glam::DVec3;
-use platener_geom::weld::{CellMap, weld};
+use rayon::slice::ParallelSliceMut;
+use platener_geom::dedup::first_equal;
+use platener_geom::weld::weld;
 use serde::Serialize;
 
 use crate::error::{Error, Result};
@@ -36,6 +38,10 @@ pub struct Welded {
     pub triangles_merged: usize,
     /// Whether welding emptied the model and the unwelded mesh was used instead.
     pub fell_back: bool,
+    /// Open edges of the model as given (exact duplicates merged, before welding).
+    pub input_open_edges: usize,
+    /// Non-manifold edges of the model as given (before welding).
+    pub input_non_manifold_edges: usize,
 }
 
 /// Welds a triangle soup at `distance` (0 merges exact duplicates only).
@@ -43,27 +49,37 @@ pub fn weld_soup(soup: &[[DVec3; 3]], distance: f64) -> Welded {
     let corners: Vec<[f64; 3]> = soup.iter().flatten().map(|p| p.to_array()).collect();
     let exact = weld(&corners, &vec![1.0; corners.len()], 0.0);
     let before = exact.points.len();
+    let (input_open_edges, input_non_manifold_edges) = input_edge_defects(&exact.map);
     let clustered = (distance > 0.0).then(|| weld(&exact.points, &exact.weights, distance));
     let (vertices, corner_id): (Vec<DVec3>, Box<dyn Fn(usize) -> u32>) = match &clustered {
         Some(c) => (c.points.iter().map(|p| DVec3::from_array(*p)).collect(), Box::new(|i| c.map[exact.map[i] as usize])),
         None => (exact.points.iter().map(|p| DVec3::from_array(*p)).collect(), Box::new(|i| exact.map[i])),
     };
-    let mut seen: CellMap<[u32; 3], ()> = CellMap::default();
-    let (mut collapsed, mut merged) = (0, 0);
-    let mut triangles = Vec::with_capacity(soup.len());
+    let mut collapsed = 0;
+    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(soup.len());
     for t in 0..soup.len() {
         let tri = [corner_id(3 * t), corner_id(3 * t + 1), corner_id(3 * t + 2)];
         if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
             collapsed += 1;
-            continue;
+        } else {
+            triangles.push(tri);
         }
-        let mut key = tri;
-        key.sort_unstable();
-        if seen.insert(key, ()).is_some() {
-            merged += 1;
-            continue;
-        }
-        triangles.push(tri);
+    }
+    // Cleanup removed exact duplicates already; welding can make new ones.
+    let mut merged = 0;
+    if clustered.is_some() {
+        let keys: Vec<[u32; 3]> = triangles
+            .iter()
+            .map(|t| {
+                let mut k = *t;
+                k.sort_unstable();
+                k
+            })
+            .collect();
+        let first = first_equal(&keys);
+        let before_merge = triangles.len();
+        triangles = triangles.into_iter().enumerate().filter(|&(i, _)| first[i] as usize == i).map(|(_, t)| t).collect();
+        merged = before_merge - triangles.len();
     }
     Welded {
         vertices_merged: before - vertices.len(),
@@ -74,7 +90,35 @@ pub fn weld_soup(soup: &[[DVec3; 3]], distance: f64) -> Welded {
         triangles_collapsed: collapsed,
         triangles_merged: merged,
         fell_back: false,
+        input_open_edges,
+        input_non_manifold_edges,
     }
+}
+
+/// Open and non-manifold edges of the unwelded model, from each corner's exact vertex id:
+/// these are the model's own defects, not artefacts of welding. Counted from sorted edge keys
+/// alone (no incidence lists needed).
+fn input_edge_defects(corner_vertex: &[u32]) -> (usize, usize) {
+    let mut keys: Vec<u64> = Vec::with_capacity(corner_vertex.len());
+    for c in corner_vertex.chunks_exact(3) {
+        if c[0] == c[1] || c[1] == c[2] || c[0] == c[2] {
+            continue;
+        }
+        for i in 0..3 {
+            let (a, b) = (c[i], c[(i + 1) % 3]);
+            keys.push((u64::from(a.min(b)) << 32) | u64::from(a.max(b)));
+        }
+    }
+    keys.par_sort_unstable();
+    let (mut open, mut non_manifold) = (0, 0);
+    for run in keys.chunk_by(|a, b| a == b) {
+        match run.len() {
+            1 => open += 1,
+            2 => {}
+            _ => non_manifold += 1,
+        }
+    }
+    (open, non_manifold)
 }
 
 /// Step `weld`.
@@ -98,6 +142,18 @@ impl Step for WeldStep {
             welded = Welded { fell_back: true, ..weld_soup(&cleaned.triangles, 0.0) };
         }
         cx.check_cancel()?;
+        if welded.input_open_edges > 0 {
+            cx.warn(
+                WarningKind::OpenEdges,
+                format!("{} open edges: the model's surface has holes (not watertight)", welded.input_open_edges),
+            );
+        }
+        if welded.input_non_manifold_edges > 0 {
+            cx.warn(
+                WarningKind::NonManifoldEdges,
+                format!("{} non-manifold edges: some edges of the model are shared by more than two triangles", welded.input_non_manifold_edges),
+            );
+        }
         if welded.triangles.is_empty() {
             return Err(Error::Model { model: model.name.clone(), message: "no triangle with an area is left after cleanup".into() });
         }

@@ -1,0 +1,125 @@
+//! The corpus sweep: every file in `../shared/corpus` either converts through the foundation
+//! steps or fails with its specific message; broken files get warnings that name their
+//! defect; nothing panics. Skipped (with a message) when the corpus is absent.
+
+use std::path::{Path, PathBuf};
+
+use platener::inspect::inspect;
+use platener_geom::grid::STEP;
+use platener_geom::polygon::perimeter;
+use platener::pipeline::WarningKind;
+use platener::{Cancel, Settings, Source};
+
+fn corpus() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        eprintln!("skipping: the shared corpus is not at {} (tests that need it are skipped)", dir.display());
+        None
+    }
+}
+
+fn stl_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .expect("corpus folder readable")
+        .flat_map(|e| {
+            let p = e.expect("entry").path();
+            if p.is_dir() { stl_files(&p) } else { vec![p] }
+        })
+        .filter(|p| p.extension().is_some_and(|e| e == "stl"))
+        .collect();
+    files.sort();
+    files
+}
+
+/// Files that must fail, with a piece of the message they must give.
+const FAILS: &[(&str, &str)] = &[
+    ("openscad_invalid_vertex.stl", "line 89"),
+    ("openscad_too_many_vertices.stl", "line 93: facet with 4 vertices"),
+    ("openscad_empty_0_bytes.stl", "empty"),
+    ("trimesh_empty_binary_header_only.stl", "no triangles"),
+    ("numpy_stl_incomplete_ascii.stl", "line 5"),
+    ("numpy_stl_end_solid_with_space.stl", "line 9: unexpected text 'end solid test.stl'"),
+];
+
+/// Files that convert with a warning naming their defect.
+const WARNS: &[(&str, WarningKind)] = &[
+    ("admesh_block_flipped_facet.stl", WarningKind::FlippedFaces),
+    ("admesh_block_missing_facet.stl", WarningKind::OpenEdges),
+    ("openscad_nonmanifold_open_cube.stl", WarningKind::OpenEdges),
+    ("openscad_zero_area_triangle.stl", WarningKind::DegenerateFaces),
+    ("radial_engine_pushrods_nonmanifold.stl", WarningKind::DuplicateFaces),
+    ("trimesh_triangle_soup.stl", WarningKind::OpenEdges),
+    ("numpy_stl_halfdonut_solid_header_trailing_byte.stl", WarningKind::Reader),
+    ("lasercut_fingerjoint_examples_assembly.stl", WarningKind::NonManifoldEdges),
+    ("stanford_bunny_99_lowpoly.stl", WarningKind::Units),
+];
+
+#[test]
+fn every_corpus_file_converts_or_fails_with_its_message() {
+    let Some(dir) = corpus() else { return };
+    let files = stl_files(&dir);
+    assert!(files.len() >= 50, "expected the 53-file corpus, found {}", files.len());
+    let mut converted = 0;
+    for path in &files {
+        let name = path.file_name().and_then(|n| n.to_str()).expect("utf-8 name");
+        let result = std::panic::catch_unwind(|| inspect(Source::File(path.clone()), Settings::default(), &Cancel::default()));
+        let result = result.unwrap_or_else(|_| panic!("{name}: panicked"));
+        match (FAILS.iter().find(|(f, _)| *f == name), result) {
+            (Some((_, want)), Err(e)) => {
+                let msg = e.to_string();
+                assert!(msg.contains(want), "{name}: message {msg:?} lacks {want:?}");
+                assert!(msg.contains(name), "{name}: message {msg:?} does not name the file");
+            }
+            (Some(_), Ok(_)) => panic!("{name}: should have failed"),
+            (None, Err(e)) => panic!("{name}: failed: {e}"),
+            (None, Ok(r)) => {
+                converted += 1;
+                if let Some((_, kind)) = WARNS.iter().find(|(f, _)| *f == name) {
+                    assert!(r.warnings().any(|w| w.kind == *kind), "{name}: no {kind:?} warning in {:?}", r.warnings().collect::<Vec<_>>());
+                }
+                assert!(r.shapes > 0, "{name}: no planar shapes");
+            }
+        }
+    }
+    assert_eq!(converted, files.len() - FAILS.len());
+}
+
+/// Without welding (which can fold triangles over each other), the planar shapes of a closed
+/// model partition its surface exactly, up to projection within 1° and the 1 µm grid.
+#[test]
+fn shapes_cover_the_surface_of_closed_models() {
+    let Some(dir) = corpus() else { return };
+    let settings = Settings { weld: platener::Weld::Off, ..Settings::default() };
+    for path in stl_files(&dir) {
+        let source = Source::File(path.clone());
+        let Ok((state, _)) = platener::inspect::run_foundation(source, settings.clone(), &Cancel::default()) else { continue };
+        let mesh = state.mesh.expect("mesh");
+        if !mesh.health.closed {
+            continue;
+        }
+        // Groups are within 1° of their plane, so projected areas shrink by at most cos 1°;
+        // the 1 µm grid adds at most perimeter × 1 µm.
+        let shapes = state.shapes.expect("shapes");
+        let total: f64 = shapes.shapes.iter().map(|s| s.area).sum();
+        let grid_slack: f64 = shapes
+            .shapes
+            .iter()
+            .map(|s| {
+                let p = &s.polygon;
+                (perimeter(&p.outer) + p.holes.iter().map(|h| perimeter(h)).sum::<f64>()) * STEP
+            })
+            .sum();
+        let low = mesh.surface_area * 1f64.to_radians().cos() - grid_slack;
+        let high = mesh.surface_area + grid_slack;
+        assert!(total >= low && total <= high, "{}: shapes {total} mm², surface {} mm²", path.display(), mesh.surface_area);
+    }
+}
+
+#[test]
+fn two_solids_in_one_ascii_file_are_both_read() {
+    let Some(dir) = corpus() else { return };
+    let r = inspect(Source::File(dir.join("broken/assimp_two_solids_one_file.stl")), Settings::default(), &Cancel::default()).expect("reads");
+    assert_eq!((r.solids, r.triangles_read), (2, 2));
+}
