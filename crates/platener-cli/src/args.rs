@@ -18,7 +18,9 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Reads a model and reports what platener sees in it: mesh health, welding, planar shapes.
-    #[command(after_help = "Examples:\n  platener inspect examples/box-3mm.stl\n  platener inspect part.obj --units in --json")]
+    #[command(
+        after_help = "Examples:\n  platener inspect examples/box-3mm.stl\n  platener inspect part.obj --units in --json"
+    )]
     Inspect(InspectArgs),
 }
 

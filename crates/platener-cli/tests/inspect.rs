@@ -31,13 +31,22 @@ fn box_example_as_json() {
     assert_eq!(v["bounds"]["max"], serde_json::json!([100.0, 80.0, 60.0]));
     let largest = v["largest_shapes"][0]["area"].as_f64().expect("area");
     assert!((largest - 8000.0).abs() < 1e-6);
-    let steps: Vec<&str> = v["steps"].as_array().expect("steps").iter().map(|s| s["name"].as_str().expect("name")).collect();
+    let steps: Vec<&str> = v["steps"]
+        .as_array()
+        .expect("steps")
+        .iter()
+        .map(|s| s["name"].as_str().expect("name"))
+        .collect();
     assert_eq!(steps, ["read", "cleanup", "weld", "mesh", "coplanar", "shapes"]);
 }
 
 #[test]
 fn text_report_names_what_it_found() {
-    let out = platener().arg("inspect").arg(example("tray-3mm.stl")).output().expect("runs");
+    let out = platener()
+        .arg("inspect")
+        .arg(example("tray-3mm.stl"))
+        .output()
+        .expect("runs");
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).expect("utf-8");
     assert!(text.contains("120.00 × 80.00 × 40.00 mm"), "{text}");
@@ -47,19 +56,35 @@ fn text_report_names_what_it_found() {
 
 #[test]
 fn units_scale_the_model() {
-    let v = json(&["inspect", example("box-3mm.stl").to_str().expect("utf-8"), "--units", "cm"]);
+    let v = json(&[
+        "inspect",
+        example("box-3mm.stl").to_str().expect("utf-8"),
+        "--units",
+        "cm",
+    ]);
     assert_eq!(v["bounds"]["max"], serde_json::json!([1000.0, 800.0, 600.0]));
-    let v = json(&["inspect", example("box-3mm.stl").to_str().expect("utf-8"), "--scale", "0.001"]);
+    let v = json(&[
+        "inspect",
+        example("box-3mm.stl").to_str().expect("utf-8"),
+        "--scale",
+        "0.001",
+    ]);
     let warnings = v["steps"][0]["warnings"].as_array().expect("warnings");
     assert!(warnings.iter().any(|w| w["kind"] == "units"), "{warnings:?}");
 }
 
 #[test]
 fn missing_file_fails_with_its_name() {
-    let out = platener().args(["inspect", "no/such/model.stl"]).output().expect("runs");
+    let out = platener()
+        .args(["inspect", "no/such/model.stl"])
+        .output()
+        .expect("runs");
     assert_eq!(out.status.code(), Some(1));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("no/such/model.stl") && err.contains("cannot read"), "{err}");
+    assert!(
+        err.contains("no/such/model.stl") && err.contains("cannot read"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -77,5 +102,8 @@ fn other_file_types_are_refused_with_the_formats_we_read() {
 fn usage_errors_exit_with_2() {
     platener().args(["inspect"]).assert().code(2);
     platener().args(["inspect", "x.stl", "--weld", "lots"]).assert().code(1);
-    platener().args(["inspect", "x.stl", "--units", "furlong"]).assert().code(2);
+    platener()
+        .args(["inspect", "x.stl", "--units", "furlong"])
+        .assert()
+        .code(2);
 }

@@ -51,11 +51,14 @@ pub(crate) fn shapes_from_grid(shapes: Vec<IntShape>) -> Vec<Polygon> {
     shapes
         .into_iter()
         .filter_map(|shape| {
-            let mut rings = shape.into_iter().map(|c| {
-                c.into_iter().map(|p| grid::from_grid([p.x, p.y])).collect::<Ring>()
-            });
+            let mut rings = shape
+                .into_iter()
+                .map(|c| c.into_iter().map(|p| grid::from_grid([p.x, p.y])).collect::<Ring>());
             let outer = rings.next()?;
-            Some(Polygon { outer, holes: rings.collect() })
+            Some(Polygon {
+                outer,
+                holes: rings.collect(),
+            })
         })
         .collect()
 }

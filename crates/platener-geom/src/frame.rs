@@ -61,7 +61,10 @@ impl Frame {
 
     /// The same frame moved `distance` along its normal.
     pub fn shifted(&self, distance: f64) -> Self {
-        Self { origin: self.origin + self.n * distance, ..*self }
+        Self {
+            origin: self.origin + self.n * distance,
+            ..*self
+        }
     }
 
     /// The 3×4 matrix `[R | t]` of plan.json (rows), with R's columns u, v, n.
@@ -77,7 +80,13 @@ mod tests {
 
     #[test]
     fn frames_are_right_handed_and_round_trip() {
-        for n in [DVec3::Z, -DVec3::Z, DVec3::X, DVec3::new(1.0, 2.0, 3.0), DVec3::new(0.3, -0.1, -0.95)] {
+        for n in [
+            DVec3::Z,
+            -DVec3::Z,
+            DVec3::X,
+            DVec3::new(1.0, 2.0, 3.0),
+            DVec3::new(0.3, -0.1, -0.95),
+        ] {
             let f = Frame::on_plane(DVec3::new(5.0, -3.0, 2.0), n);
             assert!((f.u.cross(f.v) - f.n).length() < 1e-12);
             assert!(f.u.dot(f.v).abs() < 1e-12);

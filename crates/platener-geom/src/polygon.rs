@@ -65,7 +65,10 @@ pub fn ring_contains(ring: &[DVec2], p: DVec2) -> bool {
 impl Polygon {
     /// A polygon without holes.
     pub fn new(outer: Ring) -> Self {
-        Self { outer, holes: Vec::new() }
+        Self {
+            outer,
+            holes: Vec::new(),
+        }
     }
 
     /// Area: outer minus holes (holes given clockwise or not, their absolute area is removed).
@@ -160,9 +163,22 @@ mod tests {
             DVec2::new(0.0, 5.0),
         ];
         let out = remove_straight_vertices(&ring, 1e-6);
-        assert_eq!(out, vec![DVec2::new(0.0, 0.0), DVec2::new(10.0, 0.0), DVec2::new(10.0, 10.0), DVec2::new(0.0, 10.0)]);
+        assert_eq!(
+            out,
+            vec![
+                DVec2::new(0.0, 0.0),
+                DVec2::new(10.0, 0.0),
+                DVec2::new(10.0, 10.0),
+                DVec2::new(0.0, 10.0)
+            ]
+        );
         // A vertex that folds back along the same line is not "between" its neighbours.
-        let spike = vec![DVec2::new(0.0, 0.0), DVec2::new(10.0, 0.0), DVec2::new(5.0, 0.0), DVec2::new(5.0, 5.0)];
+        let spike = vec![
+            DVec2::new(0.0, 0.0),
+            DVec2::new(10.0, 0.0),
+            DVec2::new(5.0, 0.0),
+            DVec2::new(5.0, 5.0),
+        ];
         assert_eq!(remove_straight_vertices(&spike, 1e-6).len(), 4);
     }
 
@@ -179,7 +195,10 @@ mod tests {
 
     #[test]
     fn area_with_hole() {
-        let mut p = Polygon { outer: square(0.0, 0.0, 10.0), holes: vec![square(2.0, 2.0, 3.0)] };
+        let mut p = Polygon {
+            outer: square(0.0, 0.0, 10.0),
+            holes: vec![square(2.0, 2.0, 3.0)],
+        };
         p.normalize_orientation();
         assert!((p.area() - 91.0).abs() < 1e-12);
         assert!(signed_area(&p.holes[0]) < 0.0);

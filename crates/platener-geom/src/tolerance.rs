@@ -25,7 +25,11 @@ impl Tolerances {
     /// `identical` is 1e-9 of the size (float noise of f32 coordinates is ~1e-7 relative, but
     /// exact duplicates are what we remove here), at least one grid step below the 2D grid.
     pub fn for_model(diagonal: f64) -> Self {
-        let size = if diagonal.is_finite() && diagonal > 0.0 { diagonal } else { 1.0 };
+        let size = if diagonal.is_finite() && diagonal > 0.0 {
+            diagonal
+        } else {
+            1.0
+        };
         Self {
             identical: (size * 1e-9).max(1e-9),
             degenerate_height: (size * 1e-7).max(1e-9),

@@ -155,7 +155,11 @@ fn cluster_round<const D: usize>(points: &[[f64; D]], weights: &[f64], distance:
         .zip(&wsum)
         .map(|((l, s), w)| std::array::from_fn(|i| if *w > 0.0 { l[i] + s[i] / w } else { l[i] }))
         .collect();
-    Some(Welded { points, weights: wsum, map })
+    Some(Welded {
+        points,
+        weights: wsum,
+        map,
+    })
 }
 
 /// Welds `points` (with per-point `weights`, e.g. how many mesh corners each stands for) so
@@ -172,7 +176,9 @@ pub fn weld<const D: usize>(points: &[[f64; D]], weights: &[f64], distance: f64)
     cur_weights.copy_from_slice(&w);
     if distance > 0.0 && distance.is_finite() {
         for _ in 0..MAX_ROUNDS {
-            let Some(round) = cluster_round(&current, &cur_weights, distance) else { break };
+            let Some(round) = cluster_round(&current, &cur_weights, distance) else {
+                break;
+            };
             for m in &mut map {
                 *m = round.map[*m as usize];
             }
@@ -180,7 +186,11 @@ pub fn weld<const D: usize>(points: &[[f64; D]], weights: &[f64], distance: f64)
             cur_weights = round.weights;
         }
     }
-    Welded { points: current, weights: cur_weights, map }
+    Welded {
+        points: current,
+        weights: cur_weights,
+        map,
+    }
 }
 
 #[cfg(test)]

@@ -27,19 +27,31 @@ fn bench(c: &mut Criterion) {
         std::fs::write(&path, samples::to_binary_stl(&triangles, "rounded box")).expect("write model");
         group.throughput(Throughput::Elements(triangles.len() as u64));
         for (label, weld) in [("auto-weld", Weld::Auto), ("no-weld", Weld::Off)] {
-            let settings = Settings { weld, ..Settings::default() };
+            let settings = Settings {
+                weld,
+                ..Settings::default()
+            };
             group.bench_with_input(BenchmarkId::new(label, triangles.len()), &path, |b, path| {
-                b.iter(|| run_foundation(Source::File(path.clone()), settings.clone(), &Cancel::default()).expect("converts"));
+                b.iter(|| {
+                    run_foundation(Source::File(path.clone()), settings.clone(), &Cancel::default()).expect("converts")
+                });
             });
         }
         // The same in memory, without the file read, to separate parsing from the rest.
         let shared = Arc::new(triangles);
-        group.bench_with_input(BenchmarkId::new("in-memory-auto-weld", shared.len()), &shared, |b, tris| {
-            b.iter(|| {
-                let source = Source::Triangles { name: "rounded box".into(), triangles: tris.clone() };
-                run_foundation(source, Settings::default(), &Cancel::default()).expect("converts")
-            });
-        });
+        group.bench_with_input(
+            BenchmarkId::new("in-memory-auto-weld", shared.len()),
+            &shared,
+            |b, tris| {
+                b.iter(|| {
+                    let source = Source::Triangles {
+                        name: "rounded box".into(),
+                        triangles: tris.clone(),
+                    };
+                    run_foundation(source, Settings::default(), &Cancel::default()).expect("converts")
+                });
+            },
+        );
     }
     group.finish();
 }

@@ -90,7 +90,10 @@ pub fn run_foundation(source: Source, settings: Settings, cancel: &Cancel) -> Re
 /// Runs the foundation steps and summarises them.
 pub fn inspect(source: Source, settings: Settings, cancel: &Cancel) -> Result<Inspection> {
     let (state, steps) = run_foundation(source, settings, cancel)?;
-    let need = |name| crate::Error::MissingStep { step: "inspect", needs: name };
+    let need = |name| crate::Error::MissingStep {
+        step: "inspect",
+        needs: name,
+    };
     let model = state.read.as_ref().ok_or(need("read"))?;
     let cleaned = state.cleanup.as_ref().ok_or(need("cleanup"))?;
     let welded = state.weld.as_ref().ok_or(need("weld"))?;

@@ -28,5 +28,5 @@ pub mod weld;
 
 pub use error::{Error, Result};
 pub use pipeline::{Cancel, Source, State};
-pub use settings::{Settings, Units, Weld};
 pub use platener_geom::glam;
+pub use settings::{Settings, Units, Weld};

@@ -34,7 +34,9 @@ impl Source {
     /// The model's name for messages: the file stem, or the given name.
     pub fn name(&self) -> String {
         match self {
-            Source::File(p) => p.file_stem().map_or_else(|| p.display().to_string(), |s| s.to_string_lossy().into()),
+            Source::File(p) => p
+                .file_stem()
+                .map_or_else(|| p.display().to_string(), |s| s.to_string_lossy().into()),
             Source::Triangles { name, .. } => name.clone(),
         }
     }
@@ -143,12 +145,20 @@ pub struct StepContext<'a> {
 impl StepContext<'_> {
     /// Records a warning of this step.
     pub fn warn(&mut self, kind: WarningKind, message: impl Into<String>) {
-        self.warnings.push(Warning { step: self.step, kind, message: message.into() });
+        self.warnings.push(Warning {
+            step: self.step,
+            kind,
+            message: message.into(),
+        });
     }
 
     /// Returns `Err(Cancelled)` when the run was cancelled; call it in long loops.
     pub fn check_cancel(&self) -> Result<()> {
-        if self.cancel.is_cancelled() { Err(Error::Cancelled { step: self.step }) } else { Ok(()) }
+        if self.cancel.is_cancelled() {
+            Err(Error::Cancelled { step: self.step })
+        } else {
+            Ok(())
+        }
     }
 }
 
@@ -173,14 +183,25 @@ pub struct StepRecord {
 
 /// The steps that turn a model into planar shapes (the foundation every method builds on).
 pub fn foundation_steps() -> Vec<&'static dyn Step> {
-    vec![&read::ReadStep, &cleanup::CleanupStep, &weld::WeldStep, &mesh::MeshStep, &coplanar::CoplanarStep, &shapes::ShapesStep]
+    vec![
+        &read::ReadStep,
+        &cleanup::CleanupStep,
+        &weld::WeldStep,
+        &mesh::MeshStep,
+        &coplanar::CoplanarStep,
+        &shapes::ShapesStep,
+    ]
 }
 
 /// Runs `steps` in order on `state`, recording each. Stops at the first error.
 pub fn run(steps: &[&dyn Step], state: &mut State, cancel: &Cancel) -> Result<Vec<StepRecord>> {
     let mut records = Vec::with_capacity(steps.len());
     for step in steps {
-        let mut cx = StepContext { step: step.name(), cancel, warnings: Vec::new() };
+        let mut cx = StepContext {
+            step: step.name(),
+            cancel,
+            warnings: Vec::new(),
+        };
         cx.check_cancel()?;
         let span = tracing::info_span!("step", name = step.name());
         let _enter = span.enter();
@@ -193,4 +214,64 @@ pub fn run(steps: &[&dyn Step], state: &mut State, cancel: &Cancel) -> Result<Ve
         });
     }
     Ok(records)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::samples::cuboid;
+    use glam::DVec3;
+
+    fn source(size: f64) -> Source {
+        Source::Triangles { name: "cube".into(), triangles: Arc::new(cuboid(DVec3::ZERO, DVec3::splat(size))) }
+    }
+
+    #[test]
+    fn a_cancelled_run_stops_with_the_step_it_reached() {
+        let cancel = Cancel::default();
+        cancel.cancel();
+        let mut state = State::new(source(10.0), Settings::default());
+        let err = run(&foundation_steps(), &mut state, &cancel).expect_err("cancelled");
+        assert!(matches!(err, Error::Cancelled { step: "read" }));
+        assert!(state.read.is_none());
+    }
+
+    #[test]
+    fn a_step_without_its_input_says_which_step_is_missing() {
+        let mut state = State::new(source(10.0), Settings::default());
+        let err = run(&[&mesh::MeshStep], &mut state, &Cancel::default()).expect_err("no weld yet");
+        assert!(matches!(err, Error::MissingStep { step: "mesh", needs: "weld" }));
+    }
+
+    #[test]
+    fn every_step_leaves_a_snapshot_and_a_record() {
+        let mut state = State::new(source(10.0), Settings::default());
+        let records = run(&foundation_steps(), &mut state, &Cancel::default()).expect("runs");
+        let names: Vec<_> = records.iter().map(|r| r.name).collect();
+        assert_eq!(names, ["read", "cleanup", "weld", "mesh", "coplanar", "shapes"]);
+        let before = state.read.clone().expect("read");
+        // Snapshots are shared, not copied: a later state holds the very same read result.
+        let later = state.clone();
+        assert!(Arc::ptr_eq(&before, later.read.as_ref().expect("read")));
+        assert_eq!(state.shapes.expect("shapes").shapes.len(), 6);
+    }
+
+    #[test]
+    fn tiny_and_huge_models_get_a_units_warning() {
+        for (size, warned) in [(0.5, true), (50.0, false), (6000.0, true)] {
+            let mut state = State::new(source(size), Settings::default());
+            let records = run(&foundation_steps(), &mut state, &Cancel::default()).expect("runs");
+            let units = records[0].warnings.iter().any(|w| w.kind == WarningKind::Units);
+            assert_eq!(units, warned, "size {size}");
+        }
+    }
+
+    #[test]
+    fn scale_is_applied_in_the_read_step() {
+        let settings = Settings { units: crate::Units::In, scale: 2.0, ..Settings::default() };
+        let mut state = State::new(source(1.0), settings);
+        run(&foundation_steps(), &mut state, &Cancel::default()).expect("runs");
+        let b = state.read.expect("read").bounds;
+        assert!((b.max - DVec3::splat(50.8)).length() < 1e-12);
+    }
 }

@@ -21,7 +21,13 @@ pub fn cuboid(min: DVec3, max: DVec3) -> Vec<Triangle> {
 pub fn voxels(xs: &[f64], ys: &[f64], zs: &[f64], filled: impl Fn(usize, usize, usize) -> bool) -> Vec<Triangle> {
     let (nx, ny, nz) = (xs.len() - 1, ys.len() - 1, zs.len() - 1);
     let at = |i: isize, j: isize, k: isize| {
-        i >= 0 && j >= 0 && k >= 0 && (i as usize) < nx && (j as usize) < ny && (k as usize) < nz && filled(i as usize, j as usize, k as usize)
+        i >= 0
+            && j >= 0
+            && k >= 0
+            && (i as usize) < nx
+            && (j as usize) < ny
+            && (k as usize) < nz
+            && filled(i as usize, j as usize, k as usize)
     };
     let mut out = Vec::new();
     let p = |i: usize, j: usize, k: usize| DVec3::new(xs[i], ys[j], zs[k]);
@@ -41,19 +47,34 @@ pub fn voxels(xs: &[f64], ys: &[f64], zs: &[f64], filled: impl Fn(usize, usize, 
                     quad([p(i, j, k), p(i, j, k + 1), p(i, j + 1, k + 1), p(i, j + 1, k)]);
                 }
                 if !at(ii + 1, jj, kk) {
-                    quad([p(i + 1, j, k), p(i + 1, j + 1, k), p(i + 1, j + 1, k + 1), p(i + 1, j, k + 1)]);
+                    quad([
+                        p(i + 1, j, k),
+                        p(i + 1, j + 1, k),
+                        p(i + 1, j + 1, k + 1),
+                        p(i + 1, j, k + 1),
+                    ]);
                 }
                 if !at(ii, jj - 1, kk) {
                     quad([p(i, j, k), p(i + 1, j, k), p(i + 1, j, k + 1), p(i, j, k + 1)]);
                 }
                 if !at(ii, jj + 1, kk) {
-                    quad([p(i, j + 1, k), p(i, j + 1, k + 1), p(i + 1, j + 1, k + 1), p(i + 1, j + 1, k)]);
+                    quad([
+                        p(i, j + 1, k),
+                        p(i, j + 1, k + 1),
+                        p(i + 1, j + 1, k + 1),
+                        p(i + 1, j + 1, k),
+                    ]);
                 }
                 if !at(ii, jj, kk - 1) {
                     quad([p(i, j, k), p(i, j + 1, k), p(i + 1, j + 1, k), p(i + 1, j, k)]);
                 }
                 if !at(ii, jj, kk + 1) {
-                    quad([p(i, j, k + 1), p(i + 1, j, k + 1), p(i + 1, j + 1, k + 1), p(i, j + 1, k + 1)]);
+                    quad([
+                        p(i, j, k + 1),
+                        p(i + 1, j, k + 1),
+                        p(i + 1, j + 1, k + 1),
+                        p(i, j + 1, k + 1),
+                    ]);
                 }
             }
         }
@@ -64,7 +85,9 @@ pub fn voxels(xs: &[f64], ys: &[f64], zs: &[f64], filled: impl Fn(usize, usize, 
 /// An open-top box (a tray) `w × d × h` with walls and floor `t` thick, outer corner at the
 /// origin: five plates.
 pub fn open_box(w: f64, d: f64, h: f64, t: f64) -> Vec<Triangle> {
-    voxels(&[0.0, t, w - t, w], &[0.0, t, d - t, d], &[0.0, t, h], |i, j, k| k == 0 || i != 1 || j != 1)
+    voxels(&[0.0, t, w - t, w], &[0.0, t, d - t, d], &[0.0, t, h], |i, j, k| {
+        k == 0 || i != 1 || j != 1
+    })
 }
 
 /// Ear-clipping triangulation of a simple counter-clockwise polygon (no holes).
@@ -82,7 +105,12 @@ fn triangulate(poly: &[DVec2]) -> Vec<[usize; 3]> {
             }
             idx.iter().all(|&j| {
                 let q = poly[j];
-                q == a || q == b || q == c || !((b - a).perp_dot(q - a) > 0.0 && (c - b).perp_dot(q - b) > 0.0 && (a - c).perp_dot(q - c) > 0.0)
+                q == a
+                    || q == b
+                    || q == c
+                    || !((b - a).perp_dot(q - a) > 0.0
+                        && (c - b).perp_dot(q - b) > 0.0
+                        && (a - c).perp_dot(q - c) > 0.0)
             })
         });
         let Some(i) = ear else { break };
@@ -149,7 +177,11 @@ pub fn rounded_box(size: DVec3, radius: f64, n: usize) -> Vec<Triangle> {
         let q = p * half;
         let c = q.clamp(-inner, inner);
         let d = q - c;
-        if d.length_squared() > 0.0 { c + d.normalize() * radius } else { q }
+        if d.length_squared() > 0.0 {
+            c + d.normalize() * radius
+        } else {
+            q
+        }
     };
     let faces = [
         (DVec3::X, DVec3::Y, DVec3::Z),
@@ -198,15 +230,32 @@ pub fn to_binary_stl(triangles: &[Triangle], header: &str) -> Vec<u8> {
 
 /// A closed box `w × d × h` whose six walls are `t` thick (a hollow cube as CAD draws it).
 pub fn closed_box(w: f64, d: f64, h: f64, t: f64) -> Vec<Triangle> {
-    voxels(&[0.0, t, w - t, w], &[0.0, t, d - t, d], &[0.0, t, h - t, h], |i, j, k| (i, j, k) != (1, 1, 1))
+    voxels(
+        &[0.0, t, w - t, w],
+        &[0.0, t, d - t, d],
+        &[0.0, t, h - t, h],
+        |i, j, k| (i, j, k) != (1, 1, 1),
+    )
 }
 
 /// The models shipped in `examples/`: file name, STL header, triangles.
 pub fn shipped_examples() -> Vec<(&'static str, &'static str, Vec<Triangle>)> {
     vec![
-        ("box-3mm.stl", "platener example: closed box 100x80x60 mm of 3 mm plates", closed_box(100.0, 80.0, 60.0, 3.0)),
-        ("tray-3mm.stl", "platener example: open tray 120x80x40 mm of 3 mm plates", open_box(120.0, 80.0, 40.0, 3.0)),
-        ("phone-stand.stl", "platener example: phone stand of 3 mm plates, back at 65 deg", phone_stand()),
+        (
+            "box-3mm.stl",
+            "platener example: closed box 100x80x60 mm of 3 mm plates",
+            closed_box(100.0, 80.0, 60.0, 3.0),
+        ),
+        (
+            "tray-3mm.stl",
+            "platener example: open tray 120x80x40 mm of 3 mm plates",
+            open_box(120.0, 80.0, 40.0, 3.0),
+        ),
+        (
+            "phone-stand.stl",
+            "platener example: phone stand of 3 mm plates, back at 65 deg",
+            phone_stand(),
+        ),
     ]
 }
 
@@ -232,7 +281,10 @@ mod tests {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
         for (name, header, tris) in shipped_examples() {
             let on_disk = std::fs::read(dir.join(name)).expect("examples/ is part of the repository");
-            assert!(on_disk == to_binary_stl(&tris, header), "examples/{name} is stale: run `cargo run -p platener --example make_examples`");
+            assert!(
+                on_disk == to_binary_stl(&tris, header),
+                "examples/{name} is stale: run `cargo run -p platener --example make_examples`"
+            );
         }
     }
 
@@ -242,7 +294,10 @@ mod tests {
         let w = weld_soup(&tris, 0.0);
         let m = crate::mesh::Mesh::build(w.vertices, &w.triangles, 1e-9);
         let expect = DVec3::new(-(65f64.to_radians().sin()), 0.0, 65f64.to_radians().cos());
-        assert!(m.normals.iter().any(|n| (n.dot(expect) - 1.0).abs() < 1e-12), "front face of the back plate");
+        assert!(
+            m.normals.iter().any(|n| (n.dot(expect) - 1.0).abs() < 1e-12),
+            "front face of the back plate"
+        );
         // 85×3 base + lip 3×9 + back plate 90×3: cross-section area × width.
         let volume = (85.0 * 3.0 + 3.0 * 9.0 + 90.0 * 3.0) * 70.0;
         assert!((m.health.volume.expect("closed") - volume).abs() < 1e-6);

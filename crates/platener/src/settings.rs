@@ -94,10 +94,16 @@ impl Settings {
             return bad("weld", format!("{d} is not a distance ≥ 0 mm"));
         }
         if self.thicknesses.is_empty() || self.thicknesses.iter().any(|t| !(t.is_finite() && *t > 0.0)) {
-            return bad("thickness", format!("{:?} must be positive numbers of mm", self.thicknesses));
+            return bad(
+                "thickness",
+                format!("{:?} must be positive numbers of mm", self.thicknesses),
+            );
         }
         if !(self.coplanar_angle_deg.is_finite() && (0.0..45.0).contains(&self.coplanar_angle_deg)) {
-            return bad("coplanar angle", format!("{}° must be in [0, 45)", self.coplanar_angle_deg));
+            return bad(
+                "coplanar angle",
+                format!("{}° must be in [0, 45)", self.coplanar_angle_deg),
+            );
         }
         if let Some(t) = self.straight_tolerance
             && !(t.is_finite() && t >= 0.0)

@@ -5,17 +5,20 @@
 use std::path::{Path, PathBuf};
 
 use platener::inspect::inspect;
-use platener_geom::grid::STEP;
-use platener_geom::polygon::perimeter;
 use platener::pipeline::WarningKind;
 use platener::{Cancel, Settings, Source};
+use platener_geom::grid::STEP;
+use platener_geom::polygon::perimeter;
 
 fn corpus() -> Option<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
     if dir.is_dir() {
         Some(dir)
     } else {
-        eprintln!("skipping: the shared corpus is not at {} (tests that need it are skipped)", dir.display());
+        eprintln!(
+            "skipping: the shared corpus is not at {} (tests that need it are skipped)",
+            dir.display()
+        );
         None
     }
 }
@@ -40,7 +43,10 @@ const FAILS: &[(&str, &str)] = &[
     ("openscad_empty_0_bytes.stl", "empty"),
     ("trimesh_empty_binary_header_only.stl", "no triangles"),
     ("numpy_stl_incomplete_ascii.stl", "line 5"),
-    ("numpy_stl_end_solid_with_space.stl", "line 9: unexpected text 'end solid test.stl'"),
+    (
+        "numpy_stl_end_solid_with_space.stl",
+        "line 9: unexpected text 'end solid test.stl'",
+    ),
 ];
 
 /// Files that convert with a warning naming their defect.
@@ -51,8 +57,14 @@ const WARNS: &[(&str, WarningKind)] = &[
     ("openscad_zero_area_triangle.stl", WarningKind::DegenerateFaces),
     ("radial_engine_pushrods_nonmanifold.stl", WarningKind::DuplicateFaces),
     ("trimesh_triangle_soup.stl", WarningKind::OpenEdges),
-    ("numpy_stl_halfdonut_solid_header_trailing_byte.stl", WarningKind::Reader),
-    ("lasercut_fingerjoint_examples_assembly.stl", WarningKind::NonManifoldEdges),
+    (
+        "numpy_stl_halfdonut_solid_header_trailing_byte.stl",
+        WarningKind::Reader,
+    ),
+    (
+        "lasercut_fingerjoint_examples_assembly.stl",
+        WarningKind::NonManifoldEdges,
+    ),
     ("stanford_bunny_99_lowpoly.stl", WarningKind::Units),
 ];
 
@@ -64,7 +76,8 @@ fn every_corpus_file_converts_or_fails_with_its_message() {
     let mut converted = 0;
     for path in &files {
         let name = path.file_name().and_then(|n| n.to_str()).expect("utf-8 name");
-        let result = std::panic::catch_unwind(|| inspect(Source::File(path.clone()), Settings::default(), &Cancel::default()));
+        let result =
+            std::panic::catch_unwind(|| inspect(Source::File(path.clone()), Settings::default(), &Cancel::default()));
         let result = result.unwrap_or_else(|_| panic!("{name}: panicked"));
         match (FAILS.iter().find(|(f, _)| *f == name), result) {
             (Some((_, want)), Err(e)) => {
@@ -77,7 +90,11 @@ fn every_corpus_file_converts_or_fails_with_its_message() {
             (None, Ok(r)) => {
                 converted += 1;
                 if let Some((_, kind)) = WARNS.iter().find(|(f, _)| *f == name) {
-                    assert!(r.warnings().any(|w| w.kind == *kind), "{name}: no {kind:?} warning in {:?}", r.warnings().collect::<Vec<_>>());
+                    assert!(
+                        r.warnings().any(|w| w.kind == *kind),
+                        "{name}: no {kind:?} warning in {:?}",
+                        r.warnings().collect::<Vec<_>>()
+                    );
                 }
                 assert!(r.shapes > 0, "{name}: no planar shapes");
             }
@@ -91,10 +108,15 @@ fn every_corpus_file_converts_or_fails_with_its_message() {
 #[test]
 fn shapes_cover_the_surface_of_closed_models() {
     let Some(dir) = corpus() else { return };
-    let settings = Settings { weld: platener::Weld::Off, ..Settings::default() };
+    let settings = Settings {
+        weld: platener::Weld::Off,
+        ..Settings::default()
+    };
     for path in stl_files(&dir) {
         let source = Source::File(path.clone());
-        let Ok((state, _)) = platener::inspect::run_foundation(source, settings.clone(), &Cancel::default()) else { continue };
+        let Ok((state, _)) = platener::inspect::run_foundation(source, settings.clone(), &Cancel::default()) else {
+            continue;
+        };
         let mesh = state.mesh.expect("mesh");
         if !mesh.health.closed {
             continue;
@@ -113,13 +135,23 @@ fn shapes_cover_the_surface_of_closed_models() {
             .sum();
         let low = mesh.surface_area * 1f64.to_radians().cos() - grid_slack;
         let high = mesh.surface_area + grid_slack;
-        assert!(total >= low && total <= high, "{}: shapes {total} mm², surface {} mm²", path.display(), mesh.surface_area);
+        assert!(
+            total >= low && total <= high,
+            "{}: shapes {total} mm², surface {} mm²",
+            path.display(),
+            mesh.surface_area
+        );
     }
 }
 
 #[test]
 fn two_solids_in_one_ascii_file_are_both_read() {
     let Some(dir) = corpus() else { return };
-    let r = inspect(Source::File(dir.join("broken/assimp_two_solids_one_file.stl")), Settings::default(), &Cancel::default()).expect("reads");
+    let r = inspect(
+        Source::File(dir.join("broken/assimp_two_solids_one_file.stl")),
+        Settings::default(),
+        &Cancel::default(),
+    )
+    .expect("reads");
     assert_eq!((r.solids, r.triangles_read), (2, 2));
 }

@@ -35,10 +35,7 @@ fn read_ok(name: &str, contents: &[u8]) -> (Format, RawMesh) {
 /// The error kind of a file that must fail.
 fn read_err(name: &str, contents: &[u8]) -> ReadErrorKind {
     match read(name, contents) {
-        Ok((_, mesh)) => panic!(
-            "{name} should fail, read {} triangles",
-            mesh.triangles.len()
-        ),
+        Ok((_, mesh)) => panic!("{name} should fail, read {} triangles", mesh.triangles.len()),
         Err(e) => e.kind,
     }
 }
@@ -64,10 +61,7 @@ fn area(triangles: &[Triangle]) -> f64 {
 
 /// Signed volume (positive when the windings' normals point outwards).
 fn volume(triangles: &[Triangle]) -> f64 {
-    triangles
-        .iter()
-        .map(|[a, b, c]| a.dot(b.cross(*c)) / 6.0)
-        .sum()
+    triangles.iter().map(|[a, b, c]| a.dot(b.cross(*c)) / 6.0).sum()
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -209,10 +203,7 @@ fn obj_index_out_of_range_is_an_error_naming_the_line() {
 
     // A huge index must be an error, not an overflow.
     let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\n";
-    assert!(matches!(
-        read_err("bad.obj", text.as_bytes()),
-        ReadErrorKind::Obj(_)
-    ));
+    assert!(matches!(read_err("bad.obj", text.as_bytes()), ReadErrorKind::Obj(_)));
 }
 
 #[test]
@@ -300,9 +291,7 @@ l 1 2
         [v(0.0, 0.0, 0.0), v(1.0, 2.0, 0.0), v(-1.0, 1.0, 0.0)]
     );
     assert!(
-        mesh.notes
-            .iter()
-            .any(|n| n.contains("five or more corners")),
+        mesh.notes.iter().any(|n| n.contains("five or more corners")),
         "{:?}",
         mesh.notes
     );
@@ -369,9 +358,7 @@ fn component_object(id: usize, components: &[(usize, Option<&str>)]) -> String {
             None => format!("    <component objectid=\"{objectid}\"/>\n"),
         })
         .collect();
-    format!(
-        "  <object id=\"{id}\" type=\"model\">\n   <components>\n{components}   </components>\n  </object>"
-    )
+    format!("  <object id=\"{id}\" type=\"model\">\n   <components>\n{components}   </components>\n  </object>")
 }
 
 /// A build `<item>`.
@@ -411,11 +398,7 @@ fn archive(root_model: &str, extra: &[(&str, &str)]) -> Vec<u8> {
 
 /// One right triangle with legs 1, 2 and 3 along x, y and z.
 fn corner_object(id: usize) -> String {
-    mesh_object(
-        id,
-        &[[1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 3.0]],
-        &[[0, 1, 2]],
-    )
+    mesh_object(id, &[[1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 3.0]], &[[0, 1, 2]])
 }
 
 /// Translation by (x, y, z) in 3MF's row-vector layout.
@@ -440,11 +423,7 @@ fn threemf_one_object_in_two_build_items_with_their_transforms() {
     assert_eq!(
         mesh.triangles,
         vec![
-            [
-                v(11.0, 20.0, 30.0),
-                v(10.0, 22.0, 30.0),
-                v(10.0, 20.0, 33.0)
-            ],
+            [v(11.0, 20.0, 30.0), v(10.0, 22.0, 30.0), v(10.0, 20.0, 33.0)],
             // (1,0,0) → (0,1,0), (0,2,0) → (-2,0,0), (0,0,3) stays; then + (5,0,0).
             [v(5.0, 1.0, 0.0), v(3.0, 0.0, 0.0), v(5.0, 0.0, 3.0)],
         ]
@@ -465,21 +444,14 @@ fn threemf_components_compose_component_then_item_transform() {
     ]
     .join("\n");
     let shift = translate(10.0, 0.0, 0.0);
-    let bytes = archive(
-        &model("millimeter", &resources, &item(2, Some(&shift))),
-        &[],
-    );
+    let bytes = archive(&model("millimeter", &resources, &item(2, Some(&shift))), &[]);
     let (_, mesh) = read_ok("assembly.3mf", &bytes);
     assert_eq!(mesh.solids, 1);
     assert_eq!(
         mesh.triangles,
         vec![
             [v(10.0, 1.0, 0.0), v(8.0, 0.0, 0.0), v(10.0, 0.0, 3.0)],
-            [
-                v(11.0, 0.0, 100.0),
-                v(10.0, 2.0, 100.0),
-                v(10.0, 0.0, 103.0)
-            ],
+            [v(11.0, 0.0, 100.0), v(10.0, 2.0, 100.0), v(10.0, 0.0, 103.0)],
         ]
     );
 }
@@ -504,17 +476,9 @@ fn threemf_inch_is_scaled_to_millimetres() {
     let (_, mesh) = read_ok("inch.3mf", &bytes);
     assert_eq!(
         mesh.triangles,
-        vec![[
-            v(25.4, 0.0, 0.0),
-            v(0.0, 50.8, 0.0),
-            v(0.0, 0.0, 3.0 * 25.4)
-        ]]
+        vec![[v(25.4, 0.0, 0.0), v(0.0, 50.8, 0.0), v(0.0, 0.0, 3.0 * 25.4)]]
     );
-    assert!(
-        mesh.notes.iter().any(|n| n.contains("inch")),
-        "{:?}",
-        mesh.notes
-    );
+    assert!(mesh.notes.iter().any(|n| n.contains("inch")), "{:?}", mesh.notes);
 
     for (unit, factor) in [
         ("micron", 0.001),
@@ -531,27 +495,18 @@ fn threemf_inch_is_scaled_to_millimetres() {
 #[test]
 fn threemf_mirrored_item_is_rewound() {
     let mirror = "-1 0 0 0 1 0 0 0 1 0 0 0";
-    let bytes = archive(
-        &model("millimeter", &corner_object(1), &item(1, Some(mirror))),
-        &[],
-    );
+    let bytes = archive(&model("millimeter", &corner_object(1), &item(1, Some(mirror))), &[]);
     let (_, mesh) = read_ok("mirror.3mf", &bytes);
     assert_eq!(
         mesh.triangles,
         vec![[v(-1.0, 0.0, 0.0), v(0.0, 0.0, 3.0), v(0.0, 2.0, 0.0)]]
     );
-    assert!(
-        mesh.notes.iter().any(|n| n.contains("mirror")),
-        "{:?}",
-        mesh.notes
-    );
+    assert!(mesh.notes.iter().any(|n| n.contains("mirror")), "{:?}", mesh.notes);
 }
 
 #[test]
 fn threemf_written_by_the_threemf_crate() {
-    use threemf::model::{
-        Build, Item, Mesh, Model, Object, Resources, Triangle as T, Triangles, Vertex, Vertices,
-    };
+    use threemf::model::{Build, Item, Mesh, Model, Object, Resources, Triangle as T, Triangles, Vertex, Vertices};
     let mesh = Mesh {
         vertices: Vertices {
             vertex: [[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [0.0, 4.0, 0.0]]
@@ -560,11 +515,7 @@ fn threemf_written_by_the_threemf_crate() {
                 .collect(),
         },
         triangles: Triangles {
-            triangle: vec![T {
-                v1: 0,
-                v2: 1,
-                v3: 2,
-            }],
+            triangle: vec![T { v1: 0, v2: 1, v3: 2 }],
         },
     };
     let model = Model {
@@ -611,20 +562,12 @@ fn threemf_production_extension_parts_are_followed() {
         mesh.triangles,
         vec![[v(2.0, 0.0, 5.0), v(1.0, 2.0, 5.0), v(1.0, 0.0, 8.0)]]
     );
-    assert!(
-        mesh.notes.iter().any(|n| n.contains("Production")),
-        "{:?}",
-        mesh.notes
-    );
+    assert!(mesh.notes.iter().any(|n| n.contains("Production")), "{:?}", mesh.notes);
 
     // The same id in two parts cannot be told apart without p:path: refuse, do not guess.
     let root = model(
         "millimeter",
-        &[
-            component_object(1, &[(1, None)]),
-            component_object(2, &[(3, None)]),
-        ]
-        .join("\n"),
+        &[component_object(1, &[(1, None)]), component_object(2, &[(3, None)])].join("\n"),
         &[item(1, None), item(2, None)].join("\n"),
     );
     let bytes = archive(
@@ -681,10 +624,7 @@ fn threemf_nan_names_object_and_triangle() {
         ),
         &[],
     );
-    assert!(matches!(
-        read_err("inf.3mf", &bytes),
-        ReadErrorKind::NonFinite { .. }
-    ));
+    assert!(matches!(read_err("inf.3mf", &bytes), ReadErrorKind::NonFinite { .. }));
 }
 
 #[test]
@@ -700,11 +640,7 @@ fn threemf_component_cycle_is_an_error_not_a_hang() {
     assert!(message(&kind).contains("cycle"), "{kind}");
 
     let bytes = archive(
-        &model(
-            "millimeter",
-            &component_object(5, &[(5, None)]),
-            &item(5, None),
-        ),
+        &model("millimeter", &component_object(5, &[(5, None)]), &item(5, None)),
         &[],
     );
     assert!(message(&read_err("self.3mf", &bytes)).contains("cycle"));
@@ -715,30 +651,18 @@ fn threemf_exponential_and_deep_nesting_are_limited() {
     // Each level places the next one twice: 2^30 placements if nothing stopped it.
     let mut resources = vec![mesh_object(100, &[], &[])];
     for level in 0..30 {
-        resources.push(component_object(
-            level,
-            &[(level + 1, None), (level + 1, None)],
-        ));
+        resources.push(component_object(level, &[(level + 1, None), (level + 1, None)]));
     }
     resources.push(component_object(30, &[(100, None)]));
-    let bytes = archive(
-        &model("millimeter", &resources.join("\n"), &item(0, None)),
-        &[],
-    );
-    assert!(matches!(
-        read_err("bomb.3mf", &bytes),
-        ReadErrorKind::ThreeMf(_)
-    ));
+    let bytes = archive(&model("millimeter", &resources.join("\n"), &item(0, None)), &[]);
+    assert!(matches!(read_err("bomb.3mf", &bytes), ReadErrorKind::ThreeMf(_)));
 
     let mut resources = vec![corner_object(100)];
     for level in 0..40 {
         resources.push(component_object(level, &[(level + 1, None)]));
     }
     resources.push(component_object(40, &[(100, None)]));
-    let bytes = archive(
-        &model("millimeter", &resources.join("\n"), &item(0, None)),
-        &[],
-    );
+    let bytes = archive(&model("millimeter", &resources.join("\n"), &item(0, None)), &[]);
     let kind = read_err("deep.3mf", &bytes);
     assert!(message(&kind).contains("nested"), "{kind}");
 }
@@ -772,10 +696,7 @@ fn threemf_corrupt_files_are_errors() {
 
     // Broken XML in the model part.
     let bytes = archive("<model><resources><object id=\"1\">", &[]);
-    assert!(matches!(
-        read_err("badxml.3mf", &bytes),
-        ReadErrorKind::ThreeMf(_)
-    ));
+    assert!(matches!(read_err("badxml.3mf", &bytes), ReadErrorKind::ThreeMf(_)));
 }
 
 #[test]

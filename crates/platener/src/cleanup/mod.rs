@@ -7,8 +7,8 @@
 
 use std::sync::Arc;
 
-use platener_geom::dedup::first_equal;
 use platener_geom::Tolerances;
+use platener_geom::dedup::first_equal;
 use serde::Serialize;
 
 use crate::error::Result;
@@ -44,7 +44,10 @@ pub fn is_degenerate(t: &Triangle, min_height: f64) -> bool {
 /// Removes degenerate and duplicate triangles; returns the kept ones (in input order) and the
 /// two counts.
 pub fn clean(triangles: &[Triangle], tolerances: &Tolerances) -> (Vec<Triangle>, usize, usize) {
-    let candidates: Vec<&Triangle> = triangles.iter().filter(|t| !is_degenerate(t, tolerances.degenerate_height)).collect();
+    let candidates: Vec<&Triangle> = triangles
+        .iter()
+        .filter(|t| !is_degenerate(t, tolerances.degenerate_height))
+        .collect();
     let degenerate = triangles.len() - candidates.len();
     // A triangle's identity: its corners' bits (−0 taken as +0), sorted, so rotated and
     // mirrored copies compare equal.
@@ -57,7 +60,12 @@ pub fn clean(triangles: &[Triangle], tolerances: &Tolerances) -> (Vec<Triangle>,
         })
         .collect();
     let first = first_equal(&keys);
-    let kept: Vec<Triangle> = candidates.iter().enumerate().filter(|&(i, _)| first[i] as usize == i).map(|(_, t)| **t).collect();
+    let kept: Vec<Triangle> = candidates
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| first[i] as usize == i)
+        .map(|(_, t)| **t)
+        .collect();
     let duplicates = candidates.len() - kept.len();
     (kept, degenerate, duplicates)
 }
@@ -75,10 +83,16 @@ impl Step for CleanupStep {
         let tolerances = Tolerances::for_model(model.bounds.diagonal());
         let (kept, degenerate, duplicates) = clean(&model.triangles, &tolerances);
         if degenerate > 0 {
-            cx.warn(WarningKind::DegenerateFaces, format!("{degenerate} degenerate (zero-area) triangles removed"));
+            cx.warn(
+                WarningKind::DegenerateFaces,
+                format!("{degenerate} degenerate (zero-area) triangles removed"),
+            );
         }
         if duplicates > 0 {
-            cx.warn(WarningKind::DuplicateFaces, format!("{duplicates} duplicate triangles removed"));
+            cx.warn(
+                WarningKind::DuplicateFaces,
+                format!("{duplicates} duplicate triangles removed"),
+            );
         }
         state.cleanup = Some(Arc::new(Cleaned {
             triangles: Arc::new(kept),
@@ -102,10 +116,10 @@ mod tests {
         let c = DVec3::new(0.0, 10.0, 0.0);
         let tris = vec![
             [a, b, c],
-            [b, c, a],                          // same triangle, rotated: duplicate
-            [a, c, b],                          // mirrored: duplicate
+            [b, c, a],                                                  // same triangle, rotated: duplicate
+            [a, c, b],                                                  // mirrored: duplicate
             [a, DVec3::new(0.0, 0.0, 5.0), DVec3::new(0.0, 0.0, 10.0)], // collinear sliver
-            [a, a, b],                          // repeated corner
+            [a, a, b],                                                  // repeated corner
             [a, b, DVec3::new(0.0, 0.0, 1.0)],
         ];
         let (kept, degenerate, duplicates) = clean(&tris, &Tolerances::default());

@@ -47,7 +47,11 @@ pub fn group_faces(mesh: &Mesh, angle: f64) -> PlanarGroups {
     let n = mesh.triangles.len();
     let cos_max = angle.cos();
     let mut order: Vec<u32> = (0..n as u32).collect();
-    order.par_sort_unstable_by(|&a, &b| mesh.areas[b as usize].total_cmp(&mesh.areas[a as usize]).then(a.cmp(&b)));
+    order.par_sort_unstable_by(|&a, &b| {
+        mesh.areas[b as usize]
+            .total_cmp(&mesh.areas[a as usize])
+            .then(a.cmp(&b))
+    });
     let mut face_group = vec![u32::MAX; n];
     let mut groups = Vec::new();
     let mut queue = VecDeque::new();
@@ -77,7 +81,12 @@ pub fn group_faces(mesh: &Mesh, angle: f64) -> PlanarGroups {
     // Largest first; ties by smallest face index, so the order is deterministic.
     let mut ranked: Vec<usize> = (0..groups.len()).collect();
     let key = |g: &PlanarGroup| g.faces.iter().copied().min().unwrap_or(u32::MAX);
-    ranked.sort_by(|&a, &b| groups[b].area.total_cmp(&groups[a].area).then(key(&groups[a]).cmp(&key(&groups[b]))));
+    ranked.sort_by(|&a, &b| {
+        groups[b]
+            .area
+            .total_cmp(&groups[a].area)
+            .then(key(&groups[a]).cmp(&key(&groups[b])))
+    });
     let mut rank_of = vec![0u32; groups.len()];
     for (rank, &g) in ranked.iter().enumerate() {
         rank_of[g] = rank as u32;
@@ -85,7 +94,11 @@ pub fn group_faces(mesh: &Mesh, angle: f64) -> PlanarGroups {
     face_group.iter_mut().for_each(|g| *g = rank_of[*g as usize]);
     let mut slots: Vec<Option<PlanarGroup>> = groups.into_iter().map(Some).collect();
     let groups = ranked.iter().filter_map(|&g| slots[g].take()).collect();
-    PlanarGroups { groups, face_group, angle_deg: angle.to_degrees() }
+    PlanarGroups {
+        groups,
+        face_group,
+        angle_deg: angle.to_degrees(),
+    }
 }
 
 fn summarise(mesh: &Mesh, faces: Vec<u32>) -> PlanarGroup {
@@ -103,7 +116,12 @@ fn summarise(mesh: &Mesh, faces: Vec<u32>) -> PlanarGroup {
         })
         .sum::<f64>()
         / area;
-    PlanarGroup { faces, normal, offset, area }
+    PlanarGroup {
+        faces,
+        normal,
+        offset,
+        area,
+    }
 }
 
 /// Step `coplanar`.

@@ -136,26 +136,38 @@ impl Step for MeshStep {
     fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
         let welded = need(&state.weld, self.name(), "weld")?;
         let cleaned = need(&state.cleanup, self.name(), "cleanup")?;
-        let mesh = Mesh::build(welded.vertices.clone(), &welded.triangles, cleaned.tolerances.degenerate_height);
+        let mesh = Mesh::build(
+            welded.vertices.clone(),
+            &welded.triangles,
+            cleaned.tolerances.degenerate_height,
+        );
         if mesh.triangles.is_empty() {
             let model = need(&state.read, self.name(), "read")?;
-            return Err(Error::Model { model: model.name.clone(), message: "no triangle with an area is left after welding; try --weld 0".into() });
+            return Err(Error::Model {
+                model: model.name.clone(),
+                message: "no triangle with an area is left after welding; try --weld 0".into(),
+            });
         }
+        // Open and non-manifold edges are reported by `weld` for the model as given; the
+        // welded mesh's own counts (which welding can raise) are in the health report.
         let h = &mesh.health;
-        if h.open_edges > 0 {
-            cx.warn(WarningKind::OpenEdges, format!("{} open edges: the surface has holes (not watertight)", h.open_edges));
-        }
-        if h.non_manifold_edges > 0 {
+        if h.flipped_faces > 0 {
             cx.warn(
-                WarningKind::NonManifoldEdges,
-                format!("{} non-manifold edges: some edges are shared by more than two triangles", h.non_manifold_edges),
+                WarningKind::FlippedFaces,
+                format!(
+                    "{} flipped faces were turned round to agree with their neighbours",
+                    h.flipped_faces
+                ),
             );
         }
-        if h.flipped_faces > 0 {
-            cx.warn(WarningKind::FlippedFaces, format!("{} flipped faces were turned round to agree with their neighbours", h.flipped_faces));
-        }
         if h.degenerate_after_weld > 0 {
-            cx.warn(WarningKind::DegenerateFaces, format!("{} triangles lost their area in welding and were removed", h.degenerate_after_weld));
+            cx.warn(
+                WarningKind::DegenerateFaces,
+                format!(
+                    "{} triangles lost their area in welding and were removed",
+                    h.degenerate_after_weld
+                ),
+            );
         }
         state.mesh = Some(Arc::new(mesh));
         Ok(())

@@ -93,7 +93,11 @@ pub(super) fn orient(vertices: &[DVec3], triangles: &[[u32; 3]], topology: &Topo
                 if corners.len() != 2 {
                     continue;
                 }
-                let other = if corners[0] / 3 == f as u32 && corners[0] % 3 == c as u32 { corners[1] } else { corners[0] };
+                let other = if corners[0] / 3 == f as u32 && corners[0] % 3 == c as u32 {
+                    corners[1]
+                } else {
+                    corners[0]
+                };
                 let (g, cg) = ((other / 3) as usize, (other % 3) as usize);
                 if g == f {
                     continue;
@@ -125,7 +129,12 @@ pub(super) fn orient(vertices: &[DVec3], triangles: &[[u32; 3]], topology: &Topo
         .iter()
         .zip(&patches_per_body(&component, &patches, bodies.len()))
         .map(|(faces, &np)| {
-            np == 1 && faces.iter().all(|&f| topology.face_edges[f as usize].iter().all(|&e| topology.edge_valence(e) == 2))
+            np == 1
+                && faces.iter().all(|&f| {
+                    topology.face_edges[f as usize]
+                        .iter()
+                        .all(|&e| topology.edge_valence(e) == 2)
+                })
         })
         .collect();
     let depth = nesting_depth(vertices, &out, &bodies, &body_closed);
@@ -189,7 +198,12 @@ fn nesting_depth(vertices: &[DVec3], triangles: &[[u32; 3]], bodies: &[Vec<u32>]
                         && closed[b]
                         && boxes[a].0.cmpge(boxes[b].0).all()
                         && boxes[a].1.cmple(boxes[b].1).all()
-                        && bodies[b].iter().filter(|&&f| ray_hits(p, dir, triangles[f as usize].map(|v| vertices[v as usize]))).count() % 2 == 1
+                        && bodies[b]
+                            .iter()
+                            .filter(|&&f| ray_hits(p, dir, triangles[f as usize].map(|v| vertices[v as usize])))
+                            .count()
+                            % 2
+                            == 1
                 })
                 .count()
         })

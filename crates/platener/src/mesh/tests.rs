@@ -16,7 +16,10 @@ fn cuboid_is_closed_with_its_volume() {
     assert_eq!(m.topology.edges.len(), 18);
     let h = &m.health;
     assert!(h.closed);
-    assert_eq!((h.open_edges, h.non_manifold_edges, h.components, h.flipped_faces), (0, 0, 1, 0));
+    assert_eq!(
+        (h.open_edges, h.non_manifold_edges, h.components, h.flipped_faces),
+        (0, 0, 1, 0)
+    );
     assert!((h.volume.expect("closed") - 6000.0).abs() < 1e-9);
     assert!((m.surface_area - 2.0 * (200.0 + 300.0 + 600.0)).abs() < 1e-9);
 }

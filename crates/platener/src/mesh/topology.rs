@@ -44,7 +44,12 @@ impl Topology {
             edge_face_list.push(fc);
         }
         offsets.push(edge_face_list.len() as u32);
-        Self { edges, face_edges, offsets, edge_face_list }
+        Self {
+            edges,
+            face_edges,
+            offsets,
+            edge_face_list,
+        }
     }
 
     /// Follows faces whose winding was reversed by swapping corners 1 and 2: corner 0 then

@@ -138,7 +138,10 @@ pub struct ReadError {
 
 /// Reads any supported model file, choosing the reader by extension (case-insensitive).
 pub fn read_file(path: &Path) -> Result<(Format, RawMesh), ReadError> {
-    let wrap = |kind| ReadError { path: path.to_path_buf(), kind };
+    let wrap = |kind| ReadError {
+        path: path.to_path_buf(),
+        kind,
+    };
     let extension = path
         .extension()
         .and_then(|e| e.to_str())

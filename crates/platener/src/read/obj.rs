@@ -83,11 +83,7 @@ fn prepare(text: &str, lossy: bool) -> Result<Prepared, ReadErrorKind> {
 }
 
 /// Checks a `v x y z [w | r g b]` line and appends `v x y z [w]` to `out`.
-fn vertex_line<'a>(
-    line: usize,
-    words: impl Iterator<Item = &'a str>,
-    out: &mut String,
-) -> Result<(), ReadErrorKind> {
+fn vertex_line<'a>(line: usize, words: impl Iterator<Item = &'a str>, out: &mut String) -> Result<(), ReadErrorKind> {
     let words: Vec<&str> = words.collect();
     if words.len() < 3 {
         return Err(ReadErrorKind::Obj(format!(

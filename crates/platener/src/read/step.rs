@@ -104,8 +104,10 @@ impl Step for ReadStep {
             );
         }
         validate_finite(&name, &triangles)?;
-        let bounds = Bounds::of(&triangles)
-            .ok_or_else(|| Error::Model { model: name.clone(), message: "the model has no triangles".into() })?;
+        let bounds = Bounds::of(&triangles).ok_or_else(|| Error::Model {
+            model: name.clone(),
+            message: "the model has no triangles".into(),
+        })?;
         let extent = bounds.largest_extent();
         if extent < SUSPICIOUSLY_SMALL {
             cx.warn(
@@ -117,7 +119,10 @@ impl Step for ReadStep {
         } else if extent > SUSPICIOUSLY_LARGE {
             cx.warn(
                 WarningKind::Units,
-                format!("the model is {:.1} m across: if its unit is not mm, use --scale F (e.g. 0.001 for µm)", extent / 1000.0),
+                format!(
+                    "the model is {:.1} m across: if its unit is not mm, use --scale F (e.g. 0.001 for µm)",
+                    extent / 1000.0
+                ),
             );
         }
         state.read = Some(Arc::new(Model {

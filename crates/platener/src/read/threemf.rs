@@ -29,10 +29,7 @@ const MAX_TRIANGLES: usize = 20_000_000;
 /// number of build items. Triangle and item numbers in messages count from 0.
 pub fn read_path(path: &Path) -> Result<RawMesh, ReadErrorKind> {
     let file = File::open(path).map_err(|e| ReadErrorKind::Io(e.to_string()))?;
-    let size = file
-        .metadata()
-        .map_err(|e| ReadErrorKind::Io(e.to_string()))?
-        .len();
+    let size = file.metadata().map_err(|e| ReadErrorKind::Io(e.to_string()))?.len();
     if size == 0 {
         return Err(ReadErrorKind::Empty);
     }
@@ -122,11 +119,7 @@ impl<'a> Package<'a> {
             }
             objects.push(by_id);
         }
-        Ok(Package {
-            parts,
-            root,
-            objects,
-        })
+        Ok(Package { parts, root, objects })
     }
 
     /// Finds object `id` as referenced from `part` (by `referrer`, for messages).
@@ -144,9 +137,7 @@ impl<'a> Package<'a> {
         let local = self.objects.get(part).and_then(|m| m.get(&id).copied());
         if part != self.root {
             // Non-root parts may only refer to their own objects.
-            return local
-                .map(|o| (part, o))
-                .ok_or_else(|| missing(referrer, id));
+            return local.map(|o| (part, o)).ok_or_else(|| missing(referrer, id));
         }
         let elsewhere: Vec<(usize, &'a Object)> = self
             .objects
@@ -191,19 +182,11 @@ impl<'a> Package<'a> {
         for (number, item) in items.iter().enumerate() {
             let referrer = format!("build item {number}");
             let transform = affine(item.transform.as_ref(), &referrer)?;
-            let (part, object) = self.resolve(
-                self.root,
-                item.objectid,
-                &referrer,
-                &mut expander.cross_part,
-            )?;
+            let (part, object) = self.resolve(self.root, item.objectid, &referrer, &mut expander.cross_part)?;
             let before = expander.triangles.len();
             expander.expand(part, object, transform, &referrer)?;
             if expander.triangles.len() == before {
-                notes.push(format!(
-                    "{referrer} ({}) holds no triangles",
-                    object_label(object)
-                ));
+                notes.push(format!("{referrer} ({}) holds no triangles", object_label(object)));
             }
         }
 
@@ -308,13 +291,7 @@ struct Expander<'p, 'a> {
 
 impl Expander<'_, '_> {
     /// Emits `object` (from `part`) placed by `transform` (model units), then its components.
-    fn expand(
-        &mut self,
-        part: usize,
-        object: &Object,
-        transform: DAffine3,
-        item: &str,
-    ) -> Result<(), ReadErrorKind> {
+    fn expand(&mut self, part: usize, object: &Object, transform: DAffine3, item: &str) -> Result<(), ReadErrorKind> {
         let key = (part, object.id);
         if let Some(start) = self.stack.iter().position(|k| *k == key) {
             let chain: Vec<String> = self.stack[start..]
@@ -350,12 +327,9 @@ impl Expander<'_, '_> {
             for (number, component) in components.component.iter().enumerate() {
                 let referrer = format!("{item}: {}, component {number}", object_label(object));
                 let local = affine(component.transform.as_ref(), &referrer)?;
-                let (child_part, child) = self.package.resolve(
-                    part,
-                    component.objectid,
-                    &referrer,
-                    &mut self.cross_part,
-                )?;
+                let (child_part, child) =
+                    self.package
+                        .resolve(part, component.objectid, &referrer, &mut self.cross_part)?;
                 // Row vectors: p · C · T, i.e. the component's transform first.
                 self.expand(child_part, child, transform * local, item)?;
             }
@@ -390,10 +364,7 @@ impl Expander<'_, '_> {
         self.triangles.reserve(triangles.len());
         for (t, triangle) in triangles.iter().enumerate() {
             let mut corners: Triangle = [DVec3::ZERO; 3];
-            for (slot, index) in corners
-                .iter_mut()
-                .zip([triangle.v1, triangle.v2, triangle.v3])
-            {
+            for (slot, index) in corners.iter_mut().zip([triangle.v1, triangle.v2, triangle.v3]) {
                 let vertex = vertices.get(index).ok_or_else(|| {
                     ReadErrorKind::ThreeMf(format!(
                         "{label}, triangle {t}: vertex index {index} is out of range (the object \

@@ -80,9 +80,18 @@ fn shapes_of_group(mesh: &Mesh, groups: &PlanarGroups, gid: usize, tolerance: f6
     let polygons = boolean::from_rings_even_odd(&rings).map_err(|e| e.to_string())?;
     let shapes = polygons
         .into_iter()
-        .map(|polygon| Shape { group: gid as u32, frame, area: polygon.area(), polygon })
+        .map(|polygon| Shape {
+            group: gid as u32,
+            frame,
+            area: polygon.area(),
+            polygon,
+        })
         .collect();
-    Ok(GroupShapes { shapes, dropped, removed })
+    Ok(GroupShapes {
+        shapes,
+        dropped,
+        removed,
+    })
 }
 
 /// Finds the shapes of every planar group.
@@ -100,7 +109,12 @@ pub fn find_shapes(mesh: &Mesh, groups: &PlanarGroups, tolerance: f64) -> Result
     }
     // Largest first; the sort is stable, so equal areas keep group order.
     shapes.sort_by(|a, b| b.area.total_cmp(&a.area));
-    Ok(Shapes { shapes, loops_dropped: dropped, vertices_removed: removed, straight_tolerance: tolerance })
+    Ok(Shapes {
+        shapes,
+        loops_dropped: dropped,
+        vertices_removed: removed,
+        straight_tolerance: tolerance,
+    })
 }
 
 /// Step `shapes`.
@@ -117,7 +131,10 @@ impl Step for ShapesStep {
         let cleaned = need(&state.cleanup, self.name(), "cleanup")?;
         let tolerance = state.settings.straight_tolerance.unwrap_or(cleaned.tolerances.straight);
         cx.check_cancel()?;
-        let shapes = find_shapes(mesh, groups, tolerance).map_err(|message| Error::Geometry { model: state.source.name(), message })?;
+        let shapes = find_shapes(mesh, groups, tolerance).map_err(|message| Error::Geometry {
+            model: state.source.name(),
+            message,
+        })?;
         state.shapes = Some(Arc::new(shapes));
         Ok(())
     }

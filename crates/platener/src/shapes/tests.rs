@@ -15,7 +15,10 @@ use platener_geom::polygon::perimeter;
 use super::Shapes;
 
 fn shapes_of(triangles: Vec<Triangle>) -> Arc<Shapes> {
-    let source = Source::Triangles { name: "test".into(), triangles: Arc::new(triangles) };
+    let source = Source::Triangles {
+        name: "test".into(),
+        triangles: Arc::new(triangles),
+    };
     let (state, _) = run_foundation(source, Settings::default(), &Cancel::default()).expect("converts");
     state.shapes.expect("shapes step ran")
 }
@@ -53,7 +56,9 @@ fn open_box_rim_is_a_ring_and_cells_merge() {
     let s = shapes_of(open_box(100.0, 60.0, 40.0, 3.0));
     // Outer faces: bottom 100×60, walls 100×40 and 60×40 twice; inner floor 94×54; inner
     // walls 94×37 and 54×37 twice; the rim 100×60 − 94×54 with one hole.
-    let mut want = vec![6000.0, 5076.0, 4000.0, 4000.0, 2400.0, 2400.0, 3478.0, 3478.0, 1998.0, 1998.0, 924.0];
+    let mut want = vec![
+        6000.0, 5076.0, 4000.0, 4000.0, 2400.0, 2400.0, 3478.0, 3478.0, 1998.0, 1998.0, 924.0,
+    ];
     want.sort_by(f64::total_cmp);
     let areas = sorted_areas(&s);
     assert_eq!(areas.len(), want.len(), "{areas:?}");

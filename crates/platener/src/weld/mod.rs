@@ -9,9 +9,9 @@
 use std::sync::Arc;
 
 use glam::DVec3;
-use rayon::slice::ParallelSliceMut;
 use platener_geom::dedup::first_equal;
 use platener_geom::weld::weld;
+use rayon::slice::ParallelSliceMut;
 use serde::Serialize;
 
 use crate::error::{Error, Result};
@@ -52,8 +52,14 @@ pub fn weld_soup(soup: &[[DVec3; 3]], distance: f64) -> Welded {
     let (input_open_edges, input_non_manifold_edges) = input_edge_defects(&exact.map);
     let clustered = (distance > 0.0).then(|| weld(&exact.points, &exact.weights, distance));
     let (vertices, corner_id): (Vec<DVec3>, Box<dyn Fn(usize) -> u32>) = match &clustered {
-        Some(c) => (c.points.iter().map(|p| DVec3::from_array(*p)).collect(), Box::new(|i| c.map[exact.map[i] as usize])),
-        None => (exact.points.iter().map(|p| DVec3::from_array(*p)).collect(), Box::new(|i| exact.map[i])),
+        Some(c) => (
+            c.points.iter().map(|p| DVec3::from_array(*p)).collect(),
+            Box::new(|i| c.map[exact.map[i] as usize]),
+        ),
+        None => (
+            exact.points.iter().map(|p| DVec3::from_array(*p)).collect(),
+            Box::new(|i| exact.map[i]),
+        ),
     };
     let mut collapsed = 0;
     let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(soup.len());
@@ -78,7 +84,12 @@ pub fn weld_soup(soup: &[[DVec3; 3]], distance: f64) -> Welded {
             .collect();
         let first = first_equal(&keys);
         let before_merge = triangles.len();
-        triangles = triangles.into_iter().enumerate().filter(|&(i, _)| first[i] as usize == i).map(|(_, t)| t).collect();
+        triangles = triangles
+            .into_iter()
+            .enumerate()
+            .filter(|&(i, _)| first[i] as usize == i)
+            .map(|(_, t)| t)
+            .collect();
         merged = before_merge - triangles.len();
     }
     Welded {
@@ -137,25 +148,39 @@ impl Step for WeldStep {
         if welded.triangles.is_empty() && distance > 0.0 {
             cx.warn(
                 WarningKind::WeldFallback,
-                format!("welding at {distance:.3} mm would remove every triangle; the unwelded mesh is used (try --weld 0)"),
+                format!(
+                    "welding at {distance:.3} mm would remove every triangle; the unwelded mesh is used (try --weld 0)"
+                ),
             );
-            welded = Welded { fell_back: true, ..weld_soup(&cleaned.triangles, 0.0) };
+            welded = Welded {
+                fell_back: true,
+                ..weld_soup(&cleaned.triangles, 0.0)
+            };
         }
         cx.check_cancel()?;
         if welded.input_open_edges > 0 {
             cx.warn(
                 WarningKind::OpenEdges,
-                format!("{} open edges: the model's surface has holes (not watertight)", welded.input_open_edges),
+                format!(
+                    "{} open edges: the model's surface has holes (not watertight)",
+                    welded.input_open_edges
+                ),
             );
         }
         if welded.input_non_manifold_edges > 0 {
             cx.warn(
                 WarningKind::NonManifoldEdges,
-                format!("{} non-manifold edges: some edges of the model are shared by more than two triangles", welded.input_non_manifold_edges),
+                format!(
+                    "{} non-manifold edges: some edges of the model are shared by more than two triangles",
+                    welded.input_non_manifold_edges
+                ),
             );
         }
         if welded.triangles.is_empty() {
-            return Err(Error::Model { model: model.name.clone(), message: "no triangle with an area is left after cleanup".into() });
+            return Err(Error::Model {
+                model: model.name.clone(),
+                message: "no triangle with an area is left after cleanup".into(),
+            });
         }
         state.weld = Some(Arc::new(welded));
         Ok(())
@@ -170,7 +195,12 @@ mod tests {
     fn bevel_collapses_into_a_sharp_edge() {
         // Two 20 mm squares meeting at a right angle through a 0.5 mm 45° bevel strip.
         let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
-        let top = [p(0.0, 0.0, 10.0), p(20.0, 0.0, 10.0), p(20.0, 19.5, 10.0), p(0.0, 19.5, 10.0)];
+        let top = [
+            p(0.0, 0.0, 10.0),
+            p(20.0, 0.0, 10.0),
+            p(20.0, 19.5, 10.0),
+            p(0.0, 19.5, 10.0),
+        ];
         let bevel_lo = [p(0.0, 20.0, 9.5), p(20.0, 20.0, 9.5)];
         let side_lo = [p(0.0, 20.0, -10.0), p(20.0, 20.0, -10.0)];
         let soup = vec![
@@ -188,7 +218,10 @@ mod tests {
         assert_eq!(w.triangles_collapsed, 2, "both bevel triangles collapse");
         assert_eq!(w.triangles.len(), 4);
         // The merged corner lies at the mean of (y 19.5, z 10) and (y 20, z 9.5).
-        let corner = v.iter().find(|q| q.x == 0.0 && q.y > 19.0 && q.z > 9.0).expect("merged corner");
+        let corner = v
+            .iter()
+            .find(|q| q.x == 0.0 && q.y > 19.0 && q.z > 9.0)
+            .expect("merged corner");
         assert!((corner.y - 19.75).abs() < 1e-9 && (corner.z - 9.75).abs() < 1e-9);
     }
 }
