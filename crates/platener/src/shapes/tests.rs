@@ -119,3 +119,64 @@ proptest! {
         prop_assert_eq!(holes(&base), holes(&moved));
     }
 }
+
+#[test]
+fn welding_removes_chamfers_so_faces_meet_again() {
+    // A 40 mm cube profile with 0.5 mm chamfers on four edges, extruded 40 mm: 10 faces.
+    let (s, c) = (40.0, 0.5);
+    let p = |x: f64, y: f64| glam::DVec2::new(x, y);
+    let profile = [
+        p(c, 0.0),
+        p(s - c, 0.0),
+        p(s, c),
+        p(s, s - c),
+        p(s - c, s),
+        p(c, s),
+        p(0.0, s - c),
+        p(0.0, c),
+    ];
+    let model = crate::samples::prism(&profile, s);
+    let unwelded = {
+        let source = Source::Triangles {
+            name: "chamfered".into(),
+            triangles: Arc::new(model.clone()),
+        };
+        let settings = Settings {
+            weld: crate::Weld::Off,
+            ..Settings::default()
+        };
+        run_foundation(source, settings, &Cancel::default())
+            .expect("converts")
+            .0
+            .shapes
+            .expect("shapes")
+    };
+    assert_eq!(unwelded.shapes.len(), 10);
+    // Automatic welding (40 mm model: 0.8 mm) collapses the 0.71 mm chamfers.
+    let welded = shapes_of(model);
+    let areas = sorted_areas(&welded);
+    assert_eq!(areas.len(), 6, "{areas:?}");
+    for a in areas {
+        // Each chamfer's two edges merge into one point on the chamfer, so every face edge
+        // ends up between 0 and c inside the sharp cube's: the face is (s − c)² … s².
+        assert!(a >= (s - c) * (s - c) - 1e-6 && a <= s * s + 1e-6, "{a}");
+    }
+}
+
+#[test]
+fn results_do_not_depend_on_the_thread_count() {
+    let model = crate::samples::rounded_box(DVec3::new(60.0, 40.0, 30.0), 5.0, 24);
+    let run_with = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool");
+        pool.install(|| shapes_of(model.clone()))
+    };
+    let (one, two) = (run_with(1), run_with(2));
+    assert_eq!(one.shapes.len(), two.shapes.len());
+    for (a, b) in one.shapes.iter().zip(&two.shapes) {
+        assert_eq!(a.polygon, b.polygon);
+        assert_eq!(a.frame, b.frame);
+    }
+}
