@@ -17,13 +17,19 @@
 pub mod cleanup;
 pub mod coplanar;
 pub mod error;
+pub mod export;
 pub mod inspect;
+pub mod kerf;
+pub mod labels;
 pub mod mesh;
 pub mod pipeline;
+pub mod plan;
+pub mod plates;
 pub mod read;
 pub mod samples;
 pub mod settings;
 pub mod shapes;
+pub mod sheets;
 pub mod weld;
 
 pub use error::{Error, Result};

@@ -1,0 +1,1 @@
+//! Step `labels`: part and connection numbers engraved as single-stroke text.

@@ -1,0 +1,1 @@
+//! The plan: parts with their outlines and transforms, joints and sheets, as in plan.json.

@@ -1,0 +1,1 @@
+//! Step `plates`: inherent and extruded plates with a coverage report.

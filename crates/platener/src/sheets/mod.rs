@@ -1,0 +1,1 @@
+//! Step `sheets`: nesting parts onto sheets.
