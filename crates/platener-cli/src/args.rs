@@ -60,6 +60,13 @@ pub struct InspectArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Also find the plates (for the thicknesses given with -t) and report which faces became
+    /// plates and why the others did not.
+    #[arg(long)]
+    pub plates: bool,
+    /// Find inherent plates only (no extruded plates); implies --plates.
+    #[arg(long)]
+    pub inherent_only: bool,
     /// Model options.
     #[command(flatten)]
     pub model_args: ModelArgs,

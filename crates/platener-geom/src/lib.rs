@@ -10,6 +10,7 @@
 //! | [`polygon`] | polygons with holes, areas, orientation |
 //! | [`boolean`] | union / intersection / difference, even-odd hole detection (i_overlay) |
 //! | [`offset`] | outward/inward offsets with miter joins (i_overlay) |
+//! | [`slab`] | plates as extruded polygons: where one plate's outline meets another's volume |
 //! | [`frame`] | rigid 3D ↔ 2D frames of planes |
 //! | [`dedup`] | finding equal items among millions (sorted fingerprints) |
 //! | [`weld`] | merging nearby points in 2D or 3D (spatial hash) |
@@ -20,6 +21,7 @@ pub mod frame;
 pub mod grid;
 pub mod offset;
 pub mod polygon;
+pub mod slab;
 pub mod tolerance;
 pub mod weld;
 

@@ -107,6 +107,30 @@ impl Polygon {
     }
 }
 
+/// The convex hull of some points, counter-clockwise (Andrew's monotone chain), without
+/// collinear points. Fewer than three distinct points give what there is.
+pub fn convex_hull(points: &[DVec2]) -> Ring {
+    let mut pts: Vec<DVec2> = points.to_vec();
+    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    pts.dedup();
+    if pts.len() < 3 {
+        return pts;
+    }
+    let mut hull: Ring = Vec::with_capacity(pts.len() + 1);
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &DVec2>> = if pass == 0 { Box::new(pts.iter()) } else { Box::new(pts.iter().rev()) };
+        for &p in iter {
+            while hull.len() >= start + 2 && (hull[hull.len() - 1] - hull[hull.len() - 2]).perp_dot(p - hull[hull.len() - 2]) <= 0.0 {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    hull
+}
+
 /// Total area of several polygons.
 pub fn total_area(polygons: &[Polygon]) -> f64 {
     polygons.iter().map(Polygon::area).sum()
@@ -204,6 +228,15 @@ mod tests {
         assert!(signed_area(&p.holes[0]) < 0.0);
         assert!(p.contains(DVec2::new(1.0, 1.0)));
         assert!(!p.contains(DVec2::new(3.0, 3.0)));
+    }
+
+    #[test]
+    fn hull_of_a_square_with_inner_points() {
+        let mut pts = square(0.0, 0.0, 4.0);
+        pts.extend([DVec2::new(1.0, 1.0), DVec2::new(2.0, 0.0), DVec2::new(3.0, 2.0)]);
+        let h = convex_hull(&pts);
+        assert_eq!(h.len(), 4);
+        assert!((signed_area(&h) - 16.0).abs() < 1e-12);
     }
 
     #[test]

@@ -29,6 +29,42 @@ pub struct ShapeSummary {
     pub at: DVec3,
 }
 
+/// One plate, as `platener inspect --plates` lists it.
+#[derive(Debug, Clone, Serialize)]
+pub struct PlateSummary {
+    /// How it was found.
+    pub kind: crate::plates::PlateKind,
+    /// Sheet thickness in mm.
+    pub thickness: f64,
+    /// Outline area in mm².
+    pub area: f64,
+    /// Vertices of the outline and holes.
+    pub vertices: usize,
+    /// Holes.
+    pub holes: usize,
+    /// The plate's centre in the model (centre of its outline's box, mid-thickness).
+    pub center: DVec3,
+    /// The plate's normal.
+    pub normal: DVec3,
+    /// The 3×4 transform of plan.json (model point = R·(x, y, z) + t).
+    pub transform: [[f64; 4]; 3],
+}
+
+/// Plates and coverage, for `platener inspect --plates`.
+#[derive(Debug, Clone, Serialize)]
+pub struct PlatesReport {
+    /// The plates.
+    pub plates: Vec<PlateSummary>,
+    /// Which shapes became plates and why the others did not.
+    pub coverage: crate::plates::Coverage,
+    /// Plates removed as contained in another.
+    pub contained_removed: usize,
+    /// Plates trimmed where they overlapped another.
+    pub trimmed: usize,
+    /// Split plates joined again.
+    pub rejoined: usize,
+}
+
 /// Everything `platener inspect` prints.
 #[derive(Debug, Clone, Serialize)]
 pub struct Inspection {
@@ -68,6 +104,8 @@ pub struct Inspection {
     pub shapes: usize,
     /// The largest shapes.
     pub largest_shapes: Vec<ShapeSummary>,
+    /// Plates and coverage, when asked for.
+    pub plates: Option<PlatesReport>,
     /// Steps with their times and warnings.
     pub steps: Vec<StepRecord>,
 }
@@ -81,15 +119,48 @@ impl Inspection {
 
 /// Runs the foundation steps on `source` and returns the final state and its records.
 pub fn run_foundation(source: Source, settings: Settings, cancel: &Cancel) -> Result<(State, Vec<StepRecord>)> {
+    run_steps(&pipeline::foundation_steps(), source, settings, cancel)
+}
+
+fn run_steps(steps: &[&dyn pipeline::Step], source: Source, settings: Settings, cancel: &Cancel) -> Result<(State, Vec<StepRecord>)> {
     settings.validate()?;
     let mut state = State::new(source, settings);
-    let records = pipeline::run(&pipeline::foundation_steps(), &mut state, cancel)?;
+    let records = pipeline::run(steps, &mut state, cancel)?;
     Ok((state, records))
 }
 
-/// Runs the foundation steps and summarises them.
-pub fn inspect(source: Source, settings: Settings, cancel: &Cancel) -> Result<Inspection> {
-    let (state, steps) = run_foundation(source, settings, cancel)?;
+fn plates_report(plates: &crate::plates::Plates) -> PlatesReport {
+    let summaries = plates
+        .plates
+        .iter()
+        .map(|p| {
+            let (lo, hi) = p.polygon.bounds();
+            let c = (lo + hi) / 2.0;
+            PlateSummary {
+                kind: p.kind,
+                thickness: p.thickness,
+                area: p.area,
+                vertices: p.polygon.vertex_count(),
+                holes: p.polygon.holes.len(),
+                center: p.frame.to_model(DVec3::new(c.x, c.y, p.thickness / 2.0)),
+                normal: p.frame.n,
+                transform: p.frame.matrix(),
+            }
+        })
+        .collect();
+    PlatesReport {
+        plates: summaries,
+        coverage: plates.coverage.clone(),
+        contained_removed: plates.contained_removed,
+        trimmed: plates.trimmed,
+        rejoined: plates.rejoined,
+    }
+}
+
+/// Runs the foundation steps (and plate finding when `with_plates`) and summarises them.
+pub fn inspect(source: Source, settings: Settings, cancel: &Cancel, with_plates: bool) -> Result<Inspection> {
+    let steps = if with_plates { pipeline::plate_steps() } else { pipeline::foundation_steps() };
+    let (state, steps) = run_steps(&steps, source, settings, cancel)?;
     let need = |name| crate::Error::MissingStep {
         step: "inspect",
         needs: name,
@@ -130,6 +201,7 @@ pub fn inspect(source: Source, settings: Settings, cancel: &Cancel) -> Result<In
                 at: s.frame.origin,
             })
             .collect(),
+        plates: state.plates.as_deref().map(plates_report),
         steps,
     })
 }

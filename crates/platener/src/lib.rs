@@ -35,4 +35,4 @@ pub mod weld;
 pub use error::{Error, Result};
 pub use pipeline::{Cancel, Source, State};
 pub use platener_geom::glam;
-pub use settings::{Settings, Units, Weld};
+pub use settings::{PlateMode, PlateSettings, Settings, Units, Weld};

@@ -14,7 +14,7 @@ use serde::Serialize;
 
 use crate::error::{Error, Result};
 use crate::settings::Settings;
-use crate::{cleanup, coplanar, mesh, read, shapes, weld};
+use crate::{cleanup, coplanar, mesh, plates, read, shapes, weld};
 
 /// Where the model comes from.
 #[derive(Debug, Clone)]
@@ -61,6 +61,8 @@ pub struct State {
     pub coplanar: Option<Arc<coplanar::PlanarGroups>>,
     /// Step `shapes`.
     pub shapes: Option<Arc<shapes::Shapes>>,
+    /// Step `plates`.
+    pub plates: Option<Arc<plates::Plates>>,
 }
 
 impl State {
@@ -75,6 +77,7 @@ impl State {
             mesh: None,
             coplanar: None,
             shapes: None,
+            plates: None,
         }
     }
 }
@@ -191,6 +194,13 @@ pub fn foundation_steps() -> Vec<&'static dyn Step> {
         &coplanar::CoplanarStep,
         &shapes::ShapesStep,
     ]
+}
+
+/// The foundation steps, then plate finding.
+pub fn plate_steps() -> Vec<&'static dyn Step> {
+    let mut steps = foundation_steps();
+    steps.push(&plates::PlatesStep);
+    steps
 }
 
 /// Runs `steps` in order on `state`, recording each. Stops at the first error.

@@ -99,18 +99,15 @@ fn triangulate(poly: &[DVec2]) -> Vec<[usize; 3]> {
         guard += 1;
         let n = idx.len();
         let ear = (0..n).find(|&i| {
-            let (a, b, c) = (poly[idx[(i + n - 1) % n]], poly[idx[i]], poly[idx[(i + 1) % n]]);
+            let (ia, ib, ic) = ((i + n - 1) % n, i, (i + 1) % n);
+            let (a, b, c) = (poly[idx[ia]], poly[idx[ib]], poly[idx[ic]]);
             if (b - a).perp_dot(c - b) <= 0.0 {
                 return false;
             }
-            idx.iter().all(|&j| {
-                let q = poly[j];
-                q == a
-                    || q == b
-                    || q == c
-                    || !((b - a).perp_dot(q - a) > 0.0
-                        && (c - b).perp_dot(q - b) > 0.0
-                        && (a - c).perp_dot(q - c) > 0.0)
+            // No other corner may lie inside the ear or on its edges.
+            (0..n).filter(|&k| k != ia && k != ib && k != ic).all(|k| {
+                let q = poly[idx[k]];
+                !((b - a).perp_dot(q - a) >= 0.0 && (c - b).perp_dot(q - b) >= 0.0 && (a - c).perp_dot(q - c) >= 0.0)
             })
         });
         let Some(i) = ear else { break };
@@ -236,6 +233,62 @@ pub fn closed_box(w: f64, d: f64, h: f64, t: f64) -> Vec<Triangle> {
         &[0.0, t, h - t, h],
         |i, j, k| (i, j, k) != (1, 1, 1),
     )
+}
+
+/// Two `t`-thick plates crossing at right angles in a plus-shaped profile `size` across,
+/// extruded `size` deep: a horizontal one at mid height and a vertical one at mid width.
+pub fn crossing_plates(size: f64, t: f64) -> Vec<Triangle> {
+    let (a, b) = ((size - t) / 2.0, (size + t) / 2.0);
+    let p = DVec2::new;
+    let profile = [
+        p(a, 0.0),
+        p(b, 0.0),
+        p(b, a),
+        p(size, a),
+        p(size, b),
+        p(b, b),
+        p(b, size),
+        p(a, size),
+        p(a, b),
+        p(0.0, b),
+        p(0.0, a),
+        p(a, a),
+    ];
+    prism(&profile, size)
+}
+
+/// A shelf: two `t`-thick sides `h` tall, `w` apart outside, and a board between them at
+/// `shelf` height (an H-shaped profile), `depth` deep.
+pub fn shelf(w: f64, h: f64, shelf: f64, depth: f64, t: f64) -> Vec<Triangle> {
+    let p = DVec2::new;
+    let profile = [
+        p(0.0, 0.0),
+        p(t, 0.0),
+        p(t, shelf),
+        p(w - t, shelf),
+        p(w - t, 0.0),
+        p(w, 0.0),
+        p(w, h),
+        p(w - t, h),
+        p(w - t, shelf + t),
+        p(t, shelf + t),
+        p(t, h),
+        p(0.0, h),
+    ];
+    prism(&profile, depth)
+}
+
+/// A gable roof: two `t`-thick plates rising at `pitch_deg` to a ridge, each `run` wide
+/// horizontally, `depth` deep; the plates meet in a mitre along the ridge.
+pub fn roof(run: f64, pitch_deg: f64, depth: f64, t: f64) -> Vec<Triangle> {
+    let a = pitch_deg.to_radians();
+    let rise = run * a.tan();
+    let p = DVec2::new;
+    // Outer (upper) surface from (0, 0) up to the ridge (run, rise) and down to (2·run, 0);
+    // the lower surface is t below, measured perpendicular to each slope.
+    let drop = t / a.cos();
+    let profile = [p(0.0, -drop), p(run, rise - drop), p(2.0 * run, -drop), p(2.0 * run, 0.0), p(run, rise), p(0.0, 0.0)];
+    prism(&profile, depth)
 }
 
 /// The models shipped in `examples/`: file name, STL header, triangles.

@@ -43,6 +43,47 @@ pub enum Weld {
     Distance(f64),
 }
 
+/// Which plates the plate method looks for (the thesis' debug view offered both).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum PlateMode {
+    /// Only pairs of opposite faces a sheet thickness apart.
+    InherentOnly,
+    /// Inherent plates, then leftover faces extruded inwards (a solid block becomes a hull).
+    #[default]
+    InherentAndExtruded,
+}
+
+/// Settings of plate finding.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PlateSettings {
+    /// Which plates to find.
+    pub mode: PlateMode,
+    /// Two faces `d` apart make a plate of thickness `t` when `min_factor·t < d`…
+    pub min_factor: f64,
+    /// …and `d < max_factor·t`. 0.75 and 1.35 accept a 3 mm sheet for walls 2.25–4.05 mm.
+    pub max_factor: f64,
+    /// Faces whose normals are within this many degrees of opposite are parallel.
+    pub parallel_angle_deg: f64,
+    /// Thickness of extruded plates; `None` takes the first offered thickness.
+    pub extrusion_thickness: Option<f64>,
+    /// Plates (and leftover faces) under this area in mm² are too small to cut.
+    pub min_area: f64,
+}
+
+impl Default for PlateSettings {
+    fn default() -> Self {
+        Self {
+            mode: PlateMode::InherentAndExtruded,
+            min_factor: 0.75,
+            max_factor: 1.35,
+            parallel_angle_deg: 2.0,
+            extrusion_thickness: None,
+            min_area: 25.0,
+        }
+    }
+}
+
 /// All settings of a conversion.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Settings {
@@ -60,6 +101,8 @@ pub struct Settings {
     /// Vertices closer than this (mm) to the line through their neighbours are removed from
     /// outlines; `None` derives it from the model size (1e-4 of the diagonal, 1 µm–10 µm).
     pub straight_tolerance: Option<f64>,
+    /// Plate finding.
+    pub plates: PlateSettings,
 }
 
 impl Default for Settings {
@@ -71,6 +114,7 @@ impl Default for Settings {
             thicknesses: vec![3.0],
             coplanar_angle_deg: 1.0,
             straight_tolerance: None,
+            plates: PlateSettings::default(),
         }
     }
 }
@@ -110,7 +154,27 @@ impl Settings {
         {
             return bad("straight tolerance", format!("{t} is not a distance ≥ 0 mm"));
         }
+        let p = &self.plates;
+        if !(p.min_factor.is_finite() && p.min_factor > 0.0 && p.max_factor.is_finite() && p.max_factor > p.min_factor) {
+            return bad("plate factors", format!("need 0 < min ({}) < max ({})", p.min_factor, p.max_factor));
+        }
+        if !(p.parallel_angle_deg.is_finite() && (0.0..30.0).contains(&p.parallel_angle_deg)) {
+            return bad("parallel angle", format!("{}° must be in [0, 30)", p.parallel_angle_deg));
+        }
+        if let Some(t) = p.extrusion_thickness
+            && !(t.is_finite() && t > 0.0)
+        {
+            return bad("extrusion thickness", format!("{t} is not a positive number of mm"));
+        }
+        if !(p.min_area.is_finite() && p.min_area >= 0.0) {
+            return bad("minimum plate area", format!("{} is not an area ≥ 0 mm²", p.min_area));
+        }
         Ok(())
+    }
+
+    /// The thickness extruded plates get.
+    pub fn extrusion_thickness(&self) -> f64 {
+        self.plates.extrusion_thickness.unwrap_or(self.thicknesses[0])
     }
 
     /// The factor from file units to mm.

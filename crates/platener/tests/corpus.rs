@@ -77,7 +77,7 @@ fn every_corpus_file_converts_or_fails_with_its_message() {
     for path in &files {
         let name = path.file_name().and_then(|n| n.to_str()).expect("utf-8 name");
         let result =
-            std::panic::catch_unwind(|| inspect(Source::File(path.clone()), Settings::default(), &Cancel::default()));
+            std::panic::catch_unwind(|| inspect(Source::File(path.clone()), Settings::default(), &Cancel::default(), true));
         let result = result.unwrap_or_else(|_| panic!("{name}: panicked"));
         match (FAILS.iter().find(|(f, _)| *f == name), result) {
             (Some((_, want)), Err(e)) => {

@@ -1,1 +1,172 @@
-//! Step `plates`: inherent and extruded plates with a coverage report.
+//! Step `plates` (the thesis' InherentPlates, ExtrudedPlates and RemoveContainedPlates): the
+//! flat plates the model can be rebuilt from, and a report of which faces became plates and why
+//! the others did not.
+//!
+//! 1. [`inherent`]: pairs of parallel shapes facing apart, a sheet thickness apart, give a plate
+//!    where they overlap; what is left of each shape may still pair with another.
+//! 2. Leftover shapes are extruded inwards by the extrusion thickness (a solid block becomes a
+//!    hollow hull), unless the mode is inherent-only.
+//! 3. [`overlap`]: plates inside another plate's volume are removed, overlapping ones trimmed so
+//!    no volume is claimed twice; [`rejoin`]: coplanar pieces split by a plate passing through
+//!    them become one plate again.
+//! 4. [`coverage`]: per shape, which plates use it or why none does.
+
+mod coverage;
+mod inherent;
+mod overlap;
+mod pairs;
+mod rejoin;
+#[cfg(test)]
+mod tests;
+
+use std::sync::Arc;
+
+use glam::DVec3;
+use platener_geom::slab::Slab;
+use platener_geom::{Frame, Polygon, polygon};
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::pipeline::{State, Step, StepContext, need};
+use crate::settings::{PlateMode, Settings};
+use crate::shapes::Shapes;
+
+pub use coverage::{Coverage, Rejection, ShapeUse, ThicknessShare};
+
+/// How a plate was found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PlateKind {
+    /// Between two opposite faces of the model.
+    Inherent,
+    /// A face extruded inwards by the extrusion thickness.
+    Extruded,
+}
+
+/// A flat plate: an outline in a frame's plane, extruded from local z = 0 to the thickness.
+#[derive(Debug, Clone, Serialize)]
+pub struct Plate {
+    /// How it was found.
+    pub kind: PlateKind,
+    /// Sheet thickness in mm (one of the offered ones, or the extrusion thickness).
+    pub thickness: f64,
+    /// Where the plate sits: `frame.to_model((x, y, z))` for z in [0, thickness].
+    pub frame: Frame,
+    /// Outline and holes in the frame's plane.
+    pub polygon: Polygon,
+    /// Area of the outline in mm².
+    pub area: f64,
+    /// The planar shapes (indices into the `shapes` snapshot) it was made from.
+    pub shapes: Vec<u32>,
+}
+
+impl Plate {
+    /// The plate as a slab, for volume questions.
+    pub fn slab(&self) -> Slab {
+        Slab { frame: self.frame, polygon: self.polygon.clone(), thickness: self.thickness }
+    }
+
+    /// Axis-aligned bounds of the plate's volume in the model.
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for p in &self.polygon.outer {
+            for z in [0.0, self.thickness] {
+                let q = self.frame.to_model(DVec3::new(p.x, p.y, z));
+                lo = lo.min(q);
+                hi = hi.max(q);
+            }
+        }
+        (lo, hi)
+    }
+
+    /// The plate's volume in mm³.
+    pub fn volume(&self) -> f64 {
+        self.area * self.thickness
+    }
+}
+
+/// The snapshot of step `plates`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Plates {
+    /// The plates: inherent first, then extruded, each largest first.
+    pub plates: Vec<Plate>,
+    /// Which shapes became plates and why the others did not.
+    pub coverage: Coverage,
+    /// Plates removed because another plate's volume contained them.
+    pub contained_removed: usize,
+    /// Plates trimmed because they overlapped a plate found earlier.
+    pub trimmed: usize,
+    /// Plates made whole again after a plate passing through had split them.
+    pub rejoined: usize,
+}
+
+/// Whether a laser can sensibly cut this outline at this thickness: big enough, and on
+/// average at least as wide as the sheet is thick (2·area / perimeter), so thin curved walls
+/// do not turn into hundreds of slivers.
+pub(crate) fn cuttable(p: &Polygon, thickness: f64, min_area: f64) -> std::result::Result<(), Rejection> {
+    let area = p.area();
+    if area < min_area {
+        return Err(Rejection::TooSmall { area });
+    }
+    let perimeter = polygon::perimeter(&p.outer) + p.holes.iter().map(|h| polygon::perimeter(h)).sum::<f64>();
+    let width = 2.0 * area / perimeter;
+    if width < thickness {
+        return Err(Rejection::Sliver { width });
+    }
+    Ok(())
+}
+
+/// Maps a polygon from one frame's plane to another's (through the model), keeping plan.json's
+/// orientation (outer counter-clockwise).
+pub(crate) fn map_polygon(p: &Polygon, from: &Frame, to: &Frame) -> Polygon {
+    let map = |r: &Vec<glam::DVec2>| r.iter().map(|q| to.to_2d(from.to_model_2d(*q))).collect();
+    let mut out = Polygon { outer: map(&p.outer), holes: p.holes.iter().map(map).collect() };
+    out.normalize_orientation();
+    out
+}
+
+/// Finds the plates of a model's shapes; `surface_area` is the model's, for the coverage share.
+pub fn find_plates(shapes: &Shapes, surface_area: f64, center: DVec3, settings: &Settings) -> Result<Plates, String> {
+    let ps = &settings.plates;
+    let geometry = |e: platener_geom::GridError| e.to_string();
+    let mut found = inherent::find(shapes, center, settings).map_err(geometry)?;
+    if ps.mode == PlateMode::InherentAndExtruded {
+        inherent::extrude_leftovers(shapes, &mut found, settings);
+    }
+    let detected_use: Vec<f64> = shapes
+        .shapes
+        .iter()
+        .zip(&found.remaining)
+        .map(|(s, rest)| (s.area - polygon::total_area(rest)).max(0.0))
+        .collect();
+    let clearance = 1e-3;
+    let (plates, contained, trimmed) = overlap::resolve(found.plates, ps.min_area, clearance).map_err(geometry)?;
+    let (mut plates, rejoined) = rejoin::rejoin(plates, ps.parallel_angle_deg.to_radians(), clearance).map_err(geometry)?;
+    plates.sort_by(|a, b| {
+        (a.kind == PlateKind::Extruded).cmp(&(b.kind == PlateKind::Extruded)).then(b.area.total_cmp(&a.area))
+    });
+    let coverage = coverage::report(shapes, &found.detail, &detected_use, &plates, surface_area, settings);
+    Ok(Plates { plates, coverage, contained_removed: contained, trimmed, rejoined })
+}
+
+/// Step `plates`.
+pub struct PlatesStep;
+
+impl Step for PlatesStep {
+    fn name(&self) -> &'static str {
+        "plates"
+    }
+
+    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
+        let shapes = need(&state.shapes, self.name(), "shapes")?;
+        let mesh = need(&state.mesh, self.name(), "mesh")?;
+        let model = need(&state.read, self.name(), "read")?;
+        cx.check_cancel()?;
+        let center = (model.bounds.min + model.bounds.max) / 2.0;
+        let plates = find_plates(shapes, mesh.surface_area, center, &state.settings)
+            .map_err(|message| Error::Geometry { model: model.name.clone(), message })?;
+        state.plates = Some(Arc::new(plates));
+        Ok(())
+    }
+}

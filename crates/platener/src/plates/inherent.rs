@@ -1,0 +1,147 @@
+//! Inherent plates: the material between two opposite faces a sheet thickness apart.
+//!
+//! Candidate pairs come from [`super::pairs`]. They are taken thinnest gap first (a face's
+//! nearest opposite face is the other side of its plate), and each takes only what is still
+//! free of both shapes: a shape is consumed only where a plate covers it, and the rest may pair
+//! with another face. The plate keeps the model's mid-plane between the two faces.
+
+use platener_geom::boolean::{difference, intersection};
+use platener_geom::{GridError, Polygon, polygon::total_area};
+
+use super::pairs::{Pair, opposite_pairs};
+use super::{Plate, PlateKind, Rejection, cuttable, map_polygon};
+use crate::settings::Settings;
+use crate::shapes::Shapes;
+
+/// The nearest opposite faces each shape has (that overlap it in projection).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Nearest {
+    /// Nearest face with the material between (a plate candidate).
+    pub apart: Option<f64>,
+    /// Nearest face with empty space between (a slot or gap).
+    pub facing: Option<f64>,
+    /// Why a piece of this shape was refused as a plate, if one was.
+    pub refused: Option<Rejection>,
+}
+
+/// What detection found, per shape and in total.
+pub(super) struct Detection {
+    /// Plates found so far.
+    pub plates: Vec<Plate>,
+    /// Per shape: what is still free (not covered by a plate).
+    pub remaining: Vec<Vec<Polygon>>,
+    /// Per shape: nearest opposite faces.
+    pub detail: Vec<Nearest>,
+}
+
+/// The offered thickness that makes a plate of faces `distance` apart: the nearest offered
+/// one with `min_factor·t < distance < max_factor·t`.
+pub(super) fn matching_thickness(distance: f64, settings: &Settings) -> Option<f64> {
+    let p = &settings.plates;
+    settings
+        .thicknesses
+        .iter()
+        .copied()
+        .filter(|t| p.min_factor * t < distance && distance < p.max_factor * t)
+        .min_by(|a, b| (a - distance).abs().total_cmp(&(b - distance).abs()))
+}
+
+pub(super) fn find(shapes: &Shapes, center: glam::DVec3, settings: &Settings) -> Result<Detection, GridError> {
+    let list = &shapes.shapes;
+    let ps = &settings.plates;
+    let t_max = settings.thicknesses.iter().copied().fold(0.0, f64::max);
+    // Look further than any plate could be, to say "opposite face at 9 mm" in the report.
+    let search = (ps.max_factor * t_max).max(4.0 * t_max);
+    let pairs = opposite_pairs(list, ps.parallel_angle_deg.to_radians(), search, center);
+    let mut detail = vec![Nearest::default(); list.len()];
+    let mut candidates: Vec<(Pair, f64, f64)> = Vec::new();
+    for pair in pairs {
+        let (a, b) = (&list[pair.a as usize], &list[pair.b as usize]);
+        let b_in_a = map_polygon(&b.polygon, &b.frame, &a.frame);
+        let overlap = total_area(&intersection(std::slice::from_ref(&a.polygon), &[b_in_a])?);
+        if overlap <= 0.0 {
+            continue;
+        }
+        for s in [pair.a, pair.b] {
+            let slot = if pair.apart { &mut detail[s as usize].apart } else { &mut detail[s as usize].facing };
+            if slot.is_none_or(|d| pair.distance < d) {
+                *slot = Some(pair.distance);
+            }
+        }
+        if pair.apart
+            && let Some(t) = matching_thickness(pair.distance, settings)
+        {
+            candidates.push((pair, t, overlap));
+        }
+    }
+    // Thinnest gap first, then the larger overlap; indices make the order total.
+    candidates.sort_by(|x, y| {
+        x.0.distance.total_cmp(&y.0.distance).then(y.2.total_cmp(&x.2)).then((x.0.a, x.0.b).cmp(&(y.0.a, y.0.b)))
+    });
+    let mut remaining: Vec<Vec<Polygon>> = list.iter().map(|s| vec![s.polygon.clone()]).collect();
+    let mut plates = Vec::new();
+    for (pair, t, _) in candidates {
+        let (ia, ib) = (pair.a as usize, pair.b as usize);
+        let (fa, fb) = (list[ia].frame, list[ib].frame);
+        let b_in_a: Vec<Polygon> = remaining[ib].iter().map(|p| map_polygon(p, &fb, &fa)).collect();
+        let common = intersection(&remaining[ia], &b_in_a)?;
+        let mut used = Vec::new();
+        for piece in common {
+            match cuttable(&piece, t, ps.min_area) {
+                Ok(()) => {
+                    // Face a is at local z = 0 of its frame, face b at −distance: the plate
+                    // keeps their mid-plane.
+                    let frame = fa.shifted(-(pair.distance + t) / 2.0);
+                    plates.push(Plate {
+                        kind: PlateKind::Inherent,
+                        thickness: t,
+                        frame,
+                        area: piece.area(),
+                        polygon: piece.clone(),
+                        shapes: vec![pair.a, pair.b],
+                    });
+                    used.push(piece);
+                }
+                Err(why) => {
+                    detail[ia].refused.get_or_insert(why);
+                    detail[ib].refused.get_or_insert(why);
+                }
+            }
+        }
+        if !used.is_empty() {
+            remaining[ia] = difference(&remaining[ia], &used)?;
+            let used_in_b: Vec<Polygon> = used.iter().map(|p| map_polygon(p, &fa, &fb)).collect();
+            remaining[ib] = difference(&remaining[ib], &used_in_b)?;
+        }
+    }
+    Ok(Detection { plates, remaining, detail })
+}
+
+/// Extrudes what is left of every shape inwards (along its inverse normal) by the extrusion
+/// thickness, piece by piece, skipping pieces too small or too thin to cut. What is left of a
+/// face an inherent plate used must be at least twice the thickness wide: the rim of a wall's
+/// outer face, as wide as the wall is thick, is where joints will go, not a plate of its own.
+pub(super) fn extrude_leftovers(shapes: &Shapes, found: &mut Detection, settings: &Settings) {
+    let t = settings.extrusion_thickness();
+    for (i, shape) in shapes.shapes.iter().enumerate() {
+        let pieces = std::mem::take(&mut found.remaining[i]);
+        let partly_used = pieces.len() != 1 || (pieces[0].area() - shape.area).abs() > 1e-6 * shape.area.max(1.0);
+        let needed = if partly_used { 2.0 * t } else { t };
+        for piece in pieces {
+            match cuttable(&piece, needed, settings.plates.min_area) {
+                Ok(()) => found.plates.push(Plate {
+                    kind: PlateKind::Extruded,
+                    thickness: t,
+                    frame: shape.frame.shifted(-t),
+                    area: piece.area(),
+                    polygon: piece,
+                    shapes: vec![i as u32],
+                }),
+                Err(why) => {
+                    found.detail[i].refused.get_or_insert(why);
+                    found.remaining[i].push(piece);
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,103 @@
+//! Rejoining plates that a plate passing through them split in two.
+//!
+//! Two coplanar plates of one thickness on either side of a third plate (a board crossing a
+//! divider, or a shelf board ending against a side) were found as two because the third
+//! plate's faces cut their faces. If adding the band where the third plate passes through or
+//! ends against their plane (within their convex hull) joins them into one piece, they become
+//! one plate; the joint step later joins the third plate to it with a cross or T joint.
+
+use glam::DVec3;
+use platener_geom::boolean::union_all;
+use platener_geom::offset::offset;
+use platener_geom::polygon::convex_hull;
+use platener_geom::slab::Slab;
+use platener_geom::{GridError, Polygon};
+
+use super::{Plate, map_polygon};
+
+/// Same thickness and kind, parallel, and the same mid-plane (the two pieces may have been
+/// found from opposite faces, so their normals may point either way).
+fn coplanar(a: &Plate, b: &Plate, cos_max: f64, clearance: f64) -> bool {
+    let mid = |p: &Plate| p.frame.origin + p.frame.n * (p.thickness / 2.0);
+    a.thickness == b.thickness
+        && a.kind == b.kind
+        && a.frame.n.dot(b.frame.n).abs() >= cos_max
+        && (mid(b) - mid(a)).dot(a.frame.n).abs() < clearance.max(1e-3 * a.thickness)
+}
+
+/// Tries to join `b` to `a` through some third plate; returns the joined outline (in a's frame).
+fn bridge(a: &Plate, b: &Plate, others: &[&Plate], clearance: f64) -> Result<Option<Polygon>, GridError> {
+    let b_in_a = map_polygon(&b.polygon, &b.frame, &a.frame);
+    let points: Vec<_> = a.polygon.outer.iter().chain(&b_in_a.outer).copied().collect();
+    let mut hull = Polygon::new(convex_hull(&points));
+    hull.normalize_orientation();
+    let region = Slab { frame: a.frame, polygon: hull, thickness: a.thickness };
+    for third in others {
+        // The third plate grown in its plane by a's thickness: a plate that ends against the
+        // gap (a shelf board meeting a side) bridges it as well as one passing through.
+        let grown = offset(std::slice::from_ref(&third.polygon), a.thickness)?;
+        let mut band = Vec::new();
+        for polygon in grown {
+            band.extend(region.columns_meeting(&Slab { frame: third.frame, polygon, thickness: third.thickness }, clearance)?);
+        }
+        if band.is_empty() {
+            continue;
+        }
+        let mut parts = vec![a.polygon.clone(), b_in_a.clone()];
+        parts.extend(band);
+        let joined = union_all(&parts)?;
+        if joined.len() == 1 {
+            return Ok(joined.into_iter().next());
+        }
+    }
+    Ok(None)
+}
+
+fn grow(b: (DVec3, DVec3), by: f64) -> (DVec3, DVec3) {
+    (b.0 - DVec3::splat(by), b.1 + DVec3::splat(by))
+}
+
+fn touch(a: (DVec3, DVec3), b: (DVec3, DVec3)) -> bool {
+    a.0.cmple(b.1).all() && b.0.cmple(a.1).all()
+}
+
+/// Returns the plates with split pairs rejoined, and how many joins were made.
+pub(super) fn rejoin(mut plates: Vec<Plate>, angle: f64, clearance: f64) -> Result<(Vec<Plate>, usize), GridError> {
+    let cos_max = angle.cos();
+    let mut joins = 0;
+    // Split pieces are at most one (thickest) plate apart.
+    let reach = plates.iter().map(|p| p.thickness).fold(0.0, f64::max) * 1.5 + clearance;
+    // Repeat until nothing joins: a plate split into three by two dividers needs two rounds.
+    'again: loop {
+        for i in 0..plates.len() {
+            for j in i + 1..plates.len() {
+                let (bi, bj) = (plates[i].bounds(), plates[j].bounds());
+                if !coplanar(&plates[i], &plates[j], cos_max, clearance) || !touch(grow(bi, reach), bj) {
+                    continue;
+                }
+                let span = (bi.0.min(bj.0), bi.1.max(bj.1));
+                let others: Vec<&Plate> = plates
+                    .iter()
+                    .enumerate()
+                    .filter(|(k, p)| {
+                        *k != i && *k != j && p.frame.n.dot(plates[i].frame.n).abs() < cos_max && touch(span, p.bounds())
+                    })
+                    .map(|(_, p)| p)
+                    .collect();
+                if let Some(joined) = bridge(&plates[i], &plates[j], &others, clearance)? {
+                    let b = plates.remove(j);
+                    let a = &mut plates[i];
+                    a.area = joined.area();
+                    a.polygon = joined;
+                    a.shapes.extend(b.shapes);
+                    a.shapes.sort_unstable();
+                    a.shapes.dedup();
+                    joins += 1;
+                    continue 'again;
+                }
+            }
+        }
+        break;
+    }
+    Ok((plates, joins))
+}
