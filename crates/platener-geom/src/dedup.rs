@@ -19,25 +19,24 @@ pub fn fingerprint<T: Hash + ?Sized>(item: &T) -> u64 {
 }
 
 /// For each item, the index of the first item equal to it (itself when it is the first).
-pub fn first_equal<T: Hash + Eq + Sync>(items: &[T]) -> Vec<u32> {
-    let mut pairs: Vec<(u64, u32)> = items
-        .par_iter()
-        .enumerate()
-        .map(|(i, t)| (fingerprint(t), i as u32))
-        .collect();
+pub fn first_equal<T: Hash + Eq + Sync + Send + Clone>(items: &[T]) -> Vec<u32> {
+    let mut pairs: Vec<(u64, u32)> = items.par_iter().enumerate().map(|(i, t)| (fingerprint(t), i as u32)).collect();
     pairs.par_sort_unstable();
+    // Gather the items in sorted order (independent loads, in parallel), so the equality
+    // checks below read memory in sequence instead of jumping around.
+    let sorted: Vec<T> = pairs.par_iter().map(|&(_, i)| items[i as usize].clone()).collect();
     let mut first: Vec<u32> = (0..items.len() as u32).collect();
-    let mut reps: Vec<u32> = Vec::new();
+    let mut reps: Vec<usize> = Vec::new();
     let mut start = 0;
     while start < pairs.len() {
         let fp = pairs[start].0;
         let end = start + pairs[start..].iter().take_while(|p| p.0 == fp).count();
         reps.clear();
         // Within a run indices ascend, so the first of each equal set comes first.
-        for &(_, i) in &pairs[start..end] {
-            match reps.iter().find(|&&r| items[r as usize] == items[i as usize]) {
-                Some(&r) => first[i as usize] = r,
-                None => reps.push(i),
+        for k in start..end {
+            match reps.iter().find(|&&r| sorted[r] == sorted[k]) {
+                Some(&r) => first[pairs[k].1 as usize] = pairs[r].1,
+                None => reps.push(k),
             }
         }
         start = end;
@@ -47,7 +46,7 @@ pub fn first_equal<T: Hash + Eq + Sync>(items: &[T]) -> Vec<u32> {
 
 /// Numbers the distinct items in order of first appearance: returns each item's number and
 /// the index of each number's first item.
-pub fn number_distinct<T: Hash + Eq + Sync>(items: &[T]) -> (Vec<u32>, Vec<u32>) {
+pub fn number_distinct<T: Hash + Eq + Sync + Send + Clone>(items: &[T]) -> (Vec<u32>, Vec<u32>) {
     let first = first_equal(items);
     let mut id = vec![0u32; items.len()];
     let mut firsts = Vec::new();

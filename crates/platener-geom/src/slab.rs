@@ -25,9 +25,6 @@ pub struct Slab {
     pub thickness: f64,
 }
 
-/// Normals closer to perpendicular than this (|cos| below) are treated as in-plane.
-const PARALLEL_EPS: f64 = 1e-9;
-
 impl Slab {
     /// The region of `self.polygon` whose columns meet `other`'s volume, shrunk by `clearance`
     /// mm on the slab intervals so that slabs merely touching face to face give nothing.
@@ -75,24 +72,37 @@ impl Slab {
         let lo = clearance - (c * self.thickness).max(0.0);
         let hi = other.thickness - clearance - (c * self.thickness).min(0.0);
         let ab = DVec2::new(a, b);
-        if ab.length() < PARALLEL_EPS {
-            return Ok(if e > lo && e < hi { vec![self.polygon.clone()] } else { Vec::new() });
-        }
-        // A strip between the lines a·u + b·v = lo − e and = hi − e, as a rectangle larger
-        // than the outline.
+        // The strip lo − e ≤ ab·p ≤ hi − e, clipped to a box around the outline. Clipping a box
+        // keeps every coordinate near the outline however close to parallel the planes are
+        // (and parallel planes give the whole box or nothing).
         let (min, max) = self.polygon.bounds();
-        let reach = (max - min).length() + (min.length().max(max.length())) + 1.0;
-        let dir = ab / ab.length_squared();
-        let along = DVec2::new(-ab.y, ab.x).normalize() * reach * 2.0;
-        let (p, q) = (dir * (lo - e), dir * (hi - e));
-        if (q - p).dot(ab) <= 0.0 {
+        let (min, max) = (min - DVec2::ONE, max + DVec2::ONE);
+        let mut ring = vec![min, DVec2::new(max.x, min.y), max, DVec2::new(min.x, max.y)];
+        ring = clip_half_plane(&ring, ab, lo - e);
+        ring = clip_half_plane(&ring, -ab, -(hi - e));
+        if ring.len() < 3 {
             return Ok(Vec::new());
         }
-        let strip = Polygon::new(vec![p - along, q - along, q + along, p + along]);
-        let mut strip = strip;
+        let mut strip = Polygon::new(ring);
         strip.normalize_orientation();
         boolean::intersection(std::slice::from_ref(&self.polygon), &[strip])
     }
+}
+
+/// The part of a convex ring where `n · p ≥ c` (Sutherland–Hodgman, one plane).
+fn clip_half_plane(ring: &[DVec2], n: DVec2, c: f64) -> Vec<DVec2> {
+    let mut out = Vec::with_capacity(ring.len() + 1);
+    for i in 0..ring.len() {
+        let (p, q) = (ring[i], ring[(i + 1) % ring.len()]);
+        let (dp, dq) = (n.dot(p) - c, n.dot(q) - c);
+        if dp >= 0.0 {
+            out.push(p);
+        }
+        if (dp >= 0.0) != (dq >= 0.0) {
+            out.push(p + (q - p) * (dp / (dp - dq)));
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -144,6 +154,17 @@ mod tests {
             thickness: 2.0,
         };
         assert!(total_area(&a.columns_meeting(&wall, 1e-6).expect("grid")) < 1e-9);
+    }
+
+    #[test]
+    fn nearly_parallel_plates_stay_near_the_outline() {
+        let a = Slab { frame: Frame::on_plane(DVec3::ZERO, DVec3::Z), polygon: rect(10.0, 10.0), thickness: 3.0 };
+        for tilt in [1e-12, 1e-9, 1e-7, 1e-4] {
+            let n = DVec3::new(tilt, 0.0, 1.0).normalize();
+            let b = Slab { frame: Frame::on_plane(DVec3::new(0.0, 0.0, 1.0), n), polygon: rect(10.0, 10.0), thickness: 3.0 };
+            let got = a.columns_meeting(&b, 1e-6).expect("stays on the grid");
+            assert!((total_area(&got) - 100.0).abs() < 1e-3, "tilt {tilt}: {}", total_area(&got));
+        }
     }
 
     #[test]

@@ -95,7 +95,11 @@ fn dist2<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
 fn cluster_round<const D: usize>(points: &[[f64; D]], weights: &[f64], distance: f64) -> Option<Welded<D>> {
     let inv_cell = 1.0 / (2.0 * distance);
     let d2 = distance * distance;
-    let mut grid: CellMap<[i64; D], Vec<u32>> = CellMap::default();
+    // Each cell holds the newest leader in it; `next` chains to the older ones (no list
+    // allocated per cell: with a small distance nearly every point is a cell of its own).
+    let mut grid: CellMap<[i64; D], u32> = CellMap::default();
+    grid.reserve(points.len());
+    let mut next: Vec<u32> = Vec::new();
     let mut leaders: Vec<[f64; D]> = Vec::new();
     let mut map = Vec::with_capacity(points.len());
     for p in points {
@@ -118,11 +122,13 @@ fn cluster_round<const D: usize>(points: &[[f64; D]], weights: &[f64], distance:
             if !valid {
                 continue;
             }
-            for &l in grid.get(&key).map_or(&[][..], Vec::as_slice) {
+            let mut l = grid.get(&key).copied().unwrap_or(u32::MAX);
+            while l != u32::MAX {
                 let dd = dist2(p, &leaders[l as usize]);
                 if dd < d2 && best.is_none_or(|(bd, bl)| dd < bd || (dd == bd && l < bl)) {
                     best = Some((dd, l));
                 }
+                l = next[l as usize];
             }
         }
         let id = match best {
@@ -130,7 +136,9 @@ fn cluster_round<const D: usize>(points: &[[f64; D]], weights: &[f64], distance:
             None => {
                 leaders.push(*p);
                 let id = (leaders.len() - 1) as u32;
-                grid.entry(cell_of(p, inv_cell)).or_default().push(id);
+                let head = grid.entry(cell_of(p, inv_cell)).or_insert(u32::MAX);
+                next.push(*head);
+                *head = id;
                 id
             }
         };
@@ -139,27 +147,7 @@ fn cluster_round<const D: usize>(points: &[[f64; D]], weights: &[f64], distance:
     if leaders.len() == points.len() {
         return None;
     }
-    let mut sums = vec![[0.0; D]; leaders.len()];
-    let mut wsum = vec![0.0; leaders.len()];
-    for ((p, w), &c) in points.iter().zip(weights).zip(&map) {
-        let c = c as usize;
-        // Relative to the leader: keeps precision far from the origin.
-        for i in 0..D {
-            sums[c][i] += (p[i] - leaders[c][i]) * w;
-        }
-        wsum[c] += w;
-    }
-    let points = leaders
-        .iter()
-        .zip(&sums)
-        .zip(&wsum)
-        .map(|((l, s), w)| std::array::from_fn(|i| if *w > 0.0 { l[i] + s[i] / w } else { l[i] }))
-        .collect();
-    Some(Welded {
-        points,
-        weights: wsum,
-        map,
-    })
+    Some(means(points, weights, &leaders, map))
 }
 
 /// Welds `points` (with per-point `weights`, e.g. how many mesh corners each stands for) so
@@ -191,6 +179,115 @@ pub fn weld<const D: usize>(points: &[[f64; D]], weights: &[f64], distance: f64)
         weights: cur_weights,
         map,
     }
+}
+
+/// One round of leader clustering where a point may only join the cluster of a neighbour
+/// (through `adjacency`, CSR: `offsets`, `targets`) whose leader is closer than `distance`.
+fn connected_round<const D: usize>(
+    points: &[[f64; D]],
+    weights: &[f64],
+    distance: f64,
+    offsets: &[u32],
+    targets: &[u32],
+) -> Option<Welded<D>> {
+    let d2 = distance * distance;
+    let mut cluster = vec![u32::MAX; points.len()];
+    let mut leaders: Vec<[f64; D]> = Vec::new();
+    for (i, p) in points.iter().enumerate() {
+        let mut best: Option<(f64, u32)> = None;
+        for &j in &targets[offsets[i] as usize..offsets[i + 1] as usize] {
+            let c = cluster[j as usize];
+            if c == u32::MAX {
+                continue;
+            }
+            let dd = dist2(p, &leaders[c as usize]);
+            if dd < d2 && best.is_none_or(|(bd, bc)| dd < bd || (dd == bd && c < bc)) {
+                best = Some((dd, c));
+            }
+        }
+        cluster[i] = match best {
+            Some((_, c)) => c,
+            None => {
+                leaders.push(*p);
+                (leaders.len() - 1) as u32
+            }
+        };
+    }
+    (leaders.len() < points.len()).then(|| means(points, weights, &leaders, cluster))
+}
+
+/// Each cluster's weighted mean, summed relative to its leader: keeps precision far from the
+/// origin.
+fn means<const D: usize>(points: &[[f64; D]], weights: &[f64], leaders: &[[f64; D]], map: Vec<u32>) -> Welded<D> {
+    let mut sums = vec![[0.0; D]; leaders.len()];
+    let mut wsum = vec![0.0; leaders.len()];
+    for ((p, w), &c) in points.iter().zip(weights).zip(&map) {
+        let c = c as usize;
+        for i in 0..D {
+            sums[c][i] += (p[i] - leaders[c][i]) * w;
+        }
+        wsum[c] += w;
+    }
+    let points = leaders
+        .iter()
+        .zip(&sums)
+        .zip(&wsum)
+        .map(|((l, s), w)| std::array::from_fn(|i| if *w > 0.0 { l[i] + s[i] / w } else { l[i] }))
+        .collect();
+    Welded { points, weights: wsum, map }
+}
+
+/// Adjacency (both directions) of `n` points in CSR form, by counting: no sort needed, since
+/// the clustering picks the nearest neighbour whatever the order (ties by cluster index).
+fn adjacency(n: usize, edges: &[[u32; 2]]) -> (Vec<u32>, Vec<u32>) {
+    let mut offsets = vec![0u32; n + 1];
+    for e in edges {
+        offsets[e[0] as usize + 1] += 1;
+        offsets[e[1] as usize + 1] += 1;
+    }
+    for i in 0..n {
+        offsets[i + 1] += offsets[i];
+    }
+    let mut fill = offsets.clone();
+    let mut targets = vec![0u32; offsets[n] as usize];
+    for e in edges {
+        for (a, b) in [(e[0], e[1]), (e[1], e[0])] {
+            targets[fill[a as usize] as usize] = b;
+            fill[a as usize] += 1;
+        }
+    }
+    (offsets, targets)
+}
+
+/// Welds like [`weld`], but a point only joins a cluster it is connected to by one of `edges`
+/// (pairs of point indices, e.g. a mesh's edges). Two faces of a thin wall, or the far sides
+/// of a small hole, are near but not connected, so they never fuse; a bevel's two sides are
+/// connected by its cross edges, so it collapses. Rounds repeat (edges follow the clusters)
+/// until no connected pair is closer than `distance`, so welding twice changes nothing.
+pub fn weld_connected<const D: usize>(points: &[[f64; D]], weights: &[f64], distance: f64, edges: &[[u32; 2]]) -> Welded<D> {
+    let mut current = Welded { points: points.to_vec(), weights: weights.to_vec(), map: (0..points.len() as u32).collect() };
+    if !(distance > 0.0 && distance.is_finite()) {
+        return current;
+    }
+    let mut edges: Vec<[u32; 2]> = edges.iter().filter(|e| e[0] != e[1]).copied().collect();
+    for _ in 0..MAX_ROUNDS {
+        let (offsets, targets) = adjacency(current.points.len(), &edges);
+        let Some(round) = connected_round(&current.points, &current.weights, distance, &offsets, &targets) else {
+            break;
+        };
+        for m in &mut current.map {
+            *m = round.map[*m as usize];
+        }
+        // Edges inside a cluster are gone; the rest follow their ends.
+        edges = edges
+            .iter()
+            .map(|e| [round.map[e[0] as usize], round.map[e[1] as usize]])
+            .filter(|e| e[0] != e[1])
+            .collect();
+        current.points = round.points;
+        current.weights = round.weights;
+    }
+    current
 }
 
 #[cfg(test)]

@@ -117,6 +117,9 @@ pub enum WarningKind {
     DuplicateFaces,
     /// Welding would have emptied the model; the unwelded mesh was used.
     WeldFallback,
+    /// Welding at the distance asked would have closed holes or fused parts; a smaller one
+    /// was used.
+    WeldReduced,
     /// Edges used by one triangle only (holes in the surface).
     OpenEdges,
     /// Edges shared by more than two triangles.

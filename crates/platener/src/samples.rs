@@ -291,6 +291,20 @@ pub fn roof(run: f64, pitch_deg: f64, depth: f64, t: f64) -> Vec<Triangle> {
     prism(&profile, depth)
 }
 
+/// A grid of `nx × ny` closed boxes (`size` mm cubes with `t` mm walls) `gap` mm apart:
+/// `120·nx·ny` triangles and `6·nx·ny` plates, the plate-finding benchmark model.
+pub fn box_grid(nx: usize, ny: usize, size: f64, t: f64, gap: f64) -> Vec<Triangle> {
+    let one = closed_box(size, size, size, t);
+    let mut out = Vec::with_capacity(one.len() * nx * ny);
+    for i in 0..nx {
+        for j in 0..ny {
+            let shift = DVec3::new(i as f64 * (size + gap), j as f64 * (size + gap), 0.0);
+            out.extend(one.iter().map(|tri| tri.map(|p| p + shift)));
+        }
+    }
+    out
+}
+
 /// The models shipped in `examples/`: file name, STL header, triangles.
 pub fn shipped_examples() -> Vec<(&'static str, &'static str, Vec<Triangle>)> {
     vec![

@@ -64,3 +64,33 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn connected_welding_keeps_unconnected_neighbours_apart() {
+    // Two parallel rows 1 mm apart (a thin wall's faces), each row a chain of edges 0.5 apart.
+    let mut pts = Vec::new();
+    let mut edges = Vec::new();
+    for row in 0..2 {
+        for i in 0..10 {
+            pts.push([i as f64 * 0.5, row as f64, 0.0]);
+            if i > 0 {
+                let k = (row * 10 + i) as u32;
+                edges.push([k - 1, k]);
+            }
+        }
+    }
+    let w = weld_connected(&pts, &vec![1.0; pts.len()], 1.2, &edges);
+    // Each row coarsens along itself, but no cluster mixes the rows.
+    for (i, &c) in w.map.iter().enumerate() {
+        let row = i / 10;
+        assert!(w.map.iter().enumerate().filter(|&(_, &d)| d == c).all(|(j, _)| j / 10 == row));
+    }
+    assert!(w.points.len() < pts.len() && w.points.len() >= 4);
+    // Unconstrained welding at the same distance mixes them.
+    let free = weld(&pts, &vec![1.0; pts.len()], 1.2);
+    assert!(free.map[0] == free.map[10]);
+    // Idempotent.
+    let remapped: Vec<[u32; 2]> = edges.iter().map(|e| [w.map[e[0] as usize], w.map[e[1] as usize]]).collect();
+    let again = weld_connected(&w.points, &w.weights, 1.2, &remapped);
+    assert_eq!(again.points, w.points);
+}

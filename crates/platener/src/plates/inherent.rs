@@ -5,6 +5,7 @@
 //! free of both shapes: a shape is consumed only where a plate covers it, and the rest may pair
 //! with another face. The plate keeps the model's mid-plane between the two faces.
 
+use glam::DVec3;
 use platener_geom::boolean::{difference, intersection};
 use platener_geom::{GridError, Polygon, polygon::total_area};
 
@@ -46,7 +47,7 @@ pub(super) fn matching_thickness(distance: f64, settings: &Settings) -> Option<f
         .min_by(|a, b| (a - distance).abs().total_cmp(&(b - distance).abs()))
 }
 
-pub(super) fn find(shapes: &Shapes, center: glam::DVec3, settings: &Settings) -> Result<Detection, GridError> {
+pub(super) fn find(shapes: &Shapes, center: DVec3, settings: &Settings) -> Result<Detection, GridError> {
     let list = &shapes.shapes;
     let ps = &settings.plates;
     let t_max = settings.thicknesses.iter().copied().fold(0.0, f64::max);
@@ -55,7 +56,23 @@ pub(super) fn find(shapes: &Shapes, center: glam::DVec3, settings: &Settings) ->
     let pairs = opposite_pairs(list, ps.parallel_angle_deg.to_radians(), search, center);
     let mut detail = vec![Nearest::default(); list.len()];
     let mut candidates: Vec<(Pair, f64, f64)> = Vec::new();
+    // Shapes on parallel planes overlap in projection only if their boxes, grown by the
+    // distance between the planes, overlap: a cheap test before any boolean.
+    let boxes: Vec<(DVec3, DVec3)> = list
+        .iter()
+        .map(|s| {
+            s.polygon.outer.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), p| {
+                let q = s.frame.to_model_2d(*p);
+                (lo.min(q), hi.max(q))
+            })
+        })
+        .collect();
     for pair in pairs {
+        let (ba, bb) = (boxes[pair.a as usize], boxes[pair.b as usize]);
+        let grow = DVec3::splat(pair.distance + 1e-6);
+        if (ba.0 - grow).cmpgt(bb.1).any() || (bb.0 - grow).cmpgt(ba.1).any() {
+            continue;
+        }
         let (a, b) = (&list[pair.a as usize], &list[pair.b as usize]);
         let b_in_a = map_polygon(&b.polygon, &b.frame, &a.frame);
         let overlap = total_area(&intersection(std::slice::from_ref(&a.polygon), &[b_in_a])?);

@@ -93,7 +93,7 @@ pub(super) fn opposite_pairs(shapes: &[Shape], angle: f64, max_distance: f64, ce
         }
     }
     // A pair can be found through both the cell and its mirror near the fold.
-    pairs.sort_by(|x, y| (x.a, x.b).cmp(&(y.a, y.b)));
+    pairs.sort_by_key(|p| (p.a, p.b));
     pairs.dedup_by(|x, y| (x.a, x.b) == (y.a, y.b));
     pairs
 }

@@ -68,19 +68,27 @@ pub(super) fn rejoin(mut plates: Vec<Plate>, angle: f64, clearance: f64) -> Resu
     // Split pieces are at most one (thickest) plate apart.
     let reach = plates.iter().map(|p| p.thickness).fold(0.0, f64::max) * 1.5 + clearance;
     // Repeat until nothing joins: a plate split into three by two dividers needs two rounds.
+    // Repeat until nothing joins: a plate split into three by two dividers needs two rounds.
     'again: loop {
-        for i in 0..plates.len() {
-            for j in i + 1..plates.len() {
-                let (bi, bj) = (plates[i].bounds(), plates[j].bounds());
-                if !coplanar(&plates[i], &plates[j], cos_max, clearance) || !touch(grow(bi, reach), bj) {
+        let bounds: Vec<(DVec3, DVec3)> = plates.iter().map(Plate::bounds).collect();
+        // Sweep along x: only plates whose grown boxes overlap in x are compared.
+        let mut order: Vec<usize> = (0..plates.len()).collect();
+        order.sort_by(|&a, &b| bounds[a].0.x.total_cmp(&bounds[b].0.x).then(a.cmp(&b)));
+        for (oi, &i) in order.iter().enumerate() {
+            for &j in &order[oi + 1..] {
+                if bounds[j].0.x > bounds[i].1.x + reach {
+                    break;
+                }
+                let (i, j) = (i.min(j), i.max(j));
+                if !coplanar(&plates[i], &plates[j], cos_max, clearance) || !touch(grow(bounds[i], reach), bounds[j]) {
                     continue;
                 }
-                let span = (bi.0.min(bj.0), bi.1.max(bj.1));
+                let span = (bounds[i].0.min(bounds[j].0), bounds[i].1.max(bounds[j].1));
                 let others: Vec<&Plate> = plates
                     .iter()
                     .enumerate()
                     .filter(|(k, p)| {
-                        *k != i && *k != j && p.frame.n.dot(plates[i].frame.n).abs() < cos_max && touch(span, p.bounds())
+                        *k != i && *k != j && p.frame.n.dot(plates[i].frame.n).abs() < cos_max && touch(span, bounds[*k])
                     })
                     .map(|(_, p)| p)
                     .collect();

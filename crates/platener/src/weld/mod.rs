@@ -3,19 +3,34 @@
 //! Editors add small bevels and fillets to printable models; welding at about 2 mm collapses
 //! them so the flat faces meet in sharp edges again and plates are found. Triangles that lose
 //! a distinct corner disappear; triangles that become equal are merged. The clustering itself
-//! is [`platener_geom::weld`] (near-linear, deterministic). If welding would leave nothing,
-//! the unwelded mesh is used and a warning says so.
+//! is [`platener_geom::weld`] (near-linear, deterministic).
+//!
+//! Welding must not change what the model *is*: a 2 mm screw hole welded at 1.8 mm closes, and
+//! two parts 1 mm apart would fuse. Collapsing a bevel keeps the surface's Euler
+//! characteristic V − E + F; closing a hole or fusing bodies changes it. So when it changes,
+//! the distance is halved and welding retried (with a warning), down to exact duplicates. If
+//! welding would leave nothing, the unwelded mesh is used and a warning says so.
+
+mod topology;
 
 use std::sync::Arc;
 
 use glam::DVec3;
 use platener_geom::dedup::first_equal;
-use platener_geom::weld::weld;
-use rayon::slice::ParallelSliceMut;
+use platener_geom::weld::{Welded as Welded2, weld, weld_connected};
 use serde::Serialize;
 
 use crate::error::{Error, Result};
 use crate::pipeline::{State, Step, StepContext, WarningKind, need};
+
+pub use topology::{EdgeCounts, edge_counts};
+
+/// Copies of one vertex stored separately differ by float noise; closer than this (mm) they are
+/// merged whether or not an edge joins them.
+pub const SNAP: f64 = 0.01;
+
+/// How many times the distance is halved before welding gives up and keeps exact duplicates.
+const HALVINGS: usize = 3;
 
 /// The snapshot of step `weld`: an indexed triangle list.
 #[derive(Debug, Clone, Serialize)]
@@ -28,6 +43,8 @@ pub struct Welded {
     pub triangles: Vec<[u32; 3]>,
     /// The distance used (0 = exact duplicates only).
     pub distance: f64,
+    /// The distance asked for (automatic or set), before any halving.
+    pub distance_asked: f64,
     /// Distinct input positions before welding.
     pub vertices_before: usize,
     /// Vertices merged away by welding (`vertices_before - vertices.len()`).
@@ -44,92 +61,120 @@ pub struct Welded {
     pub input_non_manifold_edges: usize,
 }
 
-/// Welds a triangle soup at `distance` (0 merges exact duplicates only).
-pub fn weld_soup(soup: &[[DVec3; 3]], distance: f64) -> Welded {
-    let corners: Vec<[f64; 3]> = soup.iter().flatten().map(|p| p.to_array()).collect();
-    let exact = weld(&corners, &vec![1.0; corners.len()], 0.0);
-    let before = exact.points.len();
-    let (input_open_edges, input_non_manifold_edges) = input_edge_defects(&exact.map);
-    let clustered = (distance > 0.0).then(|| weld(&exact.points, &exact.weights, distance));
-    let (vertices, corner_id): (Vec<DVec3>, Box<dyn Fn(usize) -> u32>) = match &clustered {
-        Some(c) => (
-            c.points.iter().map(|p| DVec3::from_array(*p)).collect(),
-            Box::new(|i| c.map[exact.map[i] as usize]),
-        ),
-        None => (
-            exact.points.iter().map(|p| DVec3::from_array(*p)).collect(),
-            Box::new(|i| exact.map[i]),
-        ),
-    };
-    let mut collapsed = 0;
-    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(soup.len());
-    for t in 0..soup.len() {
-        let tri = [corner_id(3 * t), corner_id(3 * t + 1), corner_id(3 * t + 2)];
-        if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
-            collapsed += 1;
-        } else {
-            triangles.push(tri);
+/// A triangle soup with exact duplicate positions merged: the starting point of welding.
+pub struct ExactSoup {
+    points: Vec<[f64; 3]>,
+    weights: Vec<f64>,
+    /// Each soup corner's exact vertex.
+    corner: Vec<u32>,
+    /// Edge counts and Euler characteristic of the unwelded surface.
+    pub counts: EdgeCounts,
+}
+
+impl ExactSoup {
+    /// Merges exactly equal corners of `soup`.
+    pub fn new(soup: &[[DVec3; 3]]) -> Self {
+        let corners: Vec<[f64; 3]> = soup.iter().flatten().map(|p| p.to_array()).collect();
+        let exact = weld(&corners, &vec![1.0; corners.len()], 0.0);
+        let triangles: Vec<[u32; 3]> = exact.map.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        let counts = edge_counts(&triangles, exact.points.len());
+        Self { points: exact.points, weights: exact.weights, corner: exact.map, counts }
+    }
+
+    /// Welds at `distance` (0: exact duplicates only): first positions within [`SNAP`] of
+    /// each other (float noise of separately stored copies), then, along mesh edges only,
+    /// vertices within `distance` (see [`weld_connected`]).
+    pub fn weld(&self, distance: f64) -> Welded {
+        let clustered = (distance > 0.0).then(|| {
+            // A surface without open edges has no separately stored copies to snap.
+            let snapped = if self.counts.open > 0 {
+                weld(&self.points, &self.weights, distance.min(SNAP))
+            } else {
+                Welded2 { points: self.points.clone(), weights: self.weights.clone(), map: (0..self.points.len() as u32).collect() }
+            };
+            let edges: Vec<[u32; 2]> = self
+                .corner
+                .chunks_exact(3)
+                .flat_map(|c| {
+                    let v = [c[0], c[1], c[2]].map(|i| snapped.map[i as usize]);
+                    [[v[0], v[1]], [v[1], v[2]], [v[2], v[0]]]
+                })
+                .collect();
+            let along = weld_connected(&snapped.points, &snapped.weights, distance, &edges);
+            let map = snapped.map.iter().map(|&s| along.map[s as usize]).collect::<Vec<u32>>();
+            (along.points, map)
+        });
+        let (vertices, id): (Vec<DVec3>, Vec<u32>) = match &clustered {
+            Some((points, map)) => (
+                points.iter().map(|p| DVec3::from_array(*p)).collect(),
+                self.corner.iter().map(|&v| map[v as usize]).collect(),
+            ),
+            None => (self.points.iter().map(|p| DVec3::from_array(*p)).collect(), self.corner.clone()),
+        };
+        let mut collapsed = 0;
+        let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(id.len() / 3);
+        for c in id.chunks_exact(3) {
+            if c[0] == c[1] || c[1] == c[2] || c[0] == c[2] {
+                collapsed += 1;
+            } else {
+                triangles.push([c[0], c[1], c[2]]);
+            }
+        }
+        // Cleanup removed exact duplicates already; welding can make new ones.
+        let mut merged = 0;
+        if clustered.is_some() {
+            let keys: Vec<[u32; 3]> = triangles
+                .iter()
+                .map(|t| {
+                    let mut k = *t;
+                    k.sort_unstable();
+                    k
+                })
+                .collect();
+            let first = first_equal(&keys);
+            let before = triangles.len();
+            triangles = triangles.into_iter().enumerate().filter(|&(i, _)| first[i] as usize == i).map(|(_, t)| t).collect();
+            merged = before - triangles.len();
+        }
+        Welded {
+            vertices_merged: self.points.len() - vertices.len(),
+            vertices,
+            triangles,
+            distance,
+            distance_asked: distance,
+            vertices_before: self.points.len(),
+            triangles_collapsed: collapsed,
+            triangles_merged: merged,
+            fell_back: false,
+            input_open_edges: self.counts.open,
+            input_non_manifold_edges: self.counts.non_manifold,
         }
     }
-    // Cleanup removed exact duplicates already; welding can make new ones.
-    let mut merged = 0;
-    if clustered.is_some() {
-        let keys: Vec<[u32; 3]> = triangles
-            .iter()
-            .map(|t| {
-                let mut k = *t;
-                k.sort_unstable();
-                k
-            })
-            .collect();
-        let first = first_equal(&keys);
-        let before_merge = triangles.len();
-        triangles = triangles
-            .into_iter()
-            .enumerate()
-            .filter(|&(i, _)| first[i] as usize == i)
-            .map(|(_, t)| t)
-            .collect();
-        merged = before_merge - triangles.len();
-    }
-    Welded {
-        vertices_merged: before - vertices.len(),
-        vertices,
-        triangles,
-        distance,
-        vertices_before: before,
-        triangles_collapsed: collapsed,
-        triangles_merged: merged,
-        fell_back: false,
-        input_open_edges,
-        input_non_manifold_edges,
+
+    /// Welds at `distance`, halving it while welding would change the surface's topology.
+    /// Returns the result and the distances that were refused.
+    pub fn weld_keeping_topology(&self, distance: f64) -> (Welded, Vec<f64>) {
+        let mut refused = Vec::new();
+        let mut d = distance;
+        for _ in 0..=HALVINGS {
+            if d <= 0.0 {
+                break;
+            }
+            let w = self.weld(d);
+            if edge_counts(&w.triangles, w.vertices.len()).euler == self.counts.euler {
+                return (Welded { distance_asked: distance, ..w }, refused);
+            }
+            refused.push(d);
+            d /= 2.0;
+        }
+        (Welded { distance_asked: distance, ..self.weld(0.0) }, refused)
     }
 }
 
-/// Open and non-manifold edges of the unwelded model, from each corner's exact vertex id:
-/// these are the model's own defects, not artefacts of welding. Counted from sorted edge keys
-/// alone (no incidence lists needed).
-fn input_edge_defects(corner_vertex: &[u32]) -> (usize, usize) {
-    let mut keys: Vec<u64> = Vec::with_capacity(corner_vertex.len());
-    for c in corner_vertex.chunks_exact(3) {
-        if c[0] == c[1] || c[1] == c[2] || c[0] == c[2] {
-            continue;
-        }
-        for i in 0..3 {
-            let (a, b) = (c[i], c[(i + 1) % 3]);
-            keys.push((u64::from(a.min(b)) << 32) | u64::from(a.max(b)));
-        }
-    }
-    keys.par_sort_unstable();
-    let (mut open, mut non_manifold) = (0, 0);
-    for run in keys.chunk_by(|a, b| a == b) {
-        match run.len() {
-            1 => open += 1,
-            2 => {}
-            _ => non_manifold += 1,
-        }
-    }
-    (open, non_manifold)
+/// Welds a triangle soup at `distance` (0 merges exact duplicates only), without the
+/// topology guard.
+pub fn weld_soup(soup: &[[DVec3; 3]], distance: f64) -> Welded {
+    ExactSoup::new(soup).weld(distance)
 }
 
 /// Step `weld`.
@@ -144,27 +189,30 @@ impl Step for WeldStep {
         let model = need(&state.read, self.name(), "read")?;
         let cleaned = need(&state.cleanup, self.name(), "cleanup")?;
         let distance = state.settings.weld_distance(model.bounds.largest_extent());
-        let mut welded = weld_soup(&cleaned.triangles, distance);
-        if welded.triangles.is_empty() && distance > 0.0 {
+        let exact = ExactSoup::new(&cleaned.triangles);
+        cx.check_cancel()?;
+        let (mut welded, refused) = exact.weld_keeping_topology(distance);
+        if let Some(first) = refused.first() {
             cx.warn(
-                WarningKind::WeldFallback,
+                WarningKind::WeldReduced,
                 format!(
-                    "welding at {distance:.3} mm would remove every triangle; the unwelded mesh is used (try --weld 0)"
+                    "welding at {first:.3} mm would close holes or fuse parts; welded at {:.3} mm instead (set --weld to choose)",
+                    welded.distance
                 ),
             );
-            welded = Welded {
-                fell_back: true,
-                ..weld_soup(&cleaned.triangles, 0.0)
-            };
+        }
+        if welded.triangles.is_empty() && welded.distance > 0.0 {
+            cx.warn(
+                WarningKind::WeldFallback,
+                format!("welding at {:.3} mm would remove every triangle; the unwelded mesh is used (try --weld 0)", welded.distance),
+            );
+            welded = Welded { fell_back: true, distance_asked: distance, ..exact.weld(0.0) };
         }
         cx.check_cancel()?;
         if welded.input_open_edges > 0 {
             cx.warn(
                 WarningKind::OpenEdges,
-                format!(
-                    "{} open edges: the model's surface has holes (not watertight)",
-                    welded.input_open_edges
-                ),
+                format!("{} open edges: the model's surface has holes (not watertight)", welded.input_open_edges),
             );
         }
         if welded.input_non_manifold_edges > 0 {
@@ -188,40 +236,4 @@ impl Step for WeldStep {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn bevel_collapses_into_a_sharp_edge() {
-        // Two 20 mm squares meeting at a right angle through a 0.5 mm 45° bevel strip.
-        let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
-        let top = [
-            p(0.0, 0.0, 10.0),
-            p(20.0, 0.0, 10.0),
-            p(20.0, 19.5, 10.0),
-            p(0.0, 19.5, 10.0),
-        ];
-        let bevel_lo = [p(0.0, 20.0, 9.5), p(20.0, 20.0, 9.5)];
-        let side_lo = [p(0.0, 20.0, -10.0), p(20.0, 20.0, -10.0)];
-        let soup = vec![
-            [top[0], top[1], top[2]],
-            [top[0], top[2], top[3]],
-            [top[3], top[2], bevel_lo[1]],
-            [top[3], bevel_lo[1], bevel_lo[0]],
-            [bevel_lo[0], bevel_lo[1], side_lo[1]],
-            [bevel_lo[0], side_lo[1], side_lo[0]],
-        ];
-        let w = weld_soup(&soup, 1.0);
-        let v = &w.vertices;
-        assert_eq!(w.vertices_before, 8);
-        assert_eq!(v.len(), 6);
-        assert_eq!(w.triangles_collapsed, 2, "both bevel triangles collapse");
-        assert_eq!(w.triangles.len(), 4);
-        // The merged corner lies at the mean of (y 19.5, z 10) and (y 20, z 9.5).
-        let corner = v
-            .iter()
-            .find(|q| q.x == 0.0 && q.y > 19.0 && q.z > 9.0)
-            .expect("merged corner");
-        assert!((corner.y - 19.75).abs() < 1e-9 && (corner.z - 9.75).abs() < 1e-9);
-    }
-}
+mod tests;
