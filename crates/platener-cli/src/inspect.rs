@@ -15,7 +15,12 @@ pub fn run(args: &InspectArgs) -> anyhow::Result<()> {
         settings.plates.mode = platener::PlateMode::InherentOnly;
     }
     let with_plates = args.plates || args.inherent_only;
-    let report = inspect(Source::File(args.model.clone()), settings.clone(), &Cancel::default(), with_plates)?;
+    let report = inspect(
+        Source::File(args.model.clone()),
+        settings.clone(),
+        &Cancel::default(),
+        with_plates,
+    )?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
@@ -131,7 +136,11 @@ const COVERAGE_ROWS: usize = 20;
 pub fn render_plates(r: &PlatesReport, offered: &[f64]) -> String {
     let mut s = String::new();
     let c = &r.coverage;
-    let inherent = r.plates.iter().filter(|p| p.kind == platener::plates::PlateKind::Inherent).count();
+    let inherent = r
+        .plates
+        .iter()
+        .filter(|p| p.kind == platener::plates::PlateKind::Inherent)
+        .count();
     let _ = writeln!(
         s,
         "plates     {} ({} inherent, {} extruded); {:.1} % of the surface ({:.1} % inherent); {} contained removed, {} trimmed, {} rejoined",
@@ -145,10 +154,20 @@ pub fn render_plates(r: &PlatesReport, offered: &[f64]) -> String {
         r.rejoined
     );
     for t in &c.per_thickness {
-        let _ = writeln!(s, "           {} mm: {} plates, {:.1} % of the surface", t.thickness, t.plates, 100.0 * t.surface_share);
+        let _ = writeln!(
+            s,
+            "           {} mm: {} plates, {:.1} % of the surface",
+            t.thickness,
+            t.plates,
+            100.0 * t.surface_share
+        );
     }
     if !r.plates.is_empty() {
-        let _ = writeln!(s, "  {:>3}  {:<9} {:>5}  {:>10} {:>8} {:>5}  {:<26} normal", "#", "kind", "t mm", "area mm²", "vertices", "holes", "centre");
+        let _ = writeln!(
+            s,
+            "  {:>3}  {:<9} {:>5}  {:>10} {:>8} {:>5}  {:<26} normal",
+            "#", "kind", "t mm", "area mm²", "vertices", "holes", "centre"
+        );
         for (i, p) in r.plates.iter().enumerate() {
             let kind = format!("{:?}", p.kind).to_lowercase();
             let _ = writeln!(
@@ -167,7 +186,12 @@ pub fn render_plates(r: &PlatesReport, offered: &[f64]) -> String {
     }
     let mut order: Vec<_> = c.shapes.iter().collect();
     order.sort_by(|a, b| b.area.total_cmp(&a.area));
-    let _ = writeln!(s, "coverage of the {} planar shapes (largest {}):", c.shapes.len(), COVERAGE_ROWS.min(order.len()));
+    let _ = writeln!(
+        s,
+        "coverage of the {} planar shapes (largest {}):",
+        c.shapes.len(),
+        COVERAGE_ROWS.min(order.len())
+    );
     for u in order.iter().take(COVERAGE_ROWS) {
         let what = match (&u.rejected, u.plates.is_empty()) {
             (Some(why), _) => format!("rejected: {}", why.explain(offered)),
@@ -175,13 +199,23 @@ pub fn render_plates(r: &PlatesReport, offered: &[f64]) -> String {
                 let list = u.plates.iter().map(|k| format!("#{k}")).collect::<Vec<_>>().join(", ");
                 let used = 100.0 * u.used_area / u.area.max(f64::MIN_POSITIVE);
                 match &u.why_not_inherent {
-                    Some(why) => format!("plate {list}, {used:.0} % used (extruded; not inherent: {})", why.explain(offered)),
+                    Some(why) => format!(
+                        "plate {list}, {used:.0} % used (extruded; not inherent: {})",
+                        why.explain(offered)
+                    ),
                     None => format!("plate {list}, {used:.0} % used"),
                 }
             }
             (None, true) => "unused".into(),
         };
-        let _ = writeln!(s, "  shape {:>5}  {:>10.1} mm²  {}  {}", u.shape, u.area, v3(u.normal), what);
+        let _ = writeln!(
+            s,
+            "  shape {:>5}  {:>10.1} mm²  {}  {}",
+            u.shape,
+            u.area,
+            v3(u.normal),
+            what
+        );
     }
     s
 }

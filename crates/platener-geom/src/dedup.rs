@@ -20,7 +20,11 @@ pub fn fingerprint<T: Hash + ?Sized>(item: &T) -> u64 {
 
 /// For each item, the index of the first item equal to it (itself when it is the first).
 pub fn first_equal<T: Hash + Eq + Sync + Send + Clone>(items: &[T]) -> Vec<u32> {
-    let mut pairs: Vec<(u64, u32)> = items.par_iter().enumerate().map(|(i, t)| (fingerprint(t), i as u32)).collect();
+    let mut pairs: Vec<(u64, u32)> = items
+        .par_iter()
+        .enumerate()
+        .map(|(i, t)| (fingerprint(t), i as u32))
+        .collect();
     pairs.par_sort_unstable();
     // Gather the items in sorted order (independent loads, in parallel), so the equality
     // checks below read memory in sequence instead of jumping around.

@@ -41,7 +41,11 @@ impl Slab {
             for z in [0.0, other.thickness] {
                 let mut cap = Polygon {
                     outer: poly.outer.iter().map(|p| to_self(*p, z)).collect(),
-                    holes: poly.holes.iter().map(|h| h.iter().map(|p| to_self(*p, z)).collect()).collect(),
+                    holes: poly
+                        .holes
+                        .iter()
+                        .map(|h| h.iter().map(|p| to_self(*p, z)).collect())
+                        .collect(),
                 };
                 cap.normalize_orientation();
                 pieces.push(cap);
@@ -49,8 +53,12 @@ impl Slab {
             for ring in std::iter::once(&poly.outer).chain(&poly.holes) {
                 for i in 0..ring.len() {
                     let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
-                    let mut quad =
-                        Polygon::new(vec![to_self(a, 0.0), to_self(b, 0.0), to_self(b, other.thickness), to_self(a, other.thickness)]);
+                    let mut quad = Polygon::new(vec![
+                        to_self(a, 0.0),
+                        to_self(b, 0.0),
+                        to_self(b, other.thickness),
+                        to_self(a, other.thickness),
+                    ]);
                     quad.normalize_orientation();
                     pieces.push(quad);
                 }
@@ -111,13 +119,22 @@ mod tests {
     use crate::polygon::total_area;
 
     fn rect(w: f64, h: f64) -> Polygon {
-        Polygon::new(vec![DVec2::new(0.0, 0.0), DVec2::new(w, 0.0), DVec2::new(w, h), DVec2::new(0.0, h)])
+        Polygon::new(vec![
+            DVec2::new(0.0, 0.0),
+            DVec2::new(w, 0.0),
+            DVec2::new(w, h),
+            DVec2::new(0.0, h),
+        ])
     }
 
     /// A horizontal 100×100×3 plate on z = 0 and a vertical 100 (y) × 50 (z) × 3 plate at
     /// x ∈ [40, 43], standing on z = −10 … 40: it passes through the first.
     fn cross() -> (Slab, Slab) {
-        let floor = Slab { frame: Frame::on_plane(DVec3::ZERO, DVec3::Z), polygon: rect(100.0, 100.0), thickness: 3.0 };
+        let floor = Slab {
+            frame: Frame::on_plane(DVec3::ZERO, DVec3::Z),
+            polygon: rect(100.0, 100.0),
+            thickness: 3.0,
+        };
         // Wall frame: normal +x at x = 40; on_plane gives u = z × n = +y, v = n × u = +z.
         let wall_frame = Frame::on_plane(DVec3::new(40.0, 0.0, 0.0), DVec3::X);
         let wall = Polygon::new(vec![
@@ -126,7 +143,14 @@ mod tests {
             DVec2::new(100.0, 40.0),
             DVec2::new(0.0, 40.0),
         ]);
-        (floor, Slab { frame: wall_frame, polygon: wall, thickness: 3.0 })
+        (
+            floor,
+            Slab {
+                frame: wall_frame,
+                polygon: wall,
+                thickness: 3.0,
+            },
+        )
     }
 
     #[test]
@@ -134,7 +158,11 @@ mod tests {
         let (floor, wall) = cross();
         let on_floor = floor.columns_meeting(&wall, 1e-6).expect("grid");
         // The wall's footprint on the floor: x ∈ [40, 43], y ∈ [0, 100].
-        assert!((total_area(&on_floor) - 300.0).abs() < 1e-3, "{}", total_area(&on_floor));
+        assert!(
+            (total_area(&on_floor) - 300.0).abs() < 1e-3,
+            "{}",
+            total_area(&on_floor)
+        );
         let (lo, hi) = on_floor[0].bounds();
         assert!((lo.x - 40.0).abs() < 1e-3 && (hi.x - 43.0).abs() < 1e-3);
         let on_wall = wall.columns_meeting(&floor, 1e-6).expect("grid");
@@ -144,13 +172,25 @@ mod tests {
 
     #[test]
     fn touching_faces_do_not_count() {
-        let a = Slab { frame: Frame::on_plane(DVec3::ZERO, DVec3::Z), polygon: rect(10.0, 10.0), thickness: 3.0 };
-        let b = Slab { frame: Frame::on_plane(DVec3::new(0.0, 0.0, 3.0), DVec3::Z), ..a.clone() };
+        let a = Slab {
+            frame: Frame::on_plane(DVec3::ZERO, DVec3::Z),
+            polygon: rect(10.0, 10.0),
+            thickness: 3.0,
+        };
+        let b = Slab {
+            frame: Frame::on_plane(DVec3::new(0.0, 0.0, 3.0), DVec3::Z),
+            ..a.clone()
+        };
         assert!(a.columns_meeting(&b, 1e-6).expect("grid").is_empty());
         // A wall standing on the plate's top face.
         let wall = Slab {
             frame: Frame::on_plane(DVec3::new(5.0, 0.0, 0.0), DVec3::X),
-            polygon: Polygon::new(vec![DVec2::new(0.0, 3.0), DVec2::new(10.0, 3.0), DVec2::new(10.0, 20.0), DVec2::new(0.0, 20.0)]),
+            polygon: Polygon::new(vec![
+                DVec2::new(0.0, 3.0),
+                DVec2::new(10.0, 3.0),
+                DVec2::new(10.0, 20.0),
+                DVec2::new(0.0, 20.0),
+            ]),
             thickness: 2.0,
         };
         assert!(total_area(&a.columns_meeting(&wall, 1e-6).expect("grid")) < 1e-9);
@@ -158,24 +198,48 @@ mod tests {
 
     #[test]
     fn nearly_parallel_plates_stay_near_the_outline() {
-        let a = Slab { frame: Frame::on_plane(DVec3::ZERO, DVec3::Z), polygon: rect(10.0, 10.0), thickness: 3.0 };
+        let a = Slab {
+            frame: Frame::on_plane(DVec3::ZERO, DVec3::Z),
+            polygon: rect(10.0, 10.0),
+            thickness: 3.0,
+        };
         for tilt in [1e-12, 1e-9, 1e-7, 1e-4] {
             let n = DVec3::new(tilt, 0.0, 1.0).normalize();
-            let b = Slab { frame: Frame::on_plane(DVec3::new(0.0, 0.0, 1.0), n), polygon: rect(10.0, 10.0), thickness: 3.0 };
+            let b = Slab {
+                frame: Frame::on_plane(DVec3::new(0.0, 0.0, 1.0), n),
+                polygon: rect(10.0, 10.0),
+                thickness: 3.0,
+            };
             let got = a.columns_meeting(&b, 1e-6).expect("stays on the grid");
-            assert!((total_area(&got) - 100.0).abs() < 1e-3, "tilt {tilt}: {}", total_area(&got));
+            assert!(
+                (total_area(&got) - 100.0).abs() < 1e-3,
+                "tilt {tilt}: {}",
+                total_area(&got)
+            );
         }
     }
 
     #[test]
     fn parallel_overlap_and_containment() {
-        let big = Slab { frame: Frame::on_plane(DVec3::ZERO, DVec3::Z), polygon: rect(10.0, 10.0), thickness: 6.0 };
-        let mut small = Slab { frame: Frame::on_plane(DVec3::new(0.0, 0.0, 2.0), DVec3::Z), polygon: rect(4.0, 4.0), thickness: 3.0 };
+        let big = Slab {
+            frame: Frame::on_plane(DVec3::ZERO, DVec3::Z),
+            polygon: rect(10.0, 10.0),
+            thickness: 6.0,
+        };
+        let mut small = Slab {
+            frame: Frame::on_plane(DVec3::new(0.0, 0.0, 2.0), DVec3::Z),
+            polygon: rect(4.0, 4.0),
+            thickness: 3.0,
+        };
         assert!((total_area(&small.columns_meeting(&big, 1e-6).expect("grid")) - 16.0).abs() < 1e-6);
         small.frame = Frame::on_plane(DVec3::new(0.0, 0.0, 7.0), DVec3::Z);
         assert!(small.columns_meeting(&big, 1e-6).expect("grid").is_empty());
         // Opposite normal, overlapping in thickness: still found.
-        let flipped = Slab { frame: Frame::on_plane(DVec3::new(0.0, 0.0, 4.0), -DVec3::Z), polygon: rect(4.0, -4.0), thickness: 1.0 };
+        let flipped = Slab {
+            frame: Frame::on_plane(DVec3::new(0.0, 0.0, 4.0), -DVec3::Z),
+            polygon: rect(4.0, -4.0),
+            thickness: 1.0,
+        };
         assert!(total_area(&flipped.columns_meeting(&big, 1e-6).expect("grid")) > 15.9);
     }
 }

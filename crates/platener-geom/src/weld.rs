@@ -234,7 +234,11 @@ fn means<const D: usize>(points: &[[f64; D]], weights: &[f64], leaders: &[[f64; 
         .zip(&wsum)
         .map(|((l, s), w)| std::array::from_fn(|i| if *w > 0.0 { l[i] + s[i] / w } else { l[i] }))
         .collect();
-    Welded { points, weights: wsum, map }
+    Welded {
+        points,
+        weights: wsum,
+        map,
+    }
 }
 
 /// Adjacency (both directions) of `n` points in CSR form, by counting: no sort needed, since
@@ -264,8 +268,17 @@ fn adjacency(n: usize, edges: &[[u32; 2]]) -> (Vec<u32>, Vec<u32>) {
 /// of a small hole, are near but not connected, so they never fuse; a bevel's two sides are
 /// connected by its cross edges, so it collapses. Rounds repeat (edges follow the clusters)
 /// until no connected pair is closer than `distance`, so welding twice changes nothing.
-pub fn weld_connected<const D: usize>(points: &[[f64; D]], weights: &[f64], distance: f64, edges: &[[u32; 2]]) -> Welded<D> {
-    let mut current = Welded { points: points.to_vec(), weights: weights.to_vec(), map: (0..points.len() as u32).collect() };
+pub fn weld_connected<const D: usize>(
+    points: &[[f64; D]],
+    weights: &[f64],
+    distance: f64,
+    edges: &[[u32; 2]],
+) -> Welded<D> {
+    let mut current = Welded {
+        points: points.to_vec(),
+        weights: weights.to_vec(),
+        map: (0..points.len() as u32).collect(),
+    };
     if !(distance > 0.0 && distance.is_finite()) {
         return current;
     }

@@ -13,7 +13,10 @@ fn bench(c: &mut Criterion) {
     // 29 × 29 boxes × 120 triangles = 100 920 triangles.
     let triangles = samples::box_grid(29, 29, 40.0, 3.0, 10.0);
     let n = triangles.len();
-    let source = Source::Triangles { name: "box grid".into(), triangles: Arc::new(triangles) };
+    let source = Source::Triangles {
+        name: "box grid".into(),
+        triangles: Arc::new(triangles),
+    };
     let settings = Settings::default();
     let (state, _) = run_foundation(source.clone(), settings.clone(), &Cancel::default()).expect("converts");
     let shapes = state.shapes.clone().expect("shapes");

@@ -122,7 +122,12 @@ pub fn run_foundation(source: Source, settings: Settings, cancel: &Cancel) -> Re
     run_steps(&pipeline::foundation_steps(), source, settings, cancel)
 }
 
-fn run_steps(steps: &[&dyn pipeline::Step], source: Source, settings: Settings, cancel: &Cancel) -> Result<(State, Vec<StepRecord>)> {
+fn run_steps(
+    steps: &[&dyn pipeline::Step],
+    source: Source,
+    settings: Settings,
+    cancel: &Cancel,
+) -> Result<(State, Vec<StepRecord>)> {
     settings.validate()?;
     let mut state = State::new(source, settings);
     let records = pipeline::run(steps, &mut state, cancel)?;
@@ -159,7 +164,11 @@ fn plates_report(plates: &crate::plates::Plates) -> PlatesReport {
 
 /// Runs the foundation steps (and plate finding when `with_plates`) and summarises them.
 pub fn inspect(source: Source, settings: Settings, cancel: &Cancel, with_plates: bool) -> Result<Inspection> {
-    let steps = if with_plates { pipeline::plate_steps() } else { pipeline::foundation_steps() };
+    let steps = if with_plates {
+        pipeline::plate_steps()
+    } else {
+        pipeline::foundation_steps()
+    };
     let (state, steps) = run_steps(&steps, source, settings, cancel)?;
     let need = |name| crate::Error::MissingStep {
         step: "inspect",

@@ -236,7 +236,10 @@ mod tests {
     use glam::DVec3;
 
     fn source(size: f64) -> Source {
-        Source::Triangles { name: "cube".into(), triangles: Arc::new(cuboid(DVec3::ZERO, DVec3::splat(size))) }
+        Source::Triangles {
+            name: "cube".into(),
+            triangles: Arc::new(cuboid(DVec3::ZERO, DVec3::splat(size))),
+        }
     }
 
     #[test]
@@ -253,7 +256,13 @@ mod tests {
     fn a_step_without_its_input_says_which_step_is_missing() {
         let mut state = State::new(source(10.0), Settings::default());
         let err = run(&[&mesh::MeshStep], &mut state, &Cancel::default()).expect_err("no weld yet");
-        assert!(matches!(err, Error::MissingStep { step: "mesh", needs: "weld" }));
+        assert!(matches!(
+            err,
+            Error::MissingStep {
+                step: "mesh",
+                needs: "weld"
+            }
+        ));
     }
 
     #[test]
@@ -281,7 +290,11 @@ mod tests {
 
     #[test]
     fn scale_is_applied_in_the_read_step() {
-        let settings = Settings { units: crate::Units::In, scale: 2.0, ..Settings::default() };
+        let settings = Settings {
+            units: crate::Units::In,
+            scale: 2.0,
+            ..Settings::default()
+        };
         let mut state = State::new(source(1.0), settings);
         run(&foundation_steps(), &mut state, &Cancel::default()).expect("runs");
         let b = state.read.expect("read").bounds;

@@ -287,7 +287,14 @@ pub fn roof(run: f64, pitch_deg: f64, depth: f64, t: f64) -> Vec<Triangle> {
     // Outer (upper) surface from (0, 0) up to the ridge (run, rise) and down to (2·run, 0);
     // the lower surface is t below, measured perpendicular to each slope.
     let drop = t / a.cos();
-    let profile = [p(0.0, -drop), p(run, rise - drop), p(2.0 * run, -drop), p(2.0 * run, 0.0), p(run, rise), p(0.0, 0.0)];
+    let profile = [
+        p(0.0, -drop),
+        p(run, rise - drop),
+        p(2.0 * run, -drop),
+        p(2.0 * run, 0.0),
+        p(run, rise),
+        p(0.0, 0.0),
+    ];
     prism(&profile, depth)
 }
 

@@ -155,11 +155,18 @@ impl Settings {
             return bad("straight tolerance", format!("{t} is not a distance ≥ 0 mm"));
         }
         let p = &self.plates;
-        if !(p.min_factor.is_finite() && p.min_factor > 0.0 && p.max_factor.is_finite() && p.max_factor > p.min_factor) {
-            return bad("plate factors", format!("need 0 < min ({}) < max ({})", p.min_factor, p.max_factor));
+        if !(p.min_factor.is_finite() && p.min_factor > 0.0 && p.max_factor.is_finite() && p.max_factor > p.min_factor)
+        {
+            return bad(
+                "plate factors",
+                format!("need 0 < min ({}) < max ({})", p.min_factor, p.max_factor),
+            );
         }
         if !(p.parallel_angle_deg.is_finite() && (0.0..30.0).contains(&p.parallel_angle_deg)) {
-            return bad("parallel angle", format!("{}° must be in [0, 30)", p.parallel_angle_deg));
+            return bad(
+                "parallel angle",
+                format!("{}° must be in [0, 30)", p.parallel_angle_deg),
+            );
         }
         if let Some(t) = p.extrusion_thickness
             && !(t.is_finite() && t > 0.0)

@@ -76,8 +76,14 @@ fn every_corpus_file_converts_or_fails_with_its_message() {
     let mut converted = 0;
     for path in &files {
         let name = path.file_name().and_then(|n| n.to_str()).expect("utf-8 name");
-        let result =
-            std::panic::catch_unwind(|| inspect(Source::File(path.clone()), Settings::default(), &Cancel::default(), true));
+        let result = std::panic::catch_unwind(|| {
+            inspect(
+                Source::File(path.clone()),
+                Settings::default(),
+                &Cancel::default(),
+                true,
+            )
+        });
         let result = result.unwrap_or_else(|_| panic!("{name}: panicked"));
         match (FAILS.iter().find(|(f, _)| *f == name), result) {
             (Some((_, want)), Err(e)) => {
@@ -158,7 +164,10 @@ fn two_solids_in_one_ascii_file_are_both_read() {
 }
 
 fn plates_of(dir: &Path, file: &str, thicknesses: &[f64]) -> platener::inspect::PlatesReport {
-    let settings = Settings { thicknesses: thicknesses.to_vec(), ..Settings::default() };
+    let settings = Settings {
+        thicknesses: thicknesses.to_vec(),
+        ..Settings::default()
+    };
     let r = inspect(Source::File(dir.join(file)), settings, &Cancel::default(), true).expect("converts");
     r.plates.expect("plates were asked for")
 }
@@ -168,14 +177,22 @@ fn plycutter_test_object_offered_6mm_gives_its_two_sheets() {
     let Some(dir) = corpus() else { return };
     let p = plates_of(&dir, "plates/plycutter_PlyTest0.1.stl", &[6.0]);
     assert_eq!(p.plates.len(), 2);
-    assert!(p.plates.iter().all(|x| x.thickness == 6.0 && x.kind == platener::plates::PlateKind::Inherent));
+    assert!(
+        p.plates
+            .iter()
+            .all(|x| x.thickness == 6.0 && x.kind == platener::plates::PlateKind::Inherent)
+    );
 }
 
 #[test]
 fn tray_bottom_is_one_plate_with_its_23_holes() {
     let Some(dir) = corpus() else { return };
     let p = plates_of(&dir, "plates/tray_bottom_14in_3.2mm_sheet.stl", &[3.0]);
-    let inherent: Vec<_> = p.plates.iter().filter(|x| x.kind == platener::plates::PlateKind::Inherent).collect();
+    let inherent: Vec<_> = p
+        .plates
+        .iter()
+        .filter(|x| x.kind == platener::plates::PlateKind::Inherent)
+        .collect();
     assert_eq!(inherent.len(), 1);
     assert_eq!(inherent[0].holes, 23);
     // 14 in square, one 1/8 in sheet: the plate is the sheet minus its holes.
@@ -187,7 +204,12 @@ fn a_thin_curved_wall_does_not_become_hundreds_of_slivers() {
     let Some(dir) = corpus() else { return };
     let p = plates_of(&dir, "other/bird_water_feeder_cup.stl", &[3.0]);
     assert!(p.plates.len() < 20, "{} plates", p.plates.len());
-    let slivers = p.coverage.shapes.iter().filter(|s| matches!(s.rejected, Some(platener::plates::Rejection::Sliver { .. }))).count();
+    let slivers = p
+        .coverage
+        .shapes
+        .iter()
+        .filter(|s| matches!(s.rejected, Some(platener::plates::Rejection::Sliver { .. })))
+        .count();
     assert!(slivers > 50, "slivers are rejected and reported ({slivers})");
     // Every plate kept is at least as wide on average as it is thick.
     for x in &p.plates {

@@ -83,14 +83,23 @@ fn connected_welding_keeps_unconnected_neighbours_apart() {
     // Each row coarsens along itself, but no cluster mixes the rows.
     for (i, &c) in w.map.iter().enumerate() {
         let row = i / 10;
-        assert!(w.map.iter().enumerate().filter(|&(_, &d)| d == c).all(|(j, _)| j / 10 == row));
+        assert!(
+            w.map
+                .iter()
+                .enumerate()
+                .filter(|&(_, &d)| d == c)
+                .all(|(j, _)| j / 10 == row)
+        );
     }
     assert!(w.points.len() < pts.len() && w.points.len() >= 4);
     // Unconstrained welding at the same distance mixes them.
     let free = weld(&pts, &vec![1.0; pts.len()], 1.2);
     assert!(free.map[0] == free.map[10]);
     // Idempotent.
-    let remapped: Vec<[u32; 2]> = edges.iter().map(|e| [w.map[e[0] as usize], w.map[e[1] as usize]]).collect();
+    let remapped: Vec<[u32; 2]> = edges
+        .iter()
+        .map(|e| [w.map[e[0] as usize], w.map[e[1] as usize]])
+        .collect();
     let again = weld_connected(&w.points, &w.weights, 1.2, &remapped);
     assert_eq!(again.points, w.points);
 }

@@ -47,7 +47,9 @@ impl Rejection {
             Rejection::ThicknessMismatch { distance } => {
                 format!("opposite face at {distance:.2} mm but offered {list} mm")
             }
-            Rejection::FacingEachOther { distance } => format!("faces another face across a {distance:.2} mm gap (a slot)"),
+            Rejection::FacingEachOther { distance } => {
+                format!("faces another face across a {distance:.2} mm gap (a slot)")
+            }
             Rejection::TooSmall { area } => format!("too small ({area:.1} mm²)"),
             Rejection::Sliver { width } => format!("a sliver ({width:.2} mm wide on average), too thin to cut"),
             Rejection::Contained => "its plate lay inside another plate".into(),
@@ -118,18 +120,24 @@ pub(super) fn report(
     for (i, shape) in shapes.shapes.iter().enumerate() {
         let d = &detail[i];
         let plates_of: Vec<u32> = uses[i].clone();
-        let inherent = plates_of.iter().any(|&k| plates[k as usize].kind == PlateKind::Inherent);
+        let inherent = plates_of
+            .iter()
+            .any(|&k| plates[k as usize].kind == PlateKind::Inherent);
         let why_not = if inherent {
             None
         } else {
             Some(match (d.apart, d.facing) {
-                (Some(distance), _) if matching_thickness(distance, settings).is_none() => Rejection::ThicknessMismatch { distance },
+                (Some(distance), _) if matching_thickness(distance, settings).is_none() => {
+                    Rejection::ThicknessMismatch { distance }
+                }
                 (Some(_), _) => d.refused.unwrap_or(Rejection::Contained),
                 (None, Some(distance)) => Rejection::FacingEachOther { distance },
                 (None, None) => Rejection::NoOppositeFace,
             })
         };
-        let rejected = plates_of.is_empty().then(|| d.refused.or(why_not).unwrap_or(Rejection::Contained));
+        let rejected = plates_of
+            .is_empty()
+            .then(|| d.refused.or(why_not).unwrap_or(Rejection::Contained));
         let used_area = if plates_of.is_empty() { 0.0 } else { detected_use[i] };
         used_total += used_area;
         if inherent {
@@ -163,7 +171,14 @@ pub(super) fn report(
     Coverage {
         shapes: entries,
         surface_share: share(used_total),
-        per_thickness: by_thickness.into_iter().map(|(thickness, plates, a)| ThicknessShare { thickness, plates, surface_share: share(a) }).collect(),
+        per_thickness: by_thickness
+            .into_iter()
+            .map(|(thickness, plates, a)| ThicknessShare {
+                thickness,
+                plates,
+                surface_share: share(a),
+            })
+            .collect(),
         inherent_share: share(inherent_total),
     }
 }

@@ -61,10 +61,13 @@ pub(super) fn find(shapes: &Shapes, center: DVec3, settings: &Settings) -> Resul
     let boxes: Vec<(DVec3, DVec3)> = list
         .iter()
         .map(|s| {
-            s.polygon.outer.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), p| {
-                let q = s.frame.to_model_2d(*p);
-                (lo.min(q), hi.max(q))
-            })
+            s.polygon.outer.iter().fold(
+                (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+                |(lo, hi), p| {
+                    let q = s.frame.to_model_2d(*p);
+                    (lo.min(q), hi.max(q))
+                },
+            )
         })
         .collect();
     for pair in pairs {
@@ -80,7 +83,11 @@ pub(super) fn find(shapes: &Shapes, center: DVec3, settings: &Settings) -> Resul
             continue;
         }
         for s in [pair.a, pair.b] {
-            let slot = if pair.apart { &mut detail[s as usize].apart } else { &mut detail[s as usize].facing };
+            let slot = if pair.apart {
+                &mut detail[s as usize].apart
+            } else {
+                &mut detail[s as usize].facing
+            };
             if slot.is_none_or(|d| pair.distance < d) {
                 *slot = Some(pair.distance);
             }
@@ -93,7 +100,10 @@ pub(super) fn find(shapes: &Shapes, center: DVec3, settings: &Settings) -> Resul
     }
     // Thinnest gap first, then the larger overlap; indices make the order total.
     candidates.sort_by(|x, y| {
-        x.0.distance.total_cmp(&y.0.distance).then(y.2.total_cmp(&x.2)).then((x.0.a, x.0.b).cmp(&(y.0.a, y.0.b)))
+        x.0.distance
+            .total_cmp(&y.0.distance)
+            .then(y.2.total_cmp(&x.2))
+            .then((x.0.a, x.0.b).cmp(&(y.0.a, y.0.b)))
     });
     let mut remaining: Vec<Vec<Polygon>> = list.iter().map(|s| vec![s.polygon.clone()]).collect();
     let mut plates = Vec::new();
@@ -131,7 +141,11 @@ pub(super) fn find(shapes: &Shapes, center: DVec3, settings: &Settings) -> Resul
             remaining[ib] = difference(&remaining[ib], &used_in_b)?;
         }
     }
-    Ok(Detection { plates, remaining, detail })
+    Ok(Detection {
+        plates,
+        remaining,
+        detail,
+    })
 }
 
 /// Extrudes what is left of every shape inwards (along its inverse normal) by the extrusion

@@ -63,7 +63,11 @@ pub struct Plate {
 impl Plate {
     /// The plate as a slab, for volume questions.
     pub fn slab(&self) -> Slab {
-        Slab { frame: self.frame, polygon: self.polygon.clone(), thickness: self.thickness }
+        Slab {
+            frame: self.frame,
+            polygon: self.polygon.clone(),
+            thickness: self.thickness,
+        }
     }
 
     /// Axis-aligned bounds of the plate's volume in the model.
@@ -121,7 +125,10 @@ pub(crate) fn cuttable(p: &Polygon, thickness: f64, min_area: f64) -> std::resul
 /// orientation (outer counter-clockwise).
 pub(crate) fn map_polygon(p: &Polygon, from: &Frame, to: &Frame) -> Polygon {
     let map = |r: &Vec<glam::DVec2>| r.iter().map(|q| to.to_2d(from.to_model_2d(*q))).collect();
-    let mut out = Polygon { outer: map(&p.outer), holes: p.holes.iter().map(map).collect() };
+    let mut out = Polygon {
+        outer: map(&p.outer),
+        holes: p.holes.iter().map(map).collect(),
+    };
     out.normalize_orientation();
     out
 }
@@ -142,12 +149,21 @@ pub fn find_plates(shapes: &Shapes, surface_area: f64, center: DVec3, settings: 
         .collect();
     let clearance = 1e-3;
     let (plates, contained, trimmed) = overlap::resolve(found.plates, ps.min_area, clearance).map_err(geometry)?;
-    let (mut plates, rejoined) = rejoin::rejoin(plates, ps.parallel_angle_deg.to_radians(), clearance).map_err(geometry)?;
+    let (mut plates, rejoined) =
+        rejoin::rejoin(plates, ps.parallel_angle_deg.to_radians(), clearance).map_err(geometry)?;
     plates.sort_by(|a, b| {
-        (a.kind == PlateKind::Extruded).cmp(&(b.kind == PlateKind::Extruded)).then(b.area.total_cmp(&a.area))
+        (a.kind == PlateKind::Extruded)
+            .cmp(&(b.kind == PlateKind::Extruded))
+            .then(b.area.total_cmp(&a.area))
     });
     let coverage = coverage::report(shapes, &found.detail, &detected_use, &plates, surface_area, settings);
-    Ok(Plates { plates, coverage, contained_removed: contained, trimmed, rejoined })
+    Ok(Plates {
+        plates,
+        coverage,
+        contained_removed: contained,
+        trimmed,
+        rejoined,
+    })
 }
 
 /// Step `plates`.
@@ -164,8 +180,11 @@ impl Step for PlatesStep {
         let model = need(&state.read, self.name(), "read")?;
         cx.check_cancel()?;
         let center = (model.bounds.min + model.bounds.max) / 2.0;
-        let plates = find_plates(shapes, mesh.surface_area, center, &state.settings)
-            .map_err(|message| Error::Geometry { model: model.name.clone(), message })?;
+        let plates =
+            find_plates(shapes, mesh.surface_area, center, &state.settings).map_err(|message| Error::Geometry {
+                model: model.name.clone(),
+                message,
+            })?;
         state.plates = Some(Arc::new(plates));
         Ok(())
     }

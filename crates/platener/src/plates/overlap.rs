@@ -15,8 +15,16 @@ fn boxes_overlap(a: &(glam::DVec3, glam::DVec3), b: &(glam::DVec3, glam::DVec3),
 }
 
 /// Returns the plates kept, how many were contained, how many were trimmed.
-pub(super) fn resolve(mut plates: Vec<Plate>, min_area: f64, clearance: f64) -> Result<(Vec<Plate>, usize, usize), GridError> {
-    plates.sort_by(|a, b| (a.kind == PlateKind::Extruded).cmp(&(b.kind == PlateKind::Extruded)).then(b.area.total_cmp(&a.area)));
+pub(super) fn resolve(
+    mut plates: Vec<Plate>,
+    min_area: f64,
+    clearance: f64,
+) -> Result<(Vec<Plate>, usize, usize), GridError> {
+    plates.sort_by(|a, b| {
+        (a.kind == PlateKind::Extruded)
+            .cmp(&(b.kind == PlateKind::Extruded))
+            .then(b.area.total_cmp(&a.area))
+    });
     let mut kept: Vec<Plate> = Vec::with_capacity(plates.len());
     let mut boxes = Vec::with_capacity(plates.len());
     let (mut contained, mut trimmed) = (0, 0);
@@ -40,14 +48,21 @@ pub(super) fn resolve(mut plates: Vec<Plate>, min_area: f64, clearance: f64) -> 
             kept.push(plate);
             continue;
         }
-        let pieces: Vec<_> = outline.into_iter().filter(|p| cuttable(p, plate.thickness, min_area).is_ok()).collect();
+        let pieces: Vec<_> = outline
+            .into_iter()
+            .filter(|p| cuttable(p, plate.thickness, min_area).is_ok())
+            .collect();
         if pieces.is_empty() {
             contained += 1;
             continue;
         }
         trimmed += 1;
         for piece in pieces {
-            let p = Plate { area: piece.area(), polygon: piece, ..plate.clone() };
+            let p = Plate {
+                area: piece.area(),
+                polygon: piece,
+                ..plate.clone()
+            };
             boxes.push(p.bounds());
             kept.push(p);
         }

@@ -41,7 +41,13 @@ fn fold(n: DVec3) -> DVec3 {
 /// that plane offsets stay small.
 pub(super) fn opposite_pairs(shapes: &[Shape], angle: f64, max_distance: f64, center: DVec3) -> Vec<Pair> {
     let cell = 2.0 * (angle / 2.0).sin() * 1.0001 + 1e-12;
-    let key = |c: DVec3| [(c.x / cell).floor() as i64, (c.y / cell).floor() as i64, (c.z / cell).floor() as i64];
+    let key = |c: DVec3| {
+        [
+            (c.x / cell).floor() as i64,
+            (c.y / cell).floor() as i64,
+            (c.z / cell).floor() as i64,
+        ]
+    };
     let folded: Vec<(DVec3, f64)> = shapes
         .iter()
         .map(|s| {
@@ -49,7 +55,10 @@ pub(super) fn opposite_pairs(shapes: &[Shape], angle: f64, max_distance: f64, ce
             (c, c.dot(s.frame.origin - center))
         })
         .collect();
-    let max_reach = shapes.iter().map(|s| (s.frame.origin - center).length()).fold(0.0, f64::max);
+    let max_reach = shapes
+        .iter()
+        .map(|s| (s.frame.origin - center).length())
+        .fold(0.0, f64::max);
     // Offsets along normals up to `cell` apart differ by up to cell·|p| for the same point.
     let window = max_distance + cell * max_reach + 1e-9;
     let mut cells: CellMap<[i64; 3], Vec<(f64, u32)>> = CellMap::default();
@@ -68,7 +77,9 @@ pub(super) fn opposite_pairs(shapes: &[Shape], angle: f64, max_distance: f64, ce
             for dx in -1..=1 {
                 for dy in -1..=1 {
                     for dz in -1..=1 {
-                        let Some(list) = cells.get(&[k[0] + dx, k[1] + dy, k[2] + dz]) else { continue };
+                        let Some(list) = cells.get(&[k[0] + dx, k[1] + dy, k[2] + dz]) else {
+                            continue;
+                        };
                         // Offsets in this cell are along ±c: compare in c's sense.
                         let target = sign * o;
                         let start = list.partition_point(|e| e.0 < target - window);
@@ -84,7 +95,12 @@ pub(super) fn opposite_pairs(shapes: &[Shape], angle: f64, max_distance: f64, ce
                             let avg = (n - m).normalize();
                             let d = (other.frame.origin - shape.frame.origin).dot(avg);
                             if d.abs() <= max_distance {
-                                pairs.push(Pair { a: i as u32, b: j, distance: d.abs(), apart: d < 0.0 });
+                                pairs.push(Pair {
+                                    a: i as u32,
+                                    b: j,
+                                    distance: d.abs(),
+                                    apart: d < 0.0,
+                                });
                             }
                         }
                     }

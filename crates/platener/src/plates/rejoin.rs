@@ -31,14 +31,25 @@ fn bridge(a: &Plate, b: &Plate, others: &[&Plate], clearance: f64) -> Result<Opt
     let points: Vec<_> = a.polygon.outer.iter().chain(&b_in_a.outer).copied().collect();
     let mut hull = Polygon::new(convex_hull(&points));
     hull.normalize_orientation();
-    let region = Slab { frame: a.frame, polygon: hull, thickness: a.thickness };
+    let region = Slab {
+        frame: a.frame,
+        polygon: hull,
+        thickness: a.thickness,
+    };
     for third in others {
         // The third plate grown in its plane by a's thickness: a plate that ends against the
         // gap (a shelf board meeting a side) bridges it as well as one passing through.
         let grown = offset(std::slice::from_ref(&third.polygon), a.thickness)?;
         let mut band = Vec::new();
         for polygon in grown {
-            band.extend(region.columns_meeting(&Slab { frame: third.frame, polygon, thickness: third.thickness }, clearance)?);
+            band.extend(region.columns_meeting(
+                &Slab {
+                    frame: third.frame,
+                    polygon,
+                    thickness: third.thickness,
+                },
+                clearance,
+            )?);
         }
         if band.is_empty() {
             continue;
@@ -88,7 +99,10 @@ pub(super) fn rejoin(mut plates: Vec<Plate>, angle: f64, clearance: f64) -> Resu
                     .iter()
                     .enumerate()
                     .filter(|(k, p)| {
-                        *k != i && *k != j && p.frame.n.dot(plates[i].frame.n).abs() < cos_max && touch(span, bounds[*k])
+                        *k != i
+                            && *k != j
+                            && p.frame.n.dot(plates[i].frame.n).abs() < cos_max
+                            && touch(span, bounds[*k])
                     })
                     .map(|(_, p)| p)
                     .collect();

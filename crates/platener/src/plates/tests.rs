@@ -10,14 +10,20 @@ use crate::samples;
 use crate::settings::{PlateMode, Settings};
 
 fn plates_of(triangles: Vec<Triangle>, settings: Settings) -> Arc<Plates> {
-    let source = Source::Triangles { name: "test".into(), triangles: Arc::new(triangles) };
+    let source = Source::Triangles {
+        name: "test".into(),
+        triangles: Arc::new(triangles),
+    };
     let mut state = State::new(source, settings);
     pipeline::run(&pipeline::plate_steps(), &mut state, &Cancel::default()).expect("converts");
     state.plates.expect("plates step ran")
 }
 
 fn with(thicknesses: &[f64]) -> Settings {
-    Settings { thicknesses: thicknesses.to_vec(), ..Settings::default() }
+    Settings {
+        thicknesses: thicknesses.to_vec(),
+        ..Settings::default()
+    }
 }
 
 /// The plate's volume as an axis-aligned box (for axis-aligned test models).
@@ -33,7 +39,12 @@ fn near(a: DVec3, b: DVec3) -> bool {
 fn closed_box_gives_exactly_its_six_walls() {
     let plates = plates_of(samples::closed_box(100.0, 80.0, 60.0, 3.0), with(&[3.0]));
     assert_eq!(plates.plates.len(), 6);
-    assert!(plates.plates.iter().all(|p| p.kind == PlateKind::Inherent && p.thickness == 3.0));
+    assert!(
+        plates
+            .plates
+            .iter()
+            .all(|p| p.kind == PlateKind::Inherent && p.thickness == 3.0)
+    );
     // Each wall is exactly the material between the inner and outer faces.
     let mut boxes: Vec<(DVec3, DVec3)> = plates.plates.iter().map(box_of).collect();
     boxes.sort_by(|a, b| a.0.to_array().partial_cmp(&b.0.to_array()).expect("finite"));
@@ -51,7 +62,9 @@ fn closed_box_gives_exactly_its_six_walls() {
     // The transform is rigid and maps every outline corner onto the wall's faces.
     for p in &plates.plates {
         let m = p.frame.matrix();
-        let r = DMat3::from_cols_array(&[m[0][0], m[1][0], m[2][0], m[0][1], m[1][1], m[2][1], m[0][2], m[1][2], m[2][2]]);
+        let r = DMat3::from_cols_array(&[
+            m[0][0], m[1][0], m[2][0], m[0][1], m[1][1], m[2][1], m[0][2], m[1][2], m[2][2],
+        ]);
         assert!((r.determinant() - 1.0).abs() < 1e-12);
         assert_eq!(p.polygon.outer.len(), 4);
     }
@@ -60,7 +73,13 @@ fn closed_box_gives_exactly_its_six_walls() {
 
 #[test]
 fn box_offered_6mm_has_no_inherent_plates_and_says_why() {
-    let settings = Settings { plates: crate::settings::PlateSettings { mode: PlateMode::InherentOnly, ..Default::default() }, ..with(&[6.0]) };
+    let settings = Settings {
+        plates: crate::settings::PlateSettings {
+            mode: PlateMode::InherentOnly,
+            ..Default::default()
+        },
+        ..with(&[6.0])
+    };
     let plates = plates_of(samples::closed_box(100.0, 80.0, 60.0, 3.0), settings);
     assert!(plates.plates.is_empty());
     assert_eq!(plates.coverage.shapes.len(), 12);
@@ -93,7 +112,12 @@ fn open_tray_gives_five_plates() {
 #[test]
 fn crossing_plates_are_two_not_four() {
     let plates = plates_of(samples::crossing_plates(100.0, 3.0), with(&[3.0]));
-    assert_eq!(plates.plates.len(), 2, "{:?}", plates.plates.iter().map(|p| p.area).collect::<Vec<_>>());
+    assert_eq!(
+        plates.plates.len(),
+        2,
+        "{:?}",
+        plates.plates.iter().map(|p| p.area).collect::<Vec<_>>()
+    );
     assert_eq!(plates.rejoined, 2);
     for p in &plates.plates {
         assert!((p.area - 10_000.0).abs() < 1e-3, "{}", p.area);
@@ -108,7 +132,10 @@ fn shelf_sides_stay_whole_where_the_board_meets_them() {
     // The board 74 × 60 between the sides; each side 120 × 60.
     assert_eq!(areas.len(), 3, "{areas:?}");
     assert!((areas[0] - 74.0 * 60.0).abs() < 1e-3, "{areas:?}");
-    assert!((areas[1] - 120.0 * 60.0).abs() < 1e-3 && (areas[2] - 120.0 * 60.0).abs() < 1e-3, "{areas:?}");
+    assert!(
+        (areas[1] - 120.0 * 60.0).abs() < 1e-3 && (areas[2] - 120.0 * 60.0).abs() < 1e-3,
+        "{areas:?}"
+    );
 }
 
 #[test]
@@ -162,4 +189,3 @@ proptest! {
         }
     }
 }
-

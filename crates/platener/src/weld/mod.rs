@@ -78,7 +78,12 @@ impl ExactSoup {
         let exact = weld(&corners, &vec![1.0; corners.len()], 0.0);
         let triangles: Vec<[u32; 3]> = exact.map.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
         let counts = edge_counts(&triangles, exact.points.len());
-        Self { points: exact.points, weights: exact.weights, corner: exact.map, counts }
+        Self {
+            points: exact.points,
+            weights: exact.weights,
+            corner: exact.map,
+            counts,
+        }
     }
 
     /// Welds at `distance` (0: exact duplicates only): first positions within [`SNAP`] of
@@ -90,7 +95,11 @@ impl ExactSoup {
             let snapped = if self.counts.open > 0 {
                 weld(&self.points, &self.weights, distance.min(SNAP))
             } else {
-                Welded2 { points: self.points.clone(), weights: self.weights.clone(), map: (0..self.points.len() as u32).collect() }
+                Welded2 {
+                    points: self.points.clone(),
+                    weights: self.weights.clone(),
+                    map: (0..self.points.len() as u32).collect(),
+                }
             };
             let edges: Vec<[u32; 2]> = self
                 .corner
@@ -109,7 +118,10 @@ impl ExactSoup {
                 points.iter().map(|p| DVec3::from_array(*p)).collect(),
                 self.corner.iter().map(|&v| map[v as usize]).collect(),
             ),
-            None => (self.points.iter().map(|p| DVec3::from_array(*p)).collect(), self.corner.clone()),
+            None => (
+                self.points.iter().map(|p| DVec3::from_array(*p)).collect(),
+                self.corner.clone(),
+            ),
         };
         let mut collapsed = 0;
         let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(id.len() / 3);
@@ -133,7 +145,12 @@ impl ExactSoup {
                 .collect();
             let first = first_equal(&keys);
             let before = triangles.len();
-            triangles = triangles.into_iter().enumerate().filter(|&(i, _)| first[i] as usize == i).map(|(_, t)| t).collect();
+            triangles = triangles
+                .into_iter()
+                .enumerate()
+                .filter(|&(i, _)| first[i] as usize == i)
+                .map(|(_, t)| t)
+                .collect();
             merged = before - triangles.len();
         }
         Welded {
@@ -162,12 +179,24 @@ impl ExactSoup {
             }
             let w = self.weld(d);
             if edge_counts(&w.triangles, w.vertices.len()).euler == self.counts.euler {
-                return (Welded { distance_asked: distance, ..w }, refused);
+                return (
+                    Welded {
+                        distance_asked: distance,
+                        ..w
+                    },
+                    refused,
+                );
             }
             refused.push(d);
             d /= 2.0;
         }
-        (Welded { distance_asked: distance, ..self.weld(0.0) }, refused)
+        (
+            Welded {
+                distance_asked: distance,
+                ..self.weld(0.0)
+            },
+            refused,
+        )
     }
 }
 
@@ -204,15 +233,25 @@ impl Step for WeldStep {
         if welded.triangles.is_empty() && welded.distance > 0.0 {
             cx.warn(
                 WarningKind::WeldFallback,
-                format!("welding at {:.3} mm would remove every triangle; the unwelded mesh is used (try --weld 0)", welded.distance),
+                format!(
+                    "welding at {:.3} mm would remove every triangle; the unwelded mesh is used (try --weld 0)",
+                    welded.distance
+                ),
             );
-            welded = Welded { fell_back: true, distance_asked: distance, ..exact.weld(0.0) };
+            welded = Welded {
+                fell_back: true,
+                distance_asked: distance,
+                ..exact.weld(0.0)
+            };
         }
         cx.check_cancel()?;
         if welded.input_open_edges > 0 {
             cx.warn(
                 WarningKind::OpenEdges,
-                format!("{} open edges: the model's surface has holes (not watertight)", welded.input_open_edges),
+                format!(
+                    "{} open edges: the model's surface has holes (not watertight)",
+                    welded.input_open_edges
+                ),
             );
         }
         if welded.input_non_manifold_edges > 0 {

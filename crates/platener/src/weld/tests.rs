@@ -41,7 +41,11 @@ fn welding_never_closes_a_small_hole() {
     let plate = crate::samples::voxels(&xs, &xs, &[0.0, 3.0], |i, j, _| !(i == 1 && j == 1));
     let exact = ExactSoup::new(&plate);
     assert_eq!(exact.counts.euler, 0, "a plate with one hole is a torus");
-    assert_eq!(edge_counts(&exact.weld(1.8).triangles, 1000).euler, 2, "unguarded, the hole closes");
+    assert_eq!(
+        edge_counts(&exact.weld(1.8).triangles, 1000).euler,
+        2,
+        "unguarded, the hole closes"
+    );
     let (w, refused) = exact.weld_keeping_topology(1.8);
     assert_eq!(refused, vec![1.8]);
     assert!((w.distance - 0.9).abs() < 1e-12);

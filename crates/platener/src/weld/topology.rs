@@ -42,5 +42,9 @@ pub fn edge_counts(triangles: &[[u32; 3]], vertex_count: usize) -> EdgeCounts {
         }
     }
     let vertices = used.iter().filter(|&&u| u).count() as i64;
-    EdgeCounts { open, non_manifold, euler: vertices - edges + faces }
+    EdgeCounts {
+        open,
+        non_manifold,
+        euler: vertices - edges + faces,
+    }
 }

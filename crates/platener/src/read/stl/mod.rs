@@ -127,8 +127,7 @@ fn read_input(input: &mut impl Input) -> Result<(Format, RawMesh), ReadErrorKind
     }
     // A binary reading of a file longer than its facets by less than one facet (exporters
     // that pad); more than that means the count field is wrong, and we refuse to guess.
-    let with_trailing =
-        count.filter(|&n| n > 0 && binary_size(n) < size && size - binary_size(n) < FACET_BYTES as u64);
+    let with_trailing = count.filter(|&n| n > 0 && binary_size(n) < size && size - binary_size(n) < FACET_BYTES as u64);
     if looks_ascii(input.head()) {
         let failure = match input.ascii() {
             Ok(mesh) if !mesh.triangles.is_empty() || with_trailing.is_none() => {

@@ -152,7 +152,10 @@ fn a_whole_facet_too_many_is_a_count_mismatch_not_a_guess() {
     let tri = [glam::DVec3::ZERO, glam::DVec3::X, glam::DVec3::Y];
     let mut bytes = crate::samples::to_binary_stl(&[tri, tri], "padded");
     bytes[80..84].copy_from_slice(&1u32.to_le_bytes());
-    assert!(matches!(parse_bytes(&bytes), Err(ReadErrorKind::CountMismatch { count: 1, .. })));
+    assert!(matches!(
+        parse_bytes(&bytes),
+        Err(ReadErrorKind::CountMismatch { count: 1, .. })
+    ));
     // Less than one facet of padding is tolerated, with a note.
     bytes.truncate(84 + 50 + 7);
     let (format, mesh) = parse_bytes(&bytes).expect("padded file reads");
