@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use platener::plan::Material;
 use platener::{Settings, Units, Weld};
 
 /// Turns 3D-printing models (STL, OBJ, 3MF) into laser-cut construction plans.
@@ -22,6 +23,52 @@ pub enum Command {
         after_help = "Examples:\n  platener inspect examples/box-3mm.stl\n  platener inspect part.obj --units in --json"
     )]
     Inspect(InspectArgs),
+    /// Draws a kerf test strip: cut it, push the spike into the holes, read the kerf of the
+    /// hole it fits snugly.
+    #[command(
+        name = "test-strip",
+        after_help = "Examples:\n  platener test-strip -t 3 -o strip.svg\n  platener test-strip -t 4 --material acrylic -o strip.svg"
+    )]
+    TestStrip(TestStripArgs),
+}
+
+/// The sheet material (sets the default kerf the strip marks with `*`).
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum MaterialArg {
+    /// Acrylic (PMMA), default kerf 0.15 mm.
+    Acrylic,
+    /// Plywood, MDF, solid wood, default kerf 0.2 mm.
+    Wood,
+    /// Cardboard, default kerf 0.3 mm.
+    Cardboard,
+    /// Paper and thin card, default kerf 0.1 mm.
+    Paper,
+}
+
+impl MaterialArg {
+    /// The library's material.
+    pub fn material(self) -> Material {
+        match self {
+            MaterialArg::Acrylic => Material::Acrylic,
+            MaterialArg::Wood => Material::Wood,
+            MaterialArg::Cardboard => Material::Cardboard,
+            MaterialArg::Paper => Material::Paper,
+        }
+    }
+}
+
+/// `platener test-strip`.
+#[derive(Debug, Args)]
+pub struct TestStripArgs {
+    /// Sheet thickness in mm.
+    #[arg(short = 't', long = "thickness")]
+    pub thickness: f64,
+    /// The material.
+    #[arg(long, value_enum, default_value = "wood")]
+    pub material: MaterialArg,
+    /// Where to write the SVG.
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
 }
 
 /// The unit of a model file's numbers.

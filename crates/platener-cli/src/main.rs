@@ -4,6 +4,7 @@
 
 mod args;
 mod inspect;
+mod test_strip;
 
 use std::process::ExitCode;
 
@@ -13,6 +14,7 @@ fn main() -> ExitCode {
     let cli = args::Cli::parse();
     let result = match cli.command {
         args::Command::Inspect(a) => inspect::run(&a),
+        args::Command::TestStrip(a) => test_strip::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -63,6 +63,16 @@ pub struct State {
     pub shapes: Option<Arc<shapes::Shapes>>,
     /// Step `plates`.
     pub plates: Option<Arc<plates::Plates>>,
+    /// Input of the cutting-plan steps: the parts a method made, with the cutting settings.
+    pub parts: Option<Arc<crate::plan::PlanInput>>,
+    /// Step `kerf`.
+    pub kerf: Option<Arc<crate::kerf::CutPaths>>,
+    /// Step `labels`.
+    pub labels: Option<Arc<crate::labels::Labels>>,
+    /// Step `sheets`.
+    pub sheets: Option<Arc<crate::sheets::Nesting>>,
+    /// Step `export`.
+    pub export: Option<Arc<crate::export::Bundle>>,
 }
 
 impl State {
@@ -78,6 +88,11 @@ impl State {
             coplanar: None,
             shapes: None,
             plates: None,
+            parts: None,
+            kerf: None,
+            labels: None,
+            sheets: None,
+            export: None,
         }
     }
 }
@@ -128,6 +143,9 @@ pub enum WarningKind {
     FlippedFaces,
     /// Stored normals disagree with the winding (we use the winding).
     StoredNormals,
+    /// Something the cutting-plan steps had to adapt (a label skipped, a part larger than the
+    /// sheet, a hole closed by the kerf).
+    CuttingPlan,
 }
 
 /// A warning raised by a step: the conversion goes on, the user should know.
@@ -156,6 +174,13 @@ impl StepContext<'_> {
             kind,
             message: message.into(),
         });
+    }
+
+    /// Records the warnings a cutting-plan computation kept with its result.
+    pub fn warn_all(&mut self, warnings: &[crate::plan::PlanWarning]) {
+        for w in warnings {
+            self.warn(WarningKind::CuttingPlan, w.message.clone());
+        }
     }
 
     /// Returns `Err(Cancelled)` when the run was cancelled; call it in long loops.

@@ -1,1 +1,181 @@
 //! Step `export`: SVG and DXF per sheet, PNG previews, report.json and the ZIP.
+//!
+//! Everything the user takes to the laser and everything third-party programs read comes out
+//! of here as one ZIP: plan.json (the contract in `shared/spec/plan-format.md`), report.json,
+//! and per sheet an SVG ([`svg`]), a DXF ([`dxf`]) and a PNG preview ([`png`]). Entries are
+//! sorted by name and stamped 1980-01-01 with mode 0644, and report.json carries no timings
+//! unless asked, so the same input and settings give a byte-identical ZIP.
+
+pub mod dxf;
+pub mod plan_json;
+pub mod png;
+pub mod report;
+mod run;
+pub mod svg;
+
+use std::collections::BTreeMap;
+use std::io::{Cursor, Write};
+use std::sync::Arc;
+
+use serde::Serialize;
+use zip::write::SimpleFileOptions;
+use zip::{CompressionMethod, DateTime, ZipWriter};
+
+use crate::error::Result;
+use crate::kerf::CutPaths;
+use crate::labels::Labels;
+use crate::pipeline::{State, Step, StepContext, need};
+use crate::plan::{Plan, PlanError, PlanInput, PlanWarning};
+use crate::sheets::Nesting;
+use report::{Report, ReportStep};
+pub use run::{CuttingPlan, cutting_plan, cutting_plan_steps};
+use svg::{SvgStyle, sheet_svg};
+
+/// Stroke widths of the PNG previews, mm: visible at 1200 pixels across a 600 mm sheet.
+const PREVIEW_STYLE: SvgStyle = SvgStyle {
+    cut_width: 0.8,
+    engrave_width: 0.4,
+    preview: true,
+};
+
+/// The snapshot of step `export`: the plan, the report, every file, and the ZIP of them.
+#[derive(Debug, Clone, Serialize)]
+pub struct Bundle {
+    /// plan.json as data.
+    pub plan: Plan,
+    /// report.json as data.
+    pub report: Report,
+    /// Every file of the ZIP by name (plan.json, report.json, the sheets' .svg/.dxf/.png).
+    #[serde(skip)]
+    pub files: BTreeMap<String, Vec<u8>>,
+    /// The ZIP.
+    #[serde(skip)]
+    pub zip: Vec<u8>,
+}
+
+/// Writes every file and the ZIP from the snapshots (the `export` step without a pipeline).
+pub fn export(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting: &Nesting) -> Result<Bundle, PlanError> {
+    let stem = plan_json::file_stem(&input.source.name);
+    let stems = plan_json::sheet_stems(&stem, nesting);
+    let plan = plan_json::build_plan(input, cut, labels, nesting, &stems);
+    let groups = plan_json::sheet_groups(input, cut, labels, nesting);
+    let mut files = BTreeMap::new();
+    for ((sheet, stem), g) in nesting.sheets.iter().zip(&stems).zip(&groups) {
+        let svg = sheet_svg(sheet.width, sheet.height, g, &SvgStyle::CUT);
+        files.insert(format!("{stem}.svg"), svg.into_bytes());
+        let name = format!("{stem}.dxf");
+        files.insert(name.clone(), dxf::sheet_dxf(sheet.height, g, &name)?);
+        let name = format!("{stem}.png");
+        let preview = sheet_svg(sheet.width, sheet.height, g, &PREVIEW_STYLE);
+        files.insert(name.clone(), png::render_png(&preview, &name)?);
+    }
+    let report = build_report(input, cut, labels, nesting, &groups, &stems);
+    files.insert("plan.json".into(), plan.to_json()?.into_bytes());
+    let report_json = serde_json::to_string_pretty(&report).map_err(|e| PlanError::write("report.json", e))?;
+    files.insert("report.json".into(), report_json.into_bytes());
+    let zip = zip_files(&files)?;
+    Ok(Bundle {
+        plan,
+        report,
+        files,
+        zip,
+    })
+}
+
+fn build_report(
+    input: &PlanInput,
+    cut: &CutPaths,
+    labels: &Labels,
+    nesting: &Nesting,
+    groups: &[Vec<svg::SvgGroup>],
+    stems: &[String],
+) -> Report {
+    let timed = input.settings.report_timings;
+    let messages = |w: &[PlanWarning]| w.iter().map(|w| w.message.clone()).collect::<Vec<_>>();
+    let mut steps: Vec<ReportStep> = input
+        .earlier_steps
+        .iter()
+        .map(|s| ReportStep {
+            name: s.name.clone(),
+            millis: timed.then_some(s.millis),
+            warnings: s.warnings.clone(),
+        })
+        .collect();
+    for (name, millis, warnings) in [
+        ("kerf", cut.millis, &cut.warnings),
+        ("labels", labels.millis, &labels.warnings),
+        ("sheets", nesting.millis, &nesting.warnings),
+    ] {
+        steps.push(ReportStep {
+            name: name.into(),
+            millis: timed.then_some(millis),
+            warnings: messages(warnings),
+        });
+    }
+    steps.push(ReportStep {
+        name: "export".into(),
+        millis: None,
+        warnings: Vec::new(),
+    });
+    let files: Vec<String> = stems.iter().map(|s| format!("{s}.svg")).collect();
+    let t = report::totals(nesting, &files);
+    let (cut_length, engrave_length) = report::lengths(groups);
+    let s = &input.settings;
+    Report {
+        generator: plan_json::generator(),
+        model: input.source.name.clone(),
+        method: input.method,
+        settings: plan_json::plan_settings(input),
+        steps,
+        warnings: [&cut.warnings, &labels.warnings, &nesting.warnings]
+            .into_iter()
+            .flatten()
+            .cloned()
+            .collect(),
+        part_count: input.parts.len(),
+        sheet_count: nesting.sheets.len(),
+        sheets: t.sheets,
+        density: t.density,
+        parts_area: t.parts_area,
+        material_used_area: t.used_area,
+        sheet_area: t.sheet_area,
+        cut_length,
+        engrave_length,
+        estimated_cutting_seconds: cut_length / s.cut_speed + engrave_length / s.engrave_speed,
+    }
+}
+
+/// A ZIP of `files` in name order, with fixed timestamps and permissions.
+pub fn zip_files(files: &BTreeMap<String, Vec<u8>>) -> Result<Vec<u8>, PlanError> {
+    let options = SimpleFileOptions::default()
+        .compression_method(CompressionMethod::Deflated)
+        .last_modified_time(DateTime::default())
+        .unix_permissions(0o644);
+    let mut zip = ZipWriter::new(Cursor::new(Vec::new()));
+    for (name, bytes) in files {
+        zip.start_file(name.as_str(), options)
+            .map_err(|e| PlanError::write(name, e))?;
+        zip.write_all(bytes).map_err(|e| PlanError::write(name, e))?;
+    }
+    let cursor = zip.finish().map_err(|e| PlanError::write("the ZIP", e))?;
+    Ok(cursor.into_inner())
+}
+
+/// The `export` step: reads `parts`, `kerf`, `labels` and `sheets`, adds the [`Bundle`].
+pub struct ExportStep;
+
+impl Step for ExportStep {
+    fn name(&self) -> &'static str {
+        "export"
+    }
+
+    fn run(&self, state: &mut State, _cx: &mut StepContext<'_>) -> Result<()> {
+        let input = need(&state.parts, "export", "parts")?;
+        let cut = need(&state.kerf, "export", "kerf")?;
+        let labels = need(&state.labels, "export", "labels")?;
+        let nesting = need(&state.sheets, "export", "sheets")?;
+        let bundle = export(input, cut, labels, nesting)?;
+        state.export = Some(Arc::new(bundle));
+        Ok(())
+    }
+}

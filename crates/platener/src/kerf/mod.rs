@@ -1,1 +1,153 @@
 //! Step `kerf`: cut paths offset by half the kerf, and the calibration test strip.
+//!
+//! The laser burns away a line `kerf` wide centred on its path. Cutting along the nominal
+//! outline would make every part `kerf` too small and every hole and slot `kerf` too large, so
+//! joints would rattle. The cut path is therefore the nominal shape grown by `kerf / 2`: the
+//! outline moves out, holes and slots shrink, and the part comes out at nominal size. Corners
+//! stay sharp (miter joins, [`platener_geom::offset`]) so fingers keep their square shoulders.
+//! The kerf itself is measured with the [`strip`] (`platener test-strip`).
+
+pub mod strip;
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use glam::DVec2;
+use platener_geom::{Polygon, Ring, offset};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::error::Result;
+use crate::pipeline::{State, Step, StepContext, need};
+use crate::plan::{Part, PlanError, PlanWarning};
+
+/// One part's cut path.
+#[derive(Debug, Clone, Serialize)]
+pub struct CutPart {
+    /// The part's id.
+    pub id: u32,
+    /// The nominal shape, outer ring counter-clockwise and holes clockwise (plan.json's form).
+    pub nominal: Polygon,
+    /// The cut path: `nominal` offset outward by `kerf / 2`, same orientations.
+    pub cut: Polygon,
+}
+
+/// The snapshot of step `kerf`: one cut path per part, in the input's part order.
+#[derive(Debug, Clone, Serialize)]
+pub struct CutPaths {
+    /// The kerf used, mm.
+    pub kerf: f64,
+    /// Per part, in the order of the input.
+    pub parts: Vec<CutPart>,
+    /// Holes that closed (narrower than the kerf) and other oddities.
+    pub warnings: Vec<PlanWarning>,
+    /// Wall time of the computation, ms.
+    pub millis: f64,
+}
+
+/// The cut path of one nominal polygon: offset outward by `kerf / 2` with miter joins.
+///
+/// Returns the offset polygon; holes narrower than the kerf disappear (the laser would burn
+/// them away entirely). Exact to the 1 µm grid of [`platener_geom::grid`].
+pub fn cut_polygon(nominal: &Polygon, kerf: f64) -> Result<Polygon, platener_geom::GridError> {
+    let grown = offset::offset(std::slice::from_ref(nominal), kerf / 2.0)?;
+    // An outward offset of one connected polygon is one polygon; keep the largest piece should
+    // grid snapping ever split off a sliver.
+    let mut best = grown
+        .into_iter()
+        .max_by(|a, b| a.area().total_cmp(&b.area()))
+        .unwrap_or_default();
+    best.normalize_orientation();
+    Ok(best)
+}
+
+/// `ring` without consecutive repeated points and without a closing copy of its first point
+/// (plan.json's rings are not closed).
+pub fn open_ring(ring: &[DVec2]) -> Ring {
+    let mut out: Ring = Vec::with_capacity(ring.len());
+    for p in ring {
+        if out.last() != Some(p) {
+            out.push(*p);
+        }
+    }
+    while out.len() > 1 && out.first() == out.last() {
+        out.pop();
+    }
+    out
+}
+
+/// Cut paths of all `parts` for `kerf` mm (the `kerf` step without a pipeline).
+pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<CutPaths, PlanError> {
+    let start = Instant::now();
+    let results: Vec<Result<(CutPart, Option<PlanWarning>), PlanError>> = parts
+        .par_iter()
+        .map(|part| {
+            let mut nominal = Polygon {
+                outer: open_ring(&part.polygon.outer),
+                holes: part.polygon.holes.iter().map(|h| open_ring(h)).collect(),
+            };
+            nominal.normalize_orientation();
+            let cut = cut_polygon(&nominal, kerf).map_err(|e| PlanError::Part {
+                part: part.id,
+                message: e.to_string(),
+            })?;
+            if cut.outer.len() < 3 {
+                return Err(PlanError::Part {
+                    part: part.id,
+                    message: "the outline vanished when offset by half the kerf".into(),
+                });
+            }
+            let closed = nominal.holes.len().saturating_sub(cut.holes.len());
+            let warning = (closed > 0).then(|| PlanWarning {
+                step: "kerf",
+                part: Some(part.id),
+                message: format!(
+                    "{closed} hole(s) of part {} are narrower than the kerf ({kerf} mm) and are not cut",
+                    part.id
+                ),
+            });
+            Ok((
+                CutPart {
+                    id: part.id,
+                    nominal,
+                    cut,
+                },
+                warning,
+            ))
+        })
+        .collect();
+    let mut out = CutPaths {
+        kerf,
+        parts: Vec::with_capacity(parts.len()),
+        warnings: Vec::new(),
+        millis: 0.0,
+    };
+    for r in results {
+        let (part, warning) = r?;
+        out.parts.push(part);
+        out.warnings.extend(warning);
+    }
+    out.millis = start.elapsed().as_secs_f64() * 1e3;
+    Ok(out)
+}
+
+/// The `kerf` step: reads the `parts` snapshot, adds [`CutPaths`].
+pub struct KerfStep;
+
+impl Step for KerfStep {
+    fn name(&self) -> &'static str {
+        "kerf"
+    }
+
+    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
+        let input = need(&state.parts, "kerf", "parts")?;
+        input.validate()?;
+        let cut = cut_paths(&input.parts, input.settings.kerf())?;
+        cx.warn_all(&cut.warnings);
+        state.kerf = Some(Arc::new(cut));
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests;

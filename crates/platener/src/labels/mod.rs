@@ -1,1 +1,241 @@
 //! Step `labels`: part and connection numbers engraved as single-stroke text.
+//!
+//! Assembly aid (the thesis' AssemblyInstructions): every part carries its number, large, at
+//! the point deepest inside it; every jointed edge carries `#` and its connection number, small,
+//! next to the edge on the inside of the part, on both parts of the joint, so the user finds
+//! which edge meets which. A label is shrunk (down to [`MIN_SIZE`]) or moved until its box,
+//! grown by a clearance, lies inside the part minus its holes and clear of marks and other
+//! labels; when nothing fits it is skipped with a warning. Labels are engraved (blue) with the
+//! built-in stroke [`font`], so no font is needed on the user's machine.
+
+pub mod font;
+mod place;
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use glam::DVec2;
+use rayon::prelude::*;
+use serde::Serialize;
+
+pub use place::{MIN_SIZE, TextBox, clearance};
+use place::{Room, up_of};
+
+use crate::error::Result;
+use crate::pipeline::{State, Step, StepContext, need};
+use crate::plan::{EdgeLabel, LabelMode, Mark, MarkKind, Part, PlanWarning};
+
+/// Sizes tried for part numbers, mm, largest first.
+const PART_SIZES: [f64; 8] = [8.0, 6.0, 5.0, 4.0, 3.0, 2.5, 2.0, MIN_SIZE];
+/// Sizes tried for connection numbers, mm, largest first.
+const EDGE_SIZES: [f64; 5] = [4.0, 3.0, 2.5, 2.0, MIN_SIZE];
+/// Positions along an edge tried for its label, as fractions of the edge, best first.
+const ALONG: [f64; 5] = [0.5, 0.35, 0.65, 0.2, 0.8];
+/// Step (mm) by which an edge label moves away from its edge when it does not fit.
+const INWARD_STEP: f64 = 0.5;
+
+/// One part's labels.
+#[derive(Debug, Clone, Serialize)]
+pub struct PartLabels {
+    /// The part's id.
+    pub id: u32,
+    /// The placed texts (part number first).
+    #[serde(skip)]
+    pub boxes: Vec<TextBox>,
+    /// Their strokes as `label` marks, in the part's frame.
+    pub marks: Vec<Mark>,
+}
+
+/// The snapshot of step `labels`: per part (input order), the label marks.
+#[derive(Debug, Clone, Serialize)]
+pub struct Labels {
+    /// What was asked for.
+    pub mode: LabelMode,
+    /// Per part, in the input's order.
+    pub parts: Vec<PartLabels>,
+    /// Labels that found no room.
+    pub warnings: Vec<PlanWarning>,
+    /// Wall time of the computation, ms.
+    pub millis: f64,
+}
+
+/// The text engraved next to a jointed edge.
+pub fn connection_text(connection: u32) -> String {
+    format!("#{connection}")
+}
+
+/// Labels all `parts` (the `labels` step without a pipeline).
+pub fn label_parts(parts: &[Part], mode: LabelMode, kerf: f64) -> Labels {
+    let start = Instant::now();
+    let done: Vec<(PartLabels, Vec<PlanWarning>)> = parts.par_iter().map(|p| label_part(p, mode, kerf)).collect();
+    let mut labels = Labels {
+        mode,
+        parts: Vec::with_capacity(parts.len()),
+        warnings: Vec::new(),
+        millis: 0.0,
+    };
+    for (part, warnings) in done {
+        labels.parts.push(part);
+        labels.warnings.extend(warnings);
+    }
+    labels.millis = start.elapsed().as_secs_f64() * 1e3;
+    labels
+}
+
+/// The labels of one part cut with `kerf` mm.
+pub fn label_part(part: &Part, mode: LabelMode, kerf: f64) -> (PartLabels, Vec<PlanWarning>) {
+    let mut polygon = part.polygon.clone();
+    polygon.normalize_orientation();
+    let mark_paths: Vec<Vec<DVec2>> = part.marks.iter().map(|m| m.path.clone()).collect();
+    let mut room = Room::new(&polygon, &mark_paths, kerf);
+    let mut boxes = Vec::new();
+    let mut warnings = Vec::new();
+    let mut warn = |message: String| {
+        warnings.push(PlanWarning {
+            step: "labels",
+            part: Some(part.id),
+            message,
+        })
+    };
+    if mode != LabelMode::None {
+        match place_number(&room, &polygon, part.id) {
+            Some(b) => {
+                room.take(&b);
+                boxes.push(b);
+            }
+            None => warn(format!(
+                "part {} has no room for its number; it is not engraved",
+                part.id
+            )),
+        }
+    }
+    if mode == LabelMode::Edges {
+        for edge in &part.edge_labels {
+            match place_edge(&room, edge, part.thickness) {
+                Some(b) => {
+                    room.take(&b);
+                    boxes.push(b);
+                }
+                None => warn(format!(
+                    "part {}: no room for connection {} next to its edge; it is not engraved",
+                    part.id,
+                    connection_text(edge.connection)
+                )),
+            }
+        }
+    }
+    let marks = boxes
+        .iter()
+        .flat_map(|b| font::place_text(&b.text, b.size, b.origin, b.direction))
+        .map(|path| Mark {
+            kind: MarkKind::Label,
+            path,
+        })
+        .collect();
+    (
+        PartLabels {
+            id: part.id,
+            boxes,
+            marks,
+        },
+        warnings,
+    )
+}
+
+/// A baseline direction that reads left to right on screen (or upwards when vertical).
+fn readable(d: DVec2) -> DVec2 {
+    if d.x > 1e-9 || (d.x.abs() <= 1e-9 && d.y < 0.0) {
+        d
+    } else {
+        -d
+    }
+}
+
+/// The part number at the deepest points, horizontal, upright or along the longest edge.
+fn place_number(room: &Room<'_>, polygon: &platener_geom::Polygon, id: u32) -> Option<TextBox> {
+    let text = id.to_string();
+    let longest = {
+        let r = &polygon.outer;
+        (0..r.len())
+            .map(|i| r[(i + 1) % r.len()] - r[i])
+            .max_by(|a, b| a.length_squared().total_cmp(&b.length_squared()))
+            .and_then(|d| d.try_normalize())
+            .map_or(DVec2::X, readable)
+    };
+    let directions = [DVec2::X, DVec2::new(0.0, -1.0), longest];
+    let deep = room.deep_points(8);
+    let depth = deep.first().map_or(0.0, |d| d.1);
+    for size in PART_SIZES.into_iter().filter(|s| *s <= 2.0 * depth) {
+        for (center, _) in &deep {
+            for d in directions {
+                let b = TextBox::centered(&text, size, *center, d);
+                if room.fits(&b) {
+                    return Some(b);
+                }
+            }
+        }
+    }
+    None
+}
+
+/// A connection number next to `edge`, inside the part, as large and as close as fits.
+fn place_edge(room: &Room<'_>, edge: &EdgeLabel, thickness: f64) -> Option<TextBox> {
+    let [a, b] = edge.segment;
+    let len = a.distance(b);
+    let along = (b - a).try_normalize()?;
+    let dir = readable(along);
+    // Inside is the side where points beyond any finger (two thicknesses in) lie in the part.
+    let normal = DVec2::new(-along.y, along.x);
+    let probe = 2.0 * thickness + 1.0;
+    let inside = |n: DVec2| {
+        ALONG
+            .iter()
+            .filter(|t| room.contains(a + (b - a) * **t + n * probe))
+            .count()
+    };
+    let inward = if inside(-normal) > inside(normal) {
+        -normal
+    } else {
+        normal
+    };
+    let text = connection_text(edge.connection);
+    let max_size = 0.8 * len / font::text_width(&text, 1.0);
+    let max_inward = 2.0 * thickness + 4.0;
+    for size in EDGE_SIZES.into_iter().filter(|s| *s <= max_size) {
+        // The box's extent across the edge: its height when reading along the edge.
+        let half_across =
+            size / 2.0 * up_of(dir).dot(inward).abs() + font::text_width(&text, size) / 2.0 * dir.dot(inward).abs();
+        for t in ALONG {
+            let mut gap = room.clearance(size);
+            while gap <= max_inward {
+                let center = a + (b - a) * t + inward * (gap + half_across);
+                let candidate = TextBox::centered(&text, size, center, dir);
+                if room.fits(&candidate) {
+                    return Some(candidate);
+                }
+                gap += INWARD_STEP;
+            }
+        }
+    }
+    None
+}
+
+/// The `labels` step: reads the `parts` snapshot, adds [`Labels`].
+pub struct LabelsStep;
+
+impl Step for LabelsStep {
+    fn name(&self) -> &'static str {
+        "labels"
+    }
+
+    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
+        let input = need(&state.parts, "labels", "parts")?;
+        let labels = label_parts(&input.parts, input.settings.labels, input.settings.kerf());
+        cx.warn_all(&labels.warnings);
+        state.labels = Some(Arc::new(labels));
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,1 +1,137 @@
 //! The plan: parts with their outlines and transforms, joints and sheets, as in plan.json.
+//!
+//! [`PlanInput`] is what a method (plate or stacked) hands to the cutting-plan steps: its
+//! [`Part`]s and [`Joint`]s, the model they came from and the [`CutSettings`]. It is the
+//! pipeline's `parts` snapshot. [`format`] is plan.json itself, written by the `export` step.
+
+mod error;
+pub mod format;
+mod part;
+pub mod samples;
+mod settings;
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use glam::DVec3;
+use serde::Serialize;
+
+pub use error::PlanError;
+pub use format::{Method, Plan, PlanJoint, PlanPart, PlanSettings, PlanSheet, PlanSource, SheetPlacement};
+pub use part::{EdgeLabel, Joint, JointKind, Mark, MarkKind, Part, PartKind};
+pub use settings::{CutSettings, LabelMode, MAX_KERF, Material, SettingValue, SheetSize};
+
+/// The model the parts were made from, for plan.json's `source`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SourceInfo {
+    /// The model's name; also the stem of the sheet files.
+    pub name: String,
+    /// Its triangle count.
+    pub triangles: u64,
+    /// Smallest corner of its bounding box, mm.
+    pub bbox_min: DVec3,
+    /// Largest corner of its bounding box, mm.
+    pub bbox_max: DVec3,
+}
+
+/// A step that ran before the cutting plan (read, plates…), for report.json.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StepSummary {
+    /// The step's name.
+    pub name: String,
+    /// Wall time in milliseconds.
+    pub millis: f64,
+    /// Its warnings, as messages.
+    pub warnings: Vec<String>,
+}
+
+impl From<&crate::pipeline::StepRecord> for StepSummary {
+    fn from(r: &crate::pipeline::StepRecord) -> Self {
+        Self {
+            name: r.name.to_string(),
+            millis: r.millis,
+            warnings: r.warnings.iter().map(|w| w.message.clone()).collect(),
+        }
+    }
+}
+
+/// A warning of a cutting-plan step: the plan is still made, the user should know.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PlanWarning {
+    /// The step that raised it.
+    pub step: &'static str,
+    /// The part it concerns, if one.
+    pub part: Option<u32>,
+    /// What happened and what to do.
+    pub message: String,
+}
+
+/// Everything the cutting-plan steps start from (the pipeline's `parts` snapshot).
+#[derive(Debug, Clone)]
+pub struct PlanInput {
+    /// The model the parts come from.
+    pub source: SourceInfo,
+    /// The method that made them.
+    pub method: Method,
+    /// The parts, any order; ids unique.
+    pub parts: Vec<Part>,
+    /// The connections between parts.
+    pub joints: Vec<Joint>,
+    /// How to cut, label, nest and export them.
+    pub settings: CutSettings,
+    /// Method settings recorded in plan.json's `settings` (joint kind, units…).
+    pub method_settings: BTreeMap<String, SettingValue>,
+    /// Steps that ran before (for report.json's `steps`).
+    pub earlier_steps: Vec<StepSummary>,
+}
+
+impl PlanInput {
+    /// An input with default settings and no earlier steps.
+    pub fn new(source: SourceInfo, method: Method, parts: Vec<Part>, joints: Vec<Joint>) -> Self {
+        Self {
+            source,
+            method,
+            parts,
+            joints,
+            settings: CutSettings::default(),
+            method_settings: BTreeMap::new(),
+            earlier_steps: Vec::new(),
+        }
+    }
+
+    /// Checks the settings and that every part has a unique id, a positive thickness and
+    /// finite coordinates, so later steps can trust them.
+    pub fn validate(&self) -> Result<(), PlanError> {
+        self.settings.validate()?;
+        let mut ids = BTreeSet::new();
+        for part in &self.parts {
+            let bad = |message: String| Err(PlanError::Part { part: part.id, message });
+            if part.id == 0 || !ids.insert(part.id) {
+                return bad("ids must be unique and start at 1".into());
+            }
+            if !(part.thickness.is_finite() && part.thickness > 0.0) {
+                return bad(format!("thickness {} is not a positive number of mm", part.thickness));
+            }
+            let p = &part.polygon;
+            let finite = std::iter::once(&p.outer)
+                .chain(&p.holes)
+                .flatten()
+                .chain(part.marks.iter().flat_map(|m| &m.path))
+                .all(|v| v.is_finite());
+            if !finite {
+                return bad("a coordinate is not a finite number".into());
+            }
+            if p.outer.len() < 3 || p.area() <= 0.0 {
+                return bad("the outline has no area".into());
+            }
+        }
+        Ok(())
+    }
+
+    /// The distinct part thicknesses, ascending.
+    pub fn thicknesses(&self) -> Vec<f64> {
+        let mut t: Vec<f64> = self.parts.iter().map(|p| p.thickness).collect();
+        t.sort_by(f64::total_cmp);
+        t.dedup();
+        t
+    }
+}

@@ -59,8 +59,19 @@ fn closed_box_gives_exactly_its_six_walls() {
     for (got, want) in boxes.iter().zip(want) {
         assert!(near(got.0, want.0) && near(got.1, want.1), "{got:?} vs {want:?}");
     }
-    // The transform is rigid and maps every outline corner onto the wall's faces.
+    // The transform is rigid, and the outline's corners at z = 0 and z = t are exactly the
+    // eight corners of the wall's box.
     for p in &plates.plates {
+        let (lo, hi) = box_of(p);
+        for c in &p.polygon.outer {
+            for z in [0.0, p.thickness] {
+                let q = p.frame.to_model(DVec3::new(c.x, c.y, z));
+                for axis in 0..3 {
+                    let on_face = (q[axis] - lo[axis]).abs() < 1e-9 || (q[axis] - hi[axis]).abs() < 1e-9;
+                    assert!(on_face, "corner {q} is not a corner of {lo}..{hi}");
+                }
+            }
+        }
         let m = p.frame.matrix();
         let r = DMat3::from_cols_array(&[
             m[0][0], m[1][0], m[2][0], m[0][1], m[1][1], m[2][1], m[0][2], m[1][2], m[2][2],

@@ -1,1 +1,295 @@
-//! Step `sheets`: nesting parts onto sheets.
+//! Step `sheets`: nesting parts onto sheets (the thesis' ShapeLayouter).
+//!
+//! Parts are grouped by thickness, each group nested on its own sheets. Collision detection is
+//! jagua-rs's engine; the placement heuristic is ours: small parts first go into the holes of
+//! large ones ([`holes`]), then the rest fill sheets left-first ([`blf`]) in several part
+//! orders, keeping the best ([`search`]). Every part lands on exactly one sheet: a part larger
+//! than the sheet gets a sheet of its own, sized to it, with a warning. The layout depends only
+//! on the parts, the settings and the seed.
+
+mod blf;
+mod holes;
+mod search;
+mod shape;
+#[cfg(test)]
+mod tests;
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use glam::DVec2;
+use serde::Serialize;
+
+use crate::error::Result;
+use crate::kerf::CutPaths;
+use crate::pipeline::{State, Step, StepContext, need};
+use crate::plan::{CutSettings, Part, PlanError, PlanWarning, SheetPlacement, SheetSize};
+use holes::Child;
+use search::{best_layout, fit_height, fits_empty, sheet_region};
+use shape::{NestShape, nest_shape, rotate};
+
+/// One sheet of material.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Sheet {
+    /// 0-based index over all sheets (thinnest material first).
+    pub index: u32,
+    /// Material thickness, mm.
+    pub thickness: f64,
+    /// Width, mm (SVG x).
+    pub width: f64,
+    /// Height, mm (SVG y).
+    pub height: f64,
+    /// Ids of the parts on it, ascending.
+    pub parts: Vec<u32>,
+    /// Nominal area of those parts, mm².
+    pub parts_area: f64,
+    /// Used area: the sheet's height times the length up to the rightmost cut plus the margin
+    /// (the rest is one offcut strip along the right-hand side), mm².
+    pub used_area: f64,
+    /// `parts_area / used_area`.
+    pub density: f64,
+    /// Made for a part larger than the sheet size asked for.
+    pub oversize: bool,
+}
+
+/// The snapshot of step `sheets`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Nesting {
+    /// The sheets, by index.
+    pub sheets: Vec<Sheet>,
+    /// Where each part sits, in the input's part order.
+    pub placements: Vec<SheetPlacement>,
+    /// Oversized parts and the like.
+    pub warnings: Vec<PlanWarning>,
+    /// Wall time of the computation, ms.
+    pub millis: f64,
+}
+
+/// Nests `parts` (with cut paths `cut`, same order) onto sheets (the `sheets` step without a
+/// pipeline). `cancelled` is polled between parts.
+pub fn nest(
+    parts: &[Part],
+    cut: &CutPaths,
+    settings: &CutSettings,
+    cancelled: &(dyn Fn() -> bool + Sync),
+) -> Result<Nesting, PlanError> {
+    settings.validate()?;
+    let start = Instant::now();
+    let spacing = settings.spacing;
+    let shapes: Vec<NestShape> = parts
+        .iter()
+        .zip(&cut.parts)
+        .map(|(part, c)| {
+            nest_shape(&c.cut, part.polygon.area(), spacing, settings.fine_rotations).ok_or_else(|| PlanError::Part {
+                part: part.id,
+                message: "its cut path cannot be nested (no area after growing by the spacing)".into(),
+            })
+        })
+        .collect::<Result<_, _>>()?;
+    let mut thicknesses: Vec<f64> = parts.iter().map(|p| p.thickness).collect();
+    thicknesses.sort_by(f64::total_cmp);
+    thicknesses.dedup();
+    let mut nesting = Nesting {
+        sheets: Vec::new(),
+        placements: vec![
+            SheetPlacement {
+                index: 0,
+                x: 0.0,
+                y: 0.0,
+                rotation: 0.0
+            };
+            parts.len()
+        ],
+        warnings: Vec::new(),
+        millis: 0.0,
+    };
+    // Placement of each shape: (sheet slot in this group, angle, translation).
+    for thickness in thicknesses {
+        let group: Vec<usize> = (0..parts.len()).filter(|&i| parts[i].thickness == thickness).collect();
+        let by_area = search::order(&shapes, &group, 0, 0);
+        let hosted = if settings.fill_holes {
+            holes::fill_holes(&shapes, &by_area, spacing, cancelled)
+        } else {
+            vec![None; shapes.len()]
+        };
+        let top: Vec<usize> = group.iter().copied().filter(|&i| hosted[i].is_none()).collect();
+        let (width, height) = match settings.sheet {
+            SheetSize::Fixed { width, height } => (width, height),
+            SheetSize::Fit => {
+                let h = round_up(fit_height(&shapes, &top, settings.margin, spacing, cancelled));
+                let long: f64 = top
+                    .iter()
+                    .map(|&i| shapes[i].templates[0].size.max_element())
+                    .sum::<f64>()
+                    + 2.0 * settings.margin;
+                (long, h)
+            }
+        };
+        let region = sheet_region(width, height, settings.margin, spacing);
+        let (fitting, oversize): (Vec<usize>, Vec<usize>) =
+            top.iter().partition(|&&i| fits_empty(&shapes[i], region.1 - region.0));
+        let layout =
+            best_layout(&shapes, &fitting, region, settings.nest_tries, settings.seed, cancelled).ok_or_else(|| {
+                if cancelled() {
+                    PlanError::Cancelled { step: "sheets" }
+                } else {
+                    PlanError::Setting {
+                        name: "sheet",
+                        message: format!("{width} × {height} mm leaves no room inside the margins"),
+                    }
+                }
+            })?;
+        let mut placed: Vec<Option<(usize, f64, DVec2)>> = vec![None; shapes.len()];
+        let first_sheet = nesting.sheets.len();
+        for (s, sheet) in layout.sheets.iter().enumerate() {
+            for p in sheet {
+                let (angle, t) = shapes[p.key].templates[p.template].placement(p.pos);
+                placed[p.key] = Some((first_sheet + s, angle, t));
+            }
+            nesting.sheets.push(empty_sheet(thickness, width, height, false));
+        }
+        for &i in &oversize {
+            let t = shapes[i]
+                .templates
+                .iter()
+                .min_by(|a, b| (a.size.x * a.size.y).total_cmp(&(b.size.x * b.size.y)))
+                .ok_or_else(|| PlanError::Part {
+                    part: parts[i].id,
+                    message: "has no orientation to nest; please report this".into(),
+                })?;
+            let frame = 2.0 * settings.margin - spacing;
+            let (w, h) = (round_up(t.size.x + frame), round_up(t.size.y + frame));
+            let (angle, tr) = t.placement(DVec2::splat(settings.margin - spacing / 2.0));
+            placed[i] = Some((nesting.sheets.len(), angle, tr));
+            nesting.warnings.push(PlanWarning {
+                step: "sheets",
+                part: Some(parts[i].id),
+                message: format!(
+                    "part {} does not fit a {width:.0} × {height:.0} mm sheet; it gets a sheet of its own, {w:.1} × {h:.1} mm",
+                    parts[i].id
+                ),
+            });
+            nesting.sheets.push(empty_sheet(thickness, w, h, true));
+        }
+        resolve_children(&mut placed, &hosted, &group);
+        for &i in &group {
+            let (sheet, angle, t) = placed[i].ok_or_else(|| PlanError::Part {
+                part: parts[i].id,
+                message: "was not placed; please report this".into(),
+            })?;
+            nesting.placements[i] = SheetPlacement {
+                index: sheet as u32,
+                x: t.x,
+                y: t.y,
+                rotation: normalized_degrees(angle),
+            };
+        }
+    }
+    finish_sheets(&mut nesting, parts, &shapes, settings);
+    nesting.millis = start.elapsed().as_secs_f64() * 1e3;
+    Ok(nesting)
+}
+
+fn empty_sheet(thickness: f64, width: f64, height: f64, oversize: bool) -> Sheet {
+    Sheet {
+        index: 0,
+        thickness,
+        width,
+        height,
+        parts: Vec::new(),
+        parts_area: 0.0,
+        used_area: 0.0,
+        density: 0.0,
+        oversize,
+    }
+}
+
+/// Places hosted parts through their hosts (hosts may be hosted themselves).
+fn resolve_children(placed: &mut [Option<(usize, f64, DVec2)>], hosted: &[Option<Child>], group: &[usize]) {
+    // Each pass resolves one more level of nesting; depth is at most the group size.
+    for _ in 0..group.len() {
+        let mut progress = false;
+        for &i in group {
+            if placed[i].is_some() {
+                continue;
+            }
+            if let Some(child) = &hosted[i]
+                && let Some((sheet, a, t)) = placed[child.host]
+            {
+                let (angle, tr) = holes::compose((a, t), child);
+                placed[i] = Some((sheet, angle, tr));
+                progress = true;
+            }
+        }
+        if !progress {
+            break;
+        }
+    }
+}
+
+/// Sheet sizes we choose are rounded up to 0.1 mm, so the numbers in plan.json and in the
+/// SVG's `width="…mm"` are the same short decimals.
+fn round_up(mm: f64) -> f64 {
+    (mm * 10.0 - 1e-9).ceil() / 10.0
+}
+
+/// Degrees in [0, 360), with values a rounding away from 360 written as 0.
+fn normalized_degrees(angle: f64) -> f64 {
+    let d = angle.to_degrees().rem_euclid(360.0);
+    if d > 360.0 - 1e-9 { 0.0 } else { d }
+}
+
+/// Indexes sheets, lists their parts, measures used length and density. In `fit` mode the
+/// sheet is trimmed to its used length.
+fn finish_sheets(nesting: &mut Nesting, parts: &[Part], shapes: &[NestShape], settings: &CutSettings) {
+    let mut right = vec![0.0f64; nesting.sheets.len()];
+    for (i, p) in nesting.placements.iter().enumerate() {
+        let s = p.index as usize;
+        nesting.sheets[s].parts.push(parts[i].id);
+        nesting.sheets[s].parts_area += shapes[i].area;
+        let (angle, t) = (p.rotation.to_radians(), DVec2::new(p.x, p.y));
+        let far = shapes[i]
+            .cut
+            .outer
+            .iter()
+            .map(|q| rotate(*q, angle).x + t.x)
+            .fold(0.0, f64::max);
+        right[s] = right[s].max(far);
+    }
+    for (k, sheet) in nesting.sheets.iter_mut().enumerate() {
+        sheet.index = k as u32;
+        sheet.parts.sort_unstable();
+        let used = (right[k] + settings.margin).min(sheet.width);
+        if settings.sheet == SheetSize::Fit && !sheet.oversize {
+            sheet.width = round_up(used);
+        }
+        sheet.used_area = used * sheet.height;
+        sheet.density = if sheet.used_area > 0.0 {
+            sheet.parts_area / sheet.used_area
+        } else {
+            0.0
+        };
+    }
+}
+
+/// The `sheets` step: reads `parts` and `kerf`, adds [`Nesting`].
+pub struct SheetsStep;
+
+impl Step for SheetsStep {
+    fn name(&self) -> &'static str {
+        "sheets"
+    }
+
+    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
+        let input = need(&state.parts, "sheets", "parts")?;
+        let cut = need(&state.kerf, "sheets", "kerf")?;
+        let nesting = {
+            let cx: &StepContext<'_> = cx;
+            let cancelled = || cx.check_cancel().is_err();
+            nest(&input.parts, cut, &input.settings, &cancelled)?
+        };
+        cx.warn_all(&nesting.warnings);
+        state.sheets = Some(Arc::new(nesting));
+        Ok(())
+    }
+}

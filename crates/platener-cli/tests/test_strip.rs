@@ -1,0 +1,90 @@
+//! `platener test-strip` driven through the real binary: the SVG it writes is measured.
+
+use assert_cmd::Command;
+
+fn platener() -> Command {
+    Command::cargo_bin("platener").expect("binary built")
+}
+
+/// Widths are written with 4 decimals: exact to 1e-4 mm.
+const WIDTH_TOL: f64 = 1e-4;
+
+/// The points of the red closed paths of `<g id="{group}">`, in file order.
+fn red_rings(svg: &str, group: &str) -> Vec<Vec<(f64, f64)>> {
+    let start = svg.find(&format!("<g id=\"{group}\">")).expect("group");
+    let end = start + svg[start..].find("</g>").expect("end of group");
+    svg[start..end]
+        .split("<path ")
+        .skip(1)
+        .filter(|p| p.contains("stroke=\"#ff0000\""))
+        .map(|p| {
+            let d = &p[p.find("d=\"").expect("d") + 3..];
+            let d = &d[..d.find('"').expect("end of d")];
+            let nums: Vec<f64> = d
+                .split_whitespace()
+                .filter(|t| *t != "Z")
+                .map(|t| t.trim_start_matches(['M', 'L']).parse().expect("number"))
+                .collect();
+            nums.chunks(2).map(|c| (c[0], c[1])).collect()
+        })
+        .collect()
+}
+
+fn x_extent(ring: &[(f64, f64)]) -> (f64, f64) {
+    let lo = ring.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
+    let hi = ring.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+    (lo, hi)
+}
+
+#[test]
+fn the_strip_is_written_at_true_size_with_exact_hole_widths() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("strip.svg");
+    let out = platener()
+        .args(["test-strip", "-t", "3", "--material", "wood", "-o"])
+        .arg(&path)
+        .output()
+        .expect("runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stdout = String::from_utf8(out.stdout).expect("utf-8");
+    assert!(stdout.contains("   9     5.600    0.200  * wood default"), "{stdout}");
+    let svg = std::fs::read_to_string(&path).expect("written");
+    assert!(svg.contains("mm\" height=\"") && svg.contains("viewBox=\"0 0 "));
+    let strip = red_rings(&svg, "part-1");
+    let mut holes: Vec<(f64, f64)> = strip[1..].iter().map(|r| x_extent(r)).collect();
+    holes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert_eq!(holes.len(), 17);
+    for (i, (lo, hi)) in holes.iter().enumerate() {
+        // The documented mapping: hole n stands for kerf (n − 1) × 0.025 mm, width 6 − 2·kerf.
+        let kerf = 0.025 * i as f64;
+        assert!(
+            ((hi - lo) - (6.0 - 2.0 * kerf)).abs() < WIDTH_TOL,
+            "hole {}: {}",
+            i + 1,
+            hi - lo
+        );
+    }
+    let spike = &red_rings(&svg, "part-2")[0];
+    let max_y = spike.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
+    let tip: Vec<f64> = spike
+        .iter()
+        .filter(|p| (p.1 - max_y).abs() < WIDTH_TOL)
+        .map(|p| p.0)
+        .collect();
+    assert_eq!(tip.len(), 2);
+    assert!(((tip[0] - tip[1]).abs() - 6.0).abs() < WIDTH_TOL);
+}
+
+#[test]
+fn a_bad_thickness_is_refused() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = platener()
+        .args(["test-strip", "-t", "0", "-o"])
+        .arg(dir.path().join("s.svg"))
+        .output()
+        .expect("runs");
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("thickness"));
+    let usage = platener().args(["test-strip", "-o", "x.svg"]).output().expect("runs");
+    assert_eq!(usage.status.code(), Some(2), "-t is required");
+}

@@ -1,0 +1,98 @@
+//! Nesting: density and time on part sets made in code (rectangles of mixed sizes, L-shapes,
+//! plates with finger notches, plates with holes, and a mix), on 600 × 400 mm sheets and on a
+//! fitted sheet. Densities (parts' area / used sheet area) are printed before timing.
+//!
+//! Run: `cargo bench -p platener --bench nesting`. Figures go in docs/cutting-plans.md.
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use platener::kerf::cut_paths;
+use platener::plan::samples::{fingered, l_shape, mixed, rectangle, window};
+use platener::plan::{CutSettings, Part, SheetSize};
+use platener::sheets::{Nesting, nest};
+
+/// A simple deterministic sequence in [0, 1) for sizes.
+fn units(seed: u64) -> impl FnMut() -> f64 {
+    let mut s = seed;
+    move || {
+        s = s
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+fn part_sets() -> Vec<(&'static str, Vec<Part>)> {
+    let mut u = units(1);
+    let rectangles = (1..=40)
+        .map(|id| rectangle(id, 20.0 + 160.0 * u(), 15.0 + 110.0 * u()))
+        .collect();
+    let ls = (1..=30)
+        .map(|id| l_shape(id, 40.0 + 120.0 * u(), 40.0 + 100.0 * u(), 12.0 + 10.0 * u()))
+        .collect();
+    let fingers = (1..=30)
+        .map(|id| fingered(id, 60.0 + 140.0 * u(), 40.0 + 80.0 * u(), 2 + id % 4, 3.0))
+        .collect();
+    let holes = (1..=24)
+        .map(|id| {
+            if id % 2 == 0 {
+                window(id, 80.0 + 120.0 * u(), 80.0 + 100.0 * u(), 15.0)
+            } else {
+                rectangle(id, 20.0 + 40.0 * u(), 20.0 + 40.0 * u())
+            }
+        })
+        .collect();
+    vec![
+        ("rectangles-40", rectangles),
+        ("l-shapes-30", ls),
+        ("fingered-30", fingers),
+        ("holes-24", holes),
+        ("mixed-60", mixed(60, 3)),
+        ("mixed-150", mixed(150, 5)),
+    ]
+}
+
+fn run(parts: &[Part], settings: &CutSettings) -> Nesting {
+    let cut = cut_paths(parts, settings.kerf()).expect("cut paths");
+    nest(parts, &cut, settings, &|| false).expect("nests")
+}
+
+/// Overall density and the density of every sheet but the last (full sheets).
+fn summary(n: &Nesting) -> String {
+    let parts: f64 = n.sheets.iter().map(|s| s.parts_area).sum();
+    let used: f64 = n.sheets.iter().map(|s| s.used_area).sum();
+    let per: Vec<String> = n.sheets.iter().map(|s| format!("{:.1}", 100.0 * s.density)).collect();
+    format!(
+        "{} sheets, density {:.1} % (per sheet {}), {:.0} ms",
+        n.sheets.len(),
+        100.0 * parts / used,
+        per.join(" / "),
+        n.millis
+    )
+}
+
+fn bench(c: &mut Criterion) {
+    let mut group = c.benchmark_group("nesting");
+    group.sample_size(10);
+    for (name, parts) in part_sets() {
+        for (label, sheet, tries) in [
+            ("600x400-1try", SheetSize::default(), 1),
+            ("600x400-8tries", SheetSize::default(), 8),
+            ("fit-8tries", SheetSize::Fit, 8),
+        ] {
+            let settings = CutSettings {
+                sheet,
+                nest_tries: tries,
+                labels: platener::plan::LabelMode::None,
+                ..CutSettings::default()
+            };
+            println!("nesting {name} {label}: {}", summary(&run(&parts, &settings)));
+            group.bench_with_input(BenchmarkId::new(name, label), &parts, |b, parts| {
+                b.iter(|| run(parts, &settings));
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,136 @@
+//! DXF sheets for laser software that prefers DXF: R2000, `$INSUNITS` = 4 (mm), closed
+//! LWPOLYLINEs on layer CUT (red), engraving as open LWPOLYLINEs on layer ENGRAVE (blue).
+//!
+//! DXF's y axis points up, the SVG's down: y is written as `height − y`, so the sheet looks the
+//! same in both (this flips the drawing's coordinates, not the parts: both views show the sheet
+//! as seen from above). The dxf crate stamps files with the current time and random GUIDs; they
+//! are pinned to its epoch and the nil GUID so the same sheet gives the same bytes.
+
+use chrono::{Local, TimeZone, Utc};
+use dxf::entities::{Entity, EntityType, LwPolyline};
+use dxf::enums::{AcadVersion, Units};
+use dxf::tables::Layer;
+use dxf::{Color, Drawing, LwPolylineVertex};
+use glam::DVec2;
+
+use super::svg::SvgGroup;
+use crate::plan::PlanError;
+
+/// Layer of cut paths.
+pub const CUT_LAYER: &str = "CUT";
+/// Layer of engraving.
+pub const ENGRAVE_LAYER: &str = "ENGRAVE";
+/// AutoCAD colour index of red.
+const RED: u8 = 1;
+/// AutoCAD colour index of blue.
+const BLUE: u8 = 5;
+
+fn pin_header(drawing: &mut Drawing) {
+    let h = &mut drawing.header;
+    h.version = AcadVersion::R2000;
+    h.default_drawing_units = Units::Millimeters;
+    // The dxf crate's own epoch (1900-01-01 local): written as exactly 2415021.0 in any zone.
+    if let Some(epoch) = Local.with_ymd_and_hms(1900, 1, 1, 0, 0, 0).earliest() {
+        h.creation_date = epoch;
+        h.update_date = epoch;
+    }
+    if let Some(epoch) = Utc.with_ymd_and_hms(1900, 1, 1, 0, 0, 0).earliest() {
+        h.creation_date_universal = epoch;
+        h.update_date_universal = epoch;
+    }
+    h.fingerprint_guid = uuid::Uuid::nil();
+    h.version_guid = uuid::Uuid::nil();
+}
+
+fn polyline(points: &[DVec2], closed: bool, layer: &str, height: f64) -> Entity {
+    let mut pl = LwPolyline::default();
+    pl.set_is_closed(closed);
+    pl.vertices = points
+        .iter()
+        .map(|p| LwPolylineVertex {
+            x: p.x,
+            y: height - p.y,
+            ..Default::default()
+        })
+        .collect();
+    let mut e = Entity::new(EntityType::LwPolyline(pl));
+    e.common.layer = layer.to_string();
+    e
+}
+
+/// The DXF file of one sheet `height` mm tall holding `groups` (sheet coordinates, y down).
+pub fn sheet_dxf(height: f64, groups: &[SvgGroup], file: &str) -> Result<Vec<u8>, PlanError> {
+    let mut drawing = Drawing::new();
+    pin_header(&mut drawing);
+    for (name, color) in [(CUT_LAYER, RED), (ENGRAVE_LAYER, BLUE)] {
+        drawing.add_layer(Layer {
+            name: name.to_string(),
+            color: Color::from_index(color),
+            ..Default::default()
+        });
+    }
+    for g in groups {
+        for ring in &g.cut {
+            drawing.add_entity(polyline(ring, true, CUT_LAYER, height));
+        }
+        for line in &g.engrave {
+            drawing.add_entity(polyline(line, false, ENGRAVE_LAYER, height));
+        }
+    }
+    let mut out = Vec::new();
+    drawing.save(&mut out).map_err(|e| PlanError::write(file, e))?;
+    Ok(out)
+}
+
+/// A polyline read back from a DXF.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DxfPolyline {
+    /// Its layer.
+    pub layer: String,
+    /// Whether it is closed.
+    pub closed: bool,
+    /// Its points in sheet coordinates (y down).
+    pub points: Vec<DVec2>,
+}
+
+/// Reads the polylines of a DXF written by [`sheet_dxf`] for a sheet `height` mm tall (for
+/// tests and checks).
+pub fn read_polylines(bytes: &[u8], height: f64) -> Result<Vec<DxfPolyline>, PlanError> {
+    let drawing = Drawing::load(&mut std::io::Cursor::new(bytes)).map_err(|e| PlanError::write("dxf (reading)", e))?;
+    Ok(drawing
+        .entities()
+        .filter_map(|e| match &e.specific {
+            EntityType::LwPolyline(pl) => Some(DxfPolyline {
+                layer: e.common.layer.clone(),
+                closed: pl.is_closed(),
+                points: pl.vertices.iter().map(|v| DVec2::new(v.x, height - v.y)).collect(),
+            }),
+            _ => None,
+        })
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_sheet_round_trips_with_layers_units_and_fixed_stamps() {
+        let g = SvgGroup {
+            id: "part-1".into(),
+            cut: vec![vec![DVec2::new(1.0, 1.0), DVec2::new(11.0, 1.0), DVec2::new(11.0, 6.0)]],
+            engrave: vec![vec![DVec2::new(2.0, 2.0), DVec2::new(3.0, 3.0)]],
+        };
+        let a = sheet_dxf(400.0, std::slice::from_ref(&g), "t.dxf").expect("writes");
+        let b = sheet_dxf(400.0, std::slice::from_ref(&g), "t.dxf").expect("writes");
+        assert_eq!(a, b);
+        let text = String::from_utf8_lossy(&a);
+        assert!(text.contains("$INSUNITS\r\n 70\r\n     4") || text.contains("$INSUNITS\n 70\n     4"));
+        assert!(text.contains("AC1015"), "R2000");
+        let back = read_polylines(&a, 400.0).expect("reads");
+        assert_eq!(back.len(), 2);
+        assert_eq!((back[0].layer.as_str(), back[0].closed), (CUT_LAYER, true));
+        assert_eq!(back[0].points, g.cut[0]);
+        assert_eq!((back[1].layer.as_str(), back[1].closed), (ENGRAVE_LAYER, false));
+    }
+}

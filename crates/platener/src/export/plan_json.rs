@@ -1,0 +1,158 @@
+//! Building plan.json and the sheets' drawings from the steps' snapshots.
+
+use glam::DVec2;
+
+use super::svg::{SvgGroup, num};
+use crate::kerf::CutPaths;
+use crate::labels::Labels;
+use crate::plan::format::{FORMAT, VERSION};
+use crate::plan::{Plan, PlanInput, PlanJoint, PlanPart, PlanSettings, PlanSheet, PlanSource, SheetPlacement};
+use crate::sheets::Nesting;
+
+/// "platener" and the crate's version, as in plan.json's `generator`.
+pub fn generator() -> String {
+    format!("platener {}", env!("CARGO_PKG_VERSION"))
+}
+
+/// The model name made safe for file names: letters, digits, `.`, `_` and `-` kept, anything
+/// else becomes `-`; never empty.
+pub fn file_stem(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-') {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect();
+    let s = s.trim_matches(|c| c == '-' || c == '.').to_string();
+    if s.is_empty() { "plan".into() } else { s }
+}
+
+/// File names (without extension) of the sheets: `{stem}-{thickness}mm-{n}`, `n` counting
+/// from 1 within each thickness, as in the spec's `birdhouse-3mm-1.svg`.
+pub fn sheet_stems(stem: &str, nesting: &Nesting) -> Vec<String> {
+    let mut out = Vec::with_capacity(nesting.sheets.len());
+    let mut count = 0;
+    let mut last = f64::NAN;
+    for s in &nesting.sheets {
+        if s.thickness != last {
+            count = 0;
+            last = s.thickness;
+        }
+        count += 1;
+        out.push(format!("{stem}-{}mm-{count}", num(s.thickness)));
+    }
+    out
+}
+
+/// The settings block of plan.json and report.json.
+pub fn plan_settings(input: &PlanInput) -> PlanSettings {
+    let mut cut = input.settings.clone();
+    cut.kerf = Some(input.settings.kerf());
+    PlanSettings {
+        thicknesses: input.thicknesses(),
+        cut,
+        method: input.method_settings.clone(),
+    }
+}
+
+/// plan.json for the given snapshots (parts in ascending id order).
+pub fn build_plan(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting: &Nesting, stems: &[String]) -> Plan {
+    let mut order: Vec<usize> = (0..input.parts.len()).collect();
+    order.sort_by_key(|&i| input.parts[i].id);
+    let parts = order
+        .into_iter()
+        .map(|i| {
+            let part = &input.parts[i];
+            let nominal = &cut.parts[i].nominal;
+            let mut marks = part.marks.clone();
+            marks.extend(labels.parts[i].marks.iter().cloned());
+            PlanPart {
+                id: part.id,
+                kind: part.kind,
+                thickness: part.thickness,
+                outline: nominal.outer.clone(),
+                holes: nominal.holes.clone(),
+                transform: part.frame.matrix(),
+                sheet: nesting.placements[i],
+                marks,
+                merged: part.merged.clone(),
+            }
+        })
+        .collect();
+    let joints = input
+        .joints
+        .iter()
+        .map(|j| PlanJoint {
+            parts: j.parts,
+            kind: j.kind,
+            angle: j.angle_deg,
+            label: j.label,
+        })
+        .collect();
+    let sheets = nesting
+        .sheets
+        .iter()
+        .zip(stems)
+        .map(|(s, stem)| PlanSheet {
+            index: s.index,
+            thickness: s.thickness,
+            width: s.width,
+            height: s.height,
+            file: format!("{stem}.svg"),
+        })
+        .collect();
+    let src = &input.source;
+    Plan {
+        format: FORMAT.into(),
+        version: VERSION,
+        generator: generator(),
+        source: PlanSource {
+            name: src.name.clone(),
+            triangles: src.triangles,
+            bbox_min: src.bbox_min.to_array(),
+            bbox_max: src.bbox_max.to_array(),
+        },
+        method: input.method,
+        settings: plan_settings(input),
+        parts,
+        joints,
+        sheets,
+    }
+}
+
+fn moved(points: &[DVec2], p: &SheetPlacement) -> Vec<DVec2> {
+    points.iter().map(|q| p.apply(*q)).collect()
+}
+
+/// The drawing of each sheet: one group per part (ascending id), cut rings and engraving moved
+/// by the part's placement.
+pub fn sheet_groups(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting: &Nesting) -> Vec<Vec<SvgGroup>> {
+    let mut groups: Vec<Vec<(u32, SvgGroup)>> = vec![Vec::new(); nesting.sheets.len()];
+    for (i, part) in input.parts.iter().enumerate() {
+        let p = &nesting.placements[i];
+        let c = &cut.parts[i].cut;
+        let engrave = part
+            .marks
+            .iter()
+            .chain(&labels.parts[i].marks)
+            .map(|m| moved(&m.path, p))
+            .collect();
+        let g = SvgGroup {
+            id: format!("part-{}", part.id),
+            cut: std::iter::once(&c.outer).chain(&c.holes).map(|r| moved(r, p)).collect(),
+            engrave,
+        };
+        groups[p.index as usize].push((part.id, g));
+    }
+    groups
+        .into_iter()
+        .map(|mut gs| {
+            gs.sort_by_key(|(id, _)| *id);
+            gs.into_iter().map(|(_, g)| g).collect()
+        })
+        .collect()
+}

@@ -1,0 +1,57 @@
+//! PNG previews of sheets, rendered with resvg from a preview SVG (white sheet, filled parts,
+//! visible strokes), so the user sees the layout without laser software.
+
+use resvg::tiny_skia::{Pixmap, Transform};
+use resvg::usvg::{Options, Tree};
+
+use crate::plan::PlanError;
+
+/// Longest side of a preview, pixels.
+pub const PREVIEW_PIXELS: f64 = 1200.0;
+
+/// Renders `svg` so that its longest side is [`PREVIEW_PIXELS`] and encodes it as PNG.
+pub fn render_png(svg: &str, file: &str) -> Result<Vec<u8>, PlanError> {
+    let tree = Tree::from_str(svg, &Options::default()).map_err(|e| PlanError::write(file, e))?;
+    let size = tree.size();
+    let scale = PREVIEW_PIXELS / f64::from(size.width().max(size.height()));
+    let w = (f64::from(size.width()) * scale).round().max(1.0) as u32;
+    let h = (f64::from(size.height()) * scale).round().max(1.0) as u32;
+    let mut pixmap = Pixmap::new(w, h).ok_or_else(|| PlanError::write(file, format!("no {w} × {h} pixmap")))?;
+    resvg::render(
+        &tree,
+        Transform::from_scale(scale as f32, scale as f32),
+        &mut pixmap.as_mut(),
+    );
+    pixmap.encode_png().map_err(|e| PlanError::write(file, e))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::export::svg::{SvgGroup, SvgStyle, sheet_svg};
+    use glam::DVec2;
+
+    #[test]
+    fn a_preview_is_a_png_of_the_right_shape() {
+        let style = SvgStyle {
+            cut_width: 1.0,
+            engrave_width: 0.5,
+            preview: true,
+        };
+        let g = SvgGroup {
+            id: "part-1".into(),
+            cut: vec![vec![
+                DVec2::new(10.0, 10.0),
+                DVec2::new(100.0, 10.0),
+                DVec2::new(100.0, 50.0),
+            ]],
+            engrave: vec![],
+        };
+        let png = render_png(&sheet_svg(600.0, 400.0, &[g], &style), "p.png").expect("renders");
+        assert_eq!(&png[1..4], b"PNG");
+        // IHDR: width and height, big-endian, at bytes 16..24.
+        let w = u32::from_be_bytes([png[16], png[17], png[18], png[19]]);
+        let h = u32::from_be_bytes([png[20], png[21], png[22], png[23]]);
+        assert_eq!((w, h), (1200, 800));
+    }
+}

@@ -1,0 +1,139 @@
+//! report.json: what the conversion did and what cutting it will take.
+//!
+//! The time estimate is cut length over the cutting speed plus engraving length over the
+//! engraving speed (defaults 10 and 100 mm/s: 3 mm plywood on a 40 W CO₂ laser); travel moves
+//! and acceleration are not counted, so real jobs take somewhat longer.
+
+use serde::Serialize;
+
+use super::svg::SvgGroup;
+use crate::plan::{Method, PlanSettings, PlanWarning};
+use crate::sheets::Nesting;
+
+/// One step in report.json.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ReportStep {
+    /// The step's name.
+    pub name: String,
+    /// Wall time in ms; only with `report_timings` (timings differ between runs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub millis: Option<f64>,
+    /// Its warnings.
+    pub warnings: Vec<String>,
+}
+
+/// One sheet in report.json.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ReportSheet {
+    /// Index as in plan.json.
+    pub index: u32,
+    /// Its SVG file.
+    pub file: String,
+    /// Material thickness, mm.
+    pub thickness: f64,
+    /// Width, mm.
+    pub width: f64,
+    /// Height, mm.
+    pub height: f64,
+    /// Parts on it.
+    pub parts: usize,
+    /// Parts' area over used area.
+    pub density: f64,
+    /// Used area (height × used length), mm².
+    pub used_area: f64,
+}
+
+/// report.json.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
+    /// "platener" and its version.
+    pub generator: String,
+    /// The model's name.
+    pub model: String,
+    /// The method.
+    pub method: Method,
+    /// The settings (as in plan.json).
+    pub settings: PlanSettings,
+    /// Every step: earlier ones (read, plates…) and kerf, labels, sheets, export.
+    pub steps: Vec<ReportStep>,
+    /// Every warning of the cutting-plan steps, with the part it concerns.
+    pub warnings: Vec<PlanWarning>,
+    /// Number of parts.
+    pub part_count: usize,
+    /// Number of sheets.
+    pub sheet_count: usize,
+    /// Per sheet.
+    pub sheets: Vec<ReportSheet>,
+    /// All parts' area over all used area.
+    pub density: f64,
+    /// Nominal area of all parts, mm².
+    pub parts_area: f64,
+    /// Material used: sum of the sheets' used areas, mm².
+    pub material_used_area: f64,
+    /// Sum of the sheets' full areas, mm².
+    pub sheet_area: f64,
+    /// Length of all cut paths, mm.
+    pub cut_length: f64,
+    /// Length of all engraving, mm.
+    pub engrave_length: f64,
+    /// Estimated laser time, s (see the module docs).
+    pub estimated_cutting_seconds: f64,
+}
+
+fn length(points: &[glam::DVec2], closed: bool) -> f64 {
+    let open: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+    match (closed, points.first(), points.last()) {
+        (true, Some(a), Some(b)) => open + a.distance(*b),
+        _ => open,
+    }
+}
+
+/// Lengths of cut paths and engraving over all sheets, mm.
+pub fn lengths(groups: &[Vec<SvgGroup>]) -> (f64, f64) {
+    let all = groups.iter().flatten();
+    let cut = all.clone().flat_map(|g| &g.cut).map(|r| length(r, true)).sum();
+    let engrave = all.flat_map(|g| &g.engrave).map(|l| length(l, false)).sum();
+    (cut, engrave)
+}
+
+/// Everything of report.json but the header, computed from the nesting and the drawings.
+pub struct Totals {
+    /// Per sheet.
+    pub sheets: Vec<ReportSheet>,
+    /// Overall density.
+    pub density: f64,
+    /// Parts' area, mm².
+    pub parts_area: f64,
+    /// Used area, mm².
+    pub used_area: f64,
+    /// Full sheet area, mm².
+    pub sheet_area: f64,
+}
+
+/// Per-sheet and overall areas and densities.
+pub fn totals(nesting: &Nesting, files: &[String]) -> Totals {
+    let sheets: Vec<ReportSheet> = nesting
+        .sheets
+        .iter()
+        .zip(files)
+        .map(|(s, f)| ReportSheet {
+            index: s.index,
+            file: f.clone(),
+            thickness: s.thickness,
+            width: s.width,
+            height: s.height,
+            parts: s.parts.len(),
+            density: s.density,
+            used_area: s.used_area,
+        })
+        .collect();
+    let parts_area: f64 = nesting.sheets.iter().map(|s| s.parts_area).sum();
+    let used_area: f64 = nesting.sheets.iter().map(|s| s.used_area).sum();
+    Totals {
+        sheets,
+        density: if used_area > 0.0 { parts_area / used_area } else { 0.0 },
+        parts_area,
+        used_area,
+        sheet_area: nesting.sheets.iter().map(|s| s.width * s.height).sum(),
+    }
+}

@@ -1,0 +1,239 @@
+//! The kerf test strip (`platener test-strip`): measure the kerf of a laser and material.
+//!
+//! The sheet holds two parts, cut exactly along the drawn lines (no kerf compensation: the
+//! kerf is what we want to find out):
+//! - a **strip** with a row of rectangular holes numbered 1…[`HOLE_COUNT`] and an engraved
+//!   table hole → kerf;
+//! - a **spike** (a small key) whose tip is [`SPIKE_WIDTH`] wide.
+//!
+//! A cut line removes `k / 2` on each side, so the real spike is `S − k` wide and the real hole
+//! `n` is `w(n) + k` wide. Hole `n` is drawn `w(n) = S − 2·kerf(n)` wide with
+//! `kerf(n) = (n − 1) · KERF_STEP`; the spike fits it exactly when `S − k = S − 2·kerf(n) + k`,
+//! i.e. when `k = kerf(n)`. The hole the spike fits snugly names the kerf:
+//! `kerf = (S − w) / 2 = (n − 1) × 0.025 mm`, from 0 to 0.4 mm.
+
+use glam::DVec2;
+use platener_geom::{Polygon, Ring};
+
+use crate::export::svg::{SvgGroup, SvgStyle, num, sheet_svg};
+use crate::labels::font::{place_text, text_width};
+use crate::plan::{Material, PlanError};
+
+/// Width of the spike's tip, mm (the "known width").
+pub const SPIKE_WIDTH: f64 = 6.0;
+/// Kerf difference between neighbouring holes, mm.
+pub const KERF_STEP: f64 = 0.025;
+/// Number of holes: kerfs 0, 0.025, …, 0.4 mm.
+pub const HOLE_COUNT: u32 = 17;
+/// Border between the sheet edge and the parts, mm.
+const MARGIN: f64 = 5.0;
+/// Hole centre to hole centre, mm.
+const PITCH: f64 = SPIKE_WIDTH + 4.0;
+/// Text size of hole numbers and the table, mm.
+const TEXT: f64 = 2.5;
+/// Thicknesses accepted, mm.
+const MAX_THICKNESS: f64 = 50.0;
+
+/// The kerf hole `n` (1-based) stands for, mm: `(n − 1) · KERF_STEP`.
+pub fn hole_kerf(n: u32) -> f64 {
+    f64::from(n.saturating_sub(1)) * KERF_STEP
+}
+
+/// The drawn width of hole `n`, mm: `SPIKE_WIDTH − 2 · hole_kerf(n)`.
+pub fn hole_width(n: u32) -> f64 {
+    SPIKE_WIDTH - 2.0 * hole_kerf(n)
+}
+
+/// The hole whose kerf is nearest to `kerf`.
+pub fn hole_for_kerf(kerf: f64) -> u32 {
+    ((kerf / KERF_STEP).round().clamp(0.0, f64::from(HOLE_COUNT - 1)) as u32) + 1
+}
+
+/// One hole of the strip.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StripHole {
+    /// Its engraved number, 1-based.
+    pub number: u32,
+    /// The kerf it stands for, mm.
+    pub kerf: f64,
+    /// Its drawn width (along the strip), mm.
+    pub width: f64,
+}
+
+/// The test strip sheet, in sheet coordinates (mm, y down).
+#[derive(Debug, Clone)]
+pub struct TestStrip {
+    /// Sheet width, mm.
+    pub width: f64,
+    /// Sheet height, mm.
+    pub height: f64,
+    /// The strip with its holes (cut as drawn).
+    pub strip: Polygon,
+    /// The spike key (cut as drawn); its tip is the edge with the largest y.
+    pub spike: Polygon,
+    /// Engraving on the strip: hole numbers and the table.
+    pub strip_engrave: Vec<Vec<DVec2>>,
+    /// Engraving on the spike: its width.
+    pub spike_engrave: Vec<Vec<DVec2>>,
+    /// The holes, left to right.
+    pub holes: Vec<StripHole>,
+    /// The hole of the material's default kerf (marked `*` in the table).
+    pub default_hole: u32,
+}
+
+fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Ring {
+    vec![
+        DVec2::new(x0, y0),
+        DVec2::new(x1, y0),
+        DVec2::new(x1, y1),
+        DVec2::new(x0, y1),
+    ]
+}
+
+/// The table line of hole `n`, e.g. `9=0.200*`.
+fn table_entry(n: u32, marked: bool) -> String {
+    format!("{n}={:.3}{}", hole_kerf(n), if marked { "*" } else { "" })
+}
+
+/// Lays out the test strip for sheets `thickness` mm thick of `material`.
+///
+/// Holes are `thickness + 1` mm long across the strip, so the spike (as thick as the sheet)
+/// enters them whatever the real thickness, and only the width decides the fit.
+pub fn test_strip(thickness: f64, material: Material) -> Result<TestStrip, PlanError> {
+    if !(thickness.is_finite() && thickness > 0.0 && thickness <= MAX_THICKNESS) {
+        return Err(PlanError::Setting {
+            name: "thickness",
+            message: format!("{thickness} mm must be in (0, {MAX_THICKNESS}]"),
+        });
+    }
+    let default_hole = hole_for_kerf(material.default_kerf());
+    let hole_len = thickness + 1.0;
+    let (x0, y0) = (MARGIN, MARGIN);
+    let holes_top = y0 + 4.0;
+    let numbers_base = holes_top + hole_len + 1.5 + TEXT;
+    let mut engrave = Vec::new();
+    let mut holes = Vec::new();
+    let mut hole_rings = Vec::new();
+    for n in 1..=HOLE_COUNT {
+        let cx = x0 + 4.0 + SPIKE_WIDTH / 2.0 + f64::from(n - 1) * PITCH;
+        let w = hole_width(n);
+        // Clockwise in the y-down frame's maths sense: holes run opposite to the outline.
+        let mut ring = rect(cx - w / 2.0, holes_top, cx + w / 2.0, holes_top + hole_len);
+        ring.reverse();
+        hole_rings.push(ring);
+        let label = n.to_string();
+        let origin = DVec2::new(cx - text_width(&label, TEXT) / 2.0, numbers_base);
+        engrave.extend(place_text(&label, TEXT, origin, DVec2::X));
+        holes.push(StripHole {
+            number: n,
+            kerf: hole_kerf(n),
+            width: w,
+        });
+    }
+    // The table: header, then columns of five entries.
+    let rows = 5u32;
+    let col_w = text_width(&table_entry(HOLE_COUNT, true), TEXT) + 4.0;
+    let line = TEXT * 1.6;
+    let header_base = numbers_base + 3.0 + TEXT;
+    let header = format!("HOLE=KERF MM  *{} {}MM", material.name(), num(thickness));
+    engrave.extend(place_text(&header, TEXT, DVec2::new(x0 + 4.0, header_base), DVec2::X));
+    for n in 1..=HOLE_COUNT {
+        let (col, row) = ((n - 1) / rows, (n - 1) % rows);
+        let origin = DVec2::new(
+            x0 + 4.0 + f64::from(col) * col_w,
+            header_base + f64::from(row + 1) * line,
+        );
+        engrave.extend(place_text(&table_entry(n, n == default_hole), TEXT, origin, DVec2::X));
+    }
+    let table_w = f64::from(HOLE_COUNT.div_ceil(rows)) * col_w;
+    let holes_w = 8.0 + SPIKE_WIDTH + f64::from(HOLE_COUNT - 1) * PITCH;
+    let strip_w = holes_w.max(8.0 + table_w).max(8.0 + text_width(&header, TEXT));
+    let strip_bottom = header_base + f64::from(rows) * line + 3.0;
+    let strip = Polygon {
+        outer: rect(x0, y0, x0 + strip_w, strip_bottom),
+        holes: hole_rings,
+    };
+    // The spike key: a handle with the spike hanging below it (towards larger y).
+    let (kx, handle_w, handle_h) = (x0 + strip_w + 5.0, SPIKE_WIDTH + 10.0, 10.0);
+    let spike_len = 2.0 * thickness + 3.0;
+    let (sx0, sx1) = (kx + 5.0, kx + 5.0 + SPIKE_WIDTH);
+    let spike = Polygon::new(vec![
+        DVec2::new(kx, y0),
+        DVec2::new(kx + handle_w, y0),
+        DVec2::new(kx + handle_w, y0 + handle_h),
+        DVec2::new(sx1, y0 + handle_h),
+        DVec2::new(sx1, y0 + handle_h + spike_len),
+        DVec2::new(sx0, y0 + handle_h + spike_len),
+        DVec2::new(sx0, y0 + handle_h),
+        DVec2::new(kx, y0 + handle_h),
+    ]);
+    let key_label = format!("{:.3}", SPIKE_WIDTH);
+    let key_origin = DVec2::new(kx + (handle_w - text_width(&key_label, TEXT)) / 2.0, y0 + 2.0 + TEXT);
+    let spike_engrave = place_text(&key_label, TEXT, key_origin, DVec2::X);
+    Ok(TestStrip {
+        width: kx + handle_w + MARGIN,
+        height: strip_bottom.max(y0 + handle_h + spike_len) + MARGIN,
+        strip,
+        spike,
+        strip_engrave: engrave,
+        spike_engrave,
+        holes,
+        default_hole,
+    })
+}
+
+impl TestStrip {
+    /// The sheet as SVG: the strip is `part-1`, the spike `part-2`.
+    pub fn svg(&self) -> String {
+        let rings = |p: &Polygon| {
+            std::iter::once(p.outer.clone())
+                .chain(p.holes.iter().cloned())
+                .collect()
+        };
+        let groups = [
+            SvgGroup {
+                id: "part-1".into(),
+                cut: rings(&self.strip),
+                engrave: self.strip_engrave.clone(),
+            },
+            SvgGroup {
+                id: "part-2".into(),
+                cut: rings(&self.spike),
+                engrave: self.spike_engrave.clone(),
+            },
+        ];
+        sheet_svg(self.width, self.height, &groups, &SvgStyle::CUT)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn holes_map_to_kerfs_by_the_stated_formula() {
+        assert_eq!(hole_kerf(1), 0.0);
+        assert!((hole_kerf(HOLE_COUNT) - 0.4).abs() < 1e-12);
+        for n in 1..=HOLE_COUNT {
+            assert!(((SPIKE_WIDTH - hole_width(n)) / 2.0 - hole_kerf(n)).abs() < 1e-12);
+            assert_eq!(hole_for_kerf(hole_kerf(n)), n);
+        }
+        assert_eq!(hole_for_kerf(Material::Wood.default_kerf()), 9);
+    }
+
+    #[test]
+    fn the_strip_holds_its_holes_and_the_spike_stands_apart() {
+        let s = test_strip(3.0, Material::Wood).expect("valid thickness");
+        assert_eq!(s.strip.holes.len(), HOLE_COUNT as usize);
+        for h in &s.strip.holes {
+            assert!(
+                h.iter()
+                    .all(|p| s.strip.contains(*p) || platener_geom::polygon::ring_contains(&s.strip.outer, *p))
+            );
+        }
+        let (lo, hi) = s.strip.bounds();
+        let (klo, khi) = s.spike.bounds();
+        assert!(klo.x > hi.x && khi.x < s.width && khi.y < s.height && lo.x > 0.0);
+        assert!(test_strip(-1.0, Material::Wood).is_err());
+    }
+}

@@ -1,0 +1,101 @@
+use glam::{DVec2, DVec3};
+use platener_geom::polygon::signed_area;
+use platener_geom::{Frame, Polygon, Ring};
+
+use super::*;
+
+fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Ring {
+    vec![
+        DVec2::new(x0, y0),
+        DVec2::new(x1, y0),
+        DVec2::new(x1, y1),
+        DVec2::new(x0, y1),
+    ]
+}
+
+fn part(id: u32, polygon: Polygon) -> Part {
+    Part::plate(id, 3.0, polygon, Frame::on_plane(DVec3::ZERO, DVec3::Z))
+}
+
+/// Tolerance of these checks: the 1 µm grid, squared into areas.
+const AREA_TOL: f64 = 1e-3;
+
+#[test]
+fn outline_grows_and_holes_shrink_by_half_the_kerf() {
+    let p = Polygon {
+        outer: rect(0.0, 0.0, 40.0, 20.0),
+        holes: vec![rect(10.0, 5.0, 20.0, 15.0)],
+    };
+    let cut = cut_polygon(&p, 0.2).expect("on grid");
+    // (40.2 × 20.2) − (9.8 × 9.8)
+    assert!(
+        (cut.area() - (40.2 * 20.2 - 9.8 * 9.8)).abs() < AREA_TOL,
+        "{}",
+        cut.area()
+    );
+    assert!(signed_area(&cut.outer) > 0.0 && signed_area(&cut.holes[0]) < 0.0);
+    let (lo, hi) = cut.bounds();
+    assert!((lo - DVec2::splat(-0.1)).length() < 1e-9 && (hi - DVec2::new(40.1, 20.1)).length() < 1e-9);
+}
+
+#[test]
+fn notches_keep_their_square_corners() {
+    // A plate with two finger notches on its top edge: 12 corners, all right angles.
+    let outer = vec![
+        DVec2::new(0.0, 0.0),
+        DVec2::new(60.0, 0.0),
+        DVec2::new(60.0, 30.0),
+        DVec2::new(45.0, 30.0),
+        DVec2::new(45.0, 27.0),
+        DVec2::new(35.0, 27.0),
+        DVec2::new(35.0, 30.0),
+        DVec2::new(25.0, 30.0),
+        DVec2::new(25.0, 27.0),
+        DVec2::new(15.0, 27.0),
+        DVec2::new(15.0, 30.0),
+        DVec2::new(0.0, 30.0),
+    ];
+    let cut = cut_polygon(&Polygon::new(outer), 0.3).expect("on grid");
+    assert_eq!(cut.outer.len(), 12);
+    // Each notch is 0.3 narrower: its corners moved by exactly 0.15 in x and y.
+    assert!(
+        cut.outer
+            .iter()
+            .any(|p| (*p - DVec2::new(15.15, 27.15)).length() < 1e-9)
+    );
+    assert!(
+        cut.outer
+            .iter()
+            .any(|p| (*p - DVec2::new(-0.15, 30.15)).length() < 1e-9)
+    );
+}
+
+#[test]
+fn cut_paths_keep_the_part_order_and_warn_about_closed_holes() {
+    let tiny_hole = Polygon {
+        outer: rect(0.0, 0.0, 10.0, 10.0),
+        holes: vec![rect(4.0, 4.0, 4.1, 6.0)],
+    };
+    let parts = [part(7, Polygon::new(rect(0.0, 0.0, 5.0, 5.0))), part(3, tiny_hole)];
+    let cut = cut_paths(&parts, 0.2).expect("valid");
+    assert_eq!(cut.parts.iter().map(|p| p.id).collect::<Vec<_>>(), [7, 3]);
+    assert!(cut.parts[1].cut.holes.is_empty());
+    assert_eq!(cut.warnings.len(), 1);
+    assert_eq!(cut.warnings[0].part, Some(3));
+}
+
+#[test]
+fn zero_kerf_cuts_the_nominal_shape() {
+    let p = Polygon::new(rect(0.0, 0.0, 7.0, 3.0));
+    let cut = cut_polygon(&p, 0.0).expect("on grid");
+    assert!((cut.area() - 21.0).abs() < AREA_TOL);
+}
+
+#[test]
+fn closed_input_rings_are_opened() {
+    let mut closed = rect(0.0, 0.0, 4.0, 4.0);
+    closed.push(closed[0]);
+    closed.insert(1, closed[0]);
+    let cut = cut_paths(&[part(1, Polygon::new(closed))], 0.0).expect("valid");
+    assert_eq!(cut.parts[0].nominal.outer, rect(0.0, 0.0, 4.0, 4.0));
+}

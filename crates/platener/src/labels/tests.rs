@@ -1,0 +1,131 @@
+use glam::{DVec2, DVec3};
+use platener_geom::{Frame, Polygon, Ring, boolean};
+use proptest::prelude::*;
+
+use super::*;
+
+/// The kerf the parts of these tests are cut with, mm.
+const KERF: f64 = 0.2;
+
+fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Ring {
+    vec![
+        DVec2::new(x0, y0),
+        DVec2::new(x1, y0),
+        DVec2::new(x1, y1),
+        DVec2::new(x0, y1),
+    ]
+}
+
+fn part(id: u32, polygon: Polygon) -> Part {
+    Part::plate(id, 3.0, polygon, Frame::on_plane(DVec3::ZERO, DVec3::Z))
+}
+
+/// A 60 × 30 plate whose top edge (y = 30) has three fingers 3 mm deep cut into it.
+fn fingered() -> Polygon {
+    let mut outer = vec![DVec2::new(0.0, 0.0), DVec2::new(60.0, 0.0), DVec2::new(60.0, 30.0)];
+    for i in (0..3).rev() {
+        let x1 = 10.0 + 15.0 * f64::from(i) + 10.0;
+        outer.extend([
+            DVec2::new(x1, 30.0),
+            DVec2::new(x1, 27.0),
+            DVec2::new(x1 - 10.0, 27.0),
+            DVec2::new(x1 - 10.0, 30.0),
+        ]);
+    }
+    outer.push(DVec2::new(0.0, 30.0));
+    Polygon::new(outer)
+}
+
+/// Every stroke point of every label lies inside the part minus holes, at least the clearance
+/// of its size (less 1 µm of grid rounding) away from the boundary: checked with a boolean.
+fn assert_inside(part: &Part, labels: &PartLabels) {
+    for b in &labels.boxes {
+        let quad = Polygon::new(b.corners(clearance(b.size, KERF) - 1e-3).to_vec());
+        let outside = boolean::difference(&[quad], std::slice::from_ref(&part.polygon)).expect("grid");
+        let area: f64 = outside.iter().map(Polygon::area).sum();
+        assert!(
+            area < 1e-6,
+            "label {:?} of part {} leaves the part by {area} mm²",
+            b.text,
+            part.id
+        );
+    }
+}
+
+#[test]
+fn every_part_gets_its_number_inside_it() {
+    let with_hole = Polygon {
+        outer: rect(0.0, 0.0, 40.0, 40.0),
+        holes: vec![rect(10.0, 10.0, 30.0, 30.0)],
+    };
+    let parts = [part(1, Polygon::new(rect(0.0, 0.0, 80.0, 50.0))), part(12, with_hole)];
+    let labels = label_parts(&parts, LabelMode::Parts, KERF);
+    assert!(labels.warnings.is_empty(), "{:?}", labels.warnings);
+    for (p, l) in parts.iter().zip(&labels.parts) {
+        assert_eq!(l.boxes.len(), 1);
+        assert_eq!(l.boxes[0].text, p.id.to_string());
+        assert_inside(p, l);
+    }
+    // The ring part has a 10 mm wide band: its number is smaller than the big plate's.
+    assert_eq!(labels.parts[0].boxes[0].size, 8.0);
+    assert!(labels.parts[1].boxes[0].size < 8.0);
+}
+
+#[test]
+fn a_fingered_edge_gets_its_connection_number_beyond_the_fingers() {
+    let mut p = part(4, fingered());
+    p.edge_labels = vec![EdgeLabel {
+        connection: 7,
+        segment: [DVec2::new(60.0, 30.0), DVec2::new(0.0, 30.0)],
+    }];
+    let labels = label_parts(std::slice::from_ref(&p), LabelMode::Edges, KERF);
+    assert!(labels.warnings.is_empty(), "{:?}", labels.warnings);
+    let l = &labels.parts[0];
+    assert_eq!(l.boxes.len(), 2);
+    let edge = &l.boxes[1];
+    assert_eq!(edge.text, "#7");
+    assert_inside(&p, l);
+    // Below the finger roots (y = 27), and near the edge: within two thicknesses and the text.
+    let corners = edge.corners(0.0);
+    let top = corners.iter().map(|c| c.y).fold(f64::MIN, f64::max);
+    assert!(top < 27.0 && top > 27.0 - 2.0 * 3.0 - 4.0 - 1.0, "{corners:?}");
+    // Readable: the baseline runs left to right although the edge runs right to left.
+    assert_eq!(edge.direction, DVec2::X);
+    assert!(l.marks.iter().all(|m| m.kind == MarkKind::Label));
+}
+
+#[test]
+fn labels_that_cannot_fit_are_skipped_with_a_warning() {
+    let mut p = part(3, Polygon::new(rect(0.0, 0.0, 2.0, 40.0)));
+    p.edge_labels = vec![EdgeLabel {
+        connection: 1,
+        segment: [DVec2::new(0.0, 0.0), DVec2::new(2.0, 0.0)],
+    }];
+    let labels = label_parts(&[p], LabelMode::Edges, KERF);
+    assert!(labels.parts[0].boxes.is_empty());
+    assert_eq!(labels.warnings.len(), 2);
+    assert_eq!(
+        label_parts(&[part(1, fingered())], LabelMode::None, KERF).parts[0]
+            .marks
+            .len(),
+        0
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Whatever the rectangle and its hole, labels stay inside the part minus the hole.
+    #[test]
+    fn labels_never_leave_the_part(w in 8.0..120.0f64, h in 8.0..80.0f64, hx in 0.1..0.9f64, hy in 0.1..0.9f64, hs in 0.05..0.6f64) {
+        let (cx, cy, r) = (w * hx, h * hy, w.min(h) * hs / 2.0);
+        let hole = rect((cx - r).max(1.0), (cy - r).max(1.0), (cx + r).min(w - 1.0), (cy + r).min(h - 1.0));
+        let mut p = part(5, Polygon { outer: rect(0.0, 0.0, w, h), holes: vec![hole] });
+        p.edge_labels = vec![EdgeLabel { connection: 2, segment: [DVec2::new(0.0, 0.0), DVec2::new(w, 0.0)] },
+                             EdgeLabel { connection: 3, segment: [DVec2::new(w, 0.0), DVec2::new(w, h)] }];
+        let labels = label_parts(std::slice::from_ref(&p), LabelMode::Edges, KERF);
+        p.polygon.normalize_orientation();
+        assert_inside(&p, &labels.parts[0]);
+        prop_assert_eq!(labels.parts[0].boxes.len() + labels.warnings.len(), 3);
+    }
+}

@@ -1,0 +1,67 @@
+//! Errors of the cutting-plan steps, each saying whose fault it is.
+
+use crate::error::Error;
+
+/// Everything that stops a cutting plan.
+#[derive(Debug, thiserror::Error)]
+pub enum PlanError {
+    /// A setting is out of range (caller's fault).
+    #[error("invalid setting {name}: {message}")]
+    Setting {
+        /// The setting.
+        name: &'static str,
+        /// Why it is invalid and what is allowed.
+        message: String,
+    },
+    /// A part's geometry cannot be used (input's fault: non-finite or huge coordinates, an
+    /// outline with no area, a duplicate id).
+    #[error("part {part}: {message}")]
+    Part {
+        /// The part's id.
+        part: u32,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// Writing a file into memory failed (our fault: please report it).
+    #[error("internal error writing {file}: {message}; please report this")]
+    Write {
+        /// The file being written.
+        file: String,
+        /// The writer's message.
+        message: String,
+    },
+    /// The caller cancelled the run.
+    #[error("cancelled during step {step}")]
+    Cancelled {
+        /// The step that noticed.
+        step: &'static str,
+    },
+}
+
+impl PlanError {
+    /// A [`PlanError::Write`] for `file`.
+    pub(crate) fn write(file: impl Into<String>, e: impl std::fmt::Display) -> Self {
+        PlanError::Write {
+            file: file.into(),
+            message: e.to_string(),
+        }
+    }
+}
+
+impl From<PlanError> for Error {
+    /// Maps onto the crate's error until it has a variant for cutting plans.
+    fn from(e: PlanError) -> Self {
+        match e {
+            PlanError::Setting { name, message } => Error::Setting { name, message },
+            PlanError::Cancelled { step } => Error::Cancelled { step },
+            PlanError::Part { .. } => Error::Geometry {
+                model: "parts".into(),
+                message: e.to_string(),
+            },
+            PlanError::Write { .. } => Error::Model {
+                model: "cutting plan".into(),
+                message: e.to_string(),
+            },
+        }
+    }
+}

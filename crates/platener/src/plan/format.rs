@@ -1,0 +1,158 @@
+//! plan.json, version 1, exactly as in the contract `shared/spec/plan-format.md`.
+//!
+//! Third-party programs rebuild the assembly from this file, so every field of the spec is
+//! here under the spec's name, and nothing is renamed for Rust's sake. All lengths in mm.
+
+use std::collections::BTreeMap;
+
+use glam::DVec2;
+use serde::{Deserialize, Serialize};
+
+use super::error::PlanError;
+use super::part::{JointKind, Mark, PartKind};
+use super::settings::{CutSettings, SettingValue};
+
+/// The value of `format`.
+pub const FORMAT: &str = "platener-plan";
+/// The value of `version`.
+pub const VERSION: u32 = 1;
+
+/// Which conversion method made the parts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Plates joined by joints.
+    Plate,
+    /// Stacked layers on shafts.
+    Stacked,
+}
+
+/// The whole plan.json.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Plan {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// Always [`VERSION`].
+    pub version: u32,
+    /// "platener" and its version.
+    pub generator: String,
+    /// The model as converted.
+    pub source: PlanSource,
+    /// The method used.
+    pub method: Method,
+    /// The settings of the conversion.
+    pub settings: PlanSettings,
+    /// Every part, by ascending id.
+    pub parts: Vec<PlanPart>,
+    /// Every connection.
+    pub joints: Vec<PlanJoint>,
+    /// Every sheet, by index.
+    pub sheets: Vec<PlanSheet>,
+}
+
+/// `source`: the model as converted (after units and scale).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PlanSource {
+    /// The model's name.
+    pub name: String,
+    /// Its triangle count.
+    pub triangles: u64,
+    /// Smallest corner of its bounding box, mm.
+    pub bbox_min: [f64; 3],
+    /// Largest corner of its bounding box, mm.
+    pub bbox_max: [f64; 3],
+}
+
+/// `settings`: the sheet thicknesses, the cutting-plan settings (kerf resolved to a number)
+/// and whatever the method records about itself.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PlanSettings {
+    /// The distinct part thicknesses, ascending, mm.
+    pub thicknesses: Vec<f64>,
+    /// Material, kerf, labels, sheet, margin, spacing, seed, speeds…
+    #[serde(flatten)]
+    pub cut: CutSettings,
+    /// Method-specific settings (joint kind, finger width, units, scale…).
+    #[serde(flatten)]
+    pub method: BTreeMap<String, SettingValue>,
+}
+
+/// One part of `parts`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PlanPart {
+    /// Unique, 1-based; the number engraved on the part.
+    pub id: u32,
+    /// What it is.
+    pub kind: PartKind,
+    /// Its thickness, mm.
+    pub thickness: f64,
+    /// Nominal outer contour in the part's frame, counter-clockwise, not closed.
+    pub outline: Vec<DVec2>,
+    /// Nominal holes, each clockwise, not closed.
+    pub holes: Vec<Vec<DVec2>>,
+    /// Rows of `[R | t]`: model point = R · (x, y, z) + t.
+    pub transform: [[f64; 4]; 3],
+    /// Where the part sits on its sheet.
+    pub sheet: SheetPlacement,
+    /// Engraved marks in the part's frame (bend lines, labels).
+    pub marks: Vec<Mark>,
+    /// For bent parts only: the plates merged into this part.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub merged: Vec<u32>,
+}
+
+/// `parts[].sheet`: sheet point = R(rotation) · (x, y) + (`x`, `y`), rotation in degrees.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SheetPlacement {
+    /// Index into `sheets`.
+    pub index: u32,
+    /// Translation x on the sheet, mm.
+    pub x: f64,
+    /// Translation y on the sheet, mm.
+    pub y: f64,
+    /// Rotation in degrees, in [0, 360).
+    pub rotation: f64,
+}
+
+impl SheetPlacement {
+    /// Maps a point of the part's frame onto the sheet.
+    pub fn apply(&self, p: DVec2) -> DVec2 {
+        let (s, c) = self.rotation.to_radians().sin_cos();
+        DVec2::new(c * p.x - s * p.y + self.x, s * p.x + c * p.y + self.y)
+    }
+}
+
+/// One connection of `joints`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PlanJoint {
+    /// The two parts' ids (for `bend`: the plates before merging).
+    pub parts: [u32; 2],
+    /// The kind of joint.
+    pub kind: JointKind,
+    /// The angle enclosed by the plates, degrees.
+    pub angle: f64,
+    /// The connection number engraved on both parts.
+    pub label: u32,
+}
+
+/// One sheet of `sheets`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PlanSheet {
+    /// 0-based index, as referenced by `parts[].sheet.index`.
+    pub index: u32,
+    /// Material thickness, mm.
+    pub thickness: f64,
+    /// Width, mm (SVG x).
+    pub width: f64,
+    /// Height, mm (SVG y).
+    pub height: f64,
+    /// The sheet's SVG file in the ZIP.
+    pub file: String,
+}
+
+impl Plan {
+    /// The plan as pretty JSON (shortest round-trip floats, so output is deterministic).
+    pub fn to_json(&self) -> Result<String, PlanError> {
+        serde_json::to_string_pretty(self).map_err(|e| PlanError::write("plan.json", e))
+    }
+}

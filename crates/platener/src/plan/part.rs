@@ -1,0 +1,126 @@
+//! What the methods hand to the cutting-plan steps: parts with their nominal geometry, and joints.
+//!
+//! The plate method (plates with finger joints) and the stacked method (layers and shafts) both
+//! end in this form, so kerf compensation, labels, nesting and export never know which method
+//! made a part.
+
+use glam::DVec2;
+use platener_geom::{Frame, Polygon};
+use serde::{Deserialize, Serialize};
+
+/// What a part is, as in plan.json's `kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PartKind {
+    /// A flat plate.
+    Plate,
+    /// Several plates merged into one part with bend lines (living hinges).
+    Bent,
+    /// A layer of the stacked method.
+    Layer,
+    /// A shaft of the stacked method.
+    Shaft,
+}
+
+/// What a mark drawn on a part is, as in plan.json's `marks[].kind`. Marks are engraved
+/// (blue), never cut through.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MarkKind {
+    /// A bend line or living-hinge score.
+    Bend,
+    /// Any other engraving.
+    Engrave,
+    /// Text and numbers (made by the `labels` step).
+    Label,
+}
+
+/// An engraved open polyline in the part's own 2D frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Mark {
+    /// What it is.
+    pub kind: MarkKind,
+    /// The polyline, in mm.
+    pub path: Vec<DVec2>,
+}
+
+/// A jointed edge of a part whose connection number is engraved next to it, on the inside.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeLabel {
+    /// The connection's number ([`Joint::label`]).
+    pub connection: u32,
+    /// The edge, in the part's own 2D frame (its direction does not matter).
+    pub segment: [DVec2; 2],
+}
+
+/// One part to cut: its nominal shape (joints included, no kerf), where it sits in the model,
+/// and what to engrave on it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Part {
+    /// Unique, 1-based; also the number engraved on the part.
+    pub id: u32,
+    /// What it is.
+    pub kind: PartKind,
+    /// Sheet thickness in mm; parts are nested on sheets of their own thickness.
+    pub thickness: f64,
+    /// The nominal shape in the part's 2D frame: outer ring and holes, any orientation (the
+    /// steps normalise to outer counter-clockwise, holes clockwise).
+    pub polygon: Polygon,
+    /// Where the part sits in the model: local (x, y, z) → model, z from 0 to `thickness`.
+    pub frame: Frame,
+    /// Marks the method draws (bend lines…); labels are added by the `labels` step.
+    pub marks: Vec<Mark>,
+    /// Jointed edges whose connection number should be engraved on this part.
+    pub edge_labels: Vec<EdgeLabel>,
+    /// For bent parts: the ids of the plates merged into it (plan.json's `merged`).
+    pub merged: Vec<u32>,
+}
+
+impl Part {
+    /// A plate with no marks or labels; the fields can be set afterwards.
+    pub fn plate(id: u32, thickness: f64, polygon: Polygon, frame: Frame) -> Self {
+        Self {
+            id,
+            kind: PartKind::Plate,
+            thickness,
+            polygon,
+            frame,
+            marks: Vec::new(),
+            edge_labels: Vec::new(),
+            merged: Vec::new(),
+        }
+    }
+}
+
+/// How two parts are joined, as in plan.json's `joints[].kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum JointKind {
+    /// Finger (box) joint.
+    Finger,
+    /// The thesis' jim joint.
+    Jim,
+    /// Dovetail.
+    Dovetail,
+    /// Tab and slot, for T-junctions.
+    Slot,
+    /// Cross-lap (halved) joint.
+    Halved,
+    /// The two plates are one bent part.
+    Bend,
+    /// Stacked layers on a shaft.
+    Shaft,
+}
+
+/// A connection between two parts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Joint {
+    /// The two parts' ids.
+    pub parts: [u32; 2],
+    /// The kind of joint.
+    pub kind: JointKind,
+    /// The angle enclosed by the plates, in degrees.
+    pub angle_deg: f64,
+    /// The connection number engraved next to the edge on both parts.
+    pub label: u32,
+}

@@ -1,0 +1,253 @@
+//! Settings of the cutting plan: material and kerf, labels, sheets and nesting, laser speeds.
+//!
+//! Every default is here and documented in docs/cutting-plans.md; the CLI and the web service
+//! only fill this struct.
+
+use serde::{Deserialize, Serialize};
+
+use super::error::PlanError;
+
+/// The sheet material. It sets the default kerf, i.e. the width of material the laser burns
+/// away along a cut (typical values for a 40–60 W CO₂ laser on 3 mm stock).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Material {
+    /// Cast or extruded acrylic (PMMA): melts cleanly, kerf 0.15 mm.
+    Acrylic,
+    /// Plywood, MDF, solid wood: chars a little, kerf 0.2 mm (the default material).
+    #[default]
+    Wood,
+    /// Corrugated or grey cardboard: burns wide, kerf 0.3 mm.
+    Cardboard,
+    /// Paper and thin card: kerf 0.1 mm.
+    Paper,
+}
+
+impl Material {
+    /// The default kerf in mm.
+    pub fn default_kerf(self) -> f64 {
+        match self {
+            Material::Acrylic => 0.15,
+            Material::Wood => 0.2,
+            Material::Cardboard => 0.3,
+            Material::Paper => 0.1,
+        }
+    }
+
+    /// The lowercase name used in files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Material::Acrylic => "acrylic",
+            Material::Wood => "wood",
+            Material::Cardboard => "cardboard",
+            Material::Paper => "paper",
+        }
+    }
+}
+
+/// Which labels are engraved (engraving costs laser time, so the user chooses).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum LabelMode {
+    /// Part numbers and, next to every jointed edge, the connection number (default).
+    #[default]
+    Edges,
+    /// Part numbers only.
+    Parts,
+    /// Nothing.
+    None,
+}
+
+/// The sheets parts are nested on.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SheetSize {
+    /// Sheets of this size in mm, as many as needed.
+    Fixed {
+        /// Width (SVG x) in mm.
+        width: f64,
+        /// Height (SVG y) in mm.
+        height: f64,
+    },
+    /// One sheet per thickness, just large enough for its parts.
+    Fit,
+}
+
+impl Default for SheetSize {
+    /// 600 × 400 mm: the bed of the common 60 W desktop CO₂ lasers.
+    fn default() -> Self {
+        SheetSize::Fixed {
+            width: 600.0,
+            height: 400.0,
+        }
+    }
+}
+
+impl std::str::FromStr for SheetSize {
+    type Err = PlanError;
+
+    /// `WxH` in mm (e.g. `600x400`, also with `×` or `*`) or `fit`, as `--sheet` takes it.
+    fn from_str(s: &str) -> Result<Self, PlanError> {
+        let s = s.trim();
+        if s.eq_ignore_ascii_case("fit") {
+            return Ok(SheetSize::Fit);
+        }
+        let bad = || PlanError::Setting {
+            name: "sheet",
+            message: format!("{s:?} is neither WxH in mm (e.g. 600x400) nor `fit`"),
+        };
+        let (w, h) = s.split_once(['x', 'X', '×', '*']).ok_or_else(bad)?;
+        let (width, height) = (
+            w.trim().parse().map_err(|_| bad())?,
+            h.trim().parse().map_err(|_| bad())?,
+        );
+        Ok(SheetSize::Fixed { width, height })
+    }
+}
+
+/// All settings of the cutting-plan steps (`kerf`, `labels`, `sheets`, `export`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CutSettings {
+    /// The sheet material (sets the default kerf).
+    pub material: Material,
+    /// Kerf in mm; `None` takes the material's default ([`Material::default_kerf`]).
+    pub kerf: Option<f64>,
+    /// Which labels to engrave.
+    pub labels: LabelMode,
+    /// Sheet size.
+    pub sheet: SheetSize,
+    /// Free border between the sheet edge and any cut path, mm (clamps, uneven edges).
+    pub margin: f64,
+    /// Least distance between the cut paths of two parts, mm; must exceed the kerf, or the
+    /// laser would cut one part's edge while cutting its neighbour's.
+    pub spacing: f64,
+    /// Seed of the nesting search: the same seed gives the same layout.
+    pub seed: u64,
+    /// How many part orders the nesting tries (the first is largest-first); more is denser
+    /// and slower, linearly.
+    pub nest_tries: u32,
+    /// Also try each part at the angle of its smallest bounding rectangle (plus 90° steps),
+    /// not only at 0/90/180/270°.
+    pub fine_rotations: bool,
+    /// Let small parts go into the holes of large ones.
+    pub fill_holes: bool,
+    /// Cutting speed for the time estimate, mm/s (10 mm/s: 3 mm plywood on a 40 W laser).
+    pub cut_speed: f64,
+    /// Vector-engraving speed for the time estimate, mm/s.
+    pub engrave_speed: f64,
+    /// Write step timings into report.json. Off by default, because timings differ from run to
+    /// run and the ZIP must be byte-identical for the same input and settings.
+    pub report_timings: bool,
+}
+
+impl Default for CutSettings {
+    fn default() -> Self {
+        Self {
+            material: Material::Wood,
+            kerf: None,
+            labels: LabelMode::Edges,
+            sheet: SheetSize::default(),
+            margin: 5.0,
+            spacing: 2.0,
+            seed: 1,
+            nest_tries: 8,
+            fine_rotations: true,
+            fill_holes: true,
+            cut_speed: 10.0,
+            engrave_speed: 100.0,
+            report_timings: false,
+        }
+    }
+}
+
+/// Kerfs from this (mm) on are refused: no laser burns a 2 mm line.
+pub const MAX_KERF: f64 = 2.0;
+
+impl CutSettings {
+    /// The kerf in effect, mm.
+    pub fn kerf(&self) -> f64 {
+        self.kerf.unwrap_or_else(|| self.material.default_kerf())
+    }
+
+    /// Checks ranges; the error names the setting and what is allowed.
+    pub fn validate(&self) -> Result<(), PlanError> {
+        let bad = |name, message: String| Err(PlanError::Setting { name, message });
+        let kerf = self.kerf();
+        if !(kerf.is_finite() && (0.0..MAX_KERF).contains(&kerf)) {
+            return bad("kerf", format!("{kerf} mm must be in [0, {MAX_KERF})"));
+        }
+        if !(self.spacing.is_finite() && self.spacing > kerf) {
+            return bad(
+                "spacing",
+                format!(
+                    "{} mm must exceed the kerf ({kerf} mm), or cut paths would overlap",
+                    self.spacing
+                ),
+            );
+        }
+        if !(self.margin.is_finite() && self.margin >= 0.0) {
+            return bad("margin", format!("{} is not a distance ≥ 0 mm", self.margin));
+        }
+        if let SheetSize::Fixed { width, height } = self.sheet
+            && !(width.is_finite() && height.is_finite() && width > 2.0 * self.margin && height > 2.0 * self.margin)
+        {
+            return bad(
+                "sheet",
+                format!("{width} × {height} mm must be finite and larger than twice the margin"),
+            );
+        }
+        if self.nest_tries == 0 {
+            return bad("nest tries", "must be at least 1".into());
+        }
+        for (name, v) in [("cut speed", self.cut_speed), ("engrave speed", self.engrave_speed)] {
+            if !(v.is_finite() && v > 0.0) {
+                return bad(name, format!("{v} is not a positive speed in mm/s"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A method-specific setting recorded in plan.json's `settings` (joint kind, finger width…).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum SettingValue {
+    /// A yes/no setting.
+    Flag(bool),
+    /// A number.
+    Number(f64),
+    /// Several numbers.
+    Numbers(Vec<f64>),
+    /// A word or phrase.
+    Text(String),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sheet_sizes_parse_like_the_command_line_writes_them() {
+        assert_eq!("600x400".parse::<SheetSize>().ok(), Some(SheetSize::default()));
+        assert_eq!(
+            " 300 × 200 ".parse::<SheetSize>().ok(),
+            Some(SheetSize::Fixed {
+                width: 300.0,
+                height: 200.0
+            })
+        );
+        assert_eq!("FIT".parse::<SheetSize>().ok(), Some(SheetSize::Fit));
+        assert!("600".parse::<SheetSize>().is_err());
+    }
+
+    #[test]
+    fn spacing_must_exceed_the_kerf() {
+        let s = CutSettings {
+            kerf: Some(0.5),
+            spacing: 0.4,
+            ..CutSettings::default()
+        };
+        assert!(matches!(s.validate(), Err(PlanError::Setting { name: "spacing", .. })));
+        assert!(CutSettings::default().validate().is_ok());
+    }
+}

@@ -1,0 +1,103 @@
+use glam::{DVec2, DVec3};
+use platener_geom::{Frame, Polygon, Ring};
+
+use super::*;
+use crate::kerf::cut_paths;
+
+fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Ring {
+    vec![
+        DVec2::new(x0, y0),
+        DVec2::new(x1, y0),
+        DVec2::new(x1, y1),
+        DVec2::new(x0, y1),
+    ]
+}
+
+fn part(id: u32, polygon: Polygon) -> Part {
+    Part::plate(id, 3.0, polygon, Frame::on_plane(DVec3::ZERO, DVec3::Z))
+}
+
+fn nest_all(parts: &[Part], settings: &CutSettings) -> Nesting {
+    let cut = cut_paths(parts, settings.kerf()).expect("cut");
+    nest(parts, &cut, settings, &|| false).expect("nests")
+}
+
+#[test]
+fn two_plates_share_one_sheet_left_to_right() {
+    let parts = [
+        part(1, Polygon::new(rect(0.0, 0.0, 100.0, 380.0))),
+        part(2, Polygon::new(rect(0.0, 0.0, 100.0, 380.0))),
+    ];
+    let n = nest_all(&parts, &CutSettings::default());
+    assert_eq!(n.sheets.len(), 1);
+    assert_eq!(n.sheets[0].parts, [1, 2]);
+    // Side by side: the second starts one spacing (2 mm) plus the kerf after the first.
+    let xs: Vec<f64> = n.placements.iter().map(|p| p.x).collect();
+    assert!((xs[0] - 5.1).abs() < 0.06, "{xs:?}");
+    assert!((xs[1] - (5.1 + 100.2 + 2.0)).abs() < 0.06, "{xs:?}");
+    // Used: up to the second part's cut edge plus the margin, full height.
+    let used = (5.0 + 100.2 + 2.0 + 100.2 + 5.0) * 400.0;
+    assert!(
+        (n.sheets[0].used_area - used).abs() < 0.1 * 400.0,
+        "{}",
+        n.sheets[0].used_area
+    );
+}
+
+#[test]
+fn a_small_part_goes_into_a_hole() {
+    let frame = Polygon {
+        outer: rect(0.0, 0.0, 100.0, 100.0),
+        holes: vec![rect(20.0, 20.0, 80.0, 80.0)],
+    };
+    let parts = [part(1, frame), part(2, Polygon::new(rect(0.0, 0.0, 30.0, 30.0)))];
+    let settings = CutSettings {
+        sheet: SheetSize::Fit,
+        ..CutSettings::default()
+    };
+    let n = nest_all(&parts, &settings);
+    assert_eq!(n.sheets.len(), 1);
+    let (host, child) = (n.placements[0], n.placements[1]);
+    let c = host.apply(DVec2::new(50.0, 50.0));
+    let q = child.apply(DVec2::new(15.0, 15.0));
+    assert!(c.distance(q) < 30.0, "the small part sits in the hole: {c} vs {q}");
+    // Fit: the sheet is the frame plus margins.
+    assert!((n.sheets[0].width - 110.2).abs() < 0.1 && (n.sheets[0].height - 110.2).abs() < 0.1);
+}
+
+#[test]
+fn an_oversized_part_gets_its_own_sheet_and_a_warning() {
+    let parts = [
+        part(1, Polygon::new(rect(0.0, 0.0, 700.0, 100.0))),
+        part(2, Polygon::new(rect(0.0, 0.0, 50.0, 50.0))),
+    ];
+    let n = nest_all(&parts, &CutSettings::default());
+    assert_eq!(n.sheets.len(), 2);
+    assert_eq!(n.warnings.len(), 1);
+    let big = &n.sheets[n.placements[0].index as usize];
+    assert!(big.oversize && (big.width - 710.2).abs() < 1e-6 && (big.height - 110.2).abs() < 1e-6);
+}
+
+#[test]
+fn thicknesses_get_separate_sheets() {
+    let mut thick = part(2, Polygon::new(rect(0.0, 0.0, 40.0, 40.0)));
+    thick.thickness = 6.0;
+    let parts = [part(1, Polygon::new(rect(0.0, 0.0, 40.0, 40.0))), thick];
+    let n = nest_all(&parts, &CutSettings::default());
+    assert_eq!(n.sheets.len(), 2);
+    assert_eq!((n.sheets[0].thickness, n.sheets[1].thickness), (3.0, 6.0));
+    assert_eq!((n.placements[0].index, n.placements[1].index), (0, 1));
+}
+
+#[test]
+fn the_same_seed_gives_the_same_layout() {
+    let parts: Vec<Part> = (1..=12)
+        .map(|i| {
+            let w = 20.0 + f64::from(i * 7 % 50);
+            part(i, Polygon::new(rect(0.0, 0.0, w, 150.0 - w)))
+        })
+        .collect();
+    let a = nest_all(&parts, &CutSettings::default());
+    let b = nest_all(&parts, &CutSettings::default());
+    assert_eq!(a.placements, b.placements);
+}

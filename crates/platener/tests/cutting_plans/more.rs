@@ -1,0 +1,168 @@
+//! The test strip measured from its SVG, the DXF read by an outside reader (ezdxf), and random
+//! part sets nested without overlap.
+
+use std::process::Command;
+
+use platener::glam::DVec2;
+use platener::kerf::cut_paths;
+use platener::kerf::strip::{HOLE_COUNT, SPIKE_WIDTH, hole_kerf, test_strip};
+use platener::plan::samples::{l_shape, rectangle, window};
+use platener::plan::{CutSettings, Material, Part, SheetSize};
+use platener::sheets::nest;
+use platener_geom::{Polygon, boolean};
+use proptest::prelude::*;
+
+use super::{OVERLAP_TOL, mixed_parts, run, svg_read};
+
+/// Widths are written with 4 decimals: measured widths are exact to 1e-4 mm.
+const WIDTH_TOL: f64 = 1e-4;
+
+fn x_extent(ring: &[DVec2]) -> (f64, f64) {
+    ring.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+        (lo.min(p.x), hi.max(p.x))
+    })
+}
+
+#[test]
+fn the_test_strip_holes_and_spike_have_the_stated_widths() {
+    for (t, material) in [(3.0, Material::Wood), (6.0, Material::Acrylic)] {
+        let svg = svg_read::parse(&test_strip(t, material).expect("strip").svg());
+        let strip = &svg.groups["part-1"];
+        let mut holes: Vec<(f64, f64)> = strip.cut[1..].iter().map(|r| x_extent(r)).collect();
+        assert_eq!(holes.len(), HOLE_COUNT as usize);
+        // Numbered left to right.
+        holes.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (i, (lo, hi)) in holes.iter().enumerate() {
+            let n = i as u32 + 1;
+            let kerf = (SPIKE_WIDTH - (hi - lo)) / 2.0;
+            assert!((kerf - hole_kerf(n)).abs() < WIDTH_TOL, "hole {n}: {kerf}");
+            assert!(
+                (kerf - 0.025 * f64::from(n - 1)).abs() < WIDTH_TOL,
+                "the documented formula"
+            );
+        }
+        // The spike: the two lowest points on screen (largest y) are its tip.
+        let key = &svg.groups["part-2"].cut[0];
+        let mut tip: Vec<DVec2> = key.clone();
+        tip.sort_by(|a, b| b.y.total_cmp(&a.y));
+        assert!((tip[0].y - tip[1].y).abs() < WIDTH_TOL);
+        assert!(((tip[0].x - tip[1].x).abs() - SPIKE_WIDTH).abs() < WIDTH_TOL);
+        assert!(!strip.engrave.is_empty() && svg.red == 1 + HOLE_COUNT as usize + 1);
+    }
+}
+
+#[test]
+fn ezdxf_reads_our_dxf_with_the_same_areas() {
+    let probe = Command::new("python3").args(["-c", "import ezdxf"]).output();
+    if !probe.is_ok_and(|o| o.status.success()) {
+        eprintln!("skipped: python3 with ezdxf is not available (pip install ezdxf)");
+        return;
+    }
+    let (_, plan) = run(mixed_parts(), CutSettings::default());
+    let sheet = &plan.bundle.plan.sheets[0];
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("sheet.dxf");
+    let stem = sheet.file.trim_end_matches(".svg");
+    std::fs::write(&path, &plan.bundle.files[&format!("{stem}.dxf")]).expect("write");
+    let script = r#"
+import sys, ezdxf
+doc = ezdxf.readfile(sys.argv[1])
+print(doc.dxfversion, doc.header.get("$INSUNITS"))
+for e in doc.modelspace().query("LWPOLYLINE"):
+    pts = [(p[0], p[1]) for p in e.get_points("xy")]
+    a = sum(pts[i][0] * pts[(i + 1) % len(pts)][1] - pts[(i + 1) % len(pts)][0] * pts[i][1] for i in range(len(pts))) / 2
+    print(e.dxf.layer, int(e.closed), abs(a))
+"#;
+    let out = Command::new("python3")
+        .args(["-c", script])
+        .arg(&path)
+        .output()
+        .expect("python runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("AC1015 4"), "R2000, millimetres");
+    let mut cut: Vec<f64> = lines
+        .filter_map(|l| {
+            let f: Vec<&str> = l.split_whitespace().collect();
+            (f[0] == "CUT").then(|| {
+                assert_eq!(f[1], "1", "cut polylines are closed");
+                f[2].parse::<f64>().expect("area")
+            })
+        })
+        .collect();
+    let svg = svg_read::parse(std::str::from_utf8(&plan.bundle.files[&sheet.file]).expect("utf-8"));
+    let mut expected: Vec<f64> = svg
+        .groups
+        .values()
+        .flat_map(|g| &g.cut)
+        .map(|r| platener_geom::polygon::signed_area(r).abs())
+        .collect();
+    cut.sort_by(f64::total_cmp);
+    expected.sort_by(f64::total_cmp);
+    assert_eq!(cut.len(), expected.len());
+    for (a, b) in cut.iter().zip(&expected) {
+        assert!((a - b).abs() < 1e-3 * (1.0 + b), "{a} vs {b}");
+    }
+}
+
+fn random_part(id: u32, kind: u8, w: f64, h: f64) -> Part {
+    match kind % 3 {
+        0 => rectangle(id, w, h),
+        1 => l_shape(id, w.max(20.0), h.max(20.0), 8.0),
+        _ => window(id, w.max(30.0), h.max(30.0), 8.0),
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(6))]
+
+    /// Random sets of rectangles, Ls and frames nest on 300 × 200 sheets with every cut path
+    /// inside its sheet and no two overlapping.
+    #[test]
+    fn random_sets_nest_without_overlap(specs in prop::collection::vec((0u8..3, 5.0..150.0f64, 5.0..120.0f64), 1..14)) {
+        let parts: Vec<Part> = specs.iter().enumerate().map(|(i, (k, w, h))| random_part(i as u32 + 1, *k, *w, *h)).collect();
+        let settings = CutSettings { sheet: SheetSize::Fixed { width: 300.0, height: 200.0 }, nest_tries: 2, ..CutSettings::default() };
+        let cut = cut_paths(&parts, settings.kerf()).expect("cut");
+        let n = nest(&parts, &cut, &settings, &|| false).expect("nests");
+        let mut by_sheet: Vec<Vec<Polygon>> = vec![Vec::new(); n.sheets.len()];
+        for (i, p) in n.placements.iter().enumerate() {
+            let c = &cut.parts[i].cut;
+            let moved = |r: &Vec<DVec2>| r.iter().map(|q| p.apply(*q)).collect::<Vec<_>>();
+            let placed = Polygon { outer: moved(&c.outer), holes: c.holes.iter().map(moved).collect() };
+            let s = &n.sheets[p.index as usize];
+            for q in &placed.outer {
+                prop_assert!(q.x >= 0.0 && q.y >= 0.0 && q.x <= s.width && q.y <= s.height);
+            }
+            by_sheet[p.index as usize].push(placed);
+        }
+        for polys in &by_sheet {
+            for (i, a) in polys.iter().enumerate() {
+                for b in &polys[i + 1..] {
+                    let both = boolean::intersection(std::slice::from_ref(a), std::slice::from_ref(b)).expect("grid");
+                    prop_assert!(both.iter().map(Polygon::area).sum::<f64>() <= OVERLAP_TOL);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn timings_reach_report_json_only_when_asked() {
+    let millis = |settings: CutSettings| {
+        let (_, plan) = run(mixed_parts(), settings);
+        let r: serde_json::Value = serde_json::from_slice(&plan.bundle.files["report.json"]).expect("json");
+        r["steps"]
+            .as_array()
+            .expect("steps")
+            .iter()
+            .filter(|s| s.get("millis").is_some())
+            .count()
+    };
+    assert_eq!(millis(CutSettings::default()), 0);
+    let timed = CutSettings {
+        report_timings: true,
+        ..CutSettings::default()
+    };
+    assert_eq!(millis(timed), 3, "kerf, labels and sheets are timed");
+}
