@@ -22,6 +22,7 @@ pub mod inspect;
 pub mod kerf;
 pub mod labels;
 pub mod mesh;
+pub mod method;
 pub mod pipeline;
 pub mod plan;
 pub mod plates;
@@ -30,6 +31,7 @@ pub mod samples;
 pub mod settings;
 pub mod shapes;
 pub mod sheets;
+pub mod stacked;
 pub mod weld;
 
 pub use error::{Error, Result};

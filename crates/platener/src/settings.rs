@@ -103,6 +103,8 @@ pub struct Settings {
     pub straight_tolerance: Option<f64>,
     /// Plate finding.
     pub plates: PlateSettings,
+    /// Kerf, labels, sheets and export of the cutting plan.
+    pub cut: crate::plan::CutSettings,
 }
 
 impl Default for Settings {
@@ -115,6 +117,7 @@ impl Default for Settings {
             coplanar_angle_deg: 1.0,
             straight_tolerance: None,
             plates: PlateSettings::default(),
+            cut: crate::plan::CutSettings::default(),
         }
     }
 }
@@ -154,6 +157,7 @@ impl Settings {
         {
             return bad("straight tolerance", format!("{t} is not a distance ≥ 0 mm"));
         }
+        self.cut.validate()?;
         let p = &self.plates;
         if !(p.min_factor.is_finite() && p.min_factor > 0.0 && p.max_factor.is_finite() && p.max_factor > p.min_factor)
         {

@@ -1,0 +1,34 @@
+use std::io::Read;
+use std::sync::Arc;
+
+use super::*;
+use crate::samples;
+
+#[test]
+fn the_box_becomes_a_zip_with_six_parts_on_sheets() {
+    let source = Source::Triangles {
+        name: "box".into(),
+        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
+    };
+    let c = convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts");
+    let bundle = c.bundle().expect("exported");
+    assert_eq!(bundle.plan.parts.len(), 6);
+    let names: Vec<&str> = c.steps.iter().map(|s| s.name).collect();
+    assert_eq!(
+        names,
+        [
+            "read", "cleanup", "weld", "mesh", "coplanar", "shapes", "plates", "parts", "kerf", "labels", "sheets",
+            "export"
+        ]
+    );
+    // The ZIP holds plan.json, which lists the same six parts.
+    let mut zip = zip::ZipArchive::new(std::io::Cursor::new(bundle.zip.clone())).expect("a ZIP");
+    let mut plan = String::new();
+    zip.by_name("plan.json")
+        .expect("plan.json")
+        .read_to_string(&mut plan)
+        .expect("utf-8");
+    let plan: serde_json::Value = serde_json::from_str(&plan).expect("JSON");
+    assert_eq!(plan["parts"].as_array().expect("parts").len(), 6);
+    assert_eq!(plan["method"], "plate");
+}
