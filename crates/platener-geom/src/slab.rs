@@ -80,21 +80,29 @@ impl Slab {
         let lo = clearance - (c * self.thickness).max(0.0);
         let hi = other.thickness - clearance - (c * self.thickness).min(0.0);
         let ab = DVec2::new(a, b);
-        // The strip lo − e ≤ ab·p ≤ hi − e, clipped to a box around the outline. Clipping a box
-        // keeps every coordinate near the outline however close to parallel the planes are
+        // The strip lo − e ≤ ab·p ≤ hi − e, clipped to a box around the outline: clipping a
+        // box keeps every coordinate near the outline however close to parallel the planes are
         // (and parallel planes give the whole box or nothing).
         let (min, max) = self.polygon.bounds();
-        let (min, max) = (min - DVec2::ONE, max + DVec2::ONE);
-        let mut ring = vec![min, DVec2::new(max.x, min.y), max, DVec2::new(min.x, max.y)];
-        ring = clip_half_plane(&ring, ab, lo - e);
-        ring = clip_half_plane(&ring, -ab, -(hi - e));
-        if ring.len() < 3 {
+        let Some(strip) = strip_in_box(min - DVec2::ONE, max + DVec2::ONE, ab, lo - e, hi - e) else {
             return Ok(Vec::new());
-        }
-        let mut strip = Polygon::new(ring);
-        strip.normalize_orientation();
+        };
         boolean::intersection(std::slice::from_ref(&self.polygon), &[strip])
     }
+}
+
+/// The part of the box `min`–`max` where `lo ≤ n · p ≤ hi`, as a counter-clockwise polygon
+/// (`None` when empty). Every coordinate stays inside the box.
+pub fn strip_in_box(min: DVec2, max: DVec2, n: DVec2, lo: f64, hi: f64) -> Option<Polygon> {
+    let mut ring = vec![min, DVec2::new(max.x, min.y), max, DVec2::new(min.x, max.y)];
+    ring = clip_half_plane(&ring, n, lo);
+    ring = clip_half_plane(&ring, -n, -hi);
+    if ring.len() < 3 {
+        return None;
+    }
+    let mut strip = Polygon::new(ring);
+    strip.normalize_orientation();
+    (strip.area() > 0.0).then_some(strip)
 }
 
 /// The part of a convex ring where `n · p ≥ c` (Sutherland–Hodgman, one plane).

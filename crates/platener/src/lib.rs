@@ -19,6 +19,7 @@ pub mod coplanar;
 pub mod error;
 pub mod export;
 pub mod inspect;
+pub mod joints;
 pub mod kerf;
 pub mod labels;
 pub mod mesh;

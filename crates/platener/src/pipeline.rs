@@ -63,6 +63,8 @@ pub struct State {
     pub shapes: Option<Arc<shapes::Shapes>>,
     /// Step `plates`.
     pub plates: Option<Arc<plates::Plates>>,
+    /// Step `joints`.
+    pub joints: Option<Arc<crate::joints::Joints>>,
     /// Input of the cutting-plan steps: the parts a method made, with the cutting settings.
     pub parts: Option<Arc<crate::plan::PlanInput>>,
     /// Step `kerf`.
@@ -88,6 +90,7 @@ impl State {
             coplanar: None,
             shapes: None,
             plates: None,
+            joints: None,
             parts: None,
             kerf: None,
             labels: None,
@@ -143,6 +146,8 @@ pub enum WarningKind {
     FlippedFaces,
     /// Stored normals disagree with the winding (we use the winding).
     StoredNormals,
+    /// A joint could not be made as planned (a plate would fall apart…).
+    Joints,
     /// Something the cutting-plan steps had to adapt (a label skipped, a part larger than the
     /// sheet, a hole closed by the kerf).
     CuttingPlan,
@@ -224,10 +229,11 @@ pub fn foundation_steps() -> Vec<&'static dyn Step> {
     ]
 }
 
-/// The foundation steps, then plate finding.
+/// The foundation steps, then plate finding and joints.
 pub fn plate_steps() -> Vec<&'static dyn Step> {
     let mut steps = foundation_steps();
     steps.push(&plates::PlatesStep);
+    steps.push(&crate::joints::JointsStep);
     steps
 }
 

@@ -6,7 +6,7 @@
 //!
 //! | method | steps |
 //! |---|---|
-//! | plate | foundation, `plates`, `parts` (plates → parts) |
+//! | plate | foundation, `plates`, `joints`, `parts` (plates with joints → parts) |
 //! | stacked | foundation without welding, `stacked` (layers and shafts → parts) |
 
 mod plate_parts;

@@ -1,14 +1,15 @@
 //! Step `parts` of the plate method: plates become parts to cut.
 //!
-//! Each plate is one part, numbered from 1 in plate order. (The joint steps, when they run,
-//! change the plates' outlines and add the connections; this step only carries the result.)
+//! Each plate is one part, numbered from 1 in plate order, with the outline the `joints` step
+//! gave it (fingers, tabs, slots) and its connections as plan.json joints.
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use crate::error::Result;
+use crate::joints::ConnectionKind;
 use crate::pipeline::{State, Step, StepContext, need};
-use crate::plan::{Method, Part, PlanInput, SettingValue, SourceInfo};
+use crate::plan::{EdgeLabel, Joint, JointKind, Method, Part, PlanInput, SettingValue, SourceInfo};
 
 /// The plan's description of the model.
 pub fn source_info(state: &State) -> Result<SourceInfo> {
@@ -31,12 +32,38 @@ impl Step for PlatePartsStep {
 
     fn run(&self, state: &mut State, _cx: &mut StepContext<'_>) -> Result<()> {
         let plates = need(&state.plates, self.name(), "plates")?;
+        let joints = state.joints.as_deref();
         let parts: Vec<Part> = plates
             .plates
             .iter()
             .enumerate()
-            .map(|(i, p)| Part::plate(i as u32 + 1, p.thickness, p.polygon.clone(), p.frame))
+            .map(|(i, p)| {
+                let outline = joints.map_or(&p.polygon, |j| &j.outlines[i]);
+                let mut part = Part::plate(i as u32 + 1, p.thickness, outline.clone(), p.frame);
+                if let Some(j) = joints {
+                    part.edge_labels = j.edges[i]
+                        .iter()
+                        .map(|&(connection, segment)| EdgeLabel { connection, segment })
+                        .collect();
+                }
+                part
+            })
             .collect();
+        let connections = joints.map_or(Vec::new(), |j| {
+            j.connections
+                .iter()
+                .map(|c| Joint {
+                    parts: [c.plates[0] + 1, c.plates[1] + 1],
+                    kind: match c.kind {
+                        ConnectionKind::Corner => JointKind::Finger,
+                        ConnectionKind::Tee => JointKind::Slot,
+                        ConnectionKind::Cross => JointKind::Halved,
+                    },
+                    angle_deg: c.angle_deg,
+                    label: c.label,
+                })
+                .collect()
+        });
         let s = &state.settings;
         let mut method_settings = BTreeMap::new();
         method_settings.insert("thicknesses".to_string(), SettingValue::Numbers(s.thicknesses.clone()));
@@ -48,7 +75,7 @@ impl Step for PlatePartsStep {
             "extruded_plates".to_string(),
             SettingValue::Flag(s.plates.mode == crate::PlateMode::InherentAndExtruded),
         );
-        let mut input = PlanInput::new(source_info(state)?, Method::Plate, parts, Vec::new());
+        let mut input = PlanInput::new(source_info(state)?, Method::Plate, parts, connections);
         input.settings = s.cut.clone();
         input.method_settings = method_settings;
         state.parts = Some(Arc::new(input));

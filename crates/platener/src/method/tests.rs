@@ -17,8 +17,8 @@ fn the_box_becomes_a_zip_with_six_parts_on_sheets() {
     assert_eq!(
         names,
         [
-            "read", "cleanup", "weld", "mesh", "coplanar", "shapes", "plates", "parts", "kerf", "labels", "sheets",
-            "export"
+            "read", "cleanup", "weld", "mesh", "coplanar", "shapes", "plates", "joints", "parts", "kerf", "labels",
+            "sheets", "export"
         ]
     );
     // The ZIP holds plan.json, which lists the same six parts.
@@ -31,4 +31,11 @@ fn the_box_becomes_a_zip_with_six_parts_on_sheets() {
     let plan: serde_json::Value = serde_json::from_str(&plan).expect("JSON");
     assert_eq!(plan["parts"].as_array().expect("parts").len(), 6);
     assert_eq!(plan["method"], "plate");
+    // Twelve finger-jointed edges, each naming its two parts and the 90° they enclose.
+    let joints = plan["joints"].as_array().expect("joints");
+    assert_eq!(joints.len(), 12);
+    for j in joints {
+        assert_eq!(j["kind"], "finger");
+        assert!((j["angle"].as_f64().expect("angle") - 90.0).abs() < 1e-6);
+    }
 }

@@ -1,0 +1,253 @@
+//! Finding where plates meet: each plate grown across its neighbour's slab, and the volume two
+//! grown plates share.
+
+use glam::{DVec2, DVec3};
+use platener_geom::boolean::{difference, intersection};
+use platener_geom::offset::offset;
+use platener_geom::polygon::total_area;
+use platener_geom::slab::{Slab, strip_in_box};
+use platener_geom::{GridError, Polygon};
+
+use super::{ConnectionKind, JointSettings};
+use crate::plates::Plate;
+
+/// A shared volume of two grown plates, before it is trimmed along the joint line.
+struct Raw {
+    a: usize,
+    b: usize,
+    in_a: Polygon,
+    in_b: Polygon,
+    axis: DVec3,
+}
+
+/// How far plate `p` reaches along `axis` at its joint with `other`: its own outline, and the
+/// regions of its connections to third plates across that axis (a box corner).
+fn reach_along(plates: &[Plate], raw: &[Raw], p: usize, other: usize, axis: DVec3) -> (f64, f64) {
+    let plate = &plates[p];
+    let mut r = extent(plate, &plate.polygon, axis);
+    for x in raw {
+        let (mine, third) = if x.a == p {
+            (&x.in_a, x.b)
+        } else if x.b == p {
+            (&x.in_b, x.a)
+        } else {
+            continue;
+        };
+        if third == other || x.axis.dot(axis).abs() > 0.5 {
+            continue;
+        }
+        let e = extent(plate, mine, axis);
+        r = (r.0.min(e.0), r.1.max(e.1));
+    }
+    r
+}
+
+fn largest(polys: Vec<Polygon>) -> Option<Polygon> {
+    polys.into_iter().max_by(|a, b| a.area().total_cmp(&b.area()))
+}
+
+/// The part of `region` (in `plate`'s plane) between `s0` and `s1` along the axis `axis`,
+/// which lies in the plate's plane.
+pub(super) fn band(plate: &Plate, region: &Polygon, axis: DVec3, s0: f64, s1: f64) -> Result<Vec<Polygon>, GridError> {
+    let f = &plate.frame;
+    let n2 = DVec2::new(axis.dot(f.u), axis.dot(f.v));
+    let c = axis.dot(f.origin);
+    let (lo, hi) = region.bounds();
+    match strip_in_box(lo - DVec2::ONE, hi + DVec2::ONE, n2, s0 - c, s1 - c) {
+        Some(strip) => intersection(std::slice::from_ref(region), &[strip]),
+        None => Ok(Vec::new()),
+    }
+}
+
+/// A joint region shared by two plates.
+#[derive(Debug, Clone)]
+pub(super) struct Region {
+    /// The plates, `a < b` (a ranks higher).
+    pub a: usize,
+    /// See `a`.
+    pub b: usize,
+    /// The region in a's plane.
+    pub in_a: Polygon,
+    /// The region in b's plane.
+    pub in_b: Polygon,
+    /// How they meet.
+    pub kind: ConnectionKind,
+    /// For a T: the plate that passes through.
+    pub through: Option<usize>,
+    /// The enclosed angle, degrees.
+    pub angle_deg: f64,
+    /// Unit direction of the joint line (na × nb).
+    pub axis: DVec3,
+    /// Extent along `axis` (model coordinates projected on it).
+    pub range: (f64, f64),
+    /// A point on the joint (the region's centre in the model).
+    pub center: DVec3,
+}
+
+/// Where a 2D point of a plate's plane is in the model, at mid-thickness.
+fn at(plate: &Plate, p: DVec2) -> DVec3 {
+    plate.frame.to_model(DVec3::new(p.x, p.y, plate.thickness / 2.0))
+}
+
+fn extent(plate: &Plate, poly: &Polygon, axis: DVec3) -> (f64, f64) {
+    poly.outer
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            let l = axis.dot(at(plate, *p));
+            (lo.min(l), hi.max(l))
+        })
+}
+
+fn centroid(plate: &Plate, poly: &Polygon) -> DVec3 {
+    let (lo, hi) = poly.bounds();
+    at(plate, (lo + hi) / 2.0)
+}
+
+/// How far plate `a` must grow to cross plate `b`'s slab: the slab's width seen in a's plane.
+fn crossing_width(a: &Plate, b: &Plate) -> f64 {
+    let c = a.frame.n.dot(b.frame.n).abs();
+    let s = a.frame.n.cross(b.frame.n).length();
+    (b.thickness + a.thickness * c) / s
+}
+
+/// Direction from the joint line into the plate, in its plane.
+fn into_plate(plate: &Plate, axis: DVec3, joint: DVec3) -> DVec3 {
+    let d = plate.frame.n.cross(axis).normalize();
+    if d.dot(centroid(plate, &plate.polygon) - joint) >= 0.0 {
+        d
+    } else {
+        -d
+    }
+}
+
+fn boxes_touch(a: (DVec3, DVec3), b: (DVec3, DVec3), grow: f64) -> bool {
+    (a.0 - DVec3::splat(grow)).cmple(b.1).all() && (b.0 - DVec3::splat(grow)).cmple(a.1).all()
+}
+
+/// Every joint region between the plates.
+pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Region>, GridError> {
+    let sin_min = settings.min_angle_deg.to_radians().sin();
+    let t_max = plates.iter().map(|p| p.thickness).fold(0.0, f64::max);
+    let reach = 2.0 * t_max / sin_min;
+    let bounds: Vec<(DVec3, DVec3)> = plates.iter().map(Plate::bounds).collect();
+    // Sweep along x: only plates whose grown boxes overlap in x are compared.
+    let mut order: Vec<usize> = (0..plates.len()).collect();
+    order.sort_by(|&i, &j| bounds[i].0.x.total_cmp(&bounds[j].0.x).then(i.cmp(&j)));
+    let mut pairs = Vec::new();
+    for (k, &i) in order.iter().enumerate() {
+        for &j in &order[k + 1..] {
+            if bounds[j].0.x > bounds[i].1.x + 2.0 * reach {
+                break;
+            }
+            if boxes_touch(bounds[i], bounds[j], reach) {
+                pairs.push((i.min(j), i.max(j)));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    let mut raw = Vec::new();
+    let min_length = t_max / 2.0;
+    for (a, b) in pairs {
+        let (pa, pb) = (&plates[a], &plates[b]);
+        if pa.frame.n.cross(pb.frame.n).length() < sin_min {
+            continue;
+        }
+        let grown = |p: &Plate, by: f64| -> Result<Vec<Slab>, GridError> {
+            Ok(offset(std::slice::from_ref(&p.polygon), by)?
+                .into_iter()
+                .map(|polygon| Slab {
+                    frame: p.frame,
+                    polygon,
+                    thickness: p.thickness,
+                })
+                .collect())
+        };
+        let (ga, gb) = (grown(pa, crossing_width(pa, pb))?, grown(pb, crossing_width(pb, pa))?);
+        let clearance = 1e-3;
+        let mut in_a = Vec::new();
+        let mut in_b = Vec::new();
+        for sa in &ga {
+            for sb in &gb {
+                in_a.extend(sa.columns_meeting(sb, clearance)?);
+                in_b.extend(sb.columns_meeting(sa, clearance)?);
+            }
+        }
+        let min_area = (pa.thickness.min(pb.thickness) / 2.0).powi(2);
+        in_a.retain(|p| p.area() > min_area);
+        in_b.retain(|p| p.area() > min_area);
+        let axis = pa.frame.n.cross(pb.frame.n).normalize();
+        // Disjoint stretches are separate connections: pair the pieces by their extent
+        // along the joint line.
+        for ra in &in_a {
+            let range_a = extent(pa, ra, axis);
+            if let Some(rb) = in_b.iter().find(|rb| {
+                let r = extent(pb, rb, axis);
+                r.0 < range_a.1 && range_a.0 < r.1
+            }) {
+                raw.push(Raw {
+                    a,
+                    b,
+                    in_a: ra.clone(),
+                    in_b: rb.clone(),
+                    axis,
+                });
+            }
+        }
+    }
+    let mut regions = Vec::with_capacity(raw.len());
+    for r in &raw {
+        let (pa, pb) = (&plates[r.a], &plates[r.b]);
+        // Growing in every direction also lengthened the joint past the plates' ends; along the
+        // joint line a plate only reaches as far as it is, or as another connection (a box
+        // corner's third plate) takes it.
+        let (la, lb) = (
+            reach_along(plates, &raw, r.a, r.b, r.axis),
+            reach_along(plates, &raw, r.b, r.a, r.axis),
+        );
+        let range = (la.0.max(lb.0), la.1.min(lb.1));
+        if range.1 - range.0 < min_length {
+            continue;
+        }
+        let (Some(ra), Some(rb)) = (
+            largest(band(pa, &r.in_a, r.axis, range.0, range.1)?),
+            largest(band(pb, &r.in_b, r.axis, range.0, range.1)?),
+        ) else {
+            continue;
+        };
+        let passes = |p: &Plate, region: &Polygon| -> Result<bool, GridError> {
+            let outside = total_area(&difference(
+                std::slice::from_ref(region),
+                std::slice::from_ref(&p.polygon),
+            )?);
+            Ok(outside < 1e-6 * region.area().max(1.0))
+        };
+        let (kind, through) = match (passes(pa, &ra)?, passes(pb, &rb)?) {
+            (false, false) => (ConnectionKind::Corner, None),
+            (true, false) => (ConnectionKind::Tee, Some(r.a)),
+            (false, true) => (ConnectionKind::Tee, Some(r.b)),
+            (true, true) => (ConnectionKind::Cross, None),
+        };
+        let center = centroid(pa, &ra);
+        let angle_deg = match kind {
+            ConnectionKind::Corner => {
+                let (da, db) = (into_plate(pa, r.axis, center), into_plate(pb, r.axis, center));
+                da.dot(db).clamp(-1.0, 1.0).acos().to_degrees()
+            }
+            // The plate ending against a face makes two angles with it; the smaller is named.
+            _ => pa.frame.n.dot(pb.frame.n).abs().clamp(0.0, 1.0).acos().to_degrees(),
+        };
+        regions.push(Region {
+            a: r.a,
+            b: r.b,
+            in_a: ra,
+            in_b: rb,
+            kind,
+            through,
+            angle_deg,
+            axis: r.axis,
+            range,
+            center,
+        });
+    }
+    Ok(regions)
+}

@@ -1,0 +1,120 @@
+//! Step `joints` (the thesis' PlateGraph and JointComputation): where plates meet, and the
+//! fingers, tabs and slots that make them hold without glue.
+//!
+//! One volumetric scheme covers every case, at any angle:
+//! 1. [`connect`]: each plate grows across every neighbour's slab (by the width of the
+//!    neighbour's slab seen in its plane); where two grown plates share volume they are
+//!    connected. That shared prism is the joint region (the thesis' parallelogram, so finger
+//!    length follows the enclosed angle by construction); disjoint stretches are separate
+//!    connections. A plate whose original outline already covers the region passes through.
+//! 2. [`fingers`]: the region is cut into segments along the joint line; each segment belongs to
+//!    one plate and is removed from the other, so the two sides are exact negatives. Corners
+//!    (neither passes through): an odd number of fingers, the ends to the higher-ranked plate, so
+//!    every corner volume where three plates meet has exactly one owner. T-junctions (one passes
+//!    through): tabs on the ending plate, slots (holes) in the through plate, whose ends it keeps.
+//!    Crossings (both pass through): a halved joint, one slot from each side to half depth.
+
+mod connect;
+mod fingers;
+#[cfg(test)]
+mod tests;
+
+use std::sync::Arc;
+
+use glam::{DVec2, DVec3};
+use platener_geom::{GridError, Polygon};
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::pipeline::{State, Step, StepContext, WarningKind, need};
+use crate::plates::Plate;
+
+/// How two plates meet.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ConnectionKind {
+    /// Both plates end at the joint: finger joint.
+    Corner,
+    /// One plate ends against the other's face: tabs and slots.
+    Tee,
+    /// Both pass through each other: halved (cross-lap) joint.
+    Cross,
+}
+
+/// Settings of the joints.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct JointSettings {
+    /// Finger width as a multiple of the thicker plate's thickness.
+    pub finger_factor: f64,
+    /// Plates closer to parallel than this many degrees are not joined (their joint region
+    /// would be a long sliver); at least this angle caps finger length at shallow angles.
+    pub min_angle_deg: f64,
+}
+
+impl Default for JointSettings {
+    fn default() -> Self {
+        Self {
+            finger_factor: 3.0,
+            min_angle_deg: 15.0,
+        }
+    }
+}
+
+/// A connection between two plates (an edge of the plate graph).
+#[derive(Debug, Clone, Serialize)]
+pub struct Connection {
+    /// The plates (indices into the plates snapshot), lower first.
+    pub plates: [u32; 2],
+    /// How they meet.
+    pub kind: ConnectionKind,
+    /// The angle enclosed by the plates, degrees (90 for a box corner).
+    pub angle_deg: f64,
+    /// Start and end of the joint along the line where the plates meet, in the model.
+    pub line: [DVec3; 2],
+    /// Number of segments (fingers of both plates; 2 for a halved joint).
+    pub segments: usize,
+    /// The connection's number, engraved next to it on both plates (1-based).
+    pub label: u32,
+}
+
+/// The snapshot of step `joints`: the plates' outlines with their joints, and the graph.
+#[derive(Debug, Clone, Serialize)]
+pub struct Joints {
+    /// Each plate's outline with fingers, tabs and slots (one polygon per plate).
+    pub outlines: Vec<Polygon>,
+    /// The connections.
+    pub connections: Vec<Connection>,
+    /// Per plate: the jointed edges (segments in the plate's frame) and their labels.
+    pub edges: Vec<Vec<(u32, [DVec2; 2])>>,
+    /// Things to know (a plate that would fall apart, …).
+    pub warnings: Vec<String>,
+}
+
+/// Computes the joints of `plates`.
+pub fn compute(plates: &[Plate], settings: &JointSettings) -> Result<Joints, GridError> {
+    let regions = connect::find(plates, settings)?;
+    fingers::apply(plates, regions, settings)
+}
+
+/// Step `joints`.
+pub struct JointsStep;
+
+impl Step for JointsStep {
+    fn name(&self) -> &'static str {
+        "joints"
+    }
+
+    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
+        let plates = need(&state.plates, self.name(), "plates")?;
+        cx.check_cancel()?;
+        let joints = compute(&plates.plates, &JointSettings::default()).map_err(|e| Error::Geometry {
+            model: state.source.name(),
+            message: e.to_string(),
+        })?;
+        for w in &joints.warnings {
+            cx.warn(WarningKind::Joints, w.clone());
+        }
+        state.joints = Some(Arc::new(joints));
+        Ok(())
+    }
+}

@@ -1,0 +1,137 @@
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use super::*;
+use crate::pipeline::{self, Cancel, Source, State};
+use crate::read::Triangle;
+use crate::samples;
+use crate::settings::Settings;
+
+fn plates_of(triangles: Vec<Triangle>) -> Vec<Plate> {
+    let source = Source::Triangles {
+        name: "test".into(),
+        triangles: Arc::new(triangles),
+    };
+    let mut state = State::new(source, Settings::default());
+    pipeline::run(&pipeline::plate_steps(), &mut state, &Cancel::default()).expect("converts");
+    state.plates.expect("plates").plates.clone()
+}
+
+/// The final parts as slabs.
+fn parts(plates: &[Plate], joints: &Joints) -> Vec<Slab> {
+    plates
+        .iter()
+        .zip(&joints.outlines)
+        .map(|(p, o)| Slab {
+            frame: p.frame,
+            polygon: o.clone(),
+            thickness: p.thickness,
+        })
+        .collect()
+}
+
+use platener_geom::slab::Slab;
+
+/// Largest area (mm²) by which any two parts' columns overlap: zero for exact complements.
+fn worst_overlap(parts: &[Slab]) -> f64 {
+    let mut worst: f64 = 0.0;
+    for (i, a) in parts.iter().enumerate() {
+        for b in &parts[i + 1..] {
+            let shared: f64 = a
+                .columns_meeting(b, 1e-3)
+                .expect("grid")
+                .iter()
+                .map(Polygon::area)
+                .sum();
+            worst = worst.max(shared);
+        }
+    }
+    worst
+}
+
+fn volume(parts: &[Slab]) -> f64 {
+    parts.iter().map(|s| s.polygon.area() * s.thickness).sum()
+}
+
+#[test]
+fn box_corners_become_twelve_finger_joints_that_rebuild_the_box() {
+    let plates = plates_of(samples::closed_box(100.0, 80.0, 60.0, 3.0));
+    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    assert_eq!(joints.connections.len(), 12);
+    for c in &joints.connections {
+        assert_eq!(c.kind, ConnectionKind::Corner);
+        assert!((c.angle_deg - 90.0).abs() < 1e-6, "{}", c.angle_deg);
+        assert!(c.segments % 2 == 1 && c.segments >= 3, "{}", c.segments);
+    }
+    assert!(joints.warnings.is_empty(), "{:?}", joints.warnings);
+    let parts = parts(&plates, &joints);
+    // Fingers are exact complements: no two parts share volume…
+    assert!(worst_overlap(&parts) < 1e-6, "{}", worst_overlap(&parts));
+    // …and together they fill the box's walls exactly, corners included.
+    let walls = 100.0 * 80.0 * 60.0 - 94.0 * 74.0 * 54.0;
+    assert!((volume(&parts) - walls).abs() < 1e-3, "{} vs {walls}", volume(&parts));
+}
+
+#[test]
+fn shelf_board_gets_tabs_and_the_sides_get_slots() {
+    let plates = plates_of(samples::shelf(80.0, 120.0, 50.0, 60.0, 3.0));
+    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    let tees: Vec<_> = joints
+        .connections
+        .iter()
+        .filter(|c| c.kind == ConnectionKind::Tee)
+        .collect();
+    assert_eq!(tees.len(), 2, "{:?}", joints.connections);
+    // The sides keep their outline and get closed slots (holes) where the tabs go through.
+    for (i, p) in plates.iter().enumerate() {
+        if (p.area - 120.0 * 60.0).abs() < 1e-3 {
+            assert!(!joints.outlines[i].holes.is_empty(), "side {i} has slots");
+            assert!((joints.outlines[i].outer.len()) == 4, "side {i} outline unchanged");
+        }
+    }
+    let parts = parts(&plates, &joints);
+    assert!(worst_overlap(&parts) < 1e-6);
+    let model = 2.0 * 3.0 * 120.0 * 60.0 + 74.0 * 3.0 * 60.0;
+    assert!((volume(&parts) - model).abs() < 1e-3, "{} vs {model}", volume(&parts));
+}
+
+#[test]
+fn crossing_plates_get_a_halved_joint() {
+    let plates = plates_of(samples::crossing_plates(100.0, 3.0));
+    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    assert_eq!(joints.connections.len(), 1);
+    assert_eq!(joints.connections[0].kind, ConnectionKind::Cross);
+    assert_eq!(joints.connections[0].segments, 2);
+    let parts = parts(&plates, &joints);
+    assert!(worst_overlap(&parts) < 1e-6);
+    // Each plate loses half the crossing: a slot 3 wide and 50 deep.
+    for o in &joints.outlines {
+        assert!((o.area() - (10_000.0 - 150.0)).abs() < 1e-3, "{}", o.area());
+    }
+}
+
+#[test]
+fn roof_ridge_is_a_finger_joint_at_the_enclosed_angle() {
+    let plates = plates_of(samples::roof(50.0, 40.0, 80.0, 3.0));
+    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    assert_eq!(joints.connections.len(), 1);
+    let c = &joints.connections[0];
+    assert_eq!(c.kind, ConnectionKind::Corner);
+    // Two slopes of 40° meet at 180 − 2·40 = 100°.
+    assert!((c.angle_deg - 100.0).abs() < 1e-6, "{}", c.angle_deg);
+    assert!(worst_overlap(&parts(&plates, &joints)) < 1e-3);
+}
+
+#[test]
+fn segment_counts_are_odd_and_never_too_narrow() {
+    assert_eq!(fingers::segment_count(100.0, 9.0, 1.5), 11);
+    assert_eq!(fingers::segment_count(94.0, 9.0, 1.5), 11);
+    assert_eq!(fingers::segment_count(4.0, 9.0, 1.5), 1);
+    assert_eq!(fingers::segment_count(6.0, 9.0, 1.5), 3);
+    for len in [3.0, 10.0, 33.3, 250.0] {
+        let n = fingers::segment_count(len, 9.0, 1.5);
+        assert!(n % 2 == 1 && (n == 1 || len / n as f64 >= 1.5));
+    }
+    let _ = DVec3::ZERO;
+}
