@@ -279,7 +279,8 @@ pub fn shelf(w: f64, h: f64, shelf: f64, depth: f64, t: f64) -> Vec<Triangle> {
 }
 
 /// A gable roof: two `t`-thick plates rising at `pitch_deg` to a ridge, each `run` wide
-/// horizontally, `depth` deep; the plates meet in a mitre along the ridge.
+/// horizontally, `depth` deep; the plates meet in a mitre along the ridge and their eaves are
+/// cut square to the slope.
 pub fn roof(run: f64, pitch_deg: f64, depth: f64, t: f64) -> Vec<Triangle> {
     let a = pitch_deg.to_radians();
     let rise = run * a.tan();
@@ -287,14 +288,8 @@ pub fn roof(run: f64, pitch_deg: f64, depth: f64, t: f64) -> Vec<Triangle> {
     // Outer (upper) surface from (0, 0) up to the ridge (run, rise) and down to (2·run, 0);
     // the lower surface is t below, measured perpendicular to each slope.
     let drop = t / a.cos();
-    let profile = [
-        p(0.0, -drop),
-        p(run, rise - drop),
-        p(2.0 * run, -drop),
-        p(2.0 * run, 0.0),
-        p(run, rise),
-        p(0.0, 0.0),
-    ];
+    let (left_in, right_in) = (p(a.sin(), -a.cos()) * t, p(2.0 * run - t * a.sin(), -t * a.cos()));
+    let profile = [left_in, p(run, rise - drop), right_in, p(2.0 * run, 0.0), p(run, rise), p(0.0, 0.0)];
     prism(&profile, depth)
 }
 
@@ -331,6 +326,69 @@ pub fn shipped_examples() -> Vec<(&'static str, &'static str, Vec<Triangle>)> {
             phone_stand(),
         ),
     ]
+}
+
+/// A UV sphere of `radius` around `center`: `segments` meridians, `rings` bands from pole to
+/// pole (`2·segments·(rings − 1)` triangles), closed and wound outwards. The stacked method's
+/// reference model: its cross-sections and surface are known exactly.
+pub fn sphere(center: DVec3, radius: f64, segments: usize, rings: usize) -> Vec<Triangle> {
+    let (segments, rings) = (segments.max(3), rings.max(2));
+    let at = |i: usize, j: usize| {
+        let (st, ct) = (std::f64::consts::PI * i as f64 / rings as f64).sin_cos();
+        let (sp, cp) = (std::f64::consts::TAU * (j % segments) as f64 / segments as f64).sin_cos();
+        center + radius * DVec3::new(st * cp, st * sp, ct)
+    };
+    let (north, south) = (center + DVec3::Z * radius, center - DVec3::Z * radius);
+    let mut out = Vec::with_capacity(2 * segments * (rings - 1));
+    for j in 0..segments {
+        out.push([north, at(1, j), at(1, j + 1)]);
+        for i in 1..rings - 1 {
+            // Ring i is above ring i + 1; j + 1 is further round anticlockwise seen from +z.
+            let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+            out.push([a, d, c]);
+            out.push([a, c, b]);
+        }
+        out.push([south, at(rings - 1, j + 1), at(rings - 1, j)]);
+    }
+    out
+}
+
+/// A torus around `center` whose ring turns about the unit `axis`: tube centre `major` from
+/// the axis, tube radius `minor`, `segments` steps round the ring and `sides` round the tube
+/// (`2·segments·sides` triangles), closed and wound outwards. With `axis` = +y it stands on
+/// its rim like a wheel, so layers along z cut two islands in the middle band.
+pub fn torus(center: DVec3, axis: DVec3, major: f64, minor: f64, segments: usize, sides: usize) -> Vec<Triangle> {
+    let (segments, sides) = (segments.max(3), sides.max(3));
+    let axis = axis.normalize();
+    // A right-handed (e1, e2, axis): the ring runs from e1 towards e2.
+    let e1 = axis.any_orthonormal_vector();
+    let e2 = axis.cross(e1);
+    let at = |i: usize, j: usize| {
+        let (sp, cp) = (std::f64::consts::TAU * (i % segments) as f64 / segments as f64).sin_cos();
+        let (ss, cs) = (std::f64::consts::TAU * (j % sides) as f64 / sides as f64).sin_cos();
+        let radial = e1 * cp + e2 * sp;
+        center + radial * (major + minor * cs) + axis * (minor * ss)
+    };
+    let mut out = Vec::with_capacity(2 * segments * sides);
+    for i in 0..segments {
+        for j in 0..sides {
+            // d/dring × d/dtube points away from the tube's centre line.
+            let (p00, p10, p11, p01) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            out.push([p00, p10, p11]);
+            out.push([p00, p11, p01]);
+        }
+    }
+    out
+}
+
+/// Two separate bodies `gap` mm apart along x: a sphere of radius 30 mm at the origin and a
+/// torus lying flat (axis z, ring radius 40 mm, tube radius 15 mm), whose layers are rings
+/// with a hole. A model of several bodies in one file, as many printable models are.
+pub fn two_bodies(gap: f64) -> Vec<Triangle> {
+    let mut out = sphere(DVec3::ZERO, 30.0, 48, 24);
+    let center = DVec3::new(30.0 + gap + 55.0, 0.0, 0.0);
+    out.extend(torus(center, DVec3::Z, 40.0, 15.0, 64, 24));
+    out
 }
 
 #[cfg(test)]

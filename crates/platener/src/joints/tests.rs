@@ -135,3 +135,27 @@ fn segment_counts_are_odd_and_never_too_narrow() {
     }
     let _ = DVec3::ZERO;
 }
+
+#[test]
+fn plates_meeting_at_60_90_120_150_degrees_fill_the_corner_without_overlap() {
+    for enclosed in [60.0, 90.0, 120.0, 150.0f64] {
+        let pitch = (180.0 - enclosed) / 2.0;
+        let model = samples::roof(50.0, pitch, 80.0, 3.0);
+        let plates = plates_of(model.clone());
+        assert_eq!(plates.len(), 2, "{enclosed}°");
+        let joints = compute(&plates, &JointSettings::default()).expect("grid");
+        assert_eq!(joints.connections.len(), 1, "{enclosed}°");
+        let c = &joints.connections[0];
+        assert!((c.angle_deg - enclosed).abs() < 1e-6, "{enclosed}°: {}", c.angle_deg);
+        let parts = parts(&plates, &joints);
+        let overlap = worst_overlap(&parts);
+        let total = volume(&parts);
+        // The model's volume: its profile area times the depth.
+        let w = crate::weld::weld_soup(&model, 0.0);
+        let m = crate::mesh::Mesh::build(w.vertices, &w.triangles, 1e-9);
+        let model_volume = m.health.volume.expect("closed");
+        eprintln!("{enclosed}°: parts {total:.1} mm³, model {model_volume:.1} mm³, worst column overlap {overlap:.3} mm²");
+        assert!(overlap * 3.0 < 0.005 * model_volume, "{enclosed}°: overlap {overlap}");
+        assert!((total - model_volume).abs() < 0.01 * model_volume, "{enclosed}°: {total} vs {model_volume}");
+    }
+}
