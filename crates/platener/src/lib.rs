@@ -33,6 +33,7 @@ pub mod settings;
 pub mod shapes;
 pub mod sheets;
 pub mod stacked;
+pub mod verify;
 pub mod weld;
 
 pub use error::{Error, Result};

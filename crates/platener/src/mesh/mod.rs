@@ -28,6 +28,8 @@ pub struct Health {
     pub non_manifold_edges: usize,
     /// Connected bodies (faces connected through shared edges).
     pub components: usize,
+    /// Separate solids: components not inside another (a hollow box's cavity is not one).
+    pub solids: usize,
     /// Triangles whose winding was turned round to agree with their neighbours / point out.
     pub flipped_faces: usize,
     /// Edges whose two triangles still disagree (a non-orientable surface, e.g. a Möbius strip).
@@ -101,6 +103,7 @@ impl Mesh {
             open_edges,
             non_manifold_edges,
             components: oriented.components,
+            solids: oriented.solids,
             flipped_faces: oriented.flipped,
             non_orientable_edges: oriented.non_orientable_edges,
             degenerate_after_weld: degenerate,

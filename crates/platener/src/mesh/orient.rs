@@ -15,6 +15,8 @@ pub(super) struct Oriented {
     pub reversed: Vec<bool>,
     pub component: Vec<u32>,
     pub components: usize,
+    /// Components not nested inside another closed one (solids; cavities excluded).
+    pub solids: usize,
     pub flipped: usize,
     pub non_orientable_edges: usize,
 }
@@ -157,6 +159,7 @@ pub(super) fn orient(vertices: &[DVec3], triangles: &[[u32; 3]], topology: &Topo
         reversed: flip,
         triangles: out,
         components: bodies.len(),
+        solids: depth.iter().filter(|&&d| d % 2 == 0).count(),
         component,
         non_orientable_edges,
     }

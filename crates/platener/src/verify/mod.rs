@@ -1,0 +1,232 @@
+//! `platener verify`: rebuilds the assembly from plan.json and checks it before anyone cuts.
+//!
+//! Each part is its outline extruded by its thickness and moved by its transform. Measured by
+//! deterministic sampling (see [`sample`]; the accuracy follows the sampling step):
+//! - pairwise interference volume (plates must not intersect; fingers must be exact complements),
+//! - with the model: share of the model's surface within 2 mm of a part, share of the parts'
+//!   volume inside the model,
+//! - groups of parts the joints hold together, against the model's separate solids,
+//! - joints whose two parts do not actually meet.
+//!
+//! It fails when interference exceeds 0.5 % of the parts' volume, when the parts fall apart
+//! into more groups than the model has solids, or when a joint's parts do not meet.
+
+mod sample;
+#[cfg(test)]
+mod tests;
+
+use glam::{DVec2, DVec3};
+use platener_geom::polygon::ring_contains;
+use serde::Serialize;
+
+use crate::mesh::Mesh;
+use crate::plan::Plan;
+
+/// Interference above this share of the parts' volume fails verification.
+pub const MAX_INTERFERENCE: f64 = 0.005;
+/// Model surface within this distance (mm) of a part counts as covered.
+pub const COVER_DISTANCE: f64 = 2.0;
+
+/// One part, rebuilt: its outline in its frame, extruded from z = 0 to `thickness`.
+#[derive(Debug, Clone)]
+pub struct Solid {
+    /// The part's id.
+    pub id: u32,
+    /// Outer ring and holes.
+    pub rings: Vec<Vec<DVec2>>,
+    /// Thickness, mm.
+    pub thickness: f64,
+    /// Model point = `origin + u·x + v·y + n·z`.
+    pub origin: DVec3,
+    /// Local x axis.
+    pub u: DVec3,
+    /// Local y axis.
+    pub v: DVec3,
+    /// Local z axis.
+    pub n: DVec3,
+    /// Axis-aligned bounds in the model.
+    pub bounds: (DVec3, DVec3),
+}
+
+impl Solid {
+    fn from_part(p: &crate::plan::PlanPart) -> Self {
+        let t = p.transform;
+        let col = |c: usize| DVec3::new(t[0][c], t[1][c], t[2][c]);
+        let (u, v, n, origin) = (col(0), col(1), col(2), col(3));
+        let mut rings = vec![p.outline.clone()];
+        rings.extend(p.holes.iter().cloned());
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for q in &p.outline {
+            for z in [0.0, p.thickness] {
+                let m = origin + u * q.x + v * q.y + n * z;
+                lo = lo.min(m);
+                hi = hi.max(m);
+            }
+        }
+        Self {
+            id: p.id,
+            rings,
+            thickness: p.thickness,
+            origin,
+            u,
+            v,
+            n,
+            bounds: (lo, hi),
+        }
+    }
+
+    /// Whether a model point lies strictly inside the part (even-odd over the rings; points
+    /// within 1 nm of a face count as outside, so touching parts do not interfere).
+    pub fn contains(&self, p: DVec3) -> bool {
+        let d = p - self.origin;
+        let z = d.dot(self.n);
+        if z <= 1e-6 || z >= self.thickness - 1e-6 {
+            return false;
+        }
+        let q = DVec2::new(d.dot(self.u), d.dot(self.v));
+        self.rings.iter().filter(|r| ring_contains(r, q)).count() % 2 == 1
+    }
+
+    /// Distance from a model point to the part (0 inside).
+    pub fn distance(&self, p: DVec3) -> f64 {
+        let d = p - self.origin;
+        let z = d.dot(self.n);
+        let dz = if z < 0.0 {
+            -z
+        } else if z > self.thickness {
+            z - self.thickness
+        } else {
+            0.0
+        };
+        let q = DVec2::new(d.dot(self.u), d.dot(self.v));
+        let inside = self.rings.iter().filter(|r| ring_contains(r, q)).count() % 2 == 1;
+        let dxy = if inside {
+            0.0
+        } else {
+            self.rings
+                .iter()
+                .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
+                .map(|(a, b)| {
+                    let ab = b - a;
+                    let t = ((q - a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+                    (a + ab * t).distance(q)
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        (dxy * dxy + dz * dz).sqrt()
+    }
+
+    /// Area of the outline minus holes.
+    pub fn area(&self) -> f64 {
+        let a = |r: &Vec<DVec2>| platener_geom::polygon::signed_area(r).abs();
+        a(&self.rings[0]) - self.rings[1..].iter().map(a).sum::<f64>()
+    }
+}
+
+/// Two parts that share volume.
+#[derive(Debug, Clone, Serialize)]
+pub struct Interference {
+    /// The parts' ids.
+    pub parts: [u32; 2],
+    /// Shared volume, mm³.
+    pub volume: f64,
+}
+
+/// What `platener verify` reports.
+#[derive(Debug, Clone, Serialize)]
+pub struct Verification {
+    /// Parts rebuilt.
+    pub parts: usize,
+    /// Their total volume, mm³.
+    pub parts_volume: f64,
+    /// Pairs of parts that share volume, largest first.
+    pub interference: Vec<Interference>,
+    /// Total shared volume over the parts' volume.
+    pub interference_share: f64,
+    /// Groups of parts held together by joints.
+    pub groups: usize,
+    /// The model's separate solids, when the model was given.
+    pub model_solids: Option<usize>,
+    /// Share of the model's surface within 2 mm of a part, when the model was given.
+    pub surface_covered: Option<f64>,
+    /// Share of the parts' volume inside the model, when the model was given.
+    pub volume_inside: Option<f64>,
+    /// Labels of joints whose parts do not meet.
+    pub joints_not_meeting: Vec<u32>,
+    /// The sampling step used, mm.
+    pub step: f64,
+    /// Why verification failed (empty when it passed).
+    pub problems: Vec<String>,
+}
+
+impl Verification {
+    /// Whether every check passed.
+    pub fn passed(&self) -> bool {
+        self.problems.is_empty()
+    }
+}
+
+/// Verifies a plan, optionally against the model it was made from.
+pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
+    let solids: Vec<Solid> = plan.parts.iter().map(Solid::from_part).collect();
+    let step = sample::step_for(&solids);
+    let parts_volume: f64 = solids.iter().map(|s| s.area() * s.thickness).sum();
+    let mut interference = sample::interference(&solids, step);
+    interference.sort_by(|a, b| b.volume.total_cmp(&a.volume));
+    let shared: f64 = interference.iter().map(|i| i.volume).sum();
+    let interference_share = if parts_volume > 0.0 { shared / parts_volume } else { 0.0 };
+    let index = |id: u32| solids.iter().position(|s| s.id == id);
+    let mut group = sample::UnionFind::new(solids.len());
+    let mut joints_not_meeting = Vec::new();
+    for j in &plan.joints {
+        let (Some(a), Some(b)) = (index(j.parts[0]), index(j.parts[1])) else {
+            joints_not_meeting.push(j.label);
+            continue;
+        };
+        if sample::meet(&solids[a], &solids[b], step) {
+            group.join(a, b);
+        } else {
+            joints_not_meeting.push(j.label);
+        }
+    }
+    let groups = group.count();
+    let (model_solids, surface_covered, volume_inside) = match model {
+        Some(m) => (
+            Some(m.health.solids.max(1)),
+            Some(sample::surface_covered(m, &solids, COVER_DISTANCE)),
+            Some(sample::volume_inside(m, &solids, step.max(0.5))),
+        ),
+        None => (None, None, None),
+    };
+    let mut problems = Vec::new();
+    if interference_share > MAX_INTERFERENCE {
+        problems.push(format!(
+            "parts intersect: {:.2} % of their volume is claimed twice (at most {:.1} %)",
+            100.0 * interference_share,
+            100.0 * MAX_INTERFERENCE
+        ));
+    }
+    let allowed = model_solids.unwrap_or(1);
+    if groups > allowed {
+        problems.push(format!(
+            "the parts fall apart into {groups} groups; the model has {allowed}"
+        ));
+    }
+    if !joints_not_meeting.is_empty() {
+        problems.push(format!("joints whose parts do not meet: {joints_not_meeting:?}"));
+    }
+    Verification {
+        parts: solids.len(),
+        parts_volume,
+        interference,
+        interference_share,
+        groups,
+        model_solids,
+        surface_covered,
+        volume_inside,
+        joints_not_meeting,
+        step,
+        problems,
+    }
+}

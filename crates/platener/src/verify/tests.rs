@@ -1,0 +1,65 @@
+use std::sync::Arc;
+
+use super::*;
+use crate::method::{MethodKind, convert};
+use crate::pipeline::{Cancel, Source};
+use crate::samples;
+use crate::settings::Settings;
+
+fn check(model: Vec<crate::read::Triangle>) -> Verification {
+    let source = Source::Triangles {
+        name: "m".into(),
+        triangles: Arc::new(model),
+    };
+    let c = convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts");
+    let bundle = c.bundle().expect("plan");
+    verify(&bundle.plan, c.state.mesh.as_deref())
+}
+
+#[test]
+fn the_box_assembles_without_interference_and_covers_the_model() {
+    let v = check(samples::closed_box(100.0, 80.0, 60.0, 3.0));
+    assert!(v.passed(), "{:?}", v.problems);
+    assert_eq!(v.parts, 6);
+    assert!(v.interference_share < 0.001, "{}", v.interference_share);
+    assert_eq!(v.groups, 1);
+    assert!(
+        v.surface_covered.expect("model given") >= 0.98,
+        "{:?}",
+        v.surface_covered
+    );
+    assert!(v.volume_inside.expect("model given") > 0.99, "{:?}", v.volume_inside);
+}
+
+#[test]
+fn shelf_crossing_and_roof_assemble_without_interference() {
+    for model in [
+        samples::shelf(80.0, 120.0, 50.0, 60.0, 3.0),
+        samples::crossing_plates(100.0, 3.0),
+        samples::roof(50.0, 30.0, 80.0, 3.0),
+    ] {
+        let v = check(model);
+        assert!(v.passed(), "{:?}", v.problems);
+        assert!(v.interference_share < 0.001, "{}", v.interference_share);
+        assert_eq!(v.groups, 1);
+    }
+}
+
+#[test]
+fn overlapping_parts_are_caught() {
+    let source = Source::Triangles {
+        name: "m".into(),
+        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
+    };
+    let c = convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts");
+    let mut plan = c.bundle().expect("plan").plan.clone();
+    // Move part 2 by 1.5 mm into the box: it now cuts into its neighbours.
+    for row in 0..3 {
+        plan.parts[1].transform[row][3] -= plan.parts[1].transform[row][2] * 1.5;
+    }
+    plan.joints.clear();
+    let v = verify(&plan, None);
+    assert!(!v.passed());
+    assert!(v.interference_share > 0.0);
+    assert_eq!(v.groups, 6, "without joints nothing holds");
+}
