@@ -70,7 +70,7 @@ impl Slab {
 
     /// The part of this slab's outline whose columns pass through `other`'s slab (the infinite
     /// layer between other's two faces), as polygons in this slab's frame.
-    fn part_within_slab_of(&self, other: &Slab, clearance: f64) -> Result<Vec<Polygon>, GridError> {
+    pub fn part_within_slab_of(&self, other: &Slab, clearance: f64) -> Result<Vec<Polygon>, GridError> {
         // other's height above its z = 0 face, for a point (u, v, z) of self, is
         // a·u + b·v + c·z + e.
         let n = other.frame.n;

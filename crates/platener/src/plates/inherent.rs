@@ -7,6 +7,7 @@
 
 use glam::DVec3;
 use platener_geom::boolean::{difference, intersection};
+use platener_geom::slab::Slab;
 use platener_geom::{GridError, Polygon, polygon::total_area};
 
 use super::pairs::{Pair, opposite_pairs};
@@ -154,10 +155,14 @@ pub(super) fn find(shapes: &Shapes, center: DVec3, settings: &Settings) -> Resul
 /// outer face, as wide as the wall is thick, is where joints will go, not a plate of its own.
 pub(super) fn extrude_leftovers(shapes: &Shapes, found: &mut Detection, settings: &Settings) {
     let t = settings.extrusion_thickness();
+    let inherent: Vec<Slab> = found.plates.iter().map(Plate::slab).collect();
     for (i, shape) in shapes.shapes.iter().enumerate() {
-        let pieces = std::mem::take(&mut found.remaining[i]);
+        let mut pieces = std::mem::take(&mut found.remaining[i]);
         let partly_used = pieces.len() != 1 || (pieces[0].area() - shape.area).abs() > 1e-6 * shape.area.max(1.0);
         let needed = if partly_used { 2.0 * t } else { t };
+        if partly_used {
+            pieces = outside_neighbours(pieces, shape, &inherent, t);
+        }
         for piece in pieces {
             match cuttable(&piece, needed, settings.plates.min_area) {
                 Ok(()) => found.plates.push(Plate {
@@ -175,4 +180,47 @@ pub(super) fn extrude_leftovers(shapes: &Shapes, found: &mut Detection, settings
             }
         }
     }
+}
+
+/// What is left of a partly used face, minus the parts lying in the layer of an inherent plate
+/// that touches it: near a corner, the rim of a face between two plates lies in the other
+/// plate's layer (the wider the sharper the angle) and belongs to the joint there, not to a plate.
+fn outside_neighbours(pieces: Vec<Polygon>, shape: &crate::shapes::Shape, inherent: &[Slab], t: f64) -> Vec<Polygon> {
+    let mut out = Vec::new();
+    for piece in pieces {
+        let slab = Slab {
+            frame: shape.frame.shifted(-t),
+            polygon: piece.clone(),
+            thickness: t,
+        };
+        let mut rest = vec![piece];
+        for other in inherent {
+            let Ok(inside) = slab.part_within_slab_of(other, 1e-3) else {
+                continue;
+            };
+            // Only plates that actually touch the piece: their grown outline must meet it.
+            let touching = inside.iter().any(|p| p.area() > 0.0)
+                && slab
+                    .columns_meeting(
+                        &Slab {
+                            polygon: grow(&other.polygon, 2.0 * t),
+                            ..other.clone()
+                        },
+                        1e-3,
+                    )
+                    .is_ok_and(|c| !c.is_empty());
+            if touching && let Ok(r) = difference(&rest, &inside) {
+                rest = r;
+            }
+        }
+        out.extend(rest);
+    }
+    out
+}
+
+fn grow(p: &Polygon, by: f64) -> Polygon {
+    platener_geom::offset::offset(std::slice::from_ref(p), by)
+        .ok()
+        .and_then(|v| v.into_iter().next())
+        .unwrap_or_else(|| p.clone())
 }
