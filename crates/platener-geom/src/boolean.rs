@@ -112,14 +112,7 @@ mod tests {
     use crate::polygon::{signed_area, total_area};
     use glam::DVec2;
 
-    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Ring {
-        vec![
-            DVec2::new(x0, y0),
-            DVec2::new(x1, y0),
-            DVec2::new(x1, y1),
-            DVec2::new(x0, y1),
-        ]
-    }
+    use crate::polygon::rect;
 
     #[test]
     fn overlapping_squares() {

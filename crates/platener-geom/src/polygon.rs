@@ -33,6 +33,17 @@ pub fn signed_area2(ring: &[DVec2]) -> f64 {
     sum
 }
 
+/// The axis-aligned rectangle from (x0, y0) to (x1, y1), counter-clockwise when x0 < x1 and
+/// y0 < y1.
+pub fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Ring {
+    vec![
+        DVec2::new(x0, y0),
+        DVec2::new(x1, y0),
+        DVec2::new(x1, y1),
+        DVec2::new(x0, y1),
+    ]
+}
+
 /// Signed area of a ring (positive when counter-clockwise).
 pub fn signed_area(ring: &[DVec2]) -> f64 {
     0.5 * signed_area2(ring)

@@ -13,7 +13,7 @@
 //! `kerf = (S − w) / 2 = (n − 1) × 0.025 mm`, from 0 to 0.4 mm.
 
 use glam::DVec2;
-use platener_geom::{Polygon, Ring};
+use platener_geom::Polygon;
 
 use crate::export::svg::{SvgGroup, SvgStyle, num, sheet_svg};
 use crate::labels::font::{place_text, text_width};
@@ -81,14 +81,7 @@ pub struct TestStrip {
     pub default_hole: u32,
 }
 
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Ring {
-    vec![
-        DVec2::new(x0, y0),
-        DVec2::new(x1, y0),
-        DVec2::new(x1, y1),
-        DVec2::new(x0, y1),
-    ]
-}
+use platener_geom::polygon::rect;
 
 /// The table line of hole `n`, e.g. `9=0.200*`.
 fn table_entry(n: u32, marked: bool) -> String {

@@ -217,14 +217,7 @@ fn segments_cross(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
 mod tests {
     use super::*;
 
-    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Ring {
-        vec![
-            DVec2::new(x0, y0),
-            DVec2::new(x1, y0),
-            DVec2::new(x1, y1),
-            DVec2::new(x0, y1),
-        ]
-    }
+    use platener_geom::polygon::rect;
 
     #[test]
     fn a_label_over_a_hole_or_an_edge_does_not_fit() {

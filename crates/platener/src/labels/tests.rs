@@ -1,5 +1,5 @@
-use glam::{DVec2, DVec3};
-use platener_geom::{Frame, Polygon, Ring, boolean};
+use glam::DVec2;
+use platener_geom::{Polygon, boolean};
 use proptest::prelude::*;
 
 use super::*;
@@ -7,18 +7,9 @@ use super::*;
 /// The kerf the parts of these tests are cut with, mm.
 const KERF: f64 = 0.2;
 
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Ring {
-    vec![
-        DVec2::new(x0, y0),
-        DVec2::new(x1, y0),
-        DVec2::new(x1, y1),
-        DVec2::new(x0, y1),
-    ]
-}
+use platener_geom::polygon::rect;
 
-fn part(id: u32, polygon: Polygon) -> Part {
-    Part::plate(id, 3.0, polygon, Frame::on_plane(DVec3::ZERO, DVec3::Z))
-}
+use crate::plan::samples::flat_part as part;
 
 /// A 60 × 30 plate whose top edge (y = 30) has three fingers 3 mm deep cut into it.
 fn fingered() -> Polygon {

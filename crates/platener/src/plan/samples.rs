@@ -2,18 +2,15 @@
 //! L-shapes, plates with finger notches, plates with holes, and mixed sets of them.
 
 use glam::{DVec2, DVec3};
-use platener_geom::{Frame, Polygon, Ring};
+use platener_geom::{Frame, Polygon};
 
 use super::part::{EdgeLabel, Part};
 
-/// An axis-parallel rectangle ring from `(x0, y0)` to `(x1, y1)`, counter-clockwise.
-pub fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Ring {
-    vec![
-        DVec2::new(x0, y0),
-        DVec2::new(x1, y0),
-        DVec2::new(x1, y1),
-        DVec2::new(x0, y1),
-    ]
+pub use platener_geom::polygon::rect;
+
+/// A 3 mm plate lying in the model's x–y plane, for tests that only care about its outline.
+pub fn flat_part(id: u32, polygon: Polygon) -> Part {
+    Part::plate(id, 3.0, polygon, Frame::on_plane(glam::DVec3::ZERO, glam::DVec3::Z))
 }
 
 /// A frame somewhere in the model for part `id`: tilted differently per part, so transforms in

@@ -1,21 +1,12 @@
-use glam::{DVec2, DVec3};
-use platener_geom::{Frame, Polygon, Ring};
+use glam::DVec2;
+use platener_geom::Polygon;
 
 use super::*;
 use crate::kerf::cut_paths;
 
-fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Ring {
-    vec![
-        DVec2::new(x0, y0),
-        DVec2::new(x1, y0),
-        DVec2::new(x1, y1),
-        DVec2::new(x0, y1),
-    ]
-}
+use platener_geom::polygon::rect;
 
-fn part(id: u32, polygon: Polygon) -> Part {
-    Part::plate(id, 3.0, polygon, Frame::on_plane(DVec3::ZERO, DVec3::Z))
-}
+use crate::plan::samples::flat_part as part;
 
 fn nest_all(parts: &[Part], settings: &CutSettings) -> Nesting {
     let cut = cut_paths(parts, settings.kerf()).expect("cut");
