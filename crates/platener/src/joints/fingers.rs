@@ -5,7 +5,7 @@ use platener_geom::boolean::{difference, union_all};
 use platener_geom::{GridError, Polygon};
 
 use super::connect::{Region, band};
-use super::{Connection, ConnectionKind, JointSettings, Joints};
+use super::{Connection, ConnectionKind, JointSettings, JointStyle, Joints};
 use crate::plates::Plate;
 
 /// Number of segments for a joint `len` long: the odd count nearest to `len / width`, never
@@ -47,7 +47,51 @@ fn edge_of(plate: &Plate, region: &Polygon, axis: glam::DVec3) -> [DVec2; 2] {
     [along * a0 + across * q, along * a1 + across * q]
 }
 
-pub(super) fn apply(plates: &[Plate], regions: Vec<Region>, settings: &JointSettings) -> Result<Joints, GridError> {
+/// The barb of a JimJoint finger on `plate`: the finger between `s0` and `s1` along the axis,
+/// widened by `barb` on both sides towards its tip (the side of the region away from the
+/// plate), clipped to the joint region.
+fn barb(
+    plate: &Plate,
+    region: &Polygon,
+    axis: glam::DVec3,
+    s0: f64,
+    s1: f64,
+    barb: f64,
+) -> Result<Vec<Polygon>, GridError> {
+    let f = &plate.frame;
+    let along = DVec2::new(axis.dot(f.u), axis.dot(f.v)).normalize_or_zero();
+    let across = along.perp();
+    let c = axis.dot(f.origin);
+    let [base0, _] = edge_of(plate, region, axis);
+    let q_base = across.dot(base0);
+    let (q0, q1) = region
+        .outer
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(across.dot(*p)), hi.max(across.dot(*p)))
+        });
+    let q_tip = if (q_base - q0).abs() < (q_base - q1).abs() {
+        q1
+    } else {
+        q0
+    };
+    let at = |a: f64, q: f64| along * (a - c) + across * q;
+    let mut wedge = Polygon::new(vec![
+        at(s0, q_base),
+        at(s1, q_base),
+        at(s1 + barb, q_tip),
+        at(s0 - barb, q_tip),
+    ]);
+    wedge.normalize_orientation();
+    platener_geom::boolean::intersection(std::slice::from_ref(region), &[wedge])
+}
+
+pub(super) fn apply(
+    plates: &[Plate],
+    regions: Vec<Region>,
+    settings: &JointSettings,
+    style: JointStyle,
+) -> Result<Joints, GridError> {
     // Every plate grows into its joint regions first…
     let mut grown: Vec<Vec<Polygon>> = plates.iter().map(|p| vec![p.polygon.clone()]).collect();
     for r in &regions {
@@ -57,6 +101,7 @@ pub(super) fn apply(plates: &[Plate], regions: Vec<Region>, settings: &JointSett
     let mut outlines: Vec<Vec<Polygon>> = grown.iter().map(|g| union_all(g)).collect::<Result<_, _>>()?;
     // …then gives up the segments its partner owns.
     let mut cuts: Vec<Vec<Polygon>> = vec![Vec::new(); plates.len()];
+    let mut barbs: Vec<Vec<Polygon>> = vec![Vec::new(); plates.len()];
     let mut connections = Vec::with_capacity(regions.len());
     let mut edges: Vec<Vec<(u32, [DVec2; 2])>> = vec![Vec::new(); plates.len()];
     for (k, r) in regions.iter().enumerate() {
@@ -87,6 +132,13 @@ pub(super) fn apply(plates: &[Plate], regions: Vec<Region>, settings: &JointSett
             } else {
                 cuts[r.a].extend(band(pa, &r.in_a, r.axis, s0, s1)?);
             }
+            // JimJoint: the owner's finger widens towards its tip, into its partner's fingers.
+            if style == JointStyle::Jim && r.kind != ConnectionKind::Cross {
+                let (p, region) = if owner == r.a { (pa, &r.in_a) } else { (pb, &r.in_b) };
+                let (a0, a1) = (r.range.0 + step * s as f64, r.range.0 + step * (s + 1) as f64);
+                let b = (0.1 * step).min(0.25 * pa.thickness.min(pb.thickness));
+                barbs[owner].extend(barb(p, region, r.axis, a0, a1, b)?);
+            }
         }
         let label = k as u32 + 1;
         edges[r.a].push((label, edge_of(pa, &r.in_a, r.axis)));
@@ -94,6 +146,11 @@ pub(super) fn apply(plates: &[Plate], regions: Vec<Region>, settings: &JointSett
         connections.push(Connection {
             plates: [r.a as u32, r.b as u32],
             kind: r.kind,
+            style: if r.kind == ConnectionKind::Cross {
+                JointStyle::Finger
+            } else {
+                style
+            },
             angle_deg: r.angle_deg,
             line: [
                 r.center + r.axis * (r.range.0 - r.axis.dot(r.center)),
@@ -107,6 +164,10 @@ pub(super) fn apply(plates: &[Plate], regions: Vec<Region>, settings: &JointSett
     let mut finals = Vec::with_capacity(plates.len());
     for (i, outline) in outlines.iter_mut().enumerate() {
         let mut pieces = difference(outline, &cuts[i])?;
+        if !barbs[i].is_empty() {
+            pieces.extend(barbs[i].iter().cloned());
+            pieces = union_all(&pieces)?;
+        }
         pieces.sort_by(|a, b| b.area().total_cmp(&a.area()));
         if pieces.len() > 1 {
             warnings.push(format!(

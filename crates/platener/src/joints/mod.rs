@@ -41,9 +41,33 @@ pub enum ConnectionKind {
     Cross,
 }
 
+/// The shape of fingers and tabs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum JointStyle {
+    /// Straight fingers, exact negatives of each other (wood, acrylic).
+    Finger,
+    /// The thesis' JimJoint: fingers and tabs widen towards the tip, so they squeeze through
+    /// and snap behind the other part (paper, card, foam, which give way).
+    Jim,
+}
+
+impl JointStyle {
+    /// The style that holds in `material`: straight fingers for rigid sheets, snapping ones for
+    /// materials that give way.
+    pub fn for_material(material: crate::plan::Material) -> Self {
+        match material {
+            crate::plan::Material::Acrylic | crate::plan::Material::Wood => JointStyle::Finger,
+            crate::plan::Material::Cardboard | crate::plan::Material::Paper => JointStyle::Jim,
+        }
+    }
+}
+
 /// Settings of the joints.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct JointSettings {
+    /// Finger style; `None` chooses by material ([`JointStyle::for_material`]).
+    pub style: Option<JointStyle>,
     /// Finger width as a multiple of the thicker plate's thickness.
     pub finger_factor: f64,
     /// Plates closer to parallel than this many degrees are not joined (their joint region
@@ -54,6 +78,7 @@ pub struct JointSettings {
 impl Default for JointSettings {
     fn default() -> Self {
         Self {
+            style: None,
             finger_factor: 3.0,
             min_angle_deg: 15.0,
         }
@@ -67,6 +92,8 @@ pub struct Connection {
     pub plates: [u32; 2],
     /// How they meet.
     pub kind: ConnectionKind,
+    /// The shape of its fingers or tabs (chosen per connection, recorded here).
+    pub style: JointStyle,
     /// The angle enclosed by the plates, degrees (90 for a box corner).
     pub angle_deg: f64,
     /// Start and end of the joint along the line where the plates meet, in the model.
@@ -90,10 +117,10 @@ pub struct Joints {
     pub warnings: Vec<String>,
 }
 
-/// Computes the joints of `plates`.
+/// Computes the joints of `plates` (straight fingers where the settings name no style).
 pub fn compute(plates: &[Plate], settings: &JointSettings) -> Result<Joints, GridError> {
     let regions = connect::find(plates, settings)?;
-    fingers::apply(plates, regions, settings)
+    fingers::apply(plates, regions, settings, settings.style.unwrap_or(JointStyle::Finger))
 }
 
 /// Step `joints`.
@@ -107,7 +134,11 @@ impl Step for JointsStep {
     fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
         let plates = need(&state.plates, self.name(), "plates")?;
         cx.check_cancel()?;
-        let joints = compute(&plates.plates, &JointSettings::default()).map_err(|e| Error::Geometry {
+        let settings = JointSettings {
+            style: Some(JointStyle::for_material(state.settings.cut.material)),
+            ..JointSettings::default()
+        };
+        let joints = compute(&plates.plates, &settings).map_err(|e| Error::Geometry {
             model: state.source.name(),
             message: e.to_string(),
         })?;

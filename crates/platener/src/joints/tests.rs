@@ -220,3 +220,35 @@ mod properties {
         }
     }
 }
+
+#[test]
+fn jim_joints_widen_towards_the_tip_and_are_chosen_for_card() {
+    let plates = plates_of(samples::closed_box(100.0, 80.0, 60.0, 3.0));
+    let straight = compute(&plates, &JointSettings::default()).expect("grid");
+    let jim = compute(
+        &plates,
+        &JointSettings {
+            style: Some(JointStyle::Jim),
+            ..JointSettings::default()
+        },
+    )
+    .expect("grid");
+    assert!(jim.connections.iter().all(|c| c.style == JointStyle::Jim));
+    // Every part gains its barbs: more area than with straight fingers, and the parts now
+    // overlap a little along each joint (they squeeze through): barbs are triangles 0.75 mm
+    // wide at the tip and 3 mm deep on both sides of each finger, well under a quarter of the
+    // joint band (edge length × thickness).
+    for (a, b) in jim.outlines.iter().zip(&straight.outlines) {
+        assert!(a.area() > b.area() + 1.0, "{} vs {}", a.area(), b.area());
+    }
+    let overlap = worst_overlap(&parts(&plates, &jim));
+    assert!(overlap > 0.0 && overlap < 100.0 * 3.0 / 4.0, "{overlap}");
+    assert_eq!(
+        JointStyle::for_material(crate::plan::Material::Cardboard),
+        JointStyle::Jim
+    );
+    assert_eq!(
+        JointStyle::for_material(crate::plan::Material::Wood),
+        JointStyle::Finger
+    );
+}

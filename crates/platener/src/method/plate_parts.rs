@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use crate::error::Result;
-use crate::joints::ConnectionKind;
+use crate::joints::{ConnectionKind, JointStyle};
 use crate::pipeline::{State, Step, StepContext, need};
 use crate::plan::{EdgeLabel, Joint, JointKind, Method, Part, PlanInput, SettingValue, SourceInfo};
 
@@ -55,6 +55,7 @@ impl Step for PlatePartsStep {
                 .map(|c| Joint {
                     parts: [c.plates[0] + 1, c.plates[1] + 1],
                     kind: match c.kind {
+                        _ if c.style == JointStyle::Jim => JointKind::Jim,
                         ConnectionKind::Corner => JointKind::Finger,
                         ConnectionKind::Tee => JointKind::Slot,
                         ConnectionKind::Cross => JointKind::Halved,

@@ -63,3 +63,19 @@ fn overlapping_parts_are_caught() {
     assert!(v.interference_share > 0.0);
     assert_eq!(v.groups, 6, "without joints nothing holds");
 }
+
+#[test]
+fn a_cardboard_box_snaps_together_with_jim_joints() {
+    let source = Source::Triangles {
+        name: "m".into(),
+        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
+    };
+    let mut settings = Settings::default();
+    settings.cut.material = crate::plan::Material::Cardboard;
+    let c = convert(MethodKind::Plate, source, settings, &Cancel::default()).expect("converts");
+    let plan = &c.bundle().expect("plan").plan;
+    assert!(plan.joints.iter().all(|j| j.kind == crate::plan::JointKind::Jim));
+    let v = verify(plan, c.state.mesh.as_deref());
+    assert!(!v.interference.is_empty(), "the barbs overlap on purpose");
+    assert!(v.passed(), "{:?}", v.problems);
+}
