@@ -3,12 +3,24 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use platener::plan::Material;
+use platener::method::MethodKind;
+use platener::plan::{LabelMode, Material, SheetSize};
 use platener::{Settings, Units, Weld};
+use serde::Serialize;
+
+/// Examples shown under `platener --help`.
+const MAIN_EXAMPLES: &str = "Examples:
+  platener convert examples/box-3mm.stl -o out
+  platener convert models/ -o out -t 3 -t 6 --method plate -j 4
+  platener inspect examples/box-3mm.stl --plates
+  platener test-strip -t 3 -o strip.svg
+  platener completions bash > /etc/bash_completion.d/platener
+
+Exit codes: 0 success, 1 a model (or a method) failed, 2 a usage error.";
 
 /// Turns 3D-printing models (STL, OBJ, 3MF) into laser-cut construction plans.
 #[derive(Debug, Parser)]
-#[command(name = "platener", version, about, long_about = None)]
+#[command(name = "platener", version, about, long_about = None, after_help = MAIN_EXAMPLES)]
 pub struct Cli {
     /// What to do.
     #[command(subcommand)]
@@ -18,6 +30,10 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// Converts models (files, or folders searched recursively) into cutting-plan ZIPs, one
+    /// per model and method, and reports what went right and wrong.
+    #[command(after_help = crate::convert::EXAMPLES)]
+    Convert(Box<ConvertArgs>),
     /// Reads a model and reports what platener sees in it: mesh health, welding, planar shapes.
     #[command(
         after_help = "Examples:\n  platener inspect examples/box-3mm.stl\n  platener inspect part.obj --units in --json"
@@ -30,6 +46,17 @@ pub enum Command {
         after_help = "Examples:\n  platener test-strip -t 3 -o strip.svg\n  platener test-strip -t 4 --material acrylic -o strip.svg"
     )]
     TestStrip(TestStripArgs),
+    /// Prints a shell completion script.
+    #[command(after_help = crate::completions::EXAMPLES)]
+    Completions(CompletionsArgs),
+}
+
+/// `platener completions`.
+#[derive(Debug, Args)]
+pub struct CompletionsArgs {
+    /// The shell.
+    #[arg(value_enum)]
+    pub shell: clap_complete::Shell,
 }
 
 /// The sheet material (sets the default kerf the strip marks with `*`).
@@ -144,4 +171,132 @@ impl ModelArgs {
         settings.validate()?;
         Ok(settings)
     }
+}
+
+/// Which methods `convert` runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    /// Flat plates joined by joints.
+    Plate,
+    /// Stacked layers joined by shafts.
+    Stacked,
+    /// Every method; each result is written and the best by score is named.
+    All,
+}
+
+impl MethodArg {
+    /// The library's methods, in the order they run.
+    pub fn methods(self) -> Vec<MethodKind> {
+        match self {
+            MethodArg::Plate => vec![MethodKind::Plate],
+            MethodArg::Stacked => vec![MethodKind::Stacked],
+            MethodArg::All => MethodKind::ALL.to_vec(),
+        }
+    }
+}
+
+/// The joint type (recorded in the reports; the joint steps will take it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum JointArg {
+    /// Finger (box) joints.
+    Finger,
+    /// The thesis' jim joints.
+    Jim,
+    /// Dovetails.
+    Dovetail,
+    /// Chosen per edge from the material and the angle.
+    Auto,
+}
+
+/// Which labels are engraved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum LabelsArg {
+    /// Part numbers and connection numbers next to every jointed edge.
+    Edges,
+    /// Part numbers only.
+    Parts,
+    /// Nothing (saves laser time).
+    None,
+}
+
+impl LabelsArg {
+    /// The library's label mode.
+    pub fn mode(self) -> LabelMode {
+        match self {
+            LabelsArg::Edges => LabelMode::Edges,
+            LabelsArg::Parts => LabelMode::Parts,
+            LabelsArg::None => LabelMode::None,
+        }
+    }
+}
+
+fn parse_sheet(s: &str) -> Result<SheetSize, String> {
+    s.parse::<SheetSize>().map_err(|e| e.to_string())
+}
+
+fn parse_jobs(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!("{s:?} is not a number of jobs ≥ 1")),
+    }
+}
+
+fn parse_non_negative(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        _ => Err(format!("{s:?} is not a number ≥ 0")),
+    }
+}
+
+/// `platener convert`.
+#[derive(Debug, Args)]
+pub struct ConvertArgs {
+    /// Model files (.stl, .obj, .3mf) and folders (searched recursively, in name order).
+    #[arg(required = true, value_name = "INPUT")]
+    pub inputs: Vec<PathBuf>,
+    /// Folder the ZIPs are written to, as OUT_DIR/<model>-<method>.zip (created if missing).
+    #[arg(short = 'o', long = "output", value_name = "OUT_DIR")]
+    pub output: PathBuf,
+    /// The sheet material; sets the default kerf.
+    #[arg(short = 'm', long, value_enum, default_value = "wood")]
+    pub material: MaterialArg,
+    /// Which methods to run; `all` writes every result and names the best by score.
+    #[arg(long, value_enum, default_value = "all")]
+    pub method: MethodArg,
+    /// Kerf in mm (default: the material's; `platener test-strip` measures yours).
+    #[arg(long, value_name = "MM")]
+    pub kerf: Option<f64>,
+    /// Sheet size in mm as WxH (e.g. 600x400), or `fit` for one sheet per thickness just large
+    /// enough.
+    #[arg(long, value_name = "WxH|fit", default_value = "600x400", value_parser = parse_sheet)]
+    pub sheet: SheetSize,
+    /// Joint type (recorded in the reports; the joint step still chooses joints itself).
+    #[arg(long, value_enum, default_value = "auto")]
+    pub joint: JointArg,
+    /// Which labels to engrave.
+    #[arg(long, value_enum, default_value = "edges")]
+    pub labels: LabelsArg,
+    /// Skip (and list) model files larger than this many MB (10^6 bytes).
+    #[arg(long, value_name = "MB", value_parser = parse_non_negative)]
+    pub max_filesize: Option<f64>,
+    /// Models converted at the same time (default: one per core).
+    #[arg(short = 'j', long, value_name = "N", value_parser = parse_jobs)]
+    pub jobs: Option<usize>,
+    /// Give up a model after this many seconds (all its methods together); 0: never.
+    #[arg(long, value_name = "S", default_value_t = 60.0, value_parser = parse_non_negative)]
+    pub timeout: f64,
+    /// More output: warnings of every model, step progress and logs (-vv: debug logs).
+    #[arg(short = 'v', long, action = clap::ArgAction::Count)]
+    pub verbose: u8,
+    /// Also write OUT_DIR/<model>-<method>.report.json for every model and method: the score,
+    /// warnings or error, and the cutting plan's report.json.
+    #[arg(long)]
+    pub sub_reports: bool,
+    /// Print the batch report as one JSON object on stdout instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Model options.
+    #[command(flatten)]
+    pub model_args: ModelArgs,
 }

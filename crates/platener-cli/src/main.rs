@@ -1,9 +1,16 @@
 //! The `platener` command line: parses flags, resolves them into library settings, prints.
 //!
-//! Exit codes: 0 success, 1 a model failed, 2 usage error (clap's default).
+//! Exit codes: 0 success, 1 a model failed (no method converted it), 2 usage error.
 
 mod args;
+mod batch;
+mod completions;
+mod convert;
+mod fault;
+mod inputs;
 mod inspect;
+mod progress;
+mod report;
 mod test_strip;
 
 use std::process::ExitCode;
@@ -13,11 +20,20 @@ use clap::Parser;
 fn main() -> ExitCode {
     let cli = args::Cli::parse();
     let result = match cli.command {
-        args::Command::Inspect(a) => inspect::run(&a),
-        args::Command::TestStrip(a) => test_strip::run(&a),
+        args::Command::Convert(a) => convert::run(&a),
+        args::Command::Inspect(a) => inspect::run(&a).map(|()| 0),
+        args::Command::TestStrip(a) => test_strip::run(&a).map(|()| 0),
+        args::Command::Completions(a) => {
+            completions::run(&a);
+            Ok(0)
+        }
     };
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(code) => ExitCode::from(code),
+        Err(e) if e.is::<convert::UsageError>() => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::from(1)

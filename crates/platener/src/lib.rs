@@ -14,6 +14,7 @@
 //!
 //! [`inspect`] runs these and summarises them (`platener inspect`).
 
+pub mod assembly;
 pub mod cleanup;
 pub mod coplanar;
 pub mod error;
@@ -29,6 +30,7 @@ pub mod plan;
 pub mod plates;
 pub mod read;
 pub mod samples;
+pub mod score;
 pub mod settings;
 pub mod shapes;
 pub mod sheets;

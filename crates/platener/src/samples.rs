@@ -289,7 +289,14 @@ pub fn roof(run: f64, pitch_deg: f64, depth: f64, t: f64) -> Vec<Triangle> {
     // the lower surface is t below, measured perpendicular to each slope.
     let drop = t / a.cos();
     let (left_in, right_in) = (p(a.sin(), -a.cos()) * t, p(2.0 * run - t * a.sin(), -t * a.cos()));
-    let profile = [left_in, p(run, rise - drop), right_in, p(2.0 * run, 0.0), p(run, rise), p(0.0, 0.0)];
+    let profile = [
+        left_in,
+        p(run, rise - drop),
+        right_in,
+        p(2.0 * run, 0.0),
+        p(run, rise),
+        p(0.0, 0.0),
+    ];
     prism(&profile, depth)
 }
 

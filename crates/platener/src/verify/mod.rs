@@ -16,9 +16,9 @@ mod sample;
 #[cfg(test)]
 mod tests;
 
-use glam::{DVec2, DVec3};
-use platener_geom::polygon::ring_contains;
 use serde::Serialize;
+
+use crate::assembly::Prism;
 
 use crate::mesh::Mesh;
 use crate::plan::Plan;
@@ -27,103 +27,6 @@ use crate::plan::Plan;
 pub const MAX_INTERFERENCE: f64 = 0.005;
 /// Model surface within this distance (mm) of a part counts as covered.
 pub const COVER_DISTANCE: f64 = 2.0;
-
-/// One part, rebuilt: its outline in its frame, extruded from z = 0 to `thickness`.
-#[derive(Debug, Clone)]
-pub struct Solid {
-    /// The part's id.
-    pub id: u32,
-    /// Outer ring and holes.
-    pub rings: Vec<Vec<DVec2>>,
-    /// Thickness, mm.
-    pub thickness: f64,
-    /// Model point = `origin + u·x + v·y + n·z`.
-    pub origin: DVec3,
-    /// Local x axis.
-    pub u: DVec3,
-    /// Local y axis.
-    pub v: DVec3,
-    /// Local z axis.
-    pub n: DVec3,
-    /// Axis-aligned bounds in the model.
-    pub bounds: (DVec3, DVec3),
-}
-
-impl Solid {
-    fn from_part(p: &crate::plan::PlanPart) -> Self {
-        let t = p.transform;
-        let col = |c: usize| DVec3::new(t[0][c], t[1][c], t[2][c]);
-        let (u, v, n, origin) = (col(0), col(1), col(2), col(3));
-        let mut rings = vec![p.outline.clone()];
-        rings.extend(p.holes.iter().cloned());
-        let mut lo = DVec3::splat(f64::INFINITY);
-        let mut hi = DVec3::splat(f64::NEG_INFINITY);
-        for q in &p.outline {
-            for z in [0.0, p.thickness] {
-                let m = origin + u * q.x + v * q.y + n * z;
-                lo = lo.min(m);
-                hi = hi.max(m);
-            }
-        }
-        Self {
-            id: p.id,
-            rings,
-            thickness: p.thickness,
-            origin,
-            u,
-            v,
-            n,
-            bounds: (lo, hi),
-        }
-    }
-
-    /// Whether a model point lies strictly inside the part (even-odd over the rings; points
-    /// within 1 nm of a face count as outside, so touching parts do not interfere).
-    pub fn contains(&self, p: DVec3) -> bool {
-        let d = p - self.origin;
-        let z = d.dot(self.n);
-        if z <= 1e-6 || z >= self.thickness - 1e-6 {
-            return false;
-        }
-        let q = DVec2::new(d.dot(self.u), d.dot(self.v));
-        self.rings.iter().filter(|r| ring_contains(r, q)).count() % 2 == 1
-    }
-
-    /// Distance from a model point to the part (0 inside).
-    pub fn distance(&self, p: DVec3) -> f64 {
-        let d = p - self.origin;
-        let z = d.dot(self.n);
-        let dz = if z < 0.0 {
-            -z
-        } else if z > self.thickness {
-            z - self.thickness
-        } else {
-            0.0
-        };
-        let q = DVec2::new(d.dot(self.u), d.dot(self.v));
-        let inside = self.rings.iter().filter(|r| ring_contains(r, q)).count() % 2 == 1;
-        let dxy = if inside {
-            0.0
-        } else {
-            self.rings
-                .iter()
-                .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
-                .map(|(a, b)| {
-                    let ab = b - a;
-                    let t = ((q - a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
-                    (a + ab * t).distance(q)
-                })
-                .fold(f64::INFINITY, f64::min)
-        };
-        (dxy * dxy + dz * dz).sqrt()
-    }
-
-    /// Area of the outline minus holes.
-    pub fn area(&self) -> f64 {
-        let a = |r: &Vec<DVec2>| platener_geom::polygon::signed_area(r).abs();
-        a(&self.rings[0]) - self.rings[1..].iter().map(a).sum::<f64>()
-    }
-}
 
 /// Two parts that share volume.
 #[derive(Debug, Clone, Serialize)]
@@ -170,9 +73,9 @@ impl Verification {
 
 /// Verifies a plan, optionally against the model it was made from.
 pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
-    let solids: Vec<Solid> = plan.parts.iter().map(Solid::from_part).collect();
+    let solids: Vec<Prism> = plan.parts.iter().map(Prism::from_part).collect();
     let step = sample::step_for(&solids);
-    let parts_volume: f64 = solids.iter().map(|s| s.area() * s.thickness).sum();
+    let parts_volume: f64 = solids.iter().map(|s| s.volume).sum();
     let mut interference = sample::interference(&solids, step);
     interference.sort_by(|a, b| b.volume.total_cmp(&a.volume));
     // JimJoints overlap on purpose: their barbs squeeze through and snap behind the partner.

@@ -1,0 +1,417 @@
+//! The batch report of `platener convert`: per model, per method, and the statistics summary,
+//! as data (`--json`) and as text.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+use platener::score::Score;
+use serde::Serialize;
+
+use crate::args::JointArg;
+use crate::inputs::Problem;
+
+/// How one method did on one model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Status {
+    /// The ZIP was written.
+    Converted,
+    /// The method returned an error (or its output could not be written).
+    Failed,
+    /// The method panicked (a bug of ours; the message says where).
+    Panicked,
+    /// The model ran past `--timeout` before this method finished.
+    TimedOut,
+}
+
+/// One method on one model.
+#[derive(Debug, Clone, Serialize)]
+pub struct MethodReport {
+    /// The method's name.
+    pub method: &'static str,
+    /// How it went.
+    pub status: Status,
+    /// The ZIP written, when converted.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub zip: Option<String>,
+    /// The sub-report written (`--sub-reports`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub report: Option<String>,
+    /// The score and its components, when converted.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub score: Option<Score>,
+    /// Number of parts, when converted.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub parts: Option<usize>,
+    /// Number of sheets, when converted.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sheets: Option<usize>,
+    /// Warnings of the steps, as `[step] message`.
+    pub warnings: Vec<String>,
+    /// Why it failed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+    /// Wall time, seconds (not for timed-out methods).
+    pub seconds: f64,
+}
+
+/// How a model did over all methods run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ModelStatus {
+    /// Every method converted it.
+    Converted,
+    /// Some methods converted it.
+    Partial,
+    /// No method converted it.
+    Failed,
+}
+
+/// One model of the batch.
+#[derive(Debug, Clone, Serialize)]
+pub struct ModelReport {
+    /// The file.
+    pub file: String,
+    /// What its outputs are named after.
+    pub stem: String,
+    /// File size in bytes.
+    pub bytes: u64,
+    /// Over all methods.
+    pub status: ModelStatus,
+    /// The converted method with the highest score (the first on a tie).
+    pub best: Option<&'static str>,
+    /// Every method run, in order.
+    pub methods: Vec<MethodReport>,
+    /// Wall time for the model, seconds.
+    pub seconds: f64,
+}
+
+impl ModelReport {
+    /// Fills in the status and the best method from the method reports.
+    pub fn new(file: String, stem: String, bytes: u64, methods: Vec<MethodReport>, seconds: f64) -> Self {
+        let converted = methods.iter().filter(|m| m.status == Status::Converted).count();
+        let status = match converted {
+            0 => ModelStatus::Failed,
+            n if n == methods.len() => ModelStatus::Converted,
+            _ => ModelStatus::Partial,
+        };
+        let mut best: Option<(&'static str, f64)> = None;
+        for m in methods.iter().filter(|m| m.status == Status::Converted) {
+            let total = m.score.as_ref().map_or(0.0, |s| s.total);
+            if best.is_none_or(|(_, b)| total > b) {
+                best = Some((m.method, total));
+            }
+        }
+        Self {
+            file,
+            stem,
+            bytes,
+            status,
+            best: best.map(|(name, _)| name),
+            methods,
+            seconds,
+        }
+    }
+}
+
+/// The settings of the run, as resolved.
+#[derive(Debug, Clone, Serialize)]
+pub struct RunSettings {
+    /// Methods run, in order.
+    pub methods: Vec<&'static str>,
+    /// Sheet thicknesses, mm.
+    pub thicknesses: Vec<f64>,
+    /// Material.
+    pub material: &'static str,
+    /// Kerf in effect, mm.
+    pub kerf: f64,
+    /// Sheet size (`WxH` in mm, or `fit`).
+    pub sheet: String,
+    /// Joint type asked for (recorded; the joint steps do not take it yet).
+    pub joint: JointArg,
+    /// Labels engraved.
+    pub labels: String,
+    /// Units of the files' numbers.
+    pub units: String,
+    /// Extra scale.
+    pub scale: f64,
+    /// Weld setting (`auto` or mm).
+    pub weld: String,
+    /// Per-model time limit, seconds (`null`: none).
+    pub timeout_seconds: Option<f64>,
+    /// Models converted at the same time.
+    pub jobs: usize,
+    /// Size limit, MB.
+    pub max_filesize_mb: Option<f64>,
+    /// Output folder.
+    pub output: String,
+}
+
+/// Per-method statistics.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct MethodStats {
+    /// Models it converted.
+    pub converted: usize,
+    /// Models it failed on (errors and panics).
+    pub failed: usize,
+    /// Of those, panics.
+    pub panicked: usize,
+    /// Models that timed out before it finished.
+    pub timed_out: usize,
+    /// Models it was the best method for.
+    pub best: usize,
+    /// Mean score over the models it converted.
+    pub mean_score: Option<f64>,
+}
+
+/// A failure, for the summary's list.
+#[derive(Debug, Clone, Serialize)]
+pub struct Failure {
+    /// The file or input.
+    pub file: String,
+    /// The method, if a method failed (none for inputs that gave no model).
+    pub method: Option<&'static str>,
+    /// Failed, panicked or timed out.
+    pub status: &'static str,
+    /// Why.
+    pub reason: String,
+}
+
+/// The statistics summary at the end of a batch.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// Models attempted (not counting skipped ones).
+    pub models: usize,
+    /// Models every method converted.
+    pub converted: usize,
+    /// Models some methods converted.
+    pub partial: usize,
+    /// Models no method converted.
+    pub failed: usize,
+    /// Models left out by `--max-filesize`.
+    pub skipped: usize,
+    /// Inputs that gave no model (missing, not a model, empty folder).
+    pub input_errors: usize,
+    /// Per method.
+    pub methods: BTreeMap<&'static str, MethodStats>,
+    /// Every failure with its reason, in input order.
+    pub failures: Vec<Failure>,
+    /// Wall time of the batch, seconds.
+    pub seconds: f64,
+    /// Models attempted per second of wall time.
+    pub models_per_second: f64,
+    /// The exit code: 0 when some method converted every model and every input gave models.
+    pub exit_code: u8,
+}
+
+/// The whole batch report (`--json`).
+#[derive(Debug, Clone, Serialize)]
+pub struct BatchReport {
+    /// "platener" and its version.
+    pub generator: String,
+    /// The settings.
+    pub settings: RunSettings,
+    /// Inputs that gave no model.
+    pub input_errors: Vec<Problem>,
+    /// Models left out.
+    pub skipped: Vec<Problem>,
+    /// Every model, in input order.
+    pub models: Vec<ModelReport>,
+    /// The statistics.
+    pub summary: Summary,
+}
+
+fn status_name(s: Status) -> &'static str {
+    match s {
+        Status::Converted => "converted",
+        Status::Failed => "failed",
+        Status::Panicked => "panicked",
+        Status::TimedOut => "timed out",
+    }
+}
+
+/// The summary of these results.
+pub fn summarize(
+    methods: &[&'static str],
+    models: &[ModelReport],
+    input_errors: &[Problem],
+    skipped: usize,
+    seconds: f64,
+) -> Summary {
+    let mut stats: BTreeMap<&'static str, MethodStats> = methods.iter().map(|m| (*m, MethodStats::default())).collect();
+    let mut scores: BTreeMap<&'static str, Vec<f64>> = BTreeMap::new();
+    let mut failures: Vec<Failure> = input_errors
+        .iter()
+        .map(|p| Failure {
+            file: p.file.clone(),
+            method: None,
+            status: "failed",
+            reason: p.reason.clone(),
+        })
+        .collect();
+    for model in models {
+        for m in &model.methods {
+            let s = stats.entry(m.method).or_default();
+            match m.status {
+                Status::Converted => {
+                    s.converted += 1;
+                    if let Some(score) = &m.score {
+                        scores.entry(m.method).or_default().push(score.total);
+                    }
+                }
+                Status::Failed => s.failed += 1,
+                Status::Panicked => {
+                    s.failed += 1;
+                    s.panicked += 1;
+                }
+                Status::TimedOut => s.timed_out += 1,
+            }
+            if m.status != Status::Converted {
+                failures.push(Failure {
+                    file: model.file.clone(),
+                    method: Some(m.method),
+                    status: status_name(m.status),
+                    reason: m.error.clone().unwrap_or_default(),
+                });
+            }
+        }
+        if let Some(best) = model.best {
+            stats.entry(best).or_default().best += 1;
+        }
+    }
+    for (method, s) in &mut stats {
+        if let Some(v) = scores.get(method).filter(|v| !v.is_empty()) {
+            s.mean_score = Some(v.iter().sum::<f64>() / v.len() as f64);
+        }
+    }
+    let count = |st: ModelStatus| models.iter().filter(|m| m.status == st).count();
+    // A model counts as converted when some method converted it: with `--method all`, a
+    // method that fails on a model did not apply to it (the summary still says "partial").
+    let all_ok = input_errors.is_empty() && models.iter().all(|m| m.status != ModelStatus::Failed);
+    Summary {
+        models: models.len(),
+        converted: count(ModelStatus::Converted),
+        partial: count(ModelStatus::Partial),
+        failed: count(ModelStatus::Failed),
+        skipped,
+        input_errors: input_errors.len(),
+        methods: stats,
+        failures,
+        seconds,
+        models_per_second: if seconds > 0.0 {
+            models.len() as f64 / seconds
+        } else {
+            0.0
+        },
+        exit_code: if all_ok { 0 } else { 1 },
+    }
+}
+
+/// The text lines of one model: a status line, then one line per method.
+pub fn render_model(m: &ModelReport, verbose: bool) -> String {
+    let mut s = String::new();
+    let status = match m.status {
+        ModelStatus::Converted => "ok",
+        ModelStatus::Partial => "partial",
+        ModelStatus::Failed => "FAILED",
+    };
+    let _ = writeln!(s, "{status:<8}{}  ({:.1} s)", m.file, m.seconds);
+    for r in &m.methods {
+        let mut line = format!("        {:<8} ", r.method);
+        match (&r.status, &r.score) {
+            (Status::Converted, score) => {
+                let total = score.as_ref().map_or("—".to_string(), |s| format!("{:.3}", s.total));
+                let plural = |n: Option<usize>| if n == Some(1) { "" } else { "s" };
+                let _ = write!(
+                    line,
+                    "score {total}  {} part{}, {} sheet{}",
+                    r.parts.unwrap_or(0),
+                    plural(r.parts),
+                    r.sheets.unwrap_or(0),
+                    plural(r.sheets)
+                );
+                if let Some(zip) = &r.zip {
+                    let _ = write!(line, "  → {zip}");
+                }
+                if m.best == Some(r.method) && m.methods.len() > 1 {
+                    line.push_str("  (best)");
+                }
+            }
+            (status, _) => {
+                let _ = write!(
+                    line,
+                    "{}: {}",
+                    status_name(*status),
+                    r.error.as_deref().unwrap_or("no reason given")
+                );
+            }
+        }
+        if !r.warnings.is_empty() && !verbose {
+            let n = r.warnings.len();
+            let _ = write!(line, "  [{n} warning{}; -v lists them]", if n == 1 { "" } else { "s" });
+        }
+        let _ = writeln!(s, "{line}");
+        if verbose {
+            for w in &r.warnings {
+                let _ = writeln!(s, "                 warning {w}");
+            }
+        }
+    }
+    s
+}
+
+/// The lines for inputs that gave no model and for skipped files.
+pub fn render_problems(input_errors: &[Problem], skipped: &[Problem]) -> String {
+    let mut s = String::new();
+    for p in input_errors {
+        let _ = writeln!(s, "FAILED  {}: {}", p.file, p.reason);
+    }
+    for p in skipped {
+        let _ = writeln!(s, "skipped {}: {}", p.file, p.reason);
+    }
+    s
+}
+
+/// The statistics summary.
+pub fn render_summary(r: &BatchReport) -> String {
+    let mut s = String::new();
+    let u = &r.summary;
+    let _ = writeln!(s, "\nsummary");
+    let _ = writeln!(
+        s,
+        "  models     {} attempted: {} converted by every method, {} by some, {} by none; {} skipped, {} input{} without models",
+        u.models,
+        u.converted,
+        u.partial,
+        u.failed,
+        u.skipped,
+        u.input_errors,
+        if u.input_errors == 1 { "" } else { "s" }
+    );
+    for (method, m) in &u.methods {
+        let mean = m.mean_score.map_or(String::new(), |v| format!(", mean score {v:.3}"));
+        let _ = writeln!(
+            s,
+            "  {method:<10} {} converted, {} failed ({} panicked), {} timed out; best for {}{mean}",
+            m.converted, m.failed, m.panicked, m.timed_out, m.best
+        );
+    }
+    if !u.failures.is_empty() {
+        let _ = writeln!(s, "  failures   {}", u.failures.len());
+        for f in &u.failures {
+            let method = f.method.map_or(String::new(), |m| format!(" [{m}]"));
+            let _ = writeln!(s, "    {}{method} {}: {}", f.file, f.status, f.reason);
+        }
+    }
+    let _ = writeln!(
+        s,
+        "  time       {:.1} s for {} model{}, {:.2} models/s with {} job{}",
+        u.seconds,
+        u.models,
+        if u.models == 1 { "" } else { "s" },
+        u.models_per_second,
+        r.settings.jobs,
+        if r.settings.jobs == 1 { "" } else { "s" }
+    );
+    s
+}

@@ -1,0 +1,10 @@
+//! The assembly a plan describes, rebuilt for measuring: each part as a prism (outline extruded
+//! by its thickness, placed by its transform, read from plan.json alone), and a point-in-model
+//! test. `verify` (thorough, on grids) and `score` (fast, on seeded samples) both measure with
+//! these.
+
+mod inside;
+mod prism;
+
+pub(crate) use inside::Inside;
+pub(crate) use prism::Prism;
