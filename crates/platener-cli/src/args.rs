@@ -46,9 +46,32 @@ pub enum Command {
         after_help = "Examples:\n  platener test-strip -t 3 -o strip.svg\n  platener test-strip -t 4 --material acrylic -o strip.svg"
     )]
     TestStrip(TestStripArgs),
+    /// Rebuilds the assembly from a cutting plan and checks it: parts that intersect, parts
+    /// that fall apart, joints whose parts do not meet, and (with the model) how much of the
+    /// model the parts reproduce. Exits 1 when a check fails.
+    #[command(
+        after_help = "Examples:\n  platener verify out/box-3mm-plate.zip\n  platener verify out/box-3mm-plate.zip --model examples/box-3mm.stl --json"
+    )]
+    Verify(VerifyArgs),
     /// Prints a shell completion script.
     #[command(after_help = crate::completions::EXAMPLES)]
     Completions(CompletionsArgs),
+}
+
+/// `platener verify`.
+#[derive(Debug, Args)]
+pub struct VerifyArgs {
+    /// The cutting plan: a ZIP written by `platener convert`.
+    pub plan: PathBuf,
+    /// The model the plan was made from, to measure how much of it the parts reproduce.
+    #[arg(long)]
+    pub model: Option<PathBuf>,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Options for reading the model.
+    #[command(flatten)]
+    pub model_args: ModelArgs,
 }
 
 /// `platener completions`.

@@ -12,6 +12,7 @@ mod inspect;
 mod progress;
 mod report;
 mod test_strip;
+mod verify;
 
 use std::process::ExitCode;
 
@@ -23,6 +24,7 @@ fn main() -> ExitCode {
         args::Command::Convert(a) => convert::run(&a),
         args::Command::Inspect(a) => inspect::run(&a).map(|()| 0),
         args::Command::TestStrip(a) => test_strip::run(&a).map(|()| 0),
+        args::Command::Verify(a) => verify::run(&a),
         args::Command::Completions(a) => {
             completions::run(&a);
             Ok(0)

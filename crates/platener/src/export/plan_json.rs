@@ -1,12 +1,16 @@
 //! Building plan.json and the sheets' drawings from the steps' snapshots.
 
+use std::collections::BTreeMap;
+
 use glam::DVec2;
 
 use super::svg::{SvgGroup, num};
 use crate::kerf::CutPaths;
 use crate::labels::Labels;
 use crate::plan::format::{FORMAT, VERSION};
-use crate::plan::{Plan, PlanInput, PlanJoint, PlanPart, PlanSettings, PlanSheet, PlanSource, SheetPlacement};
+use crate::plan::{
+    Plan, PlanInput, PlanJoint, PlanPart, PlanSettings, PlanSheet, PlanSource, SettingValue, SheetPlacement,
+};
 use crate::sheets::Nesting;
 
 /// "platener" and the crate's version, as in plan.json's `generator`.
@@ -55,7 +59,7 @@ pub fn plan_settings(input: &PlanInput) -> PlanSettings {
     PlanSettings {
         thicknesses: input.thicknesses(),
         cut,
-        method: input.method_settings.clone(),
+        method: method_settings(input),
     }
 }
 
@@ -154,5 +158,20 @@ pub fn sheet_groups(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting:
             gs.sort_by_key(|(id, _)| *id);
             gs.into_iter().map(|(_, g)| g).collect()
         })
+        .collect()
+}
+
+/// The method's settings for plan.json, without keys the plan's own settings already use: the
+/// settings object is flattened, and a repeated key would make plan.json invalid.
+fn method_settings(input: &PlanInput) -> BTreeMap<String, SettingValue> {
+    let taken: Vec<String> = match serde_json::to_value(&input.settings) {
+        Ok(serde_json::Value::Object(map)) => map.keys().cloned().collect(),
+        _ => Vec::new(),
+    };
+    input
+        .method_settings
+        .iter()
+        .filter(|(k, _)| k.as_str() != "thicknesses" && !taken.contains(k))
+        .map(|(k, v)| (k.clone(), v.clone()))
         .collect()
 }

@@ -67,7 +67,10 @@ impl Step for PlatePartsStep {
         });
         let s = &state.settings;
         let mut method_settings = BTreeMap::new();
-        method_settings.insert("thicknesses".to_string(), SettingValue::Numbers(s.thicknesses.clone()));
+        method_settings.insert(
+            "offered_thicknesses".to_string(),
+            SettingValue::Numbers(s.thicknesses.clone()),
+        );
         method_settings.insert(
             "weld".to_string(),
             SettingValue::Number(need(&state.weld, self.name(), "weld")?.distance),

@@ -39,3 +39,19 @@ fn the_box_becomes_a_zip_with_six_parts_on_sheets() {
         assert!((j["angle"].as_f64().expect("angle") - 90.0).abs() < 1e-6);
     }
 }
+
+#[test]
+fn plan_json_reads_back_as_a_plan() {
+    let source = Source::Triangles {
+        name: "box".into(),
+        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
+    };
+    let c = convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts");
+    let bundle = c.bundle().expect("exported");
+    // No key twice (a flattened settings object could repeat one), and every field parses back.
+    let plan = crate::verify::plan_from_zip(&bundle.zip).expect("plan.json parses");
+    assert_eq!(plan.parts.len(), bundle.plan.parts.len());
+    assert_eq!(plan.joints, bundle.plan.joints);
+    assert_eq!(plan.settings.method, bundle.plan.settings.method);
+    assert!(plan.settings.method.contains_key("offered_thicknesses"));
+}

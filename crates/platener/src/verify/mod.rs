@@ -71,6 +71,18 @@ impl Verification {
     }
 }
 
+/// Reads plan.json out of a conversion's ZIP.
+pub fn plan_from_zip(bytes: &[u8]) -> Result<Plan, String> {
+    use std::io::Read;
+    let mut zip = zip::ZipArchive::new(std::io::Cursor::new(bytes)).map_err(|e| format!("not a ZIP: {e}"))?;
+    let mut text = String::new();
+    zip.by_name("plan.json")
+        .map_err(|_| "the ZIP holds no plan.json: is it a platener cutting plan?".to_string())?
+        .read_to_string(&mut text)
+        .map_err(|e| format!("plan.json cannot be read: {e}"))?;
+    serde_json::from_str(&text).map_err(|e| format!("plan.json is not a platener plan: {e}"))
+}
+
 /// Verifies a plan, optionally against the model it was made from.
 pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
     let solids: Vec<Prism> = plan.parts.iter().map(Prism::from_part).collect();

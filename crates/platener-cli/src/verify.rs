@@ -1,0 +1,80 @@
+//! `platener verify`: reads a cutting plan (and the model), prints what the library measured.
+
+use std::fmt::Write as _;
+
+use anyhow::Context;
+use platener::verify::{Verification, plan_from_zip, verify};
+use platener::{Cancel, Source, Weld};
+
+use crate::args::VerifyArgs;
+
+/// Runs the command; exit code 0 when every check passed, 1 otherwise.
+pub fn run(args: &VerifyArgs) -> anyhow::Result<u8> {
+    let bytes = std::fs::read(&args.plan).with_context(|| format!("cannot read {}", args.plan.display()))?;
+    let plan = plan_from_zip(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", args.plan.display()))?;
+    let state = match &args.model {
+        Some(path) => {
+            // Measured against the model as it is, so without welding.
+            let settings = platener::Settings {
+                weld: Weld::Off,
+                ..args.model_args.settings()?
+            };
+            let (state, _) =
+                platener::inspect::run_foundation(Source::File(path.clone()), settings, &Cancel::default())?;
+            Some(state)
+        }
+        None => None,
+    };
+    let v = verify(&plan, state.as_ref().and_then(|s| s.mesh.as_deref()));
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    } else {
+        print!("{}", render(&v));
+    }
+    Ok(if v.passed() { 0 } else { 1 })
+}
+
+fn render(v: &Verification) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "parts      {} ({:.1} cm³), sampled every {:.2} mm",
+        v.parts,
+        v.parts_volume / 1000.0,
+        v.step
+    );
+    let _ = writeln!(
+        s,
+        "interference {:.3} % of the parts' volume{}",
+        100.0 * v.interference_share,
+        v.interference
+            .first()
+            .map(|i| format!(" (most: parts {} and {}, {:.1} mm³)", i.parts[0], i.parts[1], i.volume))
+            .unwrap_or_default()
+    );
+    let _ = writeln!(
+        s,
+        "assembly   {} group{} held together by the joints{}",
+        v.groups,
+        if v.groups == 1 { "" } else { "s" },
+        v.model_solids
+            .map(|m| format!("; the model has {m} solid{}", if m == 1 { "" } else { "s" }))
+            .unwrap_or_default()
+    );
+    if let (Some(c), Some(i)) = (v.surface_covered, v.volume_inside) {
+        let _ = writeln!(
+            s,
+            "model      {:.1} % of its surface within 2 mm of a part; {:.1} % of the parts' volume inside it",
+            100.0 * c,
+            100.0 * i
+        );
+    }
+    if v.passed() {
+        let _ = writeln!(s, "passed");
+    } else {
+        for p in &v.problems {
+            let _ = writeln!(s, "FAILED: {p}");
+        }
+    }
+    s
+}

@@ -1,0 +1,52 @@
+//! `platener verify` driven through the real binary, on a plan `platener convert` wrote.
+
+use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
+
+fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name)
+}
+
+fn platener() -> Command {
+    Command::cargo_bin("platener").expect("binary built")
+}
+
+#[test]
+fn a_converted_box_verifies_against_its_model() {
+    let out = tempfile::tempdir().expect("tempdir");
+    platener()
+        .arg("convert")
+        .arg(example("box-3mm.stl"))
+        .arg("-o")
+        .arg(out.path())
+        .args(["--method", "plate"])
+        .assert()
+        .code(0);
+    let zip = out.path().join("box-3mm-plate.zip");
+    let o = platener()
+        .arg("verify")
+        .arg(&zip)
+        .arg("--model")
+        .arg(example("box-3mm.stl"))
+        .arg("--json")
+        .output()
+        .expect("runs");
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    assert_eq!(v["parts"], 6);
+    assert_eq!(v["groups"], 1);
+    assert!(v["interference_share"].as_f64().expect("share") < 0.001);
+    assert!(v["surface_covered"].as_f64().expect("covered") >= 0.98);
+}
+
+#[test]
+fn a_file_that_is_not_a_plan_is_refused_with_its_name() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("notes.zip");
+    std::fs::write(&path, b"hello").expect("write");
+    let o = platener().arg("verify").arg(&path).output().expect("runs");
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("notes.zip") && err.contains("not a ZIP"), "{err}");
+}
