@@ -142,6 +142,7 @@ fn build_report(
         cut_length,
         engrave_length,
         estimated_cutting_seconds: cut_length / s.cut_speed + engrave_length / s.engrave_speed,
+        method_report: input.method_report.clone(),
     }
 }
 

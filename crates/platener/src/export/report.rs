@@ -78,6 +78,10 @@ pub struct Report {
     pub engrave_length: f64,
     /// Estimated laser time, s (see the module docs).
     pub estimated_cutting_seconds: f64,
+    /// What the method reports about itself (the plate method: which faces became plates and
+    /// why the others did not).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub method_report: Option<serde_json::Value>,
 }
 
 fn length(points: &[glam::DVec2], closed: bool) -> f64 {

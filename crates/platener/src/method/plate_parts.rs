@@ -82,6 +82,14 @@ impl Step for PlatePartsStep {
         let mut input = PlanInput::new(source_info(state)?, Method::Plate, parts, connections);
         input.settings = s.cut.clone();
         input.method_settings = method_settings;
+        input.method_report = serde_json::to_value(serde_json::json!({
+            "coverage": &plates.coverage,
+            "contained_removed": plates.contained_removed,
+            "trimmed": plates.trimmed,
+            "rejoined": plates.rejoined,
+            "connections": joints.map(|j| &j.connections),
+        }))
+        .ok();
         state.parts = Some(Arc::new(input));
         Ok(())
     }

@@ -54,4 +54,22 @@ fn plan_json_reads_back_as_a_plan() {
     assert_eq!(plan.joints, bundle.plan.joints);
     assert_eq!(plan.settings.method, bundle.plan.settings.method);
     assert!(plan.settings.method.contains_key("offered_thicknesses"));
+    // report.json carries the coverage report: every one of the box's 12 faces used by a plate.
+    let report: serde_json::Value = serde_json::from_slice(&bundle.files["report.json"]).expect("JSON");
+    let shapes = report["method_report"]["coverage"]["shapes"]
+        .as_array()
+        .expect("coverage");
+    assert_eq!(shapes.len(), 12);
+    assert!(
+        shapes
+            .iter()
+            .all(|s| !s["plates"].as_array().expect("plates").is_empty())
+    );
+    assert_eq!(
+        report["method_report"]["connections"]
+            .as_array()
+            .expect("connections")
+            .len(),
+        12
+    );
 }

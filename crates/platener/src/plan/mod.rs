@@ -82,6 +82,9 @@ pub struct PlanInput {
     pub method_settings: BTreeMap<String, SettingValue>,
     /// Steps that ran before (for report.json's `steps`).
     pub earlier_steps: Vec<StepSummary>,
+    /// What the method reports about itself (the plate method: its coverage report), copied
+    /// into report.json as `method_report`.
+    pub method_report: Option<serde_json::Value>,
 }
 
 impl PlanInput {
@@ -95,6 +98,7 @@ impl PlanInput {
             settings: CutSettings::default(),
             method_settings: BTreeMap::new(),
             earlier_steps: Vec::new(),
+            method_report: None,
         }
     }
 
