@@ -65,6 +65,8 @@ pub struct State {
     pub plates: Option<Arc<plates::Plates>>,
     /// Step `joints`.
     pub joints: Option<Arc<crate::joints::Joints>>,
+    /// Step `stacked`: layers and shafts of the stacked method.
+    pub stacked: Option<Arc<crate::stacked::Stack>>,
     /// Input of the cutting-plan steps: the parts a method made, with the cutting settings.
     pub parts: Option<Arc<crate::plan::PlanInput>>,
     /// Step `kerf`.
@@ -91,6 +93,7 @@ impl State {
             shapes: None,
             plates: None,
             joints: None,
+            stacked: None,
             parts: None,
             kerf: None,
             labels: None,

@@ -84,6 +84,78 @@ impl Default for PlateSettings {
     }
 }
 
+/// The direction the stacked method slices along (`--axis`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum StackAxis {
+    /// The model's largest planar face is laid flat (the seed's rule: fewer, better connected
+    /// layers); a model without a planar face of note keeps its own z axis up.
+    #[default]
+    Auto,
+    /// Layers stacked along the model's x axis.
+    X,
+    /// Layers stacked along the model's y axis.
+    Y,
+    /// Layers stacked along the model's z axis (as it would be 3D-printed).
+    Z,
+}
+
+impl std::str::FromStr for StackAxis {
+    type Err = Error;
+
+    /// `x`, `y`, `z` or `auto`, as `--axis` takes it.
+    fn from_str(s: &str) -> Result<Self> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "auto" => Ok(StackAxis::Auto),
+            "x" => Ok(StackAxis::X),
+            "y" => Ok(StackAxis::Y),
+            "z" => Ok(StackAxis::Z),
+            _ => Err(Error::Setting {
+                name: "axis",
+                message: format!("{s:?} is none of x, y, z, auto"),
+            }),
+        }
+    }
+}
+
+/// Settings of the stacked method (layers joined by shafts); docs/stacked.md explains them.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StackedSettings {
+    /// The slicing direction.
+    pub axis: StackAxis,
+    /// Layer (sheet) thickness in mm; `None` takes the first offered thickness.
+    pub layer_thickness: Option<f64>,
+    /// Shaft thickness in mm; `None` takes the layer thickness (one kind of sheet).
+    pub shaft_thickness: Option<f64>,
+    /// Material kept around every slot, mm: between a slot and the layer's outline and between
+    /// two slots. 3 mm keeps a plywood or acrylic bridge from snapping.
+    pub margin: f64,
+    /// A shaft is at least this wide (along its slots), mm.
+    pub shaft_min_width: f64,
+    /// A shaft is at most this wide, mm: wider slots weaken the layers for no gain in register.
+    pub shaft_max_width: f64,
+    /// Islands of a layer with less area than this (mm²) are too small to cut; they are dropped
+    /// and reported.
+    pub min_area: f64,
+    /// Islands nowhere wider than this (mm) are too thin to cut; they are dropped and reported.
+    pub min_width: f64,
+}
+
+impl Default for StackedSettings {
+    fn default() -> Self {
+        Self {
+            axis: StackAxis::Auto,
+            layer_thickness: None,
+            shaft_thickness: None,
+            margin: 3.0,
+            shaft_min_width: 10.0,
+            shaft_max_width: 60.0,
+            min_area: 25.0,
+            min_width: 1.5,
+        }
+    }
+}
+
 /// All settings of a conversion.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Settings {
@@ -103,6 +175,8 @@ pub struct Settings {
     pub straight_tolerance: Option<f64>,
     /// Plate finding.
     pub plates: PlateSettings,
+    /// The stacked method (layers and shafts).
+    pub stacked: StackedSettings,
     /// Kerf, labels, sheets and export of the cutting plan.
     pub cut: crate::plan::CutSettings,
 }
@@ -117,8 +191,49 @@ impl Default for Settings {
             coplanar_angle_deg: 1.0,
             straight_tolerance: None,
             plates: PlateSettings::default(),
+            stacked: StackedSettings::default(),
             cut: crate::plan::CutSettings::default(),
         }
+    }
+}
+
+impl StackedSettings {
+    /// Checks ranges; the error names the setting and what is allowed.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |name, message: String| Err(Error::Setting { name, message });
+        for (name, t) in [
+            ("layer thickness", self.layer_thickness),
+            ("shaft thickness", self.shaft_thickness),
+        ] {
+            if let Some(t) = t
+                && !(t.is_finite() && t > 0.0)
+            {
+                return bad(name, format!("{t} is not a positive number of mm"));
+            }
+        }
+        for (name, v) in [
+            ("slot margin", self.margin),
+            ("minimum island area", self.min_area),
+            ("minimum island width", self.min_width),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return bad(name, format!("{v} must be a finite number ≥ 0"));
+            }
+        }
+        if !(self.shaft_min_width.is_finite()
+            && self.shaft_min_width > 0.0
+            && self.shaft_max_width.is_finite()
+            && self.shaft_max_width >= self.shaft_min_width)
+        {
+            return bad(
+                "shaft width",
+                format!(
+                    "need 0 < minimum ({}) ≤ maximum ({}) mm",
+                    self.shaft_min_width, self.shaft_max_width
+                ),
+            );
+        }
+        Ok(())
     }
 }
 
@@ -180,7 +295,18 @@ impl Settings {
         if !(p.min_area.is_finite() && p.min_area >= 0.0) {
             return bad("minimum plate area", format!("{} is not an area ≥ 0 mm²", p.min_area));
         }
+        self.stacked.validate()?;
         Ok(())
+    }
+
+    /// The thickness of the stacked method's layers.
+    pub fn layer_thickness(&self) -> f64 {
+        self.stacked.layer_thickness.unwrap_or(self.thicknesses[0])
+    }
+
+    /// The thickness of the stacked method's shafts.
+    pub fn shaft_thickness(&self) -> f64 {
+        self.stacked.shaft_thickness.unwrap_or_else(|| self.layer_thickness())
     }
 
     /// The thickness extruded plates get.

@@ -1,7 +1,159 @@
-//! Step `stacked`: the model sliced into layers joined by shafts (issue: stacked-plates method).
+//! Step `stacked` (the thesis' StackedPlates): the model sliced into layers joined by shafts.
+//!
+//! Models without flat plates (animals, busts, vases) are rebuilt like a coarse 3D print: the
+//! model is cut into layers one sheet thickness apart, each layer's outline being the exact
+//! cross-section at its mid-plane, and the layers are threaded onto shafts, plates standing
+//! perpendicular to them that pass through matching slots, so the stack goes together in
+//! register. The modules follow the work in order:
+//!
+//! | module | what |
+//! |---|---|
+//! | `orient` | the slicing direction and where the layers are ([`SlicePlan`]) |
+//! | `slice` | triangles bucketed by their height range, one segment per triangle and plane |
+//! | `loops` | segments chained into closed loops through shared mesh edges |
+//! | `islands` | loops → polygons with holes (even-odd), too small islands dropped |
+//! | `fit` | the longest slot that fits a region |
+//! | `shafts` | the three phases of shaft placement |
+//! | `extend` | phase 2: a shaft extended flush into a layer left unjoined |
+//! | `assemble` | slots cut into the layers, shaft outlines, frames |
+//! | `marks` | layer and shaft numbers with alignment arrows |
+//! | `parts` | the [`Stack`] as parts and joints for the cutting plan |
+//!
+//! The decisions (orientation rule, shaft phases, margins) are in docs/stacked.md.
+
+mod assemble;
+mod extend;
+mod fit;
+mod islands;
+mod loops;
+mod marks;
+mod orient;
+mod parts;
+mod shafts;
+mod slice;
+
+use std::sync::Arc;
+
+use glam::{DVec2, DVec3};
+use platener_geom::{Frame, Polygon};
+use serde::Serialize;
 
 use crate::error::{Error, Result};
-use crate::pipeline::{State, Step, StepContext};
+use crate::pipeline::{State, Step, StepContext, WarningKind, need};
+
+pub use islands::{DroppedIsland, LayerIslands, islands_of};
+pub use loops::LoopStats;
+pub use orient::{AxisChoice, SlicePlan, choose_up};
+pub use parts::plan_input;
+pub use slice::{SliceLoop, Sliced, slice};
+
+/// One island of a layer: a connected piece of the cross-section, cut as one part.
+#[derive(Debug, Clone, Serialize)]
+pub struct Island {
+    /// The cross-section at the layer's mid-plane, in the stack's 2D frame.
+    pub outline: Polygon,
+    /// The part as cut: the outline minus the slots of the shafts passing through it.
+    pub polygon: Polygon,
+    /// Its part id in the plan.
+    pub part: u32,
+}
+
+/// One layer: every island of the model's cross-section at its mid-plane.
+#[derive(Debug, Clone, Serialize)]
+pub struct Layer {
+    /// 1 for the bottom layer (engraved on it).
+    pub number: u32,
+    /// Height of its bottom face in the stack frame, mm.
+    pub z: f64,
+    /// Its islands, ordered by position (x, then y, of their lowest corner).
+    pub islands: Vec<Island>,
+}
+
+/// Where a shaft passes through one layer: `island` of layer `layer` (0-based), over the
+/// stretch `from..to` of the shaft's centre line.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Band {
+    /// Layer index (0-based; its number is one more).
+    pub layer: usize,
+    /// Island index in that layer.
+    pub island: usize,
+    /// Start of the slot along the shaft's centre line, mm from [`Shaft::start`].
+    pub from: f64,
+    /// End of the slot along the centre line, mm.
+    pub to: f64,
+}
+
+/// A shaft: a plate standing perpendicular to the layers, through a slot in each of them.
+#[derive(Debug, Clone, Serialize)]
+pub struct Shaft {
+    /// Where the centre line starts, in the stack's 2D frame.
+    pub start: DVec2,
+    /// Unit direction of the centre line in the stack's 2D frame.
+    pub direction: DVec2,
+    /// Length of the full slot along the centre line, mm (bands lie within `0..width`).
+    pub width: f64,
+    /// The layers it passes through, bottom first, consecutive.
+    pub bands: Vec<Band>,
+    /// The phase that placed it: 1 (connect), 2 (relaxed margin for a pair left unjoined).
+    pub phase: u8,
+    /// Its outline in its own frame: x along the centre line, y up the stack.
+    pub polygon: Polygon,
+    /// Where it sits: local z from 0 to the shaft thickness spans the slot's width.
+    pub frame: Frame,
+    /// Its part id in the plan.
+    pub part: u32,
+}
+
+/// Two overlapping islands of adjacent layers that no shaft joins, and why.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Unjoined {
+    /// The lower layer's index.
+    pub layer: usize,
+    /// The island in the lower layer.
+    pub lower: usize,
+    /// The island in the layer above.
+    pub upper: usize,
+    /// Area of their overlap, mm².
+    pub overlap: f64,
+}
+
+/// The snapshot of step `stacked`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Stack {
+    /// Where the layers are and how the direction was chosen.
+    pub plan: SlicePlan,
+    /// Shaft thickness, mm.
+    pub shaft_thickness: f64,
+    /// The layers, bottom first (layers without islands included, so index = number − 1).
+    pub layers: Vec<Layer>,
+    /// The shafts.
+    pub shafts: Vec<Shaft>,
+    /// Islands too small to cut.
+    pub dropped: Vec<DroppedIsland>,
+    /// Overlapping islands left without a shaft.
+    pub unjoined: Vec<Unjoined>,
+    /// Shafts removed in phase 3 because they joined fewer than two layers.
+    pub shafts_removed: usize,
+    /// How the slice loops closed.
+    pub loops: LoopStats,
+}
+
+impl Stack {
+    /// The frame of layer `k` (0-based): local z from 0 to the thickness spans the layer.
+    pub fn layer_frame(&self, k: usize) -> Frame {
+        self.plan.layer_frame(k)
+    }
+
+    /// The layer thickness, mm.
+    pub fn layer_thickness(&self) -> f64 {
+        self.plan.thickness
+    }
+
+    /// The slicing direction (the stack's up) in model coordinates.
+    pub fn up(&self) -> DVec3 {
+        self.plan.frame.n
+    }
+}
 
 /// Step `stacked`.
 pub struct StackedStep;
@@ -11,10 +163,88 @@ impl Step for StackedStep {
         "stacked"
     }
 
-    fn run(&self, state: &mut State, _cx: &mut StepContext<'_>) -> Result<()> {
-        Err(Error::Model {
-            model: state.source.name(),
-            message: "the stacked method is not built yet".into(),
-        })
+    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
+        let mesh = need(&state.mesh, self.name(), "mesh")?;
+        let cleaned = need(&state.cleanup, self.name(), "cleanup")?;
+        let settings = state.settings.clone();
+        let model = state.source.name();
+        let tolerance = settings.straight_tolerance.unwrap_or(cleaned.tolerances.straight);
+        let (up, choice) = choose_up(mesh, state.coplanar.as_deref(), settings.stacked.axis);
+        let plan = SlicePlan::new(mesh, up, choice, settings.layer_thickness()).ok_or_else(|| Error::Model {
+            model: model.clone(),
+            message: "the model has no triangles to slice".into(),
+        })?;
+        let sliced = slice(mesh, &plan, tolerance);
+        cx.check_cancel()?;
+        let geometry = |e: platener_geom::GridError| Error::Geometry {
+            model: model.clone(),
+            message: e.to_string(),
+        };
+        let layers = islands_of(&sliced, &settings.stacked).map_err(geometry)?;
+        if layers.islands.iter().all(Vec::is_empty) {
+            let extent = plan.thickness * plan.count as f64;
+            return Err(Error::Model {
+                model,
+                message: format!(
+                    "no layer is large enough to cut ({} island(s) under {} mm² or thinner than {} mm; \
+                     the stack is {extent:.1} mm tall): scale the model up (--scale) or use thinner sheets",
+                    layers.dropped.len(),
+                    settings.stacked.min_area,
+                    settings.stacked.min_width
+                ),
+            });
+        }
+        cx.check_cancel()?;
+        let placed = shafts::place(&layers.islands, &settings.stacked, settings.shaft_thickness()).map_err(geometry)?;
+        cx.check_cancel()?;
+        let stack =
+            assemble::assemble(plan, settings.shaft_thickness(), layers, placed, sliced.stats).map_err(geometry)?;
+        for w in warnings(&stack) {
+            cx.warn(WarningKind::CuttingPlan, w);
+        }
+        let input = plan_input(&stack, state)?;
+        state.stacked = Some(Arc::new(stack));
+        state.parts = Some(Arc::new(input));
+        Ok(())
     }
 }
+
+/// What the user should know about a stack: dropped islands, unjoined layers, repaired loops.
+pub fn warnings(stack: &Stack) -> Vec<String> {
+    let mut out = Vec::new();
+    for d in &stack.dropped {
+        out.push(format!(
+            "layer {}: an island of {:.1} mm² is too small or thin to cut and was dropped",
+            d.layer + 1,
+            d.area
+        ));
+    }
+    for u in &stack.unjoined {
+        let part = |k: usize, i: usize| stack.layers[k].islands[i].part;
+        out.push(format!(
+            "layers {} and {}: parts {} and {} overlap by {:.1} mm² but no shaft fits between them; glue them",
+            u.layer + 1,
+            u.layer + 2,
+            part(u.layer, u.lower),
+            part(u.layer + 1, u.upper),
+            u.overlap
+        ));
+    }
+    let l = &stack.loops;
+    if l.bridged > 0 {
+        out.push(format!(
+            "{} slice loop(s) ran into holes in the surface and were closed across the gap",
+            l.bridged
+        ));
+    }
+    if l.dropped > 0 {
+        out.push(format!(
+            "{} open slice loop(s) could not be closed (holes in the surface over a quarter of the model across) and were ignored",
+            l.dropped
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests;

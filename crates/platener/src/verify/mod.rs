@@ -110,7 +110,9 @@ pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
             joints_not_meeting.push(j.label);
             continue;
         };
-        if sample::meet(&solids[a], &solids[b], step) {
+        // Sampled inside each part in turn: a slot opening onto one part's edge may only be
+        // seen from the other.
+        if sample::meet(&solids[a], &solids[b], step) || sample::meet(&solids[b], &solids[a], step) {
             group.join(a, b);
         } else {
             joints_not_meeting.push(j.label);

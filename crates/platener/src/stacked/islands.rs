@@ -1,0 +1,134 @@
+//! A layer's loops become its islands: polygons with holes, one part each.
+//!
+//! Within one body (mesh component) loops are filled by the even-odd rule, which needs no
+//! trust in their orientation: a loop inside one loop is a hole, a loop inside a hole an island
+//! of its own. Bodies are then combined by their orientation (the `mesh` step winds every closed
+//! body outwards and every cavity inwards): bodies whose loops run counter-clockwise in total
+//! are united, so two shells that overlap (common in printable models made of several parts)
+//! give their union instead of a hole where they cross; a clockwise body lying inside the others
+//! is a cavity and is cut out. Islands below the minimum area, or nowhere as wide as the minimum
+//! width, are too small to cut: they are dropped and reported.
+
+use platener_geom::polygon::{signed_area, total_area};
+use platener_geom::{GridError, Polygon, Ring, boolean, offset};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::slice::{SliceLoop, Sliced};
+use crate::settings::StackedSettings;
+
+/// Islands under this area (mm²) are rounding crumbs of the boolean, not material: dropped
+/// without a report.
+const NOISE_AREA: f64 = 0.01;
+
+/// An island too small to cut.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DroppedIsland {
+    /// Its layer (0-based).
+    pub layer: usize,
+    /// Its area, mm².
+    pub area: f64,
+}
+
+/// Every layer's islands (outlines in the stack's 2D frame) and the ones dropped.
+#[derive(Debug, Clone, Serialize)]
+pub struct LayerIslands {
+    /// Per layer, its islands: outer ring counter-clockwise, holes clockwise, ordered by the
+    /// lowest corner of their bounds (x, then y).
+    pub islands: Vec<Vec<Polygon>>,
+    /// Islands dropped as too small.
+    pub dropped: Vec<DroppedIsland>,
+}
+
+/// The islands of every layer of `sliced`.
+pub fn islands_of(sliced: &Sliced, settings: &StackedSettings) -> Result<LayerIslands, GridError> {
+    let per_layer: Vec<(Vec<Polygon>, Vec<f64>)> = sliced
+        .loops
+        .par_iter()
+        .map(|loops| {
+            let filled = fill(loops)?;
+            keep_cuttable(filled, settings)
+        })
+        .collect::<Result<_, GridError>>()?;
+    let mut out = LayerIslands {
+        islands: Vec::with_capacity(per_layer.len()),
+        dropped: Vec::new(),
+    };
+    for (layer, (kept, dropped)) in per_layer.into_iter().enumerate() {
+        out.islands.push(kept);
+        out.dropped
+            .extend(dropped.into_iter().map(|area| DroppedIsland { layer, area }));
+    }
+    Ok(out)
+}
+
+/// The material a layer's loops enclose.
+fn fill(loops: &[SliceLoop]) -> Result<Vec<Polygon>, GridError> {
+    let mut components: Vec<u32> = loops.iter().map(|l| l.component).collect();
+    components.sort_unstable();
+    components.dedup();
+    let rings_of = |c: u32| -> Vec<Ring> {
+        loops
+            .iter()
+            .filter(|l| l.component == c)
+            .map(|l| l.points.clone())
+            .collect()
+    };
+    if components.len() <= 1 {
+        let rings: Vec<Ring> = loops.iter().map(|l| l.points.clone()).collect();
+        return boolean::from_rings_even_odd(&rings);
+    }
+    let mut solids = Vec::new();
+    let mut negative = Vec::new();
+    for c in components {
+        let rings = rings_of(c);
+        let turning: f64 = rings.iter().map(|r| signed_area(r)).sum();
+        let polygons = boolean::from_rings_even_odd(&rings)?;
+        if turning >= 0.0 {
+            solids.extend(polygons);
+        } else {
+            negative.push(polygons);
+        }
+    }
+    let solid_union = boolean::union_all(&solids)?;
+    let mut cavities = Vec::new();
+    for polygons in negative {
+        let inside = total_area(&boolean::intersection(&polygons, &solid_union)?);
+        // A clockwise body mostly inside the others is a cavity; one on its own is a body
+        // whose open surface the mesh step could not orient reliably.
+        if inside >= 0.5 * total_area(&polygons) {
+            cavities.extend(polygons);
+        } else {
+            solids.extend(polygons);
+        }
+    }
+    let union = boolean::union_all(&solids)?;
+    if cavities.is_empty() {
+        Ok(union)
+    } else {
+        boolean::difference(&union, &cavities)
+    }
+}
+
+/// Splits polygons into those large enough to cut (normalised, ordered) and the areas of those
+/// that are not.
+fn keep_cuttable(polygons: Vec<Polygon>, s: &StackedSettings) -> Result<(Vec<Polygon>, Vec<f64>), GridError> {
+    let mut kept = Vec::new();
+    let mut dropped = Vec::new();
+    for mut p in polygons {
+        p.normalize_orientation();
+        let area = p.area();
+        let wide_enough =
+            s.min_width <= 0.0 || !offset::offset(std::slice::from_ref(&p), -s.min_width / 2.0)?.is_empty();
+        if area >= s.min_area && area > 0.0 && wide_enough {
+            kept.push(p);
+        } else if area >= NOISE_AREA {
+            dropped.push(area);
+        }
+    }
+    kept.sort_by(|a, b| {
+        let (pa, pb) = (a.bounds().0, b.bounds().0);
+        pa.x.total_cmp(&pb.x).then(pa.y.total_cmp(&pb.y))
+    });
+    Ok((kept, dropped))
+}
