@@ -218,7 +218,7 @@ impl MethodArg {
     }
 }
 
-/// The joint type (recorded in the reports; the joint steps will take it).
+/// The joint type.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum JointArg {
@@ -294,9 +294,14 @@ pub struct ConvertArgs {
     /// enough.
     #[arg(long, value_name = "WxH|fit", default_value = "600x400", value_parser = parse_sheet)]
     pub sheet: SheetSize,
-    /// Joint type (recorded in the reports; the joint step still chooses joints itself).
+    /// Joint type: `auto` takes finger joints for wood and acrylic, JimJoints (snapping) for
+    /// cardboard and paper.
     #[arg(long, value_enum, default_value = "auto")]
     pub joint: JointArg,
+    /// Stacked method: the axis the layers are stacked along (`auto`: the model's largest flat
+    /// face is laid flat).
+    #[arg(long, value_name = "x|y|z|auto", default_value = "auto")]
+    pub axis: String,
     /// Which labels to engrave.
     #[arg(long, value_enum, default_value = "edges")]
     pub labels: LabelsArg,

@@ -4,9 +4,10 @@ use std::time::{Duration, Instant};
 
 use anyhow::Context as _;
 use platener::Settings;
+use platener::joints::JointStyle;
 use platener::plan::SheetSize;
 
-use crate::args::ConvertArgs;
+use crate::args::{ConvertArgs, JointArg};
 use crate::batch::{self, BatchConfig};
 use crate::inputs;
 use crate::progress::Ui;
@@ -49,6 +50,13 @@ pub fn settings(args: &ConvertArgs) -> anyhow::Result<Settings> {
     settings.cut.kerf = args.kerf;
     settings.cut.labels = args.labels.mode();
     settings.cut.sheet = args.sheet;
+    settings.joints.style = match args.joint {
+        JointArg::Auto => None,
+        JointArg::Finger => Some(JointStyle::Finger),
+        JointArg::Jim => Some(JointStyle::Jim),
+        JointArg::Dovetail => anyhow::bail!("dovetail joints are not available yet; use --joint finger, jim or auto"),
+    };
+    settings.stacked.axis = args.axis.parse().map_err(|e| anyhow::anyhow!("--axis: {e}"))?;
     settings.validate()?;
     Ok(settings)
 }

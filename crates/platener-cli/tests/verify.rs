@@ -50,3 +50,30 @@ fn a_file_that_is_not_a_plan_is_refused_with_its_name() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("notes.zip") && err.contains("not a ZIP"), "{err}");
 }
+
+#[test]
+fn the_joint_option_chooses_the_joints_and_dovetails_are_refused_for_now() {
+    let out = tempfile::tempdir().expect("tempdir");
+    platener()
+        .arg("convert")
+        .arg(example("box-3mm.stl"))
+        .arg("-o")
+        .arg(out.path())
+        .args(["--method", "plate", "--joint", "jim"])
+        .assert()
+        .code(0);
+    let bytes = std::fs::read(out.path().join("box-3mm-plate.zip")).expect("zip");
+    let plan = platener::verify::plan_from_zip(&bytes).expect("plan");
+    assert_eq!(plan.joints.len(), 12);
+    assert!(plan.joints.iter().all(|j| j.kind == platener::plan::JointKind::Jim));
+    let o = platener()
+        .arg("convert")
+        .arg(example("box-3mm.stl"))
+        .arg("-o")
+        .arg(out.path())
+        .args(["--joint", "dovetail"])
+        .output()
+        .expect("runs");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("dovetail joints are not available yet"));
+}

@@ -177,6 +177,8 @@ pub struct Settings {
     pub plates: PlateSettings,
     /// The stacked method (layers and shafts).
     pub stacked: StackedSettings,
+    /// Joints of the plate method (finger width, style; the style defaults by material).
+    pub joints: crate::joints::JointSettings,
     /// Kerf, labels, sheets and export of the cutting plan.
     pub cut: crate::plan::CutSettings,
 }
@@ -192,6 +194,7 @@ impl Default for Settings {
             straight_tolerance: None,
             plates: PlateSettings::default(),
             stacked: StackedSettings::default(),
+            joints: crate::joints::JointSettings::default(),
             cut: crate::plan::CutSettings::default(),
         }
     }

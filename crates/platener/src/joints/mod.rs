@@ -134,9 +134,15 @@ impl Step for JointsStep {
     fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
         let plates = need(&state.plates, self.name(), "plates")?;
         cx.check_cancel()?;
+        // The style the user chose, or the one that holds in the material.
+        let chosen = &state.settings.joints;
         let settings = JointSettings {
-            style: Some(JointStyle::for_material(state.settings.cut.material)),
-            ..JointSettings::default()
+            style: Some(
+                chosen
+                    .style
+                    .unwrap_or(JointStyle::for_material(state.settings.cut.material)),
+            ),
+            ..chosen.clone()
         };
         let joints = compute(&plates.plates, &settings).map_err(|e| Error::Geometry {
             model: state.source.name(),

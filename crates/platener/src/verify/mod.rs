@@ -101,7 +101,11 @@ pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
         .filter(|i| !snapping(&i.parts))
         .map(|i| i.volume)
         .sum();
-    let interference_share = if parts_volume > 0.0 { shared / parts_volume } else { 0.0 };
+    let interference_share = if parts_volume > 0.0 {
+        (shared / parts_volume).max(0.0)
+    } else {
+        0.0
+    };
     let index = |id: u32| solids.iter().position(|s| s.id == id);
     let mut group = sample::UnionFind::new(solids.len());
     let mut joints_not_meeting = Vec::new();
