@@ -24,6 +24,25 @@ pub(super) fn parse_f64(token: &[u8]) -> Option<f64> {
     }
 }
 
+/// Appends the decimal digits at `token[*i..]` to `mantissa`, returning how many there were;
+/// `None` when the mantissa would need more than 19 digits (the caller falls back to std).
+fn take_digits(token: &[u8], i: &mut usize, mantissa: &mut u64, digits: &mut u32) -> Option<u32> {
+    let start = *digits;
+    while let Some(&b) = token.get(*i) {
+        let d = b.wrapping_sub(b'0');
+        if d > 9 {
+            break;
+        }
+        if *digits == 19 {
+            return None;
+        }
+        *mantissa = *mantissa * 10 + u64::from(d);
+        *digits += 1;
+        *i += 1;
+    }
+    Some(*digits - start)
+}
+
 /// The fast path: `[+-]digits[.digits][(e|E)[+-]digits]` with a small mantissa and exponent.
 fn fast(token: &[u8]) -> Option<f64> {
     let mut i = 0;
@@ -40,34 +59,11 @@ fn fast(token: &[u8]) -> Option<f64> {
     };
     let mut mantissa: u64 = 0;
     let mut digits = 0u32;
+    take_digits(token, &mut i, &mut mantissa, &mut digits)?;
     let mut exponent: i32 = 0;
-    while let Some(&b) = token.get(i) {
-        let d = b.wrapping_sub(b'0');
-        if d > 9 {
-            break;
-        }
-        if digits == 19 {
-            return None;
-        }
-        mantissa = mantissa * 10 + u64::from(d);
-        digits += 1;
-        i += 1;
-    }
     if token.get(i) == Some(&b'.') {
         i += 1;
-        while let Some(&b) = token.get(i) {
-            let d = b.wrapping_sub(b'0');
-            if d > 9 {
-                break;
-            }
-            if digits == 19 {
-                return None;
-            }
-            mantissa = mantissa * 10 + u64::from(d);
-            digits += 1;
-            exponent -= 1;
-            i += 1;
-        }
+        exponent = -(take_digits(token, &mut i, &mut mantissa, &mut digits)? as i32);
     }
     if digits == 0 {
         return None;
