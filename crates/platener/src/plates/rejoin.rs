@@ -102,7 +102,7 @@ pub(super) fn rejoin(mut plates: Vec<Plate>, angle: f64, clearance: f64) -> Resu
                         *k != i
                             && *k != j
                             && p.frame.n.dot(plates[i].frame.n).abs() < cos_max
-                            && touch(span, bounds[*k])
+                            && touch(grow(span, reach), bounds[*k])
                     })
                     .map(|(_, p)| p)
                     .collect();

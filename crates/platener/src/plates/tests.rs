@@ -200,3 +200,18 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn the_phone_stand_file_gives_three_plates_and_a_whole_base() {
+    // Read from the shipped binary STL (f32 coordinates): the slanted back plate's foot stops
+    // short of the base, which must still be rejoined under it.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/phone-stand.stl");
+    let mut state = State::new(Source::File(path), with(&[3.0]));
+    pipeline::run(&pipeline::plate_steps(), &mut state, &Cancel::default()).expect("converts");
+    let plates = state.plates.expect("plates");
+    let mut areas: Vec<f64> = plates.plates.iter().map(|p| p.area).collect();
+    areas.sort_by(f64::total_cmp);
+    assert_eq!(areas.len(), 3, "{areas:?}");
+    // The base, 82 × 70 (the lip takes the first 3 mm), in one piece.
+    assert!((areas[1] - 82.0 * 70.0).abs() < 1.0, "{areas:?}");
+}

@@ -102,7 +102,7 @@ pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
         .map(|i| i.volume)
         .sum();
     let interference_share = if parts_volume > 0.0 {
-        (shared / parts_volume).max(0.0)
+        (shared / parts_volume).max(0.0) + 0.0 /* −0 → +0 */
     } else {
         0.0
     };
