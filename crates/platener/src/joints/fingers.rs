@@ -2,6 +2,7 @@
 
 use glam::DVec2;
 use platener_geom::boolean::{difference, union_all};
+use platener_geom::offset::offset;
 use platener_geom::{GridError, Polygon};
 
 use super::connect::{Region, band};
@@ -86,6 +87,20 @@ fn barb(
     platener_geom::boolean::intersection(std::slice::from_ref(region), &[wedge])
 }
 
+/// Gaps narrower than this (mm) between a plate and its joint regions are grid noise.
+const HAIRLINE: f64 = 0.01;
+
+/// The union of a plate and its joint regions. A region computed through another plate's
+/// frame can miss its plate by a grid step; a closing (grow, then shrink, with sharp miter
+/// corners) fills such hairlines without moving any real edge.
+fn joined(pieces: &[Polygon]) -> Result<Vec<Polygon>, GridError> {
+    let union = union_all(pieces)?;
+    if union.len() <= 1 {
+        return Ok(union);
+    }
+    offset(&offset(&union, HAIRLINE)?, -HAIRLINE)
+}
+
 pub(super) fn apply(
     plates: &[Plate],
     regions: Vec<Region>,
@@ -98,7 +113,7 @@ pub(super) fn apply(
         grown[r.a].push(r.in_a.clone());
         grown[r.b].push(r.in_b.clone());
     }
-    let mut outlines: Vec<Vec<Polygon>> = grown.iter().map(|g| union_all(g)).collect::<Result<_, _>>()?;
+    let mut outlines: Vec<Vec<Polygon>> = grown.iter().map(|g| joined(g)).collect::<Result<_, _>>()?;
     // …then gives up the segments its partner owns.
     let mut cuts: Vec<Vec<Polygon>> = vec![Vec::new(); plates.len()];
     let mut barbs: Vec<Vec<Polygon>> = vec![Vec::new(); plates.len()];
