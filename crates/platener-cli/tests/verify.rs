@@ -12,18 +12,24 @@ fn platener() -> Command {
     Command::cargo_bin("platener").expect("binary built")
 }
 
-#[test]
-fn a_converted_box_verifies_against_its_model() {
-    let out = tempfile::tempdir().expect("tempdir");
+/// Converts the shipped box with the plate method (and `extra` flags); returns the ZIP's path.
+fn convert_box(out: &Path, extra: &[&str]) -> PathBuf {
     platener()
         .arg("convert")
         .arg(example("box-3mm.stl"))
         .arg("-o")
-        .arg(out.path())
+        .arg(out)
         .args(["--method", "plate"])
+        .args(extra)
         .assert()
         .code(0);
-    let zip = out.path().join("box-3mm-plate.zip");
+    out.join("box-3mm-plate.zip")
+}
+
+#[test]
+fn a_converted_box_verifies_against_its_model() {
+    let out = tempfile::tempdir().expect("tempdir");
+    let zip = convert_box(out.path(), &[]);
     let o = platener()
         .arg("verify")
         .arg(&zip)
@@ -54,15 +60,7 @@ fn a_file_that_is_not_a_plan_is_refused_with_its_name() {
 #[test]
 fn the_joint_option_chooses_the_joints_and_dovetails_are_refused_for_now() {
     let out = tempfile::tempdir().expect("tempdir");
-    platener()
-        .arg("convert")
-        .arg(example("box-3mm.stl"))
-        .arg("-o")
-        .arg(out.path())
-        .args(["--method", "plate", "--joint", "jim"])
-        .assert()
-        .code(0);
-    let bytes = std::fs::read(out.path().join("box-3mm-plate.zip")).expect("zip");
+    let bytes = std::fs::read(convert_box(out.path(), &["--joint", "jim"])).expect("zip");
     let plan = platener::verify::plan_from_zip(&bytes).expect("plan");
     assert_eq!(plan.joints.len(), 12);
     assert!(plan.joints.iter().all(|j| j.kind == platener::plan::JointKind::Jim));
