@@ -70,6 +70,11 @@ pub(super) struct Region {
     pub in_a: Polygon,
     /// The region in b's plane.
     pub in_b: Polygon,
+    /// What a grows by towards b: the region, and at acute corners the wedge between a's end
+    /// and b's slab, which lies in a's layer only.
+    pub reach_a: Vec<Polygon>,
+    /// See `reach_a`.
+    pub reach_b: Vec<Polygon>,
     /// How they meet.
     pub kind: ConnectionKind,
     /// For a T: the plate that passes through.
@@ -122,6 +127,47 @@ fn into_plate(plate: &Plate, axis: DVec3, joint: DVec3) -> DVec3 {
 
 fn boxes_touch(a: (DVec3, DVec3), b: (DVec3, DVec3), grow: f64) -> bool {
     (a.0 - DVec3::splat(grow)).cmple(b.1).all() && (b.0 - DVec3::splat(grow)).cmple(a.1).all()
+}
+
+/// How far `plate` grows towards a joint `region`: its outline grown by `grow`, within the
+/// joint's `range` along `axis`, from the plate's middle to the far side of the region. Where
+/// the plates meet at a right or obtuse angle this is the region itself; at acute angles the
+/// plate ends before the neighbour's slab begins, and the wedge in between (inside the model,
+/// in this plate's layer only) is added.
+fn extension(
+    plate: &Plate,
+    region: &Polygon,
+    axis: DVec3,
+    range: (f64, f64),
+    grow: f64,
+) -> Result<Vec<Polygon>, GridError> {
+    let f = &plate.frame;
+    let along = DVec2::new(axis.dot(f.u), axis.dot(f.v));
+    let across = along.perp();
+    let c = axis.dot(f.origin);
+    let (lo, hi) = plate.polygon.bounds();
+    let mid = across.dot((lo + hi) / 2.0);
+    let (q0, q1) = region
+        .outer
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(across.dot(*p)), b.max(across.dot(*p)))
+        });
+    let far = if (q0 - mid).abs() > (q1 - mid).abs() { q0 } else { q1 };
+    let grown = offset(std::slice::from_ref(&plate.polygon), grow)?;
+    let (glo, ghi) = grown.iter().fold((lo, hi), |(a, b), p| {
+        let (l, h) = p.bounds();
+        (a.min(l), b.max(h))
+    });
+    let (Some(in_range), Some(towards)) = (
+        strip_in_box(glo - DVec2::ONE, ghi + DVec2::ONE, along, range.0 - c, range.1 - c),
+        strip_in_box(glo - DVec2::ONE, ghi + DVec2::ONE, across, mid.min(far), mid.max(far)),
+    ) else {
+        return Ok(vec![region.clone()]);
+    };
+    let mut out = intersection(&intersection(&grown, &[in_range])?, &[towards])?;
+    out.push(region.clone());
+    Ok(out)
 }
 
 /// Every joint region between the plates.
@@ -236,11 +282,15 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
             // The plate ending against a face makes two angles with it; the smaller is named.
             _ => pa.frame.n.dot(pb.frame.n).abs().clamp(0.0, 1.0).acos().to_degrees(),
         };
+        let reach_a = extension(pa, &ra, r.axis, range, crossing_width(pa, pb))?;
+        let reach_b = extension(pb, &rb, r.axis, range, crossing_width(pb, pa))?;
         regions.push(Region {
             a: r.a,
             b: r.b,
             in_a: ra,
             in_b: rb,
+            reach_a,
+            reach_b,
             kind,
             through,
             angle_deg,

@@ -110,8 +110,8 @@ pub(super) fn apply(
     // Every plate grows into its joint regions first…
     let mut grown: Vec<Vec<Polygon>> = plates.iter().map(|p| vec![p.polygon.clone()]).collect();
     for r in &regions {
-        grown[r.a].push(r.in_a.clone());
-        grown[r.b].push(r.in_b.clone());
+        grown[r.a].extend(r.reach_a.iter().cloned());
+        grown[r.b].extend(r.reach_b.iter().cloned());
     }
     let mut outlines: Vec<Vec<Polygon>> = grown.iter().map(|g| joined(g)).collect::<Result<_, _>>()?;
     // …then gives up the segments its partner owns.

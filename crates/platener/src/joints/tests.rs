@@ -183,8 +183,8 @@ fn segment_counts_are_odd_and_never_too_narrow() {
 }
 
 #[test]
-fn plates_meeting_at_60_90_120_150_degrees_fill_the_corner_without_overlap() {
-    for enclosed in [60.0, 90.0, 120.0, 150.0f64] {
+fn plates_meeting_at_30_to_150_degrees_fill_the_corner_without_overlap() {
+    for enclosed in [30.0, 45.0, 60.0, 90.0, 120.0, 150.0f64] {
         let pitch = (180.0 - enclosed) / 2.0;
         let model = samples::roof(50.0, pitch, 80.0, 3.0);
         let plates = plates_of(model.clone());
@@ -200,9 +200,7 @@ fn plates_meeting_at_60_90_120_150_degrees_fill_the_corner_without_overlap() {
         let w = crate::weld::weld_soup(&model, 0.0);
         let m = crate::mesh::Mesh::build(w.vertices, &w.triangles, 1e-9);
         let model_volume = m.health.volume.expect("closed");
-        eprintln!(
-            "{enclosed}°: parts {total:.1} mm³, model {model_volume:.1} mm³, worst column overlap {overlap:.3} mm²"
-        );
+        eprintln!("{enclosed}°: parts {total:.1} mm³, model {model_volume:.1} mm³, shared {overlap:.3} mm³");
         assert!(overlap * 3.0 < 0.005 * model_volume, "{enclosed}°: overlap {overlap}");
         assert!(
             (total - model_volume).abs() < 0.01 * model_volume,
@@ -244,7 +242,7 @@ mod properties {
         /// Below about 50° the outer faces' ridge remnant is wider than twice the thickness and
         /// becomes an extruded plate of its own (a known limit of plate finding, not of joints).
         #[test]
-        fn random_angles_rebuild_exactly(enclosed in 55.0f64..160.0, run in 30.0f64..80.0) {
+        fn random_angles_rebuild_exactly(enclosed in 30.0f64..160.0, run in 30.0f64..80.0) {
             let model = samples::roof(run, (180.0 - enclosed) / 2.0, 60.0, 3.0);
             let plates = plates_of(model.clone());
             prop_assert_eq!(plates.len(), 2);
