@@ -1,7 +1,5 @@
 //! `platener inspect`: runs the foundation steps and summarises what they found.
 
-use std::sync::Arc;
-
 use glam::DVec3;
 use serde::Serialize;
 
@@ -170,16 +168,12 @@ pub fn inspect(source: Source, settings: Settings, cancel: &Cancel, with_plates:
         pipeline::foundation_steps()
     };
     let (state, steps) = run_steps(&steps, source, settings, cancel)?;
-    let need = |name| crate::Error::MissingStep {
-        step: "inspect",
-        needs: name,
-    };
-    let model = state.read.as_ref().ok_or(need("read"))?;
-    let cleaned = state.cleanup.as_ref().ok_or(need("cleanup"))?;
-    let welded = state.weld.as_ref().ok_or(need("weld"))?;
-    let mesh = state.mesh.as_ref().ok_or(need("mesh"))?;
-    let groups = state.coplanar.as_ref().ok_or(need("coplanar"))?;
-    let shapes: &Arc<_> = state.shapes.as_ref().ok_or(need("shapes"))?;
+    let model = pipeline::need(&state.read, "inspect", "read")?;
+    let cleaned = pipeline::need(&state.cleanup, "inspect", "cleanup")?;
+    let welded = pipeline::need(&state.weld, "inspect", "weld")?;
+    let mesh = pipeline::need(&state.mesh, "inspect", "mesh")?;
+    let groups = pipeline::need(&state.coplanar, "inspect", "coplanar")?;
+    let shapes = pipeline::need(&state.shapes, "inspect", "shapes")?;
     Ok(Inspection {
         model: model.name.clone(),
         format: model.format.map(|f| f.label()),

@@ -3,8 +3,10 @@
 //! test. `verify` (thorough, on grids) and `score` (fast, on seeded samples) both measure with
 //! these.
 
+mod groups;
 mod inside;
 mod prism;
 
+pub(crate) use groups::UnionFind;
 pub(crate) use inside::Inside;
 pub(crate) use prism::Prism;

@@ -241,21 +241,13 @@ fn connectivity(prisms: &[Prism], joints: &[PlanJoint], solids: usize) -> (f64, 
         return (0.0, 0);
     }
     let index: BTreeMap<u32, usize> = prisms.iter().enumerate().map(|(i, p)| (p.id, i)).collect();
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
+    let mut group = crate::assembly::UnionFind::new(n);
     for j in joints {
         if let (Some(&a), Some(&b)) = (index.get(&j.parts[0]), index.get(&j.parts[1])) {
-            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-            parent[ra.max(rb)] = ra.min(rb);
+            group.join(a, b);
         }
     }
-    let groups = (0..n).filter(|&i| root(&mut parent, i) == i).count();
+    let groups = group.count();
     // A spanning forest of `groups` trees over n parts has n − groups connections; one tree
     // per solid would need n − solids.
     let share = if n <= solids {

@@ -107,7 +107,7 @@ pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
         0.0
     };
     let index = |id: u32| solids.iter().position(|s| s.id == id);
-    let mut group = sample::UnionFind::new(solids.len());
+    let mut group = crate::assembly::UnionFind::new(solids.len());
     let mut joints_not_meeting = Vec::new();
     for j in &plan.joints {
         let (Some(a), Some(b)) = (index(j.parts[0]), index(j.parts[1])) else {

@@ -123,28 +123,3 @@ pub(super) fn volume_inside(mesh: &Mesh, solids: &[Prism], step: f64) -> f64 {
     }
     if total > 0 { hits as f64 / total as f64 } else { 0.0 }
 }
-
-/// Groups of parts joined by joints.
-pub(super) struct UnionFind(Vec<usize>);
-
-impl UnionFind {
-    pub fn new(n: usize) -> Self {
-        Self((0..n).collect())
-    }
-    fn root(&mut self, mut i: usize) -> usize {
-        while self.0[i] != i {
-            self.0[i] = self.0[self.0[i]];
-            i = self.0[i];
-        }
-        i
-    }
-    pub fn join(&mut self, a: usize, b: usize) {
-        let (ra, rb) = (self.root(a), self.root(b));
-        if ra != rb {
-            self.0[ra.max(rb)] = ra.min(rb);
-        }
-    }
-    pub fn count(&mut self) -> usize {
-        (0..self.0.len()).filter(|&i| self.root(i) == i).count()
-    }
-}

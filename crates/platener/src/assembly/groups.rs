@@ -1,0 +1,29 @@
+//! Groups of parts held together by joints.
+
+/// Groups of parts joined by joints (union–find with path halving).
+pub(crate) struct UnionFind(Vec<usize>);
+
+impl UnionFind {
+    /// Every part in a group of its own.
+    pub(crate) fn new(n: usize) -> Self {
+        Self((0..n).collect())
+    }
+    fn root(&mut self, mut i: usize) -> usize {
+        while self.0[i] != i {
+            self.0[i] = self.0[self.0[i]];
+            i = self.0[i];
+        }
+        i
+    }
+    /// Puts the groups of `a` and `b` together.
+    pub(crate) fn join(&mut self, a: usize, b: usize) {
+        let (ra, rb) = (self.root(a), self.root(b));
+        if ra != rb {
+            self.0[ra.max(rb)] = ra.min(rb);
+        }
+    }
+    /// The number of groups.
+    pub(crate) fn count(&mut self) -> usize {
+        (0..self.0.len()).filter(|&i| self.root(i) == i).count()
+    }
+}
