@@ -28,6 +28,19 @@ pub fn offset(polygons: &[Polygon], distance: f64) -> Result<Vec<Polygon>, GridE
     Ok(shapes_from_grid(out))
 }
 
+/// Morphological opening (shrink by `r`, then grow back): removes every piece and spike of
+/// `polygons` narrower than `2r` and keeps everything wider exactly (miter joins restore the
+/// corners).
+pub fn opening(polygons: &[Polygon], r: f64) -> Result<Vec<Polygon>, GridError> {
+    offset(&offset(polygons, -r)?, r)
+}
+
+/// Morphological closing (grow by `r`, then shrink back): fills every gap and notch of
+/// `polygons` narrower than `2r` and keeps everything else exactly.
+pub fn closing(polygons: &[Polygon], r: f64) -> Result<Vec<Polygon>, GridError> {
+    offset(&offset(polygons, r)?, -r)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -47,6 +60,39 @@ mod tests {
         assert_eq!(out[0].outer.len(), 4);
         let inner = offset(&[sq], -0.5).expect("grid");
         assert!((total_area(&inner) - 81.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn opening_removes_slivers_and_keeps_the_rest_exactly() {
+        // A 10 × 10 square with a 0.2 mm wide, 5 mm long sliver hanging off its right side.
+        let p = Polygon::new(vec![
+            DVec2::new(0.0, 0.0),
+            DVec2::new(10.0, 0.0),
+            DVec2::new(10.0, 4.0),
+            DVec2::new(15.0, 4.0),
+            DVec2::new(15.0, 4.2),
+            DVec2::new(10.0, 4.2),
+            DVec2::new(10.0, 10.0),
+            DVec2::new(0.0, 10.0),
+        ]);
+        let open = opening(std::slice::from_ref(&p), 0.5).expect("grid");
+        assert_eq!(open.len(), 1);
+        assert!((total_area(&open) - 100.0).abs() < 1e-6, "{}", total_area(&open));
+        // Features wider than 2r stay as they are: a 3 mm finger survives a 1 mm opening.
+        let finger = Polygon::new(vec![
+            DVec2::new(0.0, 0.0),
+            DVec2::new(10.0, 0.0),
+            DVec2::new(10.0, 4.0),
+            DVec2::new(13.0, 4.0),
+            DVec2::new(13.0, 7.0),
+            DVec2::new(10.0, 7.0),
+            DVec2::new(10.0, 10.0),
+            DVec2::new(0.0, 10.0),
+        ]);
+        let open = opening(std::slice::from_ref(&finger), 1.0).expect("grid");
+        assert!((total_area(&open) - 109.0).abs() < 1e-6, "{}", total_area(&open));
+        let closed = closing(&[finger], 1.0).expect("grid");
+        assert!((total_area(&closed) - 109.0).abs() < 1e-6, "{}", total_area(&closed));
     }
 
     #[test]

@@ -1,8 +1,9 @@
 //! Cutting joint regions into fingers, tabs and slots, and applying them to the plates.
 
 use glam::DVec2;
-use platener_geom::boolean::{difference, union_all};
-use platener_geom::offset::offset;
+use platener_geom::boolean::{difference, intersection, union_all};
+use platener_geom::offset::{closing, offset, opening};
+use platener_geom::polygon::total_area;
 use platener_geom::{GridError, Polygon};
 
 use super::connect::{Region, band};
@@ -90,15 +91,148 @@ fn barb(
 /// Gaps narrower than this (mm) between a plate and its joint regions are grid noise.
 const HAIRLINE: f64 = 0.01;
 
+/// Pieces smaller than this (mm²) are grid noise, not slivers.
+const NOISE_AREA: f64 = 1e-4;
+
 /// The union of a plate and its joint regions. A region computed through another plate's
-/// frame can miss its plate by a grid step; a closing (grow, then shrink, with sharp miter
-/// corners) fills such hairlines without moving any real edge.
+/// frame can miss its plate by a grid step; a closing (with sharp miter corners) fills such
+/// hairlines without moving any real edge.
 fn joined(pieces: &[Polygon]) -> Result<Vec<Polygon>, GridError> {
     let union = union_all(pieces)?;
     if union.len() <= 1 {
         return Ok(union);
     }
-    offset(&offset(&union, HAIRLINE)?, -HAIRLINE)
+    closing(&union, HAIRLINE)
+}
+
+/// How one connection is cut.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Plan {
+    /// Fingers of both plates (2 for a halved joint).
+    segments: usize,
+    /// When fingers would cut a plate apart: that plate keeps the whole joint region and the
+    /// other butts against it.
+    keeper: Option<usize>,
+}
+
+/// What a connection takes from and adds to its two plates (`[a, b]`).
+#[derive(Debug, Clone, Default)]
+struct Cut {
+    remove: [Vec<Polygon>; 2],
+    add: [Vec<Polygon>; 2],
+}
+
+/// The smallest feature a laser cuts reliably in plates up to `t` thick: half the thickness,
+/// at least 1 mm (the rule).
+fn min_feature(t: f64) -> f64 {
+    (t / 2.0).max(1.0)
+}
+
+/// The plan of a connection before any plate is found to fall apart.
+fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings) -> Plan {
+    let t = plates[r.a].thickness.max(plates[r.b].thickness);
+    let segments = match r.kind {
+        ConnectionKind::Cross => 2,
+        _ => segment_count(r.range.1 - r.range.0, settings.finger_factor * t, min_feature(t)),
+    };
+    Plan { segments, keeper: None }
+}
+
+/// The fingers, tabs and slots of one connection under `plan`.
+fn cut(plates: &[Plate], r: &Region, plan: Plan, style: JointStyle) -> Result<Cut, GridError> {
+    let (pa, pb) = (&plates[r.a], &plates[r.b]);
+    let mut out = Cut::default();
+    if let Some(keeper) = plan.keeper {
+        // A butt joint: the other plate gives up the whole region.
+        let everything = (r.range.0 - 1e3, r.range.1 + 1e3);
+        out.remove = if keeper == r.a {
+            [Vec::new(), band(pb, &r.in_b, r.axis, everything.0, everything.1)?]
+        } else {
+            [band(pa, &r.in_a, r.axis, everything.0, everything.1)?, Vec::new()]
+        };
+        return Ok(out);
+    }
+    let segments = plan.segments;
+    let len = r.range.1 - r.range.0;
+    let step = len / segments as f64;
+    for s in 0..segments {
+        let owner = match r.kind {
+            ConnectionKind::Corner => [r.a, r.b][s % 2],
+            ConnectionKind::Tee => {
+                let through = r.through.unwrap_or(r.a);
+                let ending = if through == r.a { r.b } else { r.a };
+                [through, ending][s % 2]
+            }
+            ConnectionKind::Cross => [r.a, r.b][s.min(1)],
+        };
+        let (a0, a1) = (r.range.0 + step * s as f64, r.range.0 + step * (s + 1) as f64);
+        // The first and last segments reach past the range (the region's ends).
+        let s0 = if s == 0 { a0 - 1e3 } else { a0 };
+        let s1 = if s + 1 == segments { a1 + 1e3 } else { a1 };
+        if owner == r.a {
+            out.remove[1].extend(band(pb, &r.in_b, r.axis, s0, s1)?);
+        } else {
+            out.remove[0].extend(band(pa, &r.in_a, r.axis, s0, s1)?);
+        }
+        // JimJoint: the owner's finger widens towards its tip, into its partner's fingers.
+        if style == JointStyle::Jim && r.kind != ConnectionKind::Cross {
+            let (p, region, side) = if owner == r.a {
+                (pa, &r.in_a, 0)
+            } else {
+                (pb, &r.in_b, 1)
+            };
+            let b = (0.1 * step).min(0.25 * pa.thickness.min(pb.thickness));
+            out.add[side].extend(barb(p, region, r.axis, a0, a1, b)?);
+        }
+    }
+    Ok(out)
+}
+
+/// A plate's final pieces, largest first: its grown `outline` without `remove`, with `add`,
+/// and without slivers narrower than `min_feature` where the joints changed it (a laser
+/// cannot cut them; they come from joints of plates that meet slightly off square).
+fn finish(
+    plate: &Plate,
+    outline: &[Polygon],
+    remove: &[Polygon],
+    add: &[Polygon],
+    min_feature: f64,
+) -> Result<Vec<Polygon>, GridError> {
+    let mut pieces = difference(outline, remove)?;
+    if !add.is_empty() {
+        pieces.extend(add.iter().cloned());
+        pieces = union_all(&pieces)?;
+    }
+    let r = 0.499 * min_feature;
+    let opened = intersection(&opening(&pieces, r)?, &pieces)?;
+    let mut slivers = difference(&pieces, &opened)?;
+    slivers.retain(|p| p.area() > NOISE_AREA);
+    if !slivers.is_empty() {
+        // Only where the joints changed the plate: its growth and what its partners took.
+        let mut changed = difference(outline, std::slice::from_ref(&plate.polygon))?;
+        changed.extend(remove.iter().cloned());
+        let zone = offset(&changed, 2.0 * r)?;
+        pieces = difference(&pieces, &intersection(&slivers, &zone)?)?;
+    }
+    pieces.sort_by(|a, b| b.area().total_cmp(&a.area()));
+    // Debris: pieces with nothing a laser could cut (the sliver's rim left by the grid).
+    let mut kept = Vec::with_capacity(pieces.len());
+    for (n, p) in pieces.into_iter().enumerate() {
+        if n == 0 || total_area(&opening(std::slice::from_ref(&p), r)?) > NOISE_AREA {
+            kept.push(p);
+        }
+    }
+    Ok(kept)
+}
+
+/// Everything its connections (`touching`: connection, side) take from and add to a plate.
+fn gathered(cuts: &[Cut], touching: &[(usize, usize)]) -> (Vec<Polygon>, Vec<Polygon>) {
+    let (mut remove, mut add) = (Vec::new(), Vec::new());
+    for &(k, side) in touching {
+        remove.extend(cuts[k].remove[side].iter().cloned());
+        add.extend(cuts[k].add[side].iter().cloned());
+    }
+    (remove, add)
 }
 
 pub(super) fn apply(
@@ -109,55 +243,96 @@ pub(super) fn apply(
 ) -> Result<Joints, GridError> {
     // Every plate grows into its joint regions first…
     let mut grown: Vec<Vec<Polygon>> = plates.iter().map(|p| vec![p.polygon.clone()]).collect();
-    for r in &regions {
+    // Per plate: its connections and its side (0 = a, 1 = b) in each.
+    let mut touching: Vec<Vec<(usize, usize)>> = vec![Vec::new(); plates.len()];
+    for (k, r) in regions.iter().enumerate() {
         grown[r.a].extend(r.reach_a.iter().cloned());
         grown[r.b].extend(r.reach_b.iter().cloned());
+        touching[r.a].push((k, 0));
+        touching[r.b].push((k, 1));
     }
-    let mut outlines: Vec<Vec<Polygon>> = grown.iter().map(|g| joined(g)).collect::<Result<_, _>>()?;
-    // …then gives up the segments its partner owns.
-    let mut cuts: Vec<Vec<Polygon>> = vec![Vec::new(); plates.len()];
-    let mut barbs: Vec<Vec<Polygon>> = vec![Vec::new(); plates.len()];
-    let mut connections = Vec::with_capacity(regions.len());
-    let mut edges: Vec<Vec<(u32, [DVec2; 2])>> = vec![Vec::new(); plates.len()];
-    for (k, r) in regions.iter().enumerate() {
-        let (pa, pb) = (&plates[r.a], &plates[r.b]);
-        let t = pa.thickness.max(pb.thickness);
-        let len = r.range.1 - r.range.0;
-        let segments = match r.kind {
-            ConnectionKind::Cross => 2,
-            _ => segment_count(len, settings.finger_factor * t, (t / 2.0).max(1.0)),
-        };
-        for s in 0..segments {
-            let owner = match r.kind {
-                ConnectionKind::Corner => [r.a, r.b][s % 2],
-                ConnectionKind::Tee => {
-                    let through = r.through.unwrap_or(r.a);
-                    let ending = if through == r.a { r.b } else { r.a };
-                    [through, ending][s % 2]
-                }
-                ConnectionKind::Cross => [r.a, r.b][s],
-            };
-            let step = len / segments as f64;
-            let (s0, s1) = (r.range.0 + step * s as f64, r.range.0 + step * (s + 1) as f64);
-            // The first and last segments reach past the range (the region's ends).
-            let s0 = if s == 0 { s0 - 1e3 } else { s0 };
-            let s1 = if s + 1 == segments { s1 + 1e3 } else { s1 };
-            if owner == r.a {
-                cuts[r.b].extend(band(pb, &r.in_b, r.axis, s0, s1)?);
-            } else {
-                cuts[r.a].extend(band(pa, &r.in_a, r.axis, s0, s1)?);
+    let outlines: Vec<Vec<Polygon>> = grown.iter().map(|g| joined(g)).collect::<Result<_, _>>()?;
+    let feature = |i: usize| min_feature(plates[i].thickness);
+    // …then gives up the segments its partners own. Where that would cut a plate apart, the
+    // joint adapts: fewer, wider fingers, else the plate keeps the whole joint region.
+    let mut plans: Vec<Plan> = regions.iter().map(|r| first_plan(plates, r, settings)).collect();
+    let mut cuts: Vec<Cut> = regions
+        .iter()
+        .zip(&plans)
+        .map(|(r, &plan)| cut(plates, r, plan, style))
+        .collect::<Result<_, _>>()?;
+    let mut adapted_for: Vec<Option<usize>> = vec![None; regions.len()];
+    let whole = |i: usize, cuts: &[Cut]| -> Result<Vec<Polygon>, GridError> {
+        let (remove, add) = gathered(cuts, &touching[i]);
+        finish(&plates[i], &outlines[i], &remove, &add, feature(i))
+    };
+    for i in 0..plates.len() {
+        let mut pieces = whole(i, &cuts)?;
+        // Each connection that cuts this plate, in order, until it holds together.
+        for &(k, side) in &touching[i] {
+            if pieces.len() <= 1 {
+                break;
             }
-            // JimJoint: the owner's finger widens towards its tip, into its partner's fingers.
-            if style == JointStyle::Jim && r.kind != ConnectionKind::Cross {
-                let (p, region) = if owner == r.a { (pa, &r.in_a) } else { (pb, &r.in_b) };
-                let (a0, a1) = (r.range.0 + step * s as f64, r.range.0 + step * (s + 1) as f64);
-                let b = (0.1 * step).min(0.25 * pa.thickness.min(pb.thickness));
-                barbs[owner].extend(barb(p, region, r.axis, a0, a1, b)?);
+            if cuts[k].remove[side].is_empty() || plans[k].keeper.is_some() {
+                continue;
+            }
+            let r = &regions[k];
+            let mut tried = vec![Plan {
+                keeper: Some(i),
+                ..plans[k]
+            }];
+            if plans[k].segments > 3 && r.kind != ConnectionKind::Cross {
+                tried.insert(
+                    0,
+                    Plan {
+                        segments: 3,
+                        ..plans[k]
+                    },
+                );
+            }
+            let other = if i == r.a { r.b } else { r.a };
+            let other_pieces = whole(other, &cuts)?.len();
+            for plan in tried {
+                if pieces.len() <= 1 {
+                    break;
+                }
+                let before = std::mem::replace(&mut cuts[k], cut(plates, r, plan, style)?);
+                let p = whole(i, &cuts)?;
+                // Better for this plate, and not worse for its partner.
+                if p.len() < pieces.len() && whole(other, &cuts)?.len() <= other_pieces {
+                    plans[k] = plan;
+                    pieces = p;
+                    adapted_for[k] = Some(i);
+                    continue;
+                }
+                cuts[k] = before;
             }
         }
+    }
+    let mut warnings: Vec<String> = (0..regions.len())
+        .filter_map(|k| adapted_for[k].map(|i| adapted(k, &regions[k], plans[k], i)))
+        .collect();
+    // A plate adapted late may have changed cuts of plates finished earlier: finish every
+    // plate once more with the final plans.
+    let mut outlines_final = Vec::with_capacity(plates.len());
+    for i in 0..plates.len() {
+        let (remove, add) = gathered(&cuts, &touching[i]);
+        let pieces = finish(&plates[i], &outlines[i], &remove, &add, feature(i))?;
+        if pieces.len() > 1 {
+            warnings.push(format!(
+                "plate {} would fall into {} pieces at its joints; the largest is kept",
+                i + 1,
+                pieces.len()
+            ));
+        }
+        outlines_final.push(pieces.into_iter().next().unwrap_or_else(|| plates[i].polygon.clone()));
+    }
+    let mut connections = Vec::with_capacity(regions.len());
+    let mut edges: Vec<Vec<(u32, [DVec2; 2])>> = vec![Vec::new(); plates.len()];
+    for (k, (r, plan)) in regions.iter().zip(&plans).enumerate() {
         let label = k as u32 + 1;
-        edges[r.a].push((label, edge_of(pa, &r.in_a, r.axis)));
-        edges[r.b].push((label, edge_of(pb, &r.in_b, r.axis)));
+        edges[r.a].push((label, edge_of(&plates[r.a], &r.in_a, r.axis)));
+        edges[r.b].push((label, edge_of(&plates[r.b], &r.in_b, r.axis)));
         connections.push(Connection {
             plates: [r.a as u32, r.b as u32],
             kind: r.kind,
@@ -171,32 +346,32 @@ pub(super) fn apply(
                 r.center + r.axis * (r.range.0 - r.axis.dot(r.center)),
                 r.center + r.axis * (r.range.1 - r.axis.dot(r.center)),
             ],
-            segments,
+            segments: if plan.keeper.is_some() { 1 } else { plan.segments },
             label,
         });
     }
-    let mut warnings = Vec::new();
-    let mut finals = Vec::with_capacity(plates.len());
-    for (i, outline) in outlines.iter_mut().enumerate() {
-        let mut pieces = difference(outline, &cuts[i])?;
-        if !barbs[i].is_empty() {
-            pieces.extend(barbs[i].iter().cloned());
-            pieces = union_all(&pieces)?;
-        }
-        pieces.sort_by(|a, b| b.area().total_cmp(&a.area()));
-        if pieces.len() > 1 {
-            warnings.push(format!(
-                "plate {} would fall into {} pieces at its joints; the largest is kept",
-                i + 1,
-                pieces.len()
-            ));
-        }
-        finals.push(pieces.into_iter().next().unwrap_or_else(|| plates[i].polygon.clone()));
-    }
     Ok(Joints {
-        outlines: finals,
+        outlines: outlines_final,
         connections,
         edges,
         warnings,
     })
+}
+
+/// The warning for a connection whose joint adapted so that plate `i` stays whole.
+fn adapted(k: usize, r: &Region, plan: Plan, i: usize) -> String {
+    let (n, plate) = (k + 1, i + 1);
+    let other = if i == r.a { r.b } else { r.a } + 1;
+    match (plan.keeper, r.kind) {
+        (None, _) => format!(
+            "connection {n}: {} wider fingers so that plate {plate} holds together",
+            plan.segments
+        ),
+        (Some(_), ConnectionKind::Tee) if r.through != Some(i) => {
+            format!("connection {n}: tabs would cut plate {plate} apart; it gets one long tab through plate {other}")
+        }
+        (Some(_), _) => format!(
+            "connection {n}: the joint would cut plate {plate} apart; it stays whole and plate {other} butts against it (glue it)"
+        ),
+    }
 }

@@ -288,3 +288,33 @@ fn jim_joints_widen_towards_the_tip_and_are_chosen_for_card() {
         JointStyle::Finger
     );
 }
+
+/// A box only 7 mm tall with 3 mm walls: its walls are 1 mm strips between the lids, which
+/// fingers from both lids would cut into pieces. The joints adapt (the walls stay whole and
+/// the lids butt against them) instead of leaving a plate in pieces.
+#[test]
+fn joints_adapt_instead_of_cutting_a_plate_apart() {
+    let model = samples::closed_box(100.0, 80.0, 7.0, 3.0);
+    let plates = plates_of(model);
+    assert_eq!(plates.len(), 6);
+    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    assert!(
+        joints.warnings.iter().all(|w| !w.contains("pieces")),
+        "{:?}",
+        joints.warnings
+    );
+    assert!(
+        joints.warnings.iter().any(|w| w.contains("stays whole")),
+        "{:?}",
+        joints.warnings
+    );
+    let parts = parts(&plates, &joints);
+    assert!(worst_overlap(&parts) < 1e-6);
+    // Nothing is lost: the parts fill the walls to within the slivers a laser cannot cut.
+    let walls = 100.0 * 80.0 * 7.0 - 94.0 * 74.0 * 1.0;
+    assert!(
+        (volume(&parts) - walls).abs() < 0.002 * walls,
+        "{} vs {walls}",
+        volume(&parts)
+    );
+}
