@@ -398,6 +398,58 @@ pub fn two_bodies(gap: f64) -> Vec<Triangle> {
     out
 }
 
+/// A table: a `top_w × top_d` top `t` thick lying flat with its upper face at z = `height`,
+/// resting on two vertical leg panels `t` thick, `top_d` deep and `height − t` tall standing on
+/// z = 0, their outer faces `leg_inset` (> 0) in from the top's ends at x = 0 and x = `top_w`.
+/// One closed solid (the top and legs united): the legs end against the top's underside.
+pub fn table(top_w: f64, top_d: f64, height: f64, leg_inset: f64, t: f64) -> Vec<Triangle> {
+    assert!(leg_inset > 0.0 && 2.0 * (leg_inset + t) < top_w, "legs inside the top");
+    let xs = [
+        0.0,
+        leg_inset,
+        leg_inset + t,
+        top_w - leg_inset - t,
+        top_w - leg_inset,
+        top_w,
+    ];
+    voxels(&xs, &[0.0, top_d], &[0.0, height - t, height], |i, _, k| {
+        k == 1 || i == 1 || i == 3
+    })
+}
+
+/// The profile of [`star`]: `arms` (at least 3) strips `t` wide radiating from the origin at
+/// equal angles, the first along +x, each `arm_len` long from the origin; counter-clockwise,
+/// `3·arms` corners (between two arms, the corner where their sides meet).
+pub fn star_profile(arms: usize, arm_len: f64, t: f64) -> Vec<DVec2> {
+    assert!(arms >= 3, "a star has at least 3 arms");
+    let step = std::f64::consts::TAU / arms as f64;
+    let dir = |a: f64| DVec2::new(a.cos(), a.sin());
+    // Snapped to 1e-9 mm so that sides meant to be collinear (opposite arms of a "+") are
+    // exactly so: rounding noise would make the cap triangulation emit zero-area slivers.
+    let snap = |p: DVec2| (p * 1e9).round() / 1e9;
+    let mut out = Vec::with_capacity(3 * arms);
+    for k in 0..arms {
+        let a = step * k as f64;
+        let (d, n) = (dir(a), dir(a).perp());
+        out.push(snap(d * arm_len - n * (t / 2.0)));
+        out.push(snap(d * arm_len + n * (t / 2.0)));
+        out.push(snap(dir(a + step / 2.0) * (t / 2.0 / (step / 2.0).sin())));
+    }
+    out
+}
+
+/// `arms` (3: a "Y", 4: a "+") plates `t` thick radiating from the z axis at equal angles, the
+/// first along +x, each `arm_len` long from the axis, from z = 0 to z = `depth`: the
+/// [`star_profile`] extruded along z. One closed solid whose arms all meet on one line.
+pub fn star(arms: usize, arm_len: f64, t: f64, depth: f64) -> Vec<Triangle> {
+    // `prism` extrudes along +y; turning +90° about x takes y to z (and the profile's z to −y,
+    // a mirror image of the symmetric star).
+    prism(&star_profile(arms, arm_len, t), depth)
+        .into_iter()
+        .map(|tri| tri.map(|p| DVec3::new(p.x, -p.z, p.y)))
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -266,10 +266,10 @@ pub(super) fn apply(
         let (remove, add) = gathered(cuts, &touching[i]);
         finish(&plates[i], &outlines[i], &remove, &add, feature(i))
     };
-    for i in 0..plates.len() {
+    for (i, mine) in touching.iter().enumerate() {
         let mut pieces = whole(i, &cuts)?;
         // Each connection that cuts this plate, in order, until it holds together.
-        for &(k, side) in &touching[i] {
+        for &(k, side) in mine {
             if pieces.len() <= 1 {
                 break;
             }
