@@ -54,7 +54,7 @@ pub fn settings(args: &ConvertArgs) -> anyhow::Result<Settings> {
         JointArg::Auto => None,
         JointArg::Finger => Some(JointStyle::Finger),
         JointArg::Jim => Some(JointStyle::Jim),
-        JointArg::Dovetail => anyhow::bail!("dovetail joints are not available yet; use --joint finger, jim or auto"),
+        JointArg::Dovetail => Some(JointStyle::Dovetail),
     };
     settings.stacked.axis = args.axis.parse().map_err(|e| anyhow::anyhow!("--axis: {e}"))?;
     settings.validate()?;

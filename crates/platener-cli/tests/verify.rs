@@ -58,20 +58,38 @@ fn a_file_that_is_not_a_plan_is_refused_with_its_name() {
 }
 
 #[test]
-fn the_joint_option_chooses_the_joints_and_dovetails_are_refused_for_now() {
+fn the_joint_option_chooses_the_joints() {
     let out = tempfile::tempdir().expect("tempdir");
     let bytes = std::fs::read(convert_box(out.path(), &["--joint", "jim"])).expect("zip");
     let plan = platener::verify::plan_from_zip(&bytes).expect("plan");
     assert_eq!(plan.joints.len(), 12);
     assert!(plan.joints.iter().all(|j| j.kind == platener::plan::JointKind::Jim));
+}
+
+/// Dovetails bring their keys as extra parts; the whole assembly (plates and keys) verifies
+/// against the model: no interference, one group.
+#[test]
+fn dovetail_joints_come_with_keys_and_verify() {
+    let out = tempfile::tempdir().expect("tempdir");
+    let zip = convert_box(out.path(), &["--joint", "dovetail"]);
+    let plan = platener::verify::plan_from_zip(&std::fs::read(&zip).expect("zip")).expect("plan");
+    assert!(
+        plan.joints
+            .iter()
+            .all(|j| j.kind == platener::plan::JointKind::Dovetail)
+    );
+    let keys = plan.parts.len() - 6;
+    assert!(keys >= 24 && keys.is_multiple_of(2), "{keys} keys");
+    assert_eq!(plan.joints.len(), 12 + keys);
     let o = platener()
-        .arg("convert")
+        .arg("verify")
+        .arg(&zip)
+        .arg("--model")
         .arg(example("box-3mm.stl"))
-        .arg("-o")
-        .arg(out.path())
-        .args(["--joint", "dovetail"])
+        .arg("--json")
         .output()
         .expect("runs");
-    assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("dovetail joints are not available yet"));
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stdout));
+    let report: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json");
+    assert_eq!(report["groups"], 1, "{report}");
 }

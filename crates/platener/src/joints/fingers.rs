@@ -7,7 +7,7 @@ use platener_geom::polygon::total_area;
 use platener_geom::{GridError, Polygon};
 
 use super::connect::{Region, band};
-use super::{Connection, ConnectionKind, JointSettings, JointStyle, Joints};
+use super::{Connection, ConnectionKind, JointSettings, JointStyle, Joints, Key};
 use crate::plates::Plate;
 
 /// Number of segments for a joint `len` long: the odd count nearest to `len / width`, never
@@ -120,6 +120,42 @@ struct Plan {
 struct Cut {
     remove: [Vec<Polygon>; 2],
     add: [Vec<Polygon>; 2],
+    /// Dovetail keys, in the dovetailed plate's frame.
+    keys: Vec<Polygon>,
+}
+
+/// A dovetail's shape: how far each flank spreads towards the tip, and how wide the key
+/// beside it stays at the tip (a key must not end in a point a laser cannot cut).
+struct Dovetail {
+    spread: f64,
+    key: f64,
+}
+
+impl Dovetail {
+    /// Flanks at 1:4 over the notched plate's thickness; keys at least the smallest feature.
+    fn new(plates: &[Plate], r: &Region) -> Self {
+        let t = plates[r.a].thickness.max(plates[r.b].thickness);
+        let notched = if dovetailed(r) == r.a { r.b } else { r.a };
+        Self {
+            spread: plates[notched].thickness / 4.0,
+            key: min_feature(t),
+        }
+    }
+
+    /// The narrowest segment that leaves the notched plate a finger of `min_feature` between
+    /// two dovetails with their keys.
+    fn min_segment(&self, min_feature: f64) -> f64 {
+        2.0 * (self.spread + self.key) + min_feature
+    }
+}
+
+/// The plate that gets the dovetails: the one owning the inner segments (the second plate at
+/// a corner, the ending plate's tabs at a T).
+fn dovetailed(r: &Region) -> usize {
+    match (r.kind, r.through) {
+        (ConnectionKind::Tee, Some(through)) if through == r.b => r.a,
+        _ => r.b,
+    }
 }
 
 /// The smallest feature a laser cuts reliably in plates up to `t` thick: half the thickness,
@@ -129,11 +165,15 @@ fn min_feature(t: f64) -> f64 {
 }
 
 /// The plan of a connection before any plate is found to fall apart.
-fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings) -> Plan {
+fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: JointStyle) -> Plan {
     let t = plates[r.a].thickness.max(plates[r.b].thickness);
+    let narrowest = match style {
+        JointStyle::Dovetail => Dovetail::new(plates, r).min_segment(min_feature(t)),
+        _ => min_feature(t),
+    };
     let segments = match r.kind {
         ConnectionKind::Cross => 2,
-        _ => segment_count(r.range.1 - r.range.0, settings.finger_factor * t, min_feature(t)),
+        _ => segment_count(r.range.1 - r.range.0, settings.finger_factor * t, narrowest),
     };
     Plan { segments, keeper: None }
 }
@@ -155,6 +195,8 @@ fn cut(plates: &[Plate], r: &Region, plan: Plan, style: JointStyle) -> Result<Cu
     let segments = plan.segments;
     let len = r.range.1 - r.range.0;
     let step = len / segments as f64;
+    let dovetail = (style == JointStyle::Dovetail && r.kind != ConnectionKind::Cross).then(|| Dovetail::new(plates, r));
+    let male = dovetailed(r);
     for s in 0..segments {
         let owner = match r.kind {
             ConnectionKind::Corner => [r.a, r.b][s % 2],
@@ -169,10 +211,28 @@ fn cut(plates: &[Plate], r: &Region, plan: Plan, style: JointStyle) -> Result<Cu
         // The first and last segments reach past the range (the region's ends).
         let s0 = if s == 0 { a0 - 1e3 } else { a0 };
         let s1 = if s + 1 == segments { a1 + 1e3 } else { a1 };
+        // A dovetail's partner gives up room for its tip and both keys.
+        let room = match &dovetail {
+            Some(d) if owner == male => d.spread + d.key,
+            _ => 0.0,
+        };
         if owner == r.a {
-            out.remove[1].extend(band(pb, &r.in_b, r.axis, s0, s1)?);
+            out.remove[1].extend(band(pb, &r.in_b, r.axis, s0 - room, s1 + room)?);
         } else {
-            out.remove[0].extend(band(pa, &r.in_a, r.axis, s0, s1)?);
+            out.remove[0].extend(band(pa, &r.in_a, r.axis, s0 - room, s1 + room)?);
+        }
+        if let Some(d) = dovetail.as_ref().filter(|_| owner == male) {
+            let (p, region, side) = if male == r.a {
+                (pa, &r.in_a, 0)
+            } else {
+                (pb, &r.in_b, 1)
+            };
+            let tail = barb(p, region, r.axis, a0, a1, d.spread)?;
+            let mut solid = band(p, region, r.axis, a0, a1)?;
+            solid.extend(tail.iter().cloned());
+            out.keys
+                .extend(difference(&band(p, region, r.axis, a0 - room, a1 + room)?, &solid)?);
+            out.add[side].extend(tail);
         }
         // JimJoint: the owner's finger widens towards its tip, into its partner's fingers.
         if style == JointStyle::Jim && r.kind != ConnectionKind::Cross {
@@ -255,7 +315,7 @@ pub(super) fn apply(
     let feature = |i: usize| min_feature(plates[i].thickness);
     // …then gives up the segments its partners own. Where that would cut a plate apart, the
     // joint adapts: fewer, wider fingers, else the plate keeps the whole joint region.
-    let mut plans: Vec<Plan> = regions.iter().map(|r| first_plan(plates, r, settings)).collect();
+    let mut plans: Vec<Plan> = regions.iter().map(|r| first_plan(plates, r, settings, style)).collect();
     let mut cuts: Vec<Cut> = regions
         .iter()
         .zip(&plans)
@@ -336,7 +396,7 @@ pub(super) fn apply(
         connections.push(Connection {
             plates: [r.a as u32, r.b as u32],
             kind: r.kind,
-            style: if r.kind == ConnectionKind::Cross {
+            style: if r.kind == ConnectionKind::Cross || plan.keeper.is_some() {
                 JointStyle::Finger
             } else {
                 style
@@ -350,10 +410,26 @@ pub(super) fn apply(
             label,
         });
     }
+    let keys = regions
+        .iter()
+        .zip(&cuts)
+        .enumerate()
+        .flat_map(|(k, (r, c))| {
+            let male = dovetailed(r);
+            let notched = if male == r.a { r.b } else { r.a };
+            c.keys.iter().filter(|p| p.area() > NOISE_AREA).map(move |outline| Key {
+                plate: male as u32,
+                notched: notched as u32,
+                outline: outline.clone(),
+                label: k as u32 + 1,
+            })
+        })
+        .collect();
     Ok(Joints {
         outlines: outlines_final,
         connections,
         edges,
+        keys,
         warnings,
     })
 }

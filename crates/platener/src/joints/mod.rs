@@ -50,6 +50,11 @@ pub enum JointStyle {
     /// The thesis' JimJoint: fingers and tabs widen towards the tip, so they squeeze through
     /// and snap behind the other part (paper, card, foam, which give way).
     Jim,
+    /// Laser-cut dovetails: the fingers (or tabs) of one plate widen towards their tip; the
+    /// other plate's notches (or slots) are as wide as the tips so they go in, and two keys
+    /// per dovetail (small extra parts cut from the dovetailed plate's sheet) fill the rest
+    /// of each notch and wedge the dovetail tight (docs/decisions.md).
+    Dovetail,
 }
 
 impl JointStyle {
@@ -113,8 +118,24 @@ pub struct Joints {
     pub connections: Vec<Connection>,
     /// Per plate: the jointed edges (segments in the plate's frame) and their labels.
     pub edges: Vec<Vec<(u32, [DVec2; 2])>>,
+    /// Extra parts: the keys of dovetail joints.
+    pub keys: Vec<Key>,
     /// Things to know (a plate that would fall apart, …).
     pub warnings: Vec<String>,
+}
+
+/// A key of a dovetail joint: a small part cut from the dovetailed plate's sheet that fills
+/// the notch beside a dovetail. It lies in that plate's layer, so it shares its frame.
+#[derive(Debug, Clone, Serialize)]
+pub struct Key {
+    /// The dovetailed plate (its frame and thickness place the key).
+    pub plate: u32,
+    /// The plate whose notch the key fills.
+    pub notched: u32,
+    /// The key's outline, in the dovetailed plate's frame.
+    pub outline: Polygon,
+    /// The connection's label.
+    pub label: u32,
 }
 
 /// Computes the joints of `plates` (straight fingers where the settings name no style).

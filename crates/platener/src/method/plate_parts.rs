@@ -1,7 +1,8 @@
 //! Step `parts` of the plate method: plates become parts to cut.
 //!
 //! Each plate is one part, numbered from 1 in plate order, with the outline the `joints` step
-//! gave it (fingers, tabs, slots) and its connections as plan.json joints.
+//! gave it (fingers, tabs, slots) and its connections as plan.json joints; dovetail keys follow
+//! as parts of their own.
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -49,13 +50,15 @@ impl Step for PlatePartsStep {
                 part
             })
             .collect();
-        let connections = joints.map_or(Vec::new(), |j| {
+        let mut parts = parts;
+        let mut connections: Vec<Joint> = joints.map_or(Vec::new(), |j| {
             j.connections
                 .iter()
                 .map(|c| Joint {
                     parts: [c.plates[0] + 1, c.plates[1] + 1],
                     kind: match c.kind {
                         _ if c.style == JointStyle::Jim => JointKind::Jim,
+                        _ if c.style == JointStyle::Dovetail => JointKind::Dovetail,
                         ConnectionKind::Corner => JointKind::Finger,
                         ConnectionKind::Tee => JointKind::Slot,
                         ConnectionKind::Cross => JointKind::Halved,
@@ -65,6 +68,22 @@ impl Step for PlatePartsStep {
                 })
                 .collect()
         });
+        // Dovetail keys are parts of their own, numbered after the plates; each is a joint
+        // partner of the plate whose notch it fills (so the assembly check sees it held).
+        for key in joints.map_or(&[][..], |j| &j.keys[..]) {
+            let id = parts.len() as u32 + 1;
+            let plate = &plates.plates[key.plate as usize];
+            parts.push(Part::plate(id, plate.thickness, key.outline.clone(), plate.frame));
+            let angle_deg = joints
+                .and_then(|j| j.connections.get(key.label as usize - 1))
+                .map_or(90.0, |c| c.angle_deg);
+            connections.push(Joint {
+                parts: [key.notched + 1, id],
+                kind: JointKind::Dovetail,
+                angle_deg,
+                label: key.label,
+            });
+        }
         let s = &state.settings;
         let mut method_settings = BTreeMap::new();
         method_settings.insert(
