@@ -74,12 +74,57 @@ pub fn label_parts(parts: &[Part], mode: LabelMode, kerf: f64) -> Labels {
         warnings: Vec::new(),
         millis: 0.0,
     };
+    // Many small parts (dovetail keys) without room for a number make one warning, not one each.
+    let mut unnumbered = Vec::new();
     for (part, warnings) in done {
+        for w in warnings {
+            match w.part {
+                Some(id) if w.message.ends_with(NO_ROOM_FOR_NUMBER) => unnumbered.push(id),
+                _ => labels.warnings.push(w),
+            }
+        }
         labels.parts.push(part);
-        labels.warnings.extend(warnings);
+    }
+    match unnumbered[..] {
+        [] => {}
+        [id] => labels.warnings.push(PlanWarning {
+            step: "labels",
+            part: Some(id),
+            message: format!("part {id}{NO_ROOM_FOR_NUMBER}"),
+        }),
+        _ => labels.warnings.push(PlanWarning {
+            step: "labels",
+            part: None,
+            message: format!(
+                "{} parts ({}) have no room for their numbers; they are not engraved",
+                unnumbered.len(),
+                id_ranges(&unnumbered)
+            ),
+        }),
     }
     labels.millis = start.elapsed().as_secs_f64() * 1e3;
     labels
+}
+
+const NO_ROOM_FOR_NUMBER: &str = " has no room for its number; it is not engraved";
+
+/// Ids as compact ranges: `3, 5–9, 12`.
+fn id_ranges(ids: &[u32]) -> String {
+    let mut out: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < ids.len() {
+        let mut j = i;
+        while j + 1 < ids.len() && ids[j + 1] == ids[j] + 1 {
+            j += 1;
+        }
+        out.push(if j > i {
+            format!("{}–{}", ids[i], ids[j])
+        } else {
+            ids[i].to_string()
+        });
+        i = j + 1;
+    }
+    out.join(", ")
 }
 
 /// The labels of one part cut with `kerf` mm.
@@ -103,10 +148,7 @@ pub fn label_part(part: &Part, mode: LabelMode, kerf: f64) -> (PartLabels, Vec<P
                 room.take(&b);
                 boxes.push(b);
             }
-            None => warn(format!(
-                "part {} has no room for its number; it is not engraved",
-                part.id
-            )),
+            None => warn(format!("part {}{NO_ROOM_FOR_NUMBER}", part.id)),
         }
     }
     if mode == LabelMode::Edges {

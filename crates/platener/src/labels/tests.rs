@@ -120,3 +120,8 @@ proptest! {
         prop_assert_eq!(labels.parts[0].boxes.len() + labels.warnings.len(), 3);
     }
 }
+
+#[test]
+fn parts_without_room_for_their_number_make_one_warning() {
+    assert_eq!(super::id_ranges(&[3, 5, 6, 7, 9, 12, 13]), "3, 5–7, 9, 12–13");
+}
