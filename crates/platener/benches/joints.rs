@@ -1,0 +1,38 @@
+//! Joints on a grid of closed 3 mm boxes (every plate has four corner joints): finger joints
+//! and dovetails with their keys.
+//!
+//! Run: `cargo bench -p platener --bench joints`. Figures go in docs/performance.md.
+
+use std::sync::Arc;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use platener::joints::{JointSettings, JointStyle, compute};
+use platener::{Cancel, Settings, Source, samples};
+
+fn bench(c: &mut Criterion) {
+    let mut group = c.benchmark_group("joints");
+    group.sample_size(10);
+    for n in [1usize, 10] {
+        let source = Source::Triangles {
+            name: "box grid".into(),
+            triangles: Arc::new(samples::box_grid(n, n, 40.0, 3.0, 10.0)),
+        };
+        let mut state = platener::State::new(source, Settings::default());
+        platener::pipeline::run(&platener::pipeline::plate_steps(), &mut state, &Cancel::default()).expect("runs");
+        let plates = state.plates.clone().expect("plates");
+        assert_eq!(plates.plates.len(), 6 * n * n);
+        for style in [JointStyle::Finger, JointStyle::Dovetail] {
+            let settings = JointSettings {
+                style: Some(style),
+                ..JointSettings::default()
+            };
+            group.bench_function(format!("{style:?}/{} plates", 6 * n * n), |b| {
+                b.iter(|| compute(&plates.plates, &settings).expect("grid"));
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
