@@ -2,43 +2,25 @@
 //! and slots, extruded by its thickness and placed by its frame) must neither share volume nor
 //! leave gaps, and together must rebuild the model.
 
-use std::sync::Arc;
-
 use platener::glam::{DVec2, DVec3};
 use platener::joints::{ConnectionKind, JointSettings, Joints, compute};
-use platener::pipeline::{self, Cancel, Source, State};
 use platener::plates::Plate;
 use platener::read::Triangle;
-use platener::{Settings, samples};
+use platener::samples;
 use platener_geom::Polygon;
 use platener_geom::slab::Slab;
 
 /// The plates the pipeline finds in `model` for sheets `thickness` thick.
 fn plates_with(model: &[Triangle], thickness: f64) -> Vec<Plate> {
-    let source = Source::Triangles {
-        name: "test".into(),
-        triangles: Arc::new(model.to_vec()),
-    };
-    let settings = Settings {
-        thicknesses: vec![thickness],
-        ..Settings::default()
-    };
-    let mut state = State::new(source, settings);
-    pipeline::run(&pipeline::plate_steps(), &mut state, &Cancel::default()).expect("converts");
-    state.plates.expect("plates").plates.clone()
+    platener::plates::plates_of_triangles("test", model.to_vec(), &[thickness])
+        .expect("converts")
+        .plates
+        .clone()
 }
 
-/// The final parts: each plate's jointed outline as a slab.
+/// The final parts as slabs.
 fn parts(plates: &[Plate], joints: &Joints) -> Vec<Slab> {
-    plates
-        .iter()
-        .zip(&joints.outlines)
-        .map(|(p, o)| Slab {
-            frame: p.frame,
-            polygon: o.clone(),
-            thickness: p.thickness,
-        })
-        .collect()
+    joints.parts(plates)
 }
 
 fn volume(parts: &[Slab]) -> f64 {

@@ -1,42 +1,23 @@
-use std::sync::Arc;
-
 use glam::DVec3;
 
 use super::*;
-use crate::pipeline::{self, Cancel, Source, State};
 use crate::read::Triangle;
 use crate::samples;
-use crate::settings::Settings;
 
 fn plates_of(triangles: Vec<Triangle>) -> Vec<Plate> {
     plates_with(triangles, 3.0)
 }
 
 fn plates_with(triangles: Vec<Triangle>, thickness: f64) -> Vec<Plate> {
-    let source = Source::Triangles {
-        name: "test".into(),
-        triangles: Arc::new(triangles),
-    };
-    let settings = Settings {
-        thicknesses: vec![thickness],
-        ..Settings::default()
-    };
-    let mut state = State::new(source, settings);
-    pipeline::run(&pipeline::plate_steps(), &mut state, &Cancel::default()).expect("converts");
-    state.plates.expect("plates").plates.clone()
+    crate::plates::plates_of_triangles("test", triangles, &[thickness])
+        .expect("converts")
+        .plates
+        .clone()
 }
 
-/// The final parts as slabs.
+/// The final parts as slabs (plates, then dovetail keys).
 fn parts(plates: &[Plate], joints: &Joints) -> Vec<Slab> {
-    plates
-        .iter()
-        .zip(&joints.outlines)
-        .map(|(p, o)| Slab {
-            frame: p.frame,
-            polygon: o.clone(),
-            thickness: p.thickness,
-        })
-        .collect()
+    joints.parts(plates)
 }
 
 use platener_geom::slab::Slab;
@@ -338,9 +319,9 @@ fn dovetails_with_their_keys_rebuild_the_box_exactly() {
     assert!(joints.connections.iter().all(|c| c.style == JointStyle::Dovetail));
     let dovetails: usize = joints.connections.iter().map(|c| c.segments / 2).sum();
     assert_eq!(joints.keys.len(), 2 * dovetails);
-    let mut all = parts(&plates, &joints);
+    let all = parts(&plates, &joints);
+    assert_eq!(all.len(), 6 + joints.keys.len());
     for k in &joints.keys {
-        let p = &plates[k.plate as usize];
         // A key is at least the smallest feature wide (1.5 mm for 3 mm sheets) and tapers by
         // the dovetail's spread (3/4 mm) to 2.25 mm at its base.
         let (lo, hi) = k.outline.bounds();
@@ -355,11 +336,6 @@ fn dovetails_with_their_keys_rebuild_the_box_exactly() {
             "{}",
             k.outline.area()
         );
-        all.push(Slab {
-            frame: p.frame,
-            polygon: k.outline.clone(),
-            thickness: p.thickness,
-        });
     }
     assert!(worst_overlap(&all) < 1e-6, "{}", worst_overlap(&all));
     let walls = 100.0 * 80.0 * 60.0 - 94.0 * 74.0 * 54.0;

@@ -133,6 +133,30 @@ pub(crate) fn map_polygon(p: &Polygon, from: &Frame, to: &Frame) -> Polygon {
     out
 }
 
+/// The plates of a model made in code (`name` for messages), for sheets of the given
+/// `thicknesses`: every step up to `plates` with default settings otherwise.
+pub fn plates_of_triangles(
+    name: &str,
+    triangles: Vec<crate::read::Triangle>,
+    thicknesses: &[f64],
+) -> Result<Arc<Plates>> {
+    let source = crate::pipeline::Source::Triangles {
+        name: name.into(),
+        triangles: Arc::new(triangles),
+    };
+    let settings = Settings {
+        thicknesses: thicknesses.to_vec(),
+        ..Settings::default()
+    };
+    let mut state = State::new(source, settings);
+    crate::pipeline::run(
+        &crate::pipeline::plate_steps(),
+        &mut state,
+        &crate::pipeline::Cancel::default(),
+    )?;
+    need(&state.plates, "plates", "plates").cloned()
+}
+
 /// Finds the plates of a model's shapes; `surface_area` is the model's, for the coverage share.
 pub fn find_plates(shapes: &Shapes, surface_area: f64, center: DVec3, settings: &Settings) -> Result<Plates, String> {
     let ps = &settings.plates;
