@@ -326,6 +326,8 @@ pub(super) fn apply(
         let (remove, add) = gathered(cuts, &touching[i]);
         finish(&plates[i], &outlines[i], &remove, &add, feature(i))
     };
+    // Each plate's pieces, kept until a later adaptation changes one of its connections.
+    let mut finished: Vec<Option<Vec<Polygon>>> = vec![None; plates.len()];
     for (i, mine) in touching.iter().enumerate() {
         let mut pieces = whole(i, &cuts)?;
         // Each connection that cuts this plate, in order, until it holds together.
@@ -337,22 +339,18 @@ pub(super) fn apply(
                 continue;
             }
             let r = &regions[k];
-            let mut tried = vec![Plan {
+            let fewer = Plan {
+                segments: 3,
+                ..plans[k]
+            };
+            let keep = Plan {
                 keeper: Some(i),
                 ..plans[k]
-            }];
-            if plans[k].segments > 3 && r.kind != ConnectionKind::Cross {
-                tried.insert(
-                    0,
-                    Plan {
-                        segments: 3,
-                        ..plans[k]
-                    },
-                );
-            }
+            };
+            let wider = plans[k].segments > 3 && r.kind != ConnectionKind::Cross;
             let other = if i == r.a { r.b } else { r.a };
             let other_pieces = whole(other, &cuts)?.len();
-            for plan in tried {
+            for plan in [wider.then_some(fewer), Some(keep)].into_iter().flatten() {
                 if pieces.len() <= 1 {
                     break;
                 }
@@ -363,21 +361,24 @@ pub(super) fn apply(
                     plans[k] = plan;
                     pieces = p;
                     adapted_for[k] = Some(i);
-                    continue;
+                    finished[other] = None;
+                } else {
+                    cuts[k] = before;
                 }
-                cuts[k] = before;
             }
         }
+        finished[i] = Some(pieces);
     }
     let mut warnings: Vec<String> = (0..regions.len())
         .filter_map(|k| adapted_for[k].map(|i| adapted(k, &regions[k], plans[k], i)))
         .collect();
-    // A plate adapted late may have changed cuts of plates finished earlier: finish every
-    // plate once more with the final plans.
     let mut outlines_final = Vec::with_capacity(plates.len());
-    for i in 0..plates.len() {
-        let (remove, add) = gathered(&cuts, &touching[i]);
-        let pieces = finish(&plates[i], &outlines[i], &remove, &add, feature(i))?;
+    for (i, done) in finished.into_iter().enumerate() {
+        // A plate whose partner adapted after it was finished is finished again.
+        let pieces = match done {
+            Some(pieces) => pieces,
+            None => whole(i, &cuts)?,
+        };
         if pieces.len() > 1 {
             warnings.push(format!(
                 "plate {} would fall into {} pieces at its joints; the largest is kept",
