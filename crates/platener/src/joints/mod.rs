@@ -14,6 +14,8 @@
 //!    through): tabs on the ending plate, slots (holes) in the through plate, whose ends it keeps.
 //!    Crossings (both pass through): a halved joint, one slot from each side to half depth.
 
+#[cfg(test)]
+mod assembly_tests;
 mod connect;
 mod fingers;
 #[cfg(test)]

@@ -1,4 +1,5 @@
 use glam::DVec3;
+use platener_geom::slab::Slab;
 
 use super::*;
 use crate::read::Triangle;
@@ -8,7 +9,8 @@ fn plates_of(triangles: Vec<Triangle>) -> Vec<Plate> {
     plates_with(triangles, 3.0)
 }
 
-fn plates_with(triangles: Vec<Triangle>, thickness: f64) -> Vec<Plate> {
+/// The plates the pipeline finds in `triangles` for sheets `thickness` thick.
+pub(super) fn plates_with(triangles: Vec<Triangle>, thickness: f64) -> Vec<Plate> {
     crate::plates::plates_of_triangles("test", triangles, &[thickness])
         .expect("converts")
         .plates
@@ -16,14 +18,24 @@ fn plates_with(triangles: Vec<Triangle>, thickness: f64) -> Vec<Plate> {
 }
 
 /// The final parts as slabs (plates, then dovetail keys).
-fn parts(plates: &[Plate], joints: &Joints) -> Vec<Slab> {
+pub(super) fn parts(plates: &[Plate], joints: &Joints) -> Vec<Slab> {
     joints.parts(plates)
 }
 
-use platener_geom::slab::Slab;
+/// The model: welded, with its closed mesh.
+pub(super) fn mesh_of(model: &[Triangle]) -> crate::mesh::Mesh {
+    let w = crate::weld::weld_soup(model, 0.0);
+    crate::mesh::Mesh::build(w.vertices, &w.triangles, 1e-9)
+}
 
-/// Largest area (mm²) by which any two parts' columns overlap: zero for exact complements.
-fn worst_overlap(parts: &[Slab]) -> f64 {
+/// The volume (mm³) enclosed by a closed model.
+pub(super) fn model_volume(model: &[Triangle]) -> f64 {
+    mesh_of(model).health.volume.expect("the model is closed")
+}
+
+/// Largest area (mm²) by which any two parts' columns overlap: zero for exact complements
+/// (exact for parallel and perpendicular plates).
+pub(super) fn worst_overlap(parts: &[Slab]) -> f64 {
     let mut worst: f64 = 0.0;
     for (i, a) in parts.iter().enumerate() {
         for b in &parts[i + 1..] {
@@ -39,18 +51,20 @@ fn worst_overlap(parts: &[Slab]) -> f64 {
     worst
 }
 
+/// Whether `p` lies strictly inside the part.
+pub(super) fn in_slab(s: &Slab, p: DVec3) -> bool {
+    let l = s.frame.to_local(p);
+    l.z > 1e-6 && l.z < s.thickness - 1e-6 && s.polygon.contains(glam::DVec2::new(l.x, l.y))
+}
+
 /// Volume (mm³) two parts share, sampled on a 0.25 mm grid through `a` (cell centres shifted
 /// off round numbers). Exact to about the step times the contact area, at any angle (the
 /// column test above is exact only for parallel and perpendicular plates).
-fn shared_volume(a: &Slab, b: &Slab) -> f64 {
+pub(super) fn shared_volume(a: &Slab, b: &Slab) -> f64 {
     let step = 0.25;
     let (lo, hi) = a.polygon.bounds();
     let layers = (a.thickness / step).ceil() as usize;
     let dz = a.thickness / layers as f64;
-    let inside = |s: &Slab, p: DVec3| {
-        let l = s.frame.to_local(p);
-        l.z > 1e-6 && l.z < s.thickness - 1e-6 && s.polygon.contains(glam::DVec2::new(l.x, l.y))
-    };
     let mut count = 0usize;
     let (nx, ny) = (((hi.x - lo.x) / step) as usize + 1, ((hi.y - lo.y) / step) as usize + 1);
     for i in 0..nx {
@@ -63,7 +77,7 @@ fn shared_volume(a: &Slab, b: &Slab) -> f64 {
                 continue;
             }
             for k in 0..layers {
-                if inside(b, a.frame.to_model(DVec3::new(q.x, q.y, (k as f64 + 0.5) * dz))) {
+                if in_slab(b, a.frame.to_model(DVec3::new(q.x, q.y, (k as f64 + 0.5) * dz))) {
                     count += 1;
                 }
             }
@@ -72,7 +86,8 @@ fn shared_volume(a: &Slab, b: &Slab) -> f64 {
     count as f64 * step * step * dz
 }
 
-fn volume(parts: &[Slab]) -> f64 {
+/// The parts' total volume (mm³).
+pub(super) fn volume(parts: &[Slab]) -> f64 {
     parts.iter().map(|s| s.polygon.area() * s.thickness).sum()
 }
 
@@ -177,10 +192,7 @@ fn plates_meeting_at_30_to_150_degrees_fill_the_corner_without_overlap() {
         let parts = parts(&plates, &joints);
         let overlap = shared_volume(&parts[0], &parts[1]);
         let total = volume(&parts);
-        // The model's volume: its profile area times the depth.
-        let w = crate::weld::weld_soup(&model, 0.0);
-        let m = crate::mesh::Mesh::build(w.vertices, &w.triangles, 1e-9);
-        let model_volume = m.health.volume.expect("closed");
+        let model_volume = model_volume(&model);
         eprintln!("{enclosed}°: parts {total:.1} mm³, model {model_volume:.1} mm³, shared {overlap:.3} mm³");
         assert!(overlap * 3.0 < 0.005 * model_volume, "{enclosed}°: overlap {overlap}");
         assert!(
@@ -194,14 +206,6 @@ mod properties {
     use proptest::prelude::*;
 
     use super::*;
-
-    fn model_volume(model: &[Triangle]) -> f64 {
-        let w = crate::weld::weld_soup(model, 0.0);
-        crate::mesh::Mesh::build(w.vertices, &w.triangles, 1e-9)
-            .health
-            .volume
-            .expect("closed")
-    }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(10))]

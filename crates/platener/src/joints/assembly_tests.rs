@@ -2,83 +2,14 @@
 //! and slots, extruded by its thickness and placed by its frame) must neither share volume nor
 //! leave gaps, and together must rebuild the model.
 
-use platener::glam::{DVec2, DVec3};
-use platener::joints::{ConnectionKind, JointSettings, Joints, compute};
-use platener::plates::Plate;
-use platener::read::Triangle;
-use platener::samples;
+use glam::{DVec2, DVec3};
 use platener_geom::Polygon;
 use platener_geom::slab::Slab;
 
-/// The plates the pipeline finds in `model` for sheets `thickness` thick.
-fn plates_with(model: &[Triangle], thickness: f64) -> Vec<Plate> {
-    platener::plates::plates_of_triangles("test", model.to_vec(), &[thickness])
-        .expect("converts")
-        .plates
-        .clone()
-}
-
-/// The final parts as slabs.
-fn parts(plates: &[Plate], joints: &Joints) -> Vec<Slab> {
-    joints.parts(plates)
-}
-
-fn volume(parts: &[Slab]) -> f64 {
-    parts.iter().map(|s| s.polygon.area() * s.thickness).sum()
-}
-
-/// The volume (mm³) enclosed by a closed model.
-fn model_volume(model: &[Triangle]) -> f64 {
-    let w = platener::weld::weld_soup(model, 0.0);
-    let mesh = platener::mesh::Mesh::build(w.vertices, &w.triangles, 1e-9);
-    mesh.health.volume.expect("the model is closed")
-}
-
-/// Largest area (mm²) by which any two parts' columns overlap: zero for exact complements
-/// (exact for parallel and perpendicular plates).
-fn worst_overlap(parts: &[Slab]) -> f64 {
-    let mut worst: f64 = 0.0;
-    for (i, a) in parts.iter().enumerate() {
-        for b in &parts[i + 1..] {
-            let shared: f64 = a
-                .columns_meeting(b, 1e-3)
-                .expect("grid")
-                .iter()
-                .map(Polygon::area)
-                .sum();
-            worst = worst.max(shared);
-        }
-    }
-    worst
-}
-
-/// Whether `p` lies strictly inside the slab.
-fn in_slab(s: &Slab, p: DVec3) -> bool {
-    let l = s.frame.to_local(p);
-    l.z > 1e-6 && l.z < s.thickness - 1e-6 && s.polygon.contains(DVec2::new(l.x, l.y))
-}
-
-/// Volume (mm³) two parts share, sampled on a 0.25 mm grid through `a` (cell centres shifted
-/// off round numbers): exact to about the step times the contact area, at any angle.
-fn shared_volume(a: &Slab, b: &Slab) -> f64 {
-    let step = 0.25;
-    let (lo, hi) = a.polygon.bounds();
-    let layers = (a.thickness / step).ceil() as usize;
-    let dz = a.thickness / layers as f64;
-    let (nx, ny) = (((hi.x - lo.x) / step) as usize + 1, ((hi.y - lo.y) / step) as usize + 1);
-    let mut count = 0usize;
-    for i in 0..nx {
-        for j in 0..ny {
-            let q = lo + DVec2::new(i as f64 + 0.707, j as f64 + 0.293) * step;
-            if a.polygon.contains(q) {
-                count += (0..layers)
-                    .filter(|&k| in_slab(b, a.frame.to_model(q.extend((k as f64 + 0.5) * dz))))
-                    .count();
-            }
-        }
-    }
-    count as f64 * step * step * dz
-}
+use super::tests::{in_slab, mesh_of, model_volume, parts, plates_with, shared_volume, volume, worst_overlap};
+use super::*;
+use crate::assembly::Inside;
+use crate::samples;
 
 /// Distance from `p` to the segment `a`–`b`.
 fn to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
@@ -105,42 +36,11 @@ fn distance(part: &Slab, p: DVec3) -> f64 {
     dz.hypot(d2)
 }
 
-/// Whether `p` is inside the closed `model`: a ray in a direction no face or edge of the
-/// samples is parallel to crosses its surface an odd number of times.
-fn inside(model: &[Triangle], p: DVec3) -> bool {
-    let dir = DVec3::new(0.5377, 0.3141, 0.7823).normalize();
-    let hits = model
-        .iter()
-        .filter(|[a, b, c]| {
-            // Möller–Trumbore: p + dir·h = a + (b − a)·u + (c − a)·v with u, v, u + v in
-            // [0, 1] and h > 0.
-            let (e1, e2) = (*b - *a, *c - *a);
-            let q = dir.cross(e2);
-            let det = e1.dot(q);
-            if det.abs() < 1e-12 {
-                return false;
-            }
-            let s = p - *a;
-            let u = s.dot(q) / det;
-            let r = s.cross(e1);
-            let v = dir.dot(r) / det;
-            u >= 0.0 && v >= 0.0 && u + v <= 1.0 && e2.dot(r) / det > 0.0
-        })
-        .count();
-    hits % 2 == 1
-}
-
 /// The widest gap (mm) between the parts within `reach` of the joint `line`, in a model that
 /// is a prism along that line (the method is described on the roof test below). Whether a
 /// point is inside the model depends only on where it lies across the line, so that is decided
 /// once per cross-section point, at the line's middle.
-fn widest_gap(
-    model: &[Triangle],
-    parts: &[Slab],
-    line: [DVec3; 2],
-    reach: f64,
-    measured: impl Fn(DVec3) -> bool,
-) -> f64 {
+fn widest_gap(model: &Inside, parts: &[Slab], line: [DVec3; 2], reach: f64, measured: impl Fn(DVec3) -> bool) -> f64 {
     let step = 0.1;
     let axis = (line[1] - line[0]).normalize();
     let e2 = axis.any_orthonormal_vector();
@@ -154,7 +54,7 @@ fn widest_gap(
             let a = -reach + (i as f64 + 0.5137) * step;
             let b = -reach + (j as f64 + 0.4729) * step;
             let across = e2 * a + e3 * b;
-            if a.hypot(b) > reach || !inside(model, mid + across) {
+            if a.hypot(b) > reach || !model.contains(mid + across) {
                 continue;
             }
             for k in 0..(len / step) as usize {
@@ -175,7 +75,7 @@ fn widest_gap(
 fn table_top_on_two_legs_is_tee_from_below() {
     let (w, d, h, inset, t) = (120.0, 60.0, 70.0, 10.0, 3.0);
     let model = samples::table(w, d, h, inset, t);
-    let plates = plates_with(&model, t);
+    let plates = plates_with(model.clone(), t);
     assert_eq!(plates.len(), 3, "top and two legs");
     let joints = compute(&plates, &JointSettings::default()).expect("grid");
     assert_eq!(joints.connections.len(), 2, "{:?}", joints.connections);
@@ -243,17 +143,19 @@ fn corners_at_60_90_120_150_degrees_have_no_gap_wider_than_0_2_mm() {
     let t = 3.0;
     for enclosed in [60.0, 90.0, 120.0, 150.0f64] {
         let model = samples::roof(50.0, (180.0 - enclosed) / 2.0, 40.0, t);
-        let plates = plates_with(&model, t);
+        let plates = plates_with(model.clone(), t);
         assert_eq!(plates.len(), 2, "{enclosed}°");
         let joints = compute(&plates, &JointSettings::default()).expect("grid");
         assert_eq!(joints.connections.len(), 1, "{enclosed}°: {:?}", joints.connections);
         let c = &joints.connections[0];
         assert_eq!(c.kind, ConnectionKind::Corner, "{enclosed}°");
         let parts = parts(&plates, &joints);
-        let in_joint = widest_gap(&model, &parts, c.line, 2.0 * t, |p| {
+        let mesh = mesh_of(&model);
+        let inside = Inside::new(&mesh.vertices, &mesh.triangles);
+        let in_joint = widest_gap(&inside, &parts, c.line, 2.0 * t, |p| {
             plates.iter().all(|plate| in_layer(plate, p))
         });
-        let at_mitre = widest_gap(&model, &parts, c.line, 2.0 * t, |_| true);
+        let at_mitre = widest_gap(&inside, &parts, c.line, 2.0 * t, |_| true);
         let shared = shared_volume(&parts[0], &parts[1]);
         let total = volume(&parts);
         eprintln!(
@@ -277,7 +179,7 @@ fn corners_at_60_90_120_150_degrees_have_no_gap_wider_than_0_2_mm() {
 /// within `reach` of the line (model inside-ness decided per cross-section point at the
 /// line's middle, as the models are prisms along it).
 fn owners_where_layers_cross(
-    model: &[Triangle],
+    model: &Inside,
     plates: &[Plate],
     parts: &[Slab],
     line: [DVec3; 2],
@@ -293,7 +195,7 @@ fn owners_where_layers_cross(
         for j in 0..n {
             let across = e2 * (-reach + (i as f64 + 0.5137) * step) + e3 * (-reach + (j as f64 + 0.4729) * step);
             let crossing = plates.iter().filter(|p| in_layer(p, mid + across)).count() >= 2;
-            if !crossing || !inside(model, mid + across) {
+            if !crossing || !model.contains(mid + across) {
                 continue;
             }
             for k in 0..(line[0].distance(line[1]) / step) as usize {
@@ -323,7 +225,7 @@ fn three_and_four_plates_on_one_line_share_no_volume() {
         let model = samples::star(arms, arm_len, t, depth);
         let expected = Polygon::new(samples::star_profile(arms, arm_len, t)).area() * depth;
         assert!((model_volume(&model) - expected).abs() < 1e-6 * expected);
-        let plates = plates_with(&model, t);
+        let plates = plates_with(model.clone(), t);
         assert_eq!(plates.len(), plates_found, "{arms} arms");
         let joints = compute(&plates, &JointSettings::default()).expect("grid");
         assert_eq!(joints.connections.len(), plates_found * (plates_found - 1) / 2);
@@ -344,8 +246,10 @@ fn three_and_four_plates_on_one_line_share_no_volume() {
                 );
             }
         }
+        let mesh = mesh_of(&model);
+        let inside = Inside::new(&mesh.vertices, &mesh.triangles);
         let [none, once, more] =
-            owners_where_layers_cross(&model, &plates, &parts, joints.connections[0].line, 2.0 * t);
+            owners_where_layers_cross(&inside, &plates, &parts, joints.connections[0].line, 2.0 * t);
         eprintln!(
             "{arms} arms: parts {total:.1} mm³, model {expected:.1} mm³; where layers cross: {once} points owned once, {none} unowned, {more} owned twice"
         );
