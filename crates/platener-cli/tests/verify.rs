@@ -26,20 +26,24 @@ fn convert_box(out: &Path, extra: &[&str]) -> PathBuf {
     out.join("box-3mm-plate.zip")
 }
 
-#[test]
-fn a_converted_box_verifies_against_its_model() {
-    let out = tempfile::tempdir().expect("tempdir");
-    let zip = convert_box(out.path(), &[]);
+/// `platener verify ZIP --model box-3mm.stl --json`, which must pass: its JSON report.
+fn verified_against_the_box(zip: &Path) -> serde_json::Value {
     let o = platener()
         .arg("verify")
-        .arg(&zip)
+        .arg(zip)
         .arg("--model")
         .arg(example("box-3mm.stl"))
         .arg("--json")
         .output()
         .expect("runs");
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stdout));
+    serde_json::from_slice(&o.stdout).expect("JSON")
+}
+
+#[test]
+fn a_converted_box_verifies_against_its_model() {
+    let out = tempfile::tempdir().expect("tempdir");
+    let v = verified_against_the_box(&convert_box(out.path(), &[]));
     assert_eq!(v["parts"], 6);
     assert_eq!(v["groups"], 1);
     assert!(v["interference_share"].as_f64().expect("share") < 0.001);
@@ -81,15 +85,9 @@ fn dovetail_joints_come_with_keys_and_verify() {
     let keys = plan.parts.len() - 6;
     assert!(keys >= 24 && keys.is_multiple_of(2), "{keys} keys");
     assert_eq!(plan.joints.len(), 12 + keys);
-    let o = platener()
-        .arg("verify")
-        .arg(&zip)
-        .arg("--model")
-        .arg(example("box-3mm.stl"))
-        .arg("--json")
-        .output()
-        .expect("runs");
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stdout));
-    let report: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json");
-    assert_eq!(report["groups"], 1, "{report}");
+    let v = verified_against_the_box(&zip);
+    assert_eq!(v["parts"], 6 + keys);
+    assert_eq!(v["groups"], 1, "{v}");
+    assert!(v["interference_share"].as_f64().expect("share") < 0.001, "{v}");
+    assert!(v["surface_covered"].as_f64().expect("covered") >= 0.98, "{v}");
 }
