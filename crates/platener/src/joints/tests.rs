@@ -345,13 +345,20 @@ fn dovetails_with_their_keys_rebuild_the_box_exactly() {
     let walls = 100.0 * 80.0 * 60.0 - 94.0 * 74.0 * 54.0;
     // Slanted flanks are rounded to the 1 µm grid separately in tail and key: 0.2 mm³ of 104 cm³.
     assert!((volume(&all) - walls).abs() < 0.5, "{} vs {walls}", volume(&all));
-    // The dovetailed plates grew by their tails: each tail adds a 3/4 × 3 mm triangle per flank.
-    let straight = compute(&plates, &JointSettings::default()).expect("grid");
-    let tails: f64 = joints
+    // Every tail shows two flanks spreading 3/4 mm over the 3 mm notch (1:4); no other edge of
+    // a box part is slanted.
+    let flanks: Vec<glam::DVec2> = joints
         .outlines
         .iter()
-        .zip(&straight.outlines)
-        .map(|(d, s)| d.area() - s.area())
-        .sum();
-    assert!(tails.abs() > 1.0, "{tails}");
+        .flat_map(|o| (0..o.outer.len()).map(move |i| o.outer[(i + 1) % o.outer.len()] - o.outer[i]))
+        .filter(|d| d.x.abs() > 1e-6 && d.y.abs() > 1e-6)
+        .collect();
+    // (A flank may be split by a vertex where another band's boolean left one: by length.)
+    let length: f64 = flanks.iter().map(|d| d.length()).sum();
+    let flank = glam::DVec2::new(0.75, 3.0).length();
+    assert!((length - 2.0 * dovetails as f64 * flank).abs() < 1e-2, "{length}");
+    for d in flanks {
+        let slope = d.x.abs().min(d.y.abs()) / d.x.abs().max(d.y.abs());
+        assert!((slope - 0.25).abs() < 1e-3, "{d:?}");
+    }
 }
