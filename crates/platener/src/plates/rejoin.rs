@@ -1,13 +1,14 @@
 //! Rejoining plates that a plate passing through them split in two.
 //!
 //! Two coplanar plates of one thickness on either side of a third plate (a board crossing a
-//! divider, or a shelf board ending against a side) were found as two because the third
-//! plate's faces cut their faces. If adding the band where the third plate passes through or
+//! divider, or a shelf board ending against a side), or of several side by side (a board
+//! under the two walls of a V), were found as two because the third plate's faces cut their
+//! faces. If adding the band where the third plate passes through or
 //! ends against their plane (within their convex hull) joins them into one piece, they become
 //! one plate; the joint step later joins the third plate to it with a cross or T joint.
 
 use glam::DVec3;
-use platener_geom::boolean::union_all;
+use platener_geom::boolean::{intersection, union_all};
 use platener_geom::offset::offset;
 use platener_geom::polygon::convex_hull;
 use platener_geom::slab::Slab;
@@ -36,6 +37,7 @@ fn bridge(a: &Plate, b: &Plate, others: &[&Plate], clearance: f64) -> Result<Opt
         polygon: hull,
         thickness: a.thickness,
     };
+    let mut bands = Vec::new();
     for third in others {
         // The third plate grown in its plane by a's thickness: a plate that ends against the
         // gap (a shelf board meeting a side) bridges it as well as one passing through.
@@ -54,15 +56,31 @@ fn bridge(a: &Plate, b: &Plate, others: &[&Plate], clearance: f64) -> Result<Opt
         if band.is_empty() {
             continue;
         }
-        let mut parts = vec![a.polygon.clone(), b_in_a.clone()];
-        parts.extend(band);
-        let joined = union_all(&parts)?;
-        if joined.len() == 1 {
-            return Ok(joined.into_iter().next());
+        if let Some(joined) = joined(a, &b_in_a, &band, &region.polygon)? {
+            return Ok(Some(joined));
         }
+        bands.push(band);
+    }
+    // Several plates ending side by side (the two walls of a V standing on a board) bridge the
+    // gap together.
+    if bands.len() > 1 {
+        return joined(a, &b_in_a, &bands.concat(), &region.polygon);
     }
     Ok(None)
 }
+
+/// `a` and `b` (in a's frame) joined by `band`, if that makes one piece. The band is widened
+/// by a hairline (and the result kept within `hull`): the pieces were trimmed against other
+/// plates on the grid and may miss the band by a few µm.
+fn joined(a: &Plate, b_in_a: &Polygon, band: &[Polygon], hull: &Polygon) -> Result<Option<Polygon>, GridError> {
+    let mut parts = vec![a.polygon.clone(), b_in_a.clone()];
+    parts.extend(offset(band, HAIRLINE)?);
+    let joined = intersection(&union_all(&parts)?, std::slice::from_ref(hull))?;
+    Ok((joined.len() == 1).then(|| joined.into_iter().next()).flatten())
+}
+
+/// Gaps (mm) between a piece and a bridging band that are grid noise.
+const HAIRLINE: f64 = 0.01;
 
 fn grow(b: (DVec3, DVec3), by: f64) -> (DVec3, DVec3) {
     (b.0 - DVec3::splat(by), b.1 + DVec3::splat(by))
@@ -76,9 +94,10 @@ fn touch(a: (DVec3, DVec3), b: (DVec3, DVec3)) -> bool {
 pub(super) fn rejoin(mut plates: Vec<Plate>, angle: f64, clearance: f64) -> Result<(Vec<Plate>, usize), GridError> {
     let cos_max = angle.cos();
     let mut joins = 0;
-    // Split pieces are at most one (thickest) plate apart.
-    let reach = plates.iter().map(|p| p.thickness).fold(0.0, f64::max) * 1.5 + clearance;
-    // Repeat until nothing joins: a plate split into three by two dividers needs two rounds.
+    // Split pieces are a plate's footprint apart: one thickness for a plate ending square,
+    // more for one ending at a slant or for the two walls of a V (2·t/sin 60° for walls 60°
+    // apart). Candidates only: the bridge itself decides.
+    let reach = plates.iter().map(|p| p.thickness).fold(0.0, f64::max) * 4.0 + clearance;
     // Repeat until nothing joins: a plate split into three by two dividers needs two rounds.
     'again: loop {
         let bounds: Vec<(DVec3, DVec3)> = plates.iter().map(Plate::bounds).collect();
