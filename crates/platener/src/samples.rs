@@ -422,32 +422,65 @@ pub fn table(top_w: f64, top_d: f64, height: f64, leg_inset: f64, t: f64) -> Vec
 /// `3·arms` corners (between two arms, the corner where their sides meet).
 pub fn star_profile(arms: usize, arm_len: f64, t: f64) -> Vec<DVec2> {
     assert!(arms >= 3, "a star has at least 3 arms");
-    let step = std::f64::consts::TAU / arms as f64;
-    let dir = |a: f64| DVec2::new(a.cos(), a.sin());
+    let step = 360.0 / arms as f64;
+    let angles: Vec<f64> = (0..arms).map(|k| step * k as f64).collect();
+    fan_profile(&angles, arm_len, t)
+}
+
+/// The profile of [`fan`]: strips `t` wide radiating from the origin at `angles_deg`
+/// (ascending, in [0, 360), neighbours at most 180° apart: two arms 180° apart are one plate), each `arm_len` long from the
+/// origin; counter-clockwise, three corners per arm (between two arms, the corner where their
+/// sides meet).
+pub fn fan_profile(angles_deg: &[f64], arm_len: f64, t: f64) -> Vec<DVec2> {
+    let k = angles_deg.len();
+    assert!(k >= 3, "a fan has at least 3 arms");
+    let dir = |a: f64| DVec2::new(a.to_radians().cos(), a.to_radians().sin());
     // Snapped to 1e-9 mm so that sides meant to be collinear (opposite arms of a "+") are
     // exactly so: rounding noise would make the cap triangulation emit zero-area slivers.
     let snap = |p: DVec2| (p * 1e9).round() / 1e9;
-    let mut out = Vec::with_capacity(3 * arms);
-    for k in 0..arms {
-        let a = step * k as f64;
+    let mut out = Vec::with_capacity(3 * k);
+    for i in 0..k {
+        let (a, next) = (
+            angles_deg[i],
+            angles_deg[(i + 1) % k] + if i + 1 == k { 360.0 } else { 0.0 },
+        );
+        assert!(
+            next > a && next - a <= 180.0,
+            "arms ascending, neighbours at most 180° apart"
+        );
         let (d, n) = (dir(a), dir(a).perp());
         out.push(snap(d * arm_len - n * (t / 2.0)));
         out.push(snap(d * arm_len + n * (t / 2.0)));
-        out.push(snap(dir(a + step / 2.0) * (t / 2.0 / (step / 2.0).sin())));
+        // Where this arm's left side meets the next arm's right side: on the bisector, t/2
+        // from both sides.
+        let half = (next - a) / 2.0;
+        out.push(snap(dir(a + half) * (t / 2.0 / half.to_radians().sin())));
     }
     out
+}
+
+/// Plates `t` thick radiating from the z axis at `angles_deg` (see [`fan_profile`]), from
+/// z = 0 to z = `depth`: one closed solid whose arms all meet on one line.
+pub fn fan(angles_deg: &[f64], arm_len: f64, t: f64, depth: f64) -> Vec<Triangle> {
+    along_z(&fan_profile(angles_deg, arm_len, t), depth)
+}
+
+/// `profile` (x, y) extruded from z = 0 to z = `depth`.
+fn along_z(profile: &[DVec2], depth: f64) -> Vec<Triangle> {
+    // `prism` extrudes along +y; turning +90° about x takes y to z and the profile's z to −y,
+    // so the profile goes in mirrored (and reversed, to stay counter-clockwise).
+    let mirrored: Vec<DVec2> = profile.iter().rev().map(|p| DVec2::new(p.x, -p.y)).collect();
+    prism(&mirrored, depth)
+        .into_iter()
+        .map(|tri| tri.map(|p| DVec3::new(p.x, -p.z, p.y)))
+        .collect()
 }
 
 /// `arms` (3: a "Y", 4: a "+") plates `t` thick radiating from the z axis at equal angles, the
 /// first along +x, each `arm_len` long from the axis, from z = 0 to z = `depth`: the
 /// [`star_profile`] extruded along z. One closed solid whose arms all meet on one line.
 pub fn star(arms: usize, arm_len: f64, t: f64, depth: f64) -> Vec<Triangle> {
-    // `prism` extrudes along +y; turning +90° about x takes y to z (and the profile's z to −y,
-    // a mirror image of the symmetric star).
-    prism(&star_profile(arms, arm_len, t), depth)
-        .into_iter()
-        .map(|tri| tri.map(|p| DVec3::new(p.x, -p.z, p.y)))
-        .collect()
+    along_z(&star_profile(arms, arm_len, t), depth)
 }
 
 #[cfg(test)]
