@@ -174,54 +174,71 @@ fn corners_at_60_90_120_150_degrees_have_no_gap_wider_than_0_2_mm() {
     }
 }
 
-/// How many parts hold each point of the model near a joint `line` where two or more plates'
-/// layers cross: `[unowned, owned once, owned more than once]`, sampled on a 0.1 mm grid
-/// within `reach` of the line (model inside-ness decided per cross-section point at the
-/// line's middle, as the models are prisms along it).
-fn owners_where_layers_cross(
-    model: &Inside,
-    plates: &[Plate],
-    parts: &[Slab],
-    line: [DVec3; 2],
-    reach: f64,
-) -> [usize; 3] {
-    let step = 0.1;
+/// One cross-section of an assembly across a joint line (areas in mm², sampled on a grid).
+#[derive(Debug)]
+struct Section {
+    /// Model that no part holds.
+    unowned: f64,
+    /// Held by two parts or more.
+    twice: f64,
+    /// Part outside the model.
+    outside: f64,
+    /// The parts holding the line's own point.
+    centre: Vec<usize>,
+}
+
+/// The cross-section of `parts` and `model` across `line`, `at` mm along it, over a square
+/// `2·reach` wide centred on the line, sampled every `step` mm (cell centres off round numbers).
+fn section(model: &Inside, parts: &[Slab], line: [DVec3; 2], at: f64, reach: f64, step: f64) -> Section {
     let axis = (line[1] - line[0]).normalize();
-    let (e2, mid) = (axis.any_orthonormal_vector(), (line[0] + line[1]) / 2.0);
+    let e2 = axis.any_orthonormal_vector();
     let e3 = axis.cross(e2);
+    let origin = line[0] + axis * at;
     let n = (2.0 * reach / step) as usize;
-    let mut counts = [0; 3];
+    let cell = step * step;
+    let mut out = Section {
+        unowned: 0.0,
+        twice: 0.0,
+        outside: 0.0,
+        centre: (0..parts.len()).filter(|&k| in_slab(&parts[k], origin)).collect(),
+    };
     for i in 0..n {
         for j in 0..n {
-            let across = e2 * (-reach + (i as f64 + 0.5137) * step) + e3 * (-reach + (j as f64 + 0.4729) * step);
-            let crossing = plates.iter().filter(|p| in_layer(p, mid + across)).count() >= 2;
-            if !crossing || !model.contains(mid + across) {
-                continue;
+            let p = origin + e2 * (-reach + (i as f64 + 0.5137) * step) + e3 * (-reach + (j as f64 + 0.4729) * step);
+            let owners = parts.iter().filter(|s| in_slab(s, p)).count();
+            match (model.contains(p), owners) {
+                (true, 0) => out.unowned += cell,
+                (false, 1..) => out.outside += cell,
+                _ => {}
             }
-            for k in 0..(line[0].distance(line[1]) / step) as usize {
-                let p = line[0] + axis * ((k as f64 + 0.5311) * step) + across;
-                counts[parts.iter().filter(|s| in_slab(s, p)).count().min(2)] += 1;
+            if owners > 1 {
+                out.twice += cell;
             }
         }
     }
-    counts
+    out
 }
 
-/// Three plates meeting on one line (a "Y", 120° apart, 3 mm thick): one plate per arm and
-/// three corner joints along the same line whose fingers never collide: no point of the model
-/// belongs to two plates and no two parts share volume. Four arms (a "+") are found as two
-/// plates passing through each other (opposite arms are one plate, as in
-/// `samples::crossing_plates`) with a halved joint, which fills the crossing exactly.
+/// Three plates meeting on one line (a "Y", 120° apart, 3 mm thick): one plate per arm, three
+/// corner joints cut as one row of fingers in which the plates take turns: in each finger one
+/// plate takes the whole junction (the triangle where all three layers cross) and the other
+/// two end against its faces. Nothing is held twice and nothing sticks out of the model.
 ///
-/// Measured (arms 40 mm, depth 50 mm): Y: nothing owned twice, parts 17610.3 mm³ against the
-/// model's 17805.1 mm³; but 16.6 % of the sampled points where two layers cross near the line
-/// belong to no plate: in each finger the owning plate's slab wins both of its connections and
-/// the third plate gives up its columns there, and a finger can only fill its own layer. That
-/// is a known limit (the closing note of issue 4), so unowned points are printed, not asserted.
+/// Square cuts cannot fill a Y: every cross-section of a plate is a rectangle, and the best
+/// three rectangles that neither overlap nor leave the model still miss √3/4·t² (3.90 mm² for
+/// t = 3, found by a brute-force search over where each arm ends): the notch in front of each
+/// of the two plates that give way. The test asserts that bound.
+///
+/// Four arms (a "+") are found as two plates passing through each other (opposite arms are
+/// one plate, as in `samples::crossing_plates`) with a halved joint, which fills the crossing
+/// exactly.
 #[test]
 fn three_and_four_plates_on_one_line_share_no_volume() {
     let (arm_len, t, depth) = (40.0, 3.0, 50.0);
-    for (arms, plates_found, kind) in [(3, 3, ConnectionKind::Corner), (4, 2, ConnectionKind::Cross)] {
+    for (arms, plates_found, kind, missing) in [
+        (3, 3, ConnectionKind::Corner, 3f64.sqrt() / 4.0 * t * t),
+        (4, 2, ConnectionKind::Cross, 0.0),
+    ] {
         let model = samples::star(arms, arm_len, t, depth);
         let expected = Polygon::new(samples::star_profile(arms, arm_len, t)).area() * depth;
         assert!((model_volume(&model) - expected).abs() < 1e-6 * expected);
@@ -246,17 +263,116 @@ fn three_and_four_plates_on_one_line_share_no_volume() {
                 );
             }
         }
+        assert!(
+            (total - (expected - missing * depth)).abs() < 1e-3 * expected,
+            "{arms} arms: parts {total} mm³, model {expected} mm³"
+        );
         let mesh = mesh_of(&model);
         let inside = Inside::new(&mesh.vertices, &mesh.triangles);
-        let [none, once, more] =
-            owners_where_layers_cross(&inside, &plates, &parts, joints.connections[0].line, 2.0 * t);
-        eprintln!(
-            "{arms} arms: parts {total:.1} mm³, model {expected:.1} mm³; where layers cross: {once} points owned once, {none} unowned, {more} owned twice"
+        let line = joints.connections[0].line;
+        let mut owners_of_centre = Vec::new();
+        for k in 0..14 {
+            let at = (k as f64 + 0.5) * depth / 14.0;
+            let s = section(&inside, &parts, line, at, 2.0 * t, 0.08);
+            assert!(s.twice < 0.01 && s.outside < 0.01, "{arms} arms at {at} mm: {s:?}");
+            assert!(s.unowned < missing + 0.05, "{arms} arms at {at} mm: {s:?}");
+            assert_eq!(
+                s.centre.len(),
+                1,
+                "{arms} arms at {at} mm: the line belongs to one part"
+            );
+            owners_of_centre.extend(s.centre);
+        }
+        owners_of_centre.sort_unstable();
+        owners_of_centre.dedup();
+        if kind == ConnectionKind::Corner {
+            assert_eq!(owners_of_centre, vec![0, 1, 2], "each plate takes the junction in turn");
+        }
+    }
+}
+
+mod uneven_y {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(8))]
+
+        /// Three plates on one line at uneven angles (each gap 70°–160°): the fingers take
+        /// turns (each plate holds the line somewhere), nothing is held twice and nothing sticks
+        /// out of the model, in every cross-section.
+        #[test]
+        fn three_plates_at_any_angles_take_turns_without_collisions(g1 in 70.0f64..160.0, g2 in 70.0f64..160.0) {
+            prop_assume!((70.0..160.0).contains(&(360.0 - g1 - g2)));
+            let (t, depth) = (3.0, 30.0);
+            let angles = [0.0, g1, g1 + g2];
+            let model = samples::fan(&angles, 30.0, t, depth);
+            let plates = plates_with(model.clone(), t);
+            prop_assert_eq!(plates.len(), 3);
+            let joints = compute(&plates, &JointSettings::default()).expect("grid");
+            prop_assert_eq!(joints.connections.len(), 3, "{:?}", joints.connections);
+            prop_assert!(joints.warnings.is_empty(), "{:?}", joints.warnings);
+            let parts = parts(&plates, &joints);
+            let mesh = mesh_of(&model);
+            let inside = Inside::new(&mesh.vertices, &mesh.triangles);
+            let c = &joints.connections[0];
+            let fingers = c.segments;
+            let mut owners = Vec::new();
+            for k in 0..fingers {
+                let at = (k as f64 + 0.5) * depth / fingers as f64;
+                let s = section(&inside, &parts, c.line, at, 2.0 * t, 0.1);
+                eprintln!("{angles:?} at {at:.1}: {s:?}");
+                prop_assert!(s.twice < 0.05 && s.outside < 0.05, "at {} mm: {:?}", at, s);
+                prop_assert!(s.unowned < t * t, "at {} mm: {:?}", at, s);
+                owners.extend(s.centre);
+            }
+            owners.sort_unstable();
+            owners.dedup();
+            prop_assert_eq!(owners, vec![0, 1, 2]);
+        }
+    }
+}
+
+/// A V standing on a board (walls at 60°/120°, 45°/90°, 70°/140° from the board, all 3 mm): the
+/// board, split in two by the walls' faces, is one plate again; both walls meet it at a T and
+/// each other at a corner, all on one line. The board and the walls take turns holding the
+/// line: a wall's tab goes through the board where it does. Nothing is held twice
+/// and nothing sticks out of the model.
+#[test]
+fn v_standing_on_a_board_takes_turns_on_the_line() {
+    let (t, depth) = (3.0, 30.0);
+    for walls in [[60.0, 120.0], [45.0, 90.0], [70.0, 140.0]] {
+        let model = samples::fan(&[0.0, walls[0], walls[1], 180.0], 30.0, t, depth);
+        let plates = plates_with(model.clone(), t);
+        assert_eq!(plates.len(), 3, "{walls:?}: the board and two walls");
+        let board = plates.iter().position(|p| p.frame.n.y.abs() > 0.999).expect("a board");
+        let joints = compute(&plates, &JointSettings::default()).expect("grid");
+        assert!(joints.warnings.is_empty(), "{:?}", joints.warnings);
+        let mut kinds: Vec<_> = joints.connections.iter().map(|c| c.kind).collect();
+        kinds.sort_by_key(|k| *k != ConnectionKind::Corner);
+        assert_eq!(
+            kinds,
+            [ConnectionKind::Corner, ConnectionKind::Tee, ConnectionKind::Tee],
+            "{walls:?}"
         );
-        assert_eq!(more, 0, "{arms} arms: no point belongs to two plates");
+        let parts = parts(&plates, &joints);
+        let mesh = mesh_of(&model);
+        let inside = Inside::new(&mesh.vertices, &mesh.triangles);
+        let c = &joints.connections[0];
+        let mut owners = Vec::new();
+        for k in 0..c.segments {
+            let at = (k as f64 + 0.5) * depth / c.segments as f64;
+            let s = section(&inside, &parts, c.line, at, 2.0 * t, 0.1);
+            assert!(s.twice < 0.05 && s.outside < 0.05, "{walls:?} at {at} mm: {s:?}");
+            owners.extend(s.centre);
+        }
+        owners.sort_unstable();
+        owners.dedup();
+        assert_eq!(owners, [0, 1, 2], "{walls:?}: each plate holds the line somewhere");
         assert!(
-            (total - expected).abs() < 0.015 * expected,
-            "{arms} arms: {total} vs {expected}"
+            joints.outlines[board].area() < plates[board].area - 10.0,
+            "{walls:?}: the walls' tabs pass through the board"
         );
     }
 }

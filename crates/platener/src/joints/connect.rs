@@ -8,16 +8,19 @@ use platener_geom::polygon::total_area;
 use platener_geom::slab::{Slab, strip_in_box};
 use platener_geom::{GridError, Polygon};
 
+use super::junction::{self, Junction};
 use super::{ConnectionKind, JointSettings};
 use crate::plates::Plate;
 
 /// A shared volume of two grown plates, before it is trimmed along the joint line.
-struct Raw {
-    a: usize,
-    b: usize,
-    in_a: Polygon,
-    in_b: Polygon,
-    axis: DVec3,
+pub(super) struct Raw {
+    pub a: usize,
+    pub b: usize,
+    pub in_a: Polygon,
+    pub in_b: Polygon,
+    pub axis: DVec3,
+    /// The junction line (three or more plates) it runs along, if any.
+    pub line: Option<usize>,
 }
 
 /// How far plate `p` reaches along `axis` at its joint with `other`: its own outline, and the
@@ -87,14 +90,16 @@ pub(super) struct Region {
     pub range: (f64, f64),
     /// A point on the joint (the region's centre in the model).
     pub center: DVec3,
+    /// The line it shares with other plates' connections, if three or more plates meet on it.
+    pub junction: Option<Junction>,
 }
 
 /// Where a 2D point of a plate's plane is in the model, at mid-thickness.
-fn at(plate: &Plate, p: DVec2) -> DVec3 {
+pub(super) fn at(plate: &Plate, p: DVec2) -> DVec3 {
     plate.frame.to_model(DVec3::new(p.x, p.y, plate.thickness / 2.0))
 }
 
-fn extent(plate: &Plate, poly: &Polygon, axis: DVec3) -> (f64, f64) {
+pub(super) fn extent(plate: &Plate, poly: &Polygon, axis: DVec3) -> (f64, f64) {
     poly.outer
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
@@ -170,6 +175,68 @@ fn extension(
     Ok(out)
 }
 
+/// The stretches where plates `a` and `b`, each grown across the other's slab (minus `keep_out`
+/// in its own plane), share volume: the columns of each that meet the other.
+fn shared(
+    plates: &[Plate],
+    a: usize,
+    b: usize,
+    keep_out_a: &[Polygon],
+    keep_out_b: &[Polygon],
+) -> Result<Vec<Raw>, GridError> {
+    let (pa, pb) = (&plates[a], &plates[b]);
+    let grown = |p: &Plate, by: f64, keep_out: &[Polygon]| -> Result<Vec<Slab>, GridError> {
+        let mut g = offset(std::slice::from_ref(&p.polygon), by)?;
+        if !keep_out.is_empty() {
+            g = difference(&g, keep_out)?;
+        }
+        Ok(g.into_iter()
+            .map(|polygon| Slab {
+                frame: p.frame,
+                polygon,
+                thickness: p.thickness,
+            })
+            .collect())
+    };
+    let (ga, gb) = (
+        grown(pa, crossing_width(pa, pb), keep_out_a)?,
+        grown(pb, crossing_width(pb, pa), keep_out_b)?,
+    );
+    let clearance = 1e-3;
+    let mut in_a = Vec::new();
+    let mut in_b = Vec::new();
+    for sa in &ga {
+        for sb in &gb {
+            in_a.extend(sa.columns_meeting(sb, clearance)?);
+            in_b.extend(sb.columns_meeting(sa, clearance)?);
+        }
+    }
+    let min_area = (pa.thickness.min(pb.thickness) / 2.0).powi(2);
+    in_a.retain(|p| p.area() > min_area);
+    in_b.retain(|p| p.area() > min_area);
+    let axis = pa.frame.n.cross(pb.frame.n).normalize();
+    // Disjoint stretches are separate connections: pair the pieces by their extent along the
+    // joint line.
+    let mut out = Vec::new();
+    for ra in &in_a {
+        let range_a = extent(pa, ra, axis);
+        if let Some(rb) = in_b.iter().find(|rb| {
+            let r = extent(pb, rb, axis);
+            r.0 < range_a.1 && range_a.0 < r.1
+        }) {
+            out.push(Raw {
+                a,
+                b,
+                in_a: ra.clone(),
+                in_b: rb.clone(),
+                axis,
+                line: None,
+            });
+        }
+    }
+    Ok(out)
+}
+
 /// Every joint region between the plates.
 pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Region>, GridError> {
     let sin_min = settings.min_angle_deg.to_radians().sin();
@@ -198,49 +265,37 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
         if pa.frame.n.cross(pb.frame.n).length() < sin_min {
             continue;
         }
-        let grown = |p: &Plate, by: f64| -> Result<Vec<Slab>, GridError> {
-            Ok(offset(std::slice::from_ref(&p.polygon), by)?
-                .into_iter()
-                .map(|polygon| Slab {
-                    frame: p.frame,
-                    polygon,
-                    thickness: p.thickness,
-                })
-                .collect())
+        raw.extend(shared(plates, a, b, &[], &[])?);
+    }
+    // Three or more plates on one line: each reaches past the line only as far as the model
+    // goes, and their connections take turns in one row of fingers.
+    let t_min = plates.iter().map(|p| p.thickness).fold(f64::INFINITY, f64::min);
+    let lines = junction::lines(plates, &raw, t_min / 2.0);
+    let mut redone = Vec::new();
+    for (id, line) in lines.iter().enumerate() {
+        // A plate passing through the line keeps its own outline on both sides.
+        let beyond = |w: usize| -> Vec<Polygon> {
+            if junction::passes(&plates[w], line) {
+                return Vec::new();
+            }
+            let exit = junction::exit(plates, line, w, reach);
+            vec![junction::beyond(&plates[w], line, exit, reach)]
         };
-        let (ga, gb) = (grown(pa, crossing_width(pa, pb))?, grown(pb, crossing_width(pb, pa))?);
-        let clearance = 1e-3;
-        let mut in_a = Vec::new();
-        let mut in_b = Vec::new();
-        for sa in &ga {
-            for sb in &gb {
-                in_a.extend(sa.columns_meeting(sb, clearance)?);
-                in_b.extend(sb.columns_meeting(sa, clearance)?);
-            }
-        }
-        let min_area = (pa.thickness.min(pb.thickness) / 2.0).powi(2);
-        in_a.retain(|p| p.area() > min_area);
-        in_b.retain(|p| p.area() > min_area);
-        let axis = pa.frame.n.cross(pb.frame.n).normalize();
-        // Disjoint stretches are separate connections: pair the pieces by their extent
-        // along the joint line.
-        for ra in &in_a {
-            let range_a = extent(pa, ra, axis);
-            if let Some(rb) = in_b.iter().find(|rb| {
-                let r = extent(pb, rb, axis);
-                r.0 < range_a.1 && range_a.0 < r.1
-            }) {
-                raw.push(Raw {
-                    a,
-                    b,
-                    in_a: ra.clone(),
-                    in_b: rb.clone(),
-                    axis,
-                });
-            }
+        let mut pairs: Vec<(usize, usize)> = line.members.iter().map(|&i| (raw[i].a, raw[i].b)).collect();
+        pairs.sort_unstable();
+        pairs.dedup();
+        for (a, b) in pairs {
+            redone.push((a, b, shared(plates, a, b, &beyond(a), &beyond(b))?, id));
         }
     }
+    raw.retain(|r| !redone.iter().any(|(a, b, _, _)| (*a, *b) == (r.a, r.b)));
+    for (_, _, stretches, id) in redone {
+        raw.extend(stretches.into_iter().map(|r| Raw { line: Some(id), ..r }));
+    }
+    raw.sort_by_key(|r| (r.a, r.b));
     let mut regions = Vec::with_capacity(raw.len());
+    // The junction line of each region.
+    let mut lines_of = Vec::with_capacity(raw.len());
     for r in &raw {
         let (pa, pb) = (&plates[r.a], &plates[r.b]);
         // Growing in every direction also lengthened the joint past the plates' ends; along the
@@ -297,7 +352,30 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
             axis: r.axis,
             range,
             center,
+            junction: None,
         });
+        lines_of.push(r.line);
+    }
+    // Each junction spans its connections' final extents (the raw ones reach past the plates).
+    for (id, line) in lines.iter().enumerate() {
+        let mine: Vec<usize> = (0..regions.len()).filter(|&k| lines_of[k] == Some(id)).collect();
+        let range = mine.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |acc, &k| {
+            let r: &Region = &regions[k];
+            let (lo, hi) = if r.axis.dot(line.axis) > 0.0 {
+                r.range
+            } else {
+                (-r.range.1, -r.range.0)
+            };
+            (acc.0.min(lo), acc.1.max(hi))
+        });
+        let junction = Junction {
+            plates: line.plates.clone(),
+            axis: line.axis,
+            range,
+        };
+        for k in mine {
+            regions[k].junction = Some(junction.clone());
+        }
     }
     Ok(regions)
 }

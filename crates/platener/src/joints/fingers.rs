@@ -166,6 +166,16 @@ fn min_feature(t: f64) -> f64 {
 
 /// The plan of a connection before any plate is found to fall apart.
 fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: JointStyle) -> Plan {
+    if let Some(j) = &r.junction {
+        // One row of fingers for the whole line, the same for each of its connections.
+        let t = j.plates.iter().map(|&p| plates[p].thickness).fold(0.0, f64::max);
+        let (len, narrowest) = (j.range.1 - j.range.0, min_feature(t));
+        let mut segments = segment_count(len, settings.finger_factor * t, narrowest);
+        if segments < j.plates.len() && len / j.plates.len() as f64 >= narrowest {
+            segments = j.plates.len();
+        }
+        return Plan { segments, keeper: None };
+    }
     let t = plates[r.a].thickness.max(plates[r.b].thickness);
     let narrowest = match style {
         JointStyle::Dovetail => Dovetail::new(plates, r).min_segment(min_feature(t)),
@@ -193,21 +203,27 @@ fn cut(plates: &[Plate], r: &Region, plan: Plan, style: JointStyle) -> Result<Cu
         return Ok(out);
     }
     let segments = plan.segments;
-    let len = r.range.1 - r.range.0;
-    let step = len / segments as f64;
+    // On a junction the fingers are the line's and plain: barbs and dovetail keys would reach
+    // into the third plate.
+    let (axis, range, style) = match &r.junction {
+        Some(j) => (j.axis, j.range, JointStyle::Finger),
+        None => (r.axis, r.range, style),
+    };
+    let step = (range.1 - range.0) / segments as f64;
     let dovetail = (style == JointStyle::Dovetail && r.kind != ConnectionKind::Cross).then(|| Dovetail::new(plates, r));
     let male = dovetailed(r);
     for s in 0..segments {
-        let owner = match r.kind {
-            ConnectionKind::Corner => [r.a, r.b][s % 2],
-            ConnectionKind::Tee => {
+        let owner = match (&r.junction, r.kind) {
+            (Some(j), _) => j.owner(s, r.a, r.b),
+            (None, ConnectionKind::Corner) => [r.a, r.b][s % 2],
+            (None, ConnectionKind::Tee) => {
                 let through = r.through.unwrap_or(r.a);
                 let ending = if through == r.a { r.b } else { r.a };
                 [through, ending][s % 2]
             }
-            ConnectionKind::Cross => [r.a, r.b][s.min(1)],
+            (None, ConnectionKind::Cross) => [r.a, r.b][s.min(1)],
         };
-        let (a0, a1) = (r.range.0 + step * s as f64, r.range.0 + step * (s + 1) as f64);
+        let (a0, a1) = (range.0 + step * s as f64, range.0 + step * (s + 1) as f64);
         // The first and last segments reach past the range (the region's ends).
         let s0 = if s == 0 { a0 - 1e3 } else { a0 };
         let s1 = if s + 1 == segments { a1 + 1e3 } else { a1 };
@@ -217,9 +233,9 @@ fn cut(plates: &[Plate], r: &Region, plan: Plan, style: JointStyle) -> Result<Cu
             _ => 0.0,
         };
         if owner == r.a {
-            out.remove[1].extend(band(pb, &r.in_b, r.axis, s0 - room, s1 + room)?);
+            out.remove[1].extend(band(pb, &r.in_b, axis, s0 - room, s1 + room)?);
         } else {
-            out.remove[0].extend(band(pa, &r.in_a, r.axis, s0 - room, s1 + room)?);
+            out.remove[0].extend(band(pa, &r.in_a, axis, s0 - room, s1 + room)?);
         }
         if let Some(d) = dovetail.as_ref().filter(|_| owner == male) {
             let (p, region, side) = if male == r.a {
@@ -347,7 +363,8 @@ pub(super) fn apply(
                 keeper: Some(i),
                 ..plans[k]
             };
-            let wider = plans[k].segments > 3 && r.kind != ConnectionKind::Cross;
+            // A junction's row of fingers is shared by its connections: it cannot widen for one.
+            let wider = plans[k].segments > 3 && r.kind != ConnectionKind::Cross && r.junction.is_none();
             let other = if i == r.a { r.b } else { r.a };
             let other_pieces = whole(other, &cuts)?.len();
             for plan in [wider.then_some(fewer), Some(keep)].into_iter().flatten() {
@@ -397,7 +414,7 @@ pub(super) fn apply(
         connections.push(Connection {
             plates: [r.a as u32, r.b as u32],
             kind: r.kind,
-            style: if r.kind == ConnectionKind::Cross || plan.keeper.is_some() {
+            style: if r.kind == ConnectionKind::Cross || plan.keeper.is_some() || r.junction.is_some() {
                 JointStyle::Finger
             } else {
                 style

@@ -18,6 +18,7 @@
 mod assembly_tests;
 mod connect;
 mod fingers;
+mod junction;
 #[cfg(test)]
 mod tests;
 
