@@ -1,5 +1,5 @@
 //! Joints on a grid of closed 3 mm boxes (every plate has four corner joints): finger joints
-//! and dovetails with their keys.
+//! and dovetails with their keys; and three plates on one line (a Y, 50 mm long).
 //!
 //! Run: `cargo bench -p platener --bench joints`. Figures go in docs/performance.md.
 
@@ -31,6 +31,17 @@ fn bench(c: &mut Criterion) {
             });
         }
     }
+    let source = Source::Triangles {
+        name: "Y".into(),
+        triangles: Arc::new(samples::star(3, 40.0, 3.0, 50.0)),
+    };
+    let mut state = platener::State::new(source, Settings::default());
+    platener::pipeline::run(&platener::pipeline::plate_steps(), &mut state, &Cancel::default()).expect("runs");
+    let plates = state.plates.clone().expect("plates");
+    assert_eq!(plates.plates.len(), 3);
+    group.bench_function("Finger/Y of 3 plates", |b| {
+        b.iter(|| compute(&plates.plates, &JointSettings::default()).expect("grid"));
+    });
     group.finish();
 }
 

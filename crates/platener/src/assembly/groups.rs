@@ -1,6 +1,7 @@
 //! Groups of parts held together by joints.
 
-/// Groups of parts joined by joints (union–find with path halving).
+/// Groups of parts joined by joints, or of anything joined pairwise (union–find with path
+/// halving).
 pub(crate) struct UnionFind(Vec<usize>);
 
 impl UnionFind {
@@ -8,7 +9,8 @@ impl UnionFind {
     pub(crate) fn new(n: usize) -> Self {
         Self((0..n).collect())
     }
-    fn root(&mut self, mut i: usize) -> usize {
+    /// The group of `i`: its lowest member.
+    pub(crate) fn root(&mut self, mut i: usize) -> usize {
         while self.0[i] != i {
             self.0[i] = self.0[self.0[i]];
             i = self.0[i];

@@ -6,7 +6,7 @@
 //! fingers cut pair by pair can leave one plate winning no finger (it only butts against the
 //! others) or three plates each beating the next (all three give way, leaving a hole).
 //!
-//! So here each plate's reach past the line ends where its middle leaves the other plates'
+//! So here each plate's reach past the line ends where its thickness leaves the other plates'
 //! arms (the model near the line, seen as the union of the arms' half slabs), and
 //! [`fingers`](super::fingers) cuts all connections of a line in one row of fingers in which
 //! the plates take turns: in each finger one plate takes the whole junction.
@@ -15,6 +15,7 @@ use glam::{DVec2, DVec3};
 use platener_geom::Polygon;
 
 use super::connect::{Raw, at, extent};
+use crate::assembly::UnionFind;
 use crate::plates::Plate;
 
 /// The plates meeting on one line and their connections' shared extent along it.
@@ -51,14 +52,6 @@ pub(super) struct Line {
     pub range: (f64, f64),
 }
 
-fn find_root(parent: &mut [usize], mut i: usize) -> usize {
-    while parent[i] != i {
-        parent[i] = parent[parent[i]];
-        i = parent[i];
-    }
-    i
-}
-
 /// Groups the raw stretches that run along one line (parallel axes, less than `near` apart,
 /// overlapping extents) and keeps the groups of three or more plates that all meet each other.
 pub(super) fn lines(plates: &[Plate], raw: &[Raw], near: f64) -> Vec<Line> {
@@ -69,7 +62,7 @@ pub(super) fn lines(plates: &[Plate], raw: &[Raw], near: f64) -> Vec<Line> {
     };
     let centres: Vec<DVec3> = raw.iter().map(centre).collect();
     let ranges: Vec<(f64, f64)> = raw.iter().map(|r| extent(&plates[r.a], &r.in_a, r.axis)).collect();
-    let mut parent: Vec<usize> = (0..raw.len()).collect();
+    let mut groups_of = UnionFind::new(raw.len());
     for i in 0..raw.len() {
         for j in i + 1..raw.len() {
             let (ri, rj) = (&raw[i], &raw[j]);
@@ -88,15 +81,13 @@ pub(super) fn lines(plates: &[Plate], raw: &[Raw], near: f64) -> Vec<Line> {
                 (-ranges[j].1, -ranges[j].0)
             };
             if rj_range.0 < ranges[i].1 && ranges[i].0 < rj_range.1 {
-                let (a, b) = (find_root(&mut parent, i), find_root(&mut parent, j));
-                parent[a.max(b)] = a.min(b);
+                groups_of.join(i, j);
             }
         }
     }
     let mut groups: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
     for i in 0..raw.len() {
-        let root = find_root(&mut parent, i);
-        groups.entry(root).or_default().push(i);
+        groups.entry(groups_of.root(i)).or_default().push(i);
     }
     groups
         .into_values()

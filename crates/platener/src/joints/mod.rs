@@ -13,6 +13,8 @@
 //!    every corner volume where three plates meet has exactly one owner. T-junctions (one passes
 //!    through): tabs on the ending plate, slots (holes) in the through plate, whose ends it keeps.
 //!    Crossings (both pass through): a halved joint, one slot from each side to half depth.
+//! 3. [`junction`]: three or more plates on one line (a "Y") reach past it only as far as the
+//!    model goes and share one row of fingers in which they take turns.
 
 #[cfg(test)]
 mod assembly_tests;
