@@ -397,8 +397,10 @@ pub(super) fn apply(
             None => whole(i, &cuts)?,
         };
         if pieces.len() > 1 {
+            let dropped: f64 = pieces[1..].iter().map(Polygon::area).sum();
+            let share = 100.0 * dropped / pieces.iter().map(Polygon::area).sum::<f64>();
             warnings.push(format!(
-                "plate {} would fall into {} pieces at its joints; the largest is kept",
+                "plate {} would fall into {} pieces at its joints; the largest is kept ({dropped:.1} mm², {share:.1} % of the plate, dropped)",
                 i + 1,
                 pieces.len()
             ));
