@@ -121,7 +121,7 @@ fn crossing_width(a: &Plate, b: &Plate) -> f64 {
 }
 
 /// Direction from the joint line into the plate, in its plane.
-fn into_plate(plate: &Plate, axis: DVec3, joint: DVec3) -> DVec3 {
+pub(super) fn into_plate(plate: &Plate, axis: DVec3, joint: DVec3) -> DVec3 {
     let d = plate.frame.n.cross(axis).normalize();
     if d.dot(centroid(plate, &plate.polygon) - joint) >= 0.0 {
         d
@@ -361,11 +361,7 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
         let mine: Vec<usize> = (0..regions.len()).filter(|&k| lines_of[k] == Some(id)).collect();
         let range = mine.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |acc, &k| {
             let r: &Region = &regions[k];
-            let (lo, hi) = if r.axis.dot(line.axis) > 0.0 {
-                r.range
-            } else {
-                (-r.range.1, -r.range.0)
-            };
+            let (lo, hi) = junction::flipped_unless(r.range, r.axis.dot(line.axis) > 0.0);
             (acc.0.min(lo), acc.1.max(hi))
         });
         let junction = Junction {

@@ -14,7 +14,7 @@
 use glam::{DVec2, DVec3};
 use platener_geom::Polygon;
 
-use super::connect::{Raw, at, extent};
+use super::connect::{Raw, at, extent, into_plate};
 use crate::assembly::UnionFind;
 use crate::plates::Plate;
 
@@ -75,11 +75,7 @@ pub(super) fn lines(plates: &[Plate], raw: &[Raw], near: f64) -> Vec<Line> {
                 continue;
             }
             // rj's extent measured along ri's axis.
-            let rj_range = if dot > 0.0 {
-                ranges[j]
-            } else {
-                (-ranges[j].1, -ranges[j].0)
-            };
+            let rj_range = flipped_unless(ranges[j], dot > 0.0);
             if rj_range.0 < ranges[i].1 && ranges[i].0 < rj_range.1 {
                 groups_of.join(i, j);
             }
@@ -109,11 +105,7 @@ pub(super) fn lines(plates: &[Plate], raw: &[Raw], near: f64) -> Vec<Line> {
             let axis = raw[members[0]].axis;
             let center = members.iter().map(|&i| centres[i]).sum::<DVec3>() / members.len() as f64;
             let range = members.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |r, &i| {
-                let (lo, hi) = if raw[i].axis.dot(axis) > 0.0 {
-                    ranges[i]
-                } else {
-                    (-ranges[i].1, -ranges[i].0)
-                };
+                let (lo, hi) = flipped_unless(ranges[i], raw[i].axis.dot(axis) > 0.0);
                 (r.0.min(lo), r.1.max(hi))
             });
             Some(Line {
@@ -127,20 +119,20 @@ pub(super) fn lines(plates: &[Plate], raw: &[Raw], near: f64) -> Vec<Line> {
         .collect()
 }
 
-/// Unit direction in `plate`'s plane, across `axis`, from the line at `center` into the plate.
-fn inwards(plate: &Plate, axis: DVec3, center: DVec3) -> DVec3 {
-    let d = plate.frame.n.cross(axis).normalize();
-    let (lo, hi) = plate.polygon.bounds();
-    if d.dot(at(plate, (lo + hi) / 2.0) - center) >= 0.0 {
-        d
-    } else {
-        -d
-    }
+/// The point of `plate`'s middle plane nearest `p`.
+fn on_middle(plate: &Plate, p: DVec3) -> DVec3 {
+    p - plate.frame.n * plate.frame.n.dot(p - at(plate, DVec2::ZERO))
+}
+
+/// An extent `range` measured along an axis, measured along a parallel one instead (`same_way`
+/// when they point the same way).
+pub(super) fn flipped_unless(range: (f64, f64), same_way: bool) -> (f64, f64) {
+    if same_way { range } else { (-range.1, -range.0) }
 }
 
 /// Whether `plate` goes on past the line (it passes through, as at a T) instead of ending there.
 pub(super) fn passes(plate: &Plate, line: &Line) -> bool {
-    let d = inwards(plate, line.axis, line.center);
+    let d = into_plate(plate, line.axis, line.center);
     let behind = plate
         .polygon
         .outer
@@ -170,10 +162,9 @@ fn solve(p: f64, q: f64, lo: f64, hi: f64) -> (f64, f64) {
 /// model: the faces decide.
 pub(super) fn exit(plates: &[Plate], line: &Line, w: usize, cap: f64) -> f64 {
     let pw = &plates[w];
-    let out = -inwards(pw, line.axis, line.center);
+    let out = -into_plate(pw, line.axis, line.center);
     // The line's point on w's middle plane.
-    let mid_w = at(pw, DVec2::ZERO);
-    let x0 = line.center - pw.frame.n * pw.frame.n.dot(line.center - mid_w);
+    let x0 = on_middle(pw, line.center);
     (0..=8)
         .map(|i| {
             let start = x0 + pw.frame.n * (pw.thickness * (i as f64 / 8.0 - 0.5));
@@ -188,7 +179,7 @@ fn inside_from(plates: &[Plate], line: &Line, w: usize, start: DVec3, out: DVec3
     let mut spans: Vec<(f64, f64)> = Vec::new();
     for &p in line.plates.iter().filter(|&&p| p != w) {
         let pp = &plates[p];
-        let (n, d) = (pp.frame.n, inwards(pp, line.axis, line.center));
+        let (n, d) = (pp.frame.n, into_plate(pp, line.axis, line.center));
         let h = pp.thickness / 2.0;
         let layer = solve(n.dot(start - at(pp, DVec2::ZERO)), n.dot(out), -h, h);
         let side = if passes(pp, line) {
@@ -214,9 +205,8 @@ fn inside_from(plates: &[Plate], line: &Line, w: usize, start: DVec3, out: DVec3
 /// The part of `plate`'s plane more than `exit` past the line, over the line's `range` (widened
 /// by `margin` at both ends), as a polygon in the plate's frame: what its reach must not enter.
 pub(super) fn beyond(plate: &Plate, line: &Line, exit: f64, margin: f64) -> Polygon {
-    let out = -inwards(plate, line.axis, line.center);
-    let mid = at(plate, DVec2::ZERO);
-    let x0 = line.center - plate.frame.n * plate.frame.n.dot(line.center - mid);
+    let out = -into_plate(plate, line.axis, line.center);
+    let x0 = on_middle(plate, line.center);
     let base = x0 - line.axis * line.axis.dot(x0);
     let far = exit + 1e3;
     let corner = |s: f64, l: f64| plate.frame.to_2d(base + out * s + line.axis * l);
