@@ -92,6 +92,22 @@ impl Polygon {
         ring_contains(&self.outer, p) && !self.holes.iter().any(|h| ring_contains(h, p))
     }
 
+    /// Distance from `p` to the polygon: 0 inside, else to the nearest point of its boundary.
+    pub fn distance_to(&self, p: DVec2) -> f64 {
+        if self.contains(p) {
+            return 0.0;
+        }
+        std::iter::once(&self.outer)
+            .chain(&self.holes)
+            .flat_map(|ring| (0..ring.len()).map(move |i| (ring[i], ring[(i + 1) % ring.len()])))
+            .map(|(a, b)| {
+                let d = b - a;
+                let s = ((p - a).dot(d) / d.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+                p.distance(a + d * s)
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// Number of vertices over all rings.
     pub fn vertex_count(&self) -> usize {
         self.outer.len() + self.holes.iter().map(Vec::len).sum::<usize>()
