@@ -11,28 +11,13 @@ use super::*;
 use crate::assembly::Inside;
 use crate::samples;
 
-/// Distance from `p` to the segment `a`–`b`.
-fn to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let d = b - a;
-    let s = ((p - a).dot(d) / d.length_squared()).clamp(0.0, 1.0);
-    p.distance(a + d * s)
-}
-
 /// Distance from `p` to the part (a prism): `sqrt(dz² + d2²)`, where `dz` is how far the local
 /// z lies outside `[0, thickness]` and `d2` is 0 inside the outline, else the distance to its
 /// boundary.
 fn distance(part: &Slab, p: DVec3) -> f64 {
     let l = part.frame.to_local(p);
     let dz = (-l.z).max(l.z - part.thickness).max(0.0);
-    let q = DVec2::new(l.x, l.y);
-    let d2 = if part.polygon.contains(q) {
-        0.0
-    } else {
-        std::iter::once(&part.polygon.outer)
-            .chain(&part.polygon.holes)
-            .flat_map(|ring| (0..ring.len()).map(|i| to_segment(q, ring[i], ring[(i + 1) % ring.len()])))
-            .fold(f64::INFINITY, f64::min)
-    };
+    let d2 = part.polygon.distance_to(DVec2::new(l.x, l.y));
     dz.hypot(d2)
 }
 
@@ -375,4 +360,84 @@ fn v_standing_on_a_board_takes_turns_on_the_line() {
             "{walls:?}: the walls' tabs pass through the board"
         );
     }
+}
+
+/// Roofs closer to flat than 150° (155°, 160°, 164°; 3 mm): the layers' crossing grows
+/// without bound towards 180° (17.5 mm at 160°), and a finger that long runs straight on where
+/// the surface bends, sticking out of the model on one face and leaving a wedge empty on the
+/// other. So fingers reach no further than at 150°: the plates grow by no more than they do at
+/// 150°, and in every cross-section less of the model is left empty and less sticks out than at
+/// 150° (measured at 164°: 4.75 and 4.16 mm², against 7.79 and 7.79 at 150° and 14.05 and 14.05
+/// uncapped), and nothing is held twice.
+#[test]
+fn shallow_corners_keep_the_150_degree_finger_length() {
+    let t = 3.0;
+    let measure = |enclosed: f64| {
+        let model = samples::roof(50.0, (180.0 - enclosed) / 2.0, 40.0, t);
+        let plates = plates_with(model.clone(), t);
+        assert_eq!(plates.len(), 2, "{enclosed}°");
+        let joints = compute(&plates, &JointSettings::default()).expect("grid");
+        assert_eq!(joints.connections.len(), 1, "{enclosed}°");
+        let c = &joints.connections[0];
+        assert_eq!(c.kind, ConnectionKind::Corner, "{enclosed}°");
+        assert!((c.angle_deg - enclosed).abs() < 1e-6, "{enclosed}°: {}", c.angle_deg);
+        let grow = (0..2)
+            .flat_map(|i| joints.outlines[i].outer.iter().map(move |v| (i, *v)))
+            .map(|(i, v)| plates[i].polygon.distance_to(v))
+            .fold(0.0, f64::max);
+        let parts = parts(&plates, &joints);
+        let mesh = mesh_of(&model);
+        let inside = Inside::new(&mesh.vertices, &mesh.triangles);
+        let sections: Vec<Section> = (0..c.segments)
+            .map(|k| {
+                let at = (k as f64 + 0.5) * 40.0 / c.segments as f64;
+                section(&inside, &parts, c.line, at, 12.0, 0.05)
+            })
+            .collect();
+        eprintln!("{enclosed}°: grows {grow:.2} mm, {sections:?}");
+        (grow, sections)
+    };
+    let (grow_150, at_150) = measure(150.0);
+    let worst = |s: &[Section], f: fn(&Section) -> f64| s.iter().map(f).fold(0.0, f64::max);
+    for enclosed in [155.0, 160.0, 164.0] {
+        let (grow, sections) = measure(enclosed);
+        assert!(
+            grow < grow_150 + 0.01,
+            "{enclosed}°: grows {grow} mm, at 150° {grow_150}"
+        );
+        for s in &sections {
+            assert!(s.twice < 0.01, "{enclosed}°: {s:?}");
+            assert!(s.outside < worst(&at_150, |s| s.outside) + 0.05, "{enclosed}°: {s:?}");
+            assert!(s.unowned < worst(&at_150, |s| s.unowned) + 0.05, "{enclosed}°: {s:?}");
+        }
+    }
+}
+
+/// A low-poly ball (`samples::sphere`, 40 mm, 12 × 8 facets, 3 mm): neighbouring facets meet
+/// at 22.5° and 30° between their normals, so full fingers reach 5.6–7.5 mm past the joint
+/// and their notches cut the small facets apart. No plate falls apart: shorter fingers are
+/// chosen for every joint of a facet the full ones would cut up. Before, 56 of the 72 plates
+/// fell into pieces.
+///
+/// Facets sharing only a corner may be joined too: extruded 3 mm inwards at these shallow
+/// angles, their slabs touch along 30 mm and more (normals up to 37° apart).
+#[test]
+fn low_poly_ball_keeps_every_facet_whole() {
+    let t = 3.0;
+    let model = samples::sphere(DVec3::ZERO, 40.0, 12, 8);
+    let plates = plates_with(model.clone(), t);
+    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    eprintln!("{} plates, {} connections", plates.len(), joints.connections.len());
+    for w in &joints.warnings {
+        eprintln!("{w}");
+    }
+    assert!(
+        !joints.warnings.iter().any(|w| w.contains("pieces")),
+        "{:?}",
+        joints.warnings
+    );
+    assert!(joints.warnings.iter().any(|w| w.contains("shorter fingers")));
+    // Not asserted yet: the parts interfere heavily here (sampled, 70 000 of 144 000 mm³
+    // shared), because each plate also grows along its other edges into its joints with
+    // corner neighbours (docs/decisions.md, joints: "Low-poly models").
 }

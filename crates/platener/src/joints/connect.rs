@@ -2,12 +2,13 @@
 //! grown plates share.
 
 use glam::{DVec2, DVec3};
-use platener_geom::boolean::{difference, intersection};
+use platener_geom::boolean::{difference, intersection, union_all};
 use platener_geom::offset::offset;
 use platener_geom::polygon::total_area;
 use platener_geom::slab::{Slab, strip_in_box};
 use platener_geom::{GridError, Polygon};
 
+use super::cap;
 use super::junction::{self, Junction};
 use super::{ConnectionKind, JointSettings};
 use crate::plates::Plate;
@@ -92,6 +93,38 @@ pub(super) struct Region {
     pub center: DVec3,
     /// The line it shares with other plates' connections, if three or more plates meet on it.
     pub junction: Option<Junction>,
+    /// Shorter fingers for the same joint (a corner at a shallow or sharp angle), for when the
+    /// full ones would cut a plate apart.
+    pub short: Option<Box<Reach>>,
+}
+
+/// How far a joint region reaches into each plate: the region in each plate's plane and
+/// what each plate grows by.
+#[derive(Debug, Clone)]
+pub(super) struct Reach {
+    /// The region in a's plane.
+    pub in_a: Polygon,
+    /// The region in b's plane.
+    pub in_b: Polygon,
+    /// What a grows by (see [`Region::reach_a`]).
+    pub reach_a: Vec<Polygon>,
+    /// What b grows by.
+    pub reach_b: Vec<Polygon>,
+}
+
+impl Region {
+    /// The joint with its shorter fingers, if it has them.
+    pub fn shortened(&self) -> Option<Region> {
+        let s = self.short.as_deref()?;
+        Some(Region {
+            in_a: s.in_a.clone(),
+            in_b: s.in_b.clone(),
+            reach_a: s.reach_a.clone(),
+            reach_b: s.reach_b.clone(),
+            short: None,
+            ..self.clone()
+        })
+    }
 }
 
 /// Where a 2D point of a plate's plane is in the model, at mid-thickness.
@@ -175,10 +208,34 @@ fn extension(
     Ok(out)
 }
 
+/// `polygons` in `plate`'s frame, as slabs of its thickness.
+fn slabs(plate: &Plate, polygons: Vec<Polygon>) -> Vec<Slab> {
+    polygons
+        .into_iter()
+        .map(|polygon| Slab {
+            frame: plate.frame,
+            polygon,
+            thickness: plate.thickness,
+        })
+        .collect()
+}
+
+/// The columns of `a` whose volume meets `b`'s: each plate's slabs as given.
+fn meeting(a: &[Slab], b: &[Slab]) -> Result<Vec<Polygon>, GridError> {
+    let mut out = Vec::new();
+    for sa in a {
+        for sb in b {
+            out.extend(sa.columns_meeting(sb, 1e-3)?);
+        }
+    }
+    Ok(out)
+}
+
 /// The stretches where plates `a` and `b`, each grown across the other's slab (minus `keep_out`
 /// in its own plane), share volume: the columns of each that meet the other.
 fn shared(
     plates: &[Plate],
+    near: &[Vec<Polygon>],
     a: usize,
     b: usize,
     keep_out_a: &[Polygon],
@@ -190,28 +247,19 @@ fn shared(
         if !keep_out.is_empty() {
             g = difference(&g, keep_out)?;
         }
-        Ok(g.into_iter()
-            .map(|polygon| Slab {
-                frame: p.frame,
-                polygon,
-                thickness: p.thickness,
-            })
-            .collect())
+        Ok(slabs(p, g))
     };
     let (ga, gb) = (
         grown(pa, crossing_width(pa, pb), keep_out_a)?,
         grown(pb, crossing_width(pb, pa), keep_out_b)?,
     );
-    let clearance = 1e-3;
-    let mut in_a = Vec::new();
-    let mut in_b = Vec::new();
-    for sa in &ga {
-        for sb in &gb {
-            in_a.extend(sa.columns_meeting(sb, clearance)?);
-            in_b.extend(sb.columns_meeting(sa, clearance)?);
-        }
-    }
+    let mut in_a = meeting(&ga, &gb)?;
+    let mut in_b = meeting(&gb, &ga)?;
+    // Where the plates themselves (grown a little) meet: only there is it a joint (the "real
+    // segment"); grown plates also share volume where they merely pass each other's corners.
+    let contact = meeting(&slabs(pa, near[a].clone()), &slabs(pb, near[b].clone()))?;
     let min_area = (pa.thickness.min(pb.thickness) / 2.0).powi(2);
+    let min_length = pa.thickness.max(pb.thickness) / 2.0;
     in_a.retain(|p| p.area() > min_area);
     in_b.retain(|p| p.area() > min_area);
     let axis = pa.frame.n.cross(pb.frame.n).normalize();
@@ -220,19 +268,38 @@ fn shared(
     let mut out = Vec::new();
     for ra in &in_a {
         let range_a = extent(pa, ra, axis);
-        if let Some(rb) = in_b.iter().find(|rb| {
+        let Some(rb) = in_b.iter().find(|rb| {
             let r = extent(pb, rb, axis);
             r.0 < range_a.1 && range_a.0 < r.1
-        }) {
-            out.push(Raw {
-                a,
-                b,
-                in_a: ra.clone(),
-                in_b: rb.clone(),
-                axis,
-                line: None,
-            });
+        }) else {
+            continue;
+        };
+        let touching = intersection(&contact, std::slice::from_ref(ra))?;
+        let real = touching.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |acc, p| {
+            let e = extent(pa, p, axis);
+            (acc.0.min(e.0), acc.1.max(e.1))
+        });
+        if real.1 - real.0 < min_length {
+            continue;
         }
+        // A plate ending a thickness short of a corner still joins there (the third plate's
+        // joint takes it on), so the stretch keeps a thickness on either side.
+        let t = pa.thickness.max(pb.thickness);
+        let (s0, s1) = (real.0 - t, real.1 + t);
+        let (Some(ra), Some(rb)) = (
+            largest(band(pa, ra, axis, s0, s1)?),
+            largest(band(pb, rb, axis, s0, s1)?),
+        ) else {
+            continue;
+        };
+        out.push(Raw {
+            a,
+            b,
+            in_a: ra,
+            in_b: rb,
+            axis,
+            line: None,
+        });
     }
     Ok(out)
 }
@@ -258,19 +325,62 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
         }
     }
     pairs.sort_unstable();
+    // Each plate's outline grown by a quarter of the thinnest sheet: whatever lies within
+    // reaches a joint region (plates end at the region's edge or inside it; trimming leaves
+    // them a grid step off).
+    let t_min = plates.iter().map(|p| p.thickness).fold(f64::INFINITY, f64::min);
+    let grow = |polys: &[Polygon]| offset(polys, t_min / 4.0);
+    let mut near: Vec<Vec<Polygon>> = plates
+        .iter()
+        .map(|p| grow(std::slice::from_ref(&p.polygon)))
+        .collect::<Result<_, _>>()?;
     let mut raw = Vec::new();
-    let min_length = t_max / 2.0;
+    let mut unreached = Vec::new();
     for (a, b) in pairs {
         let (pa, pb) = (&plates[a], &plates[b]);
         if pa.frame.n.cross(pb.frame.n).length() < sin_min {
             continue;
         }
-        raw.extend(shared(plates, a, b, &[], &[])?);
+        let found = shared(plates, &near, a, b, &[], &[])?;
+        if found.is_empty() {
+            unreached.push((a, b));
+        }
+        raw.extend(found);
     }
+    // A plate may reach a joint only through its joints with others: a wall ending against
+    // one side of a V still meets the board the V stands on, on the same line.
+    let mut via: Vec<Vec<Polygon>> = plates.iter().map(|p| vec![p.polygon.clone()]).collect();
+    for r in &raw {
+        via[r.a].push(r.in_a.clone());
+        via[r.b].push(r.in_b.clone());
+    }
+    let strict = raw.len();
+    let mut regrown = vec![false; plates.len()];
+    for &(a, b) in &unreached {
+        for p in [a, b] {
+            if !regrown[p] && via[p].len() > 1 {
+                near[p] = grow(&union_all(&via[p])?)?;
+                regrown[p] = true;
+            }
+        }
+        if regrown[a] || regrown[b] {
+            raw.extend(shared(plates, &near, a, b, &[], &[])?);
+        }
+    }
+    let min_length = t_max / 2.0;
     // Three or more plates on one line: each reaches past the line only as far as the model
     // goes, and their connections take turns in one row of fingers.
-    let t_min = plates.iter().map(|p| p.thickness).fold(f64::INFINITY, f64::min);
-    let lines = junction::lines(plates, &raw, t_min / 2.0);
+    let mut lines = junction::lines(plates, &raw, t_min / 2.0);
+    // …and only on such a line.
+    if raw.len() > strict {
+        let on_line: std::collections::BTreeSet<usize> = lines.iter().flat_map(|l| l.members.iter().copied()).collect();
+        let mut k = 0;
+        raw.retain(|_| {
+            k += 1;
+            k <= strict || on_line.contains(&(k - 1))
+        });
+        lines = junction::lines(plates, &raw, t_min / 2.0);
+    }
     let mut redone = Vec::new();
     for (id, line) in lines.iter().enumerate() {
         // A plate passing through the line keeps its own outline on both sides.
@@ -285,7 +395,7 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
         pairs.sort_unstable();
         pairs.dedup();
         for (a, b) in pairs {
-            redone.push((a, b, shared(plates, a, b, &beyond(a), &beyond(b))?, id));
+            redone.push((a, b, shared(plates, &near, a, b, &beyond(a), &beyond(b))?, id));
         }
     }
     raw.retain(|r| !redone.iter().any(|(a, b, _, _)| (*a, *b) == (r.a, r.b)));
@@ -328,6 +438,17 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
             (false, true) => (ConnectionKind::Tee, Some(r.b)),
             (true, true) => (ConnectionKind::Cross, None),
         };
+        // Towards 180° (and 0°) the layers' crossing is long: fingers reach only as far past
+        // the middle line as at 150°, and a shorter variant stands by for plates the full
+        // one would cut apart.
+        let (ra, rb, short) = if kind == ConnectionKind::Corner {
+            let near = centroid(pa, &ra);
+            let (ra, rb) = cap::capped(pa, pb, r.axis, near, (&ra, &rb), cap::CAP_DEG)?.unwrap_or((ra, rb));
+            let short = cap::capped(pa, pb, r.axis, near, (&ra, &rb), cap::SHORT_DEG)?;
+            (ra, rb, short)
+        } else {
+            (ra, rb, None)
+        };
         let center = centroid(pa, &ra);
         let angle_deg = match kind {
             ConnectionKind::Corner => {
@@ -337,15 +458,29 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
             // The plate ending against a face makes two angles with it; the smaller is named.
             _ => pa.frame.n.dot(pb.frame.n).abs().clamp(0.0, 1.0).acos().to_degrees(),
         };
-        let reach_a = extension(pa, &ra, r.axis, range, crossing_width(pa, pb))?;
-        let reach_b = extension(pb, &rb, r.axis, range, crossing_width(pb, pa))?;
+        let reach = |sa: Polygon, sb: Polygon| -> Result<Reach, GridError> {
+            Ok(Reach {
+                reach_a: extension(pa, &sa, r.axis, range, crossing_width(pa, pb))?,
+                reach_b: extension(pb, &sb, r.axis, range, crossing_width(pb, pa))?,
+                in_a: sa,
+                in_b: sb,
+            })
+        };
+        let short = short.map(|(sa, sb)| reach(sa, sb)).transpose()?;
+        let Reach {
+            in_a,
+            in_b,
+            reach_a,
+            reach_b,
+        } = reach(ra, rb)?;
         regions.push(Region {
             a: r.a,
             b: r.b,
-            in_a: ra,
-            in_b: rb,
+            in_a,
+            in_b,
             reach_a,
             reach_b,
+            short: short.map(Box::new),
             kind,
             through,
             angle_deg,

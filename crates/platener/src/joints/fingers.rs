@@ -110,6 +110,9 @@ fn joined(pieces: &[Polygon]) -> Result<Vec<Polygon>, GridError> {
 struct Plan {
     /// Fingers of both plates (2 for a halved joint).
     segments: usize,
+    /// The joint's shorter fingers ([`Region::short`]), because the full ones would cut a
+    /// plate apart.
+    short: bool,
     /// When fingers would cut a plate apart: that plate keeps the whole joint region and the
     /// other butts against it.
     keeper: Option<usize>,
@@ -174,7 +177,11 @@ fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: Joi
         if segments < j.plates.len() && len / j.plates.len() as f64 >= narrowest {
             segments = j.plates.len();
         }
-        return Plan { segments, keeper: None };
+        return Plan {
+            segments,
+            short: false,
+            keeper: None,
+        };
     }
     let t = plates[r.a].thickness.max(plates[r.b].thickness);
     let narrowest = match style {
@@ -185,7 +192,11 @@ fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: Joi
         ConnectionKind::Cross => 2,
         _ => segment_count(r.range.1 - r.range.0, settings.finger_factor * t, narrowest),
     };
-    Plan { segments, keeper: None }
+    Plan {
+        segments,
+        short: false,
+        keeper: None,
+    }
 }
 
 /// The fingers, tabs and slots of one connection under `plan`.
@@ -301,6 +312,13 @@ fn finish(
     Ok(kept)
 }
 
+/// What a plate in `pieces` (largest first) loses: how many pieces fall off, and their area
+/// (compared in that order, areas to a hundredth of a mm²).
+fn loss(pieces: &[Polygon]) -> (usize, i64) {
+    let dropped: f64 = pieces.iter().skip(1).map(Polygon::area).sum();
+    (pieces.len().saturating_sub(1), (dropped * 100.0).round() as i64)
+}
+
 /// Everything its connections (`touching`: connection, side) take from and add to a plate.
 fn gathered(cuts: &[Cut], touching: &[(usize, usize)]) -> (Vec<Polygon>, Vec<Polygon>) {
     let (mut remove, mut add) = (Vec::new(), Vec::new());
@@ -311,26 +329,51 @@ fn gathered(cuts: &[Cut], touching: &[(usize, usize)]) -> (Vec<Polygon>, Vec<Pol
     (remove, add)
 }
 
+/// The joint `r` as `plan` cuts it: with its shorter fingers if the plan says so.
+fn variant(r: &Region, plan: Plan) -> Region {
+    match (plan.short, r.shortened()) {
+        (true, Some(short)) => short,
+        _ => r.clone(),
+    }
+}
+
+/// A plate's outline grown into its joint regions (`touching`: connection, side), each as
+/// its current variant in `used`.
+fn outline(plate: &Plate, used: &[Region], touching: &[(usize, usize)]) -> Result<Vec<Polygon>, GridError> {
+    let mut grown = vec![plate.polygon.clone()];
+    for &(k, side) in touching {
+        grown.extend(
+            if side == 0 { &used[k].reach_a } else { &used[k].reach_b }
+                .iter()
+                .cloned(),
+        );
+    }
+    joined(&grown)
+}
+
 pub(super) fn apply(
     plates: &[Plate],
     regions: Vec<Region>,
     settings: &JointSettings,
     style: JointStyle,
 ) -> Result<Joints, GridError> {
-    // Every plate grows into its joint regions first…
-    let mut grown: Vec<Vec<Polygon>> = plates.iter().map(|p| vec![p.polygon.clone()]).collect();
     // Per plate: its connections and its side (0 = a, 1 = b) in each.
     let mut touching: Vec<Vec<(usize, usize)>> = vec![Vec::new(); plates.len()];
     for (k, r) in regions.iter().enumerate() {
-        grown[r.a].extend(r.reach_a.iter().cloned());
-        grown[r.b].extend(r.reach_b.iter().cloned());
         touching[r.a].push((k, 0));
         touching[r.b].push((k, 1));
     }
-    let outlines: Vec<Vec<Polygon>> = grown.iter().map(|g| joined(g)).collect::<Result<_, _>>()?;
+    // Every plate grows into its joint regions first (each joint as its current variant)…
+    let mut used: Vec<Region> = regions.clone();
+    let mut outlines: Vec<Vec<Polygon>> = plates
+        .iter()
+        .zip(&touching)
+        .map(|(p, mine)| outline(p, &used, mine))
+        .collect::<Result<_, _>>()?;
     let feature = |i: usize| min_feature(plates[i].thickness);
     // …then gives up the segments its partners own. Where that would cut a plate apart, the
-    // joint adapts: fewer, wider fingers, else the plate keeps the whole joint region.
+    // joint adapts: shorter fingers, then fewer, wider ones, else the plate keeps the whole
+    // joint region.
     let mut plans: Vec<Plan> = regions.iter().map(|r| first_plan(plates, r, settings, style)).collect();
     let mut cuts: Vec<Cut> = regions
         .iter()
@@ -338,14 +381,54 @@ pub(super) fn apply(
         .map(|(r, &plan)| cut(plates, r, plan, style))
         .collect::<Result<_, _>>()?;
     let mut adapted_for: Vec<Option<usize>> = vec![None; regions.len()];
-    let whole = |i: usize, cuts: &[Cut]| -> Result<Vec<Polygon>, GridError> {
+    let whole = |i: usize, cuts: &[Cut], outlines: &[Vec<Polygon>]| -> Result<Vec<Polygon>, GridError> {
         let (remove, add) = gathered(cuts, &touching[i]);
         finish(&plates[i], &outlines[i], &remove, &add, feature(i))
     };
-    // Each plate's pieces, kept until a later adaptation changes one of its connections.
+    // Each plate's pieces, kept until an adaptation changes one of its connections.
     let mut finished: Vec<Option<Vec<Polygon>>> = vec![None; plates.len()];
+    // First shorter fingers on every joint of a plate the full ones cut apart, all at once: on
+    // a low-poly model a facet falls apart under several neighbours' fingers together, and
+    // no one joint mends it alone. Shorter fingers can split a neighbour in turn, so again.
+    for _ in 0..3 {
+        let mut shortened = Vec::new();
+        for (i, mine) in touching.iter().enumerate() {
+            let pieces = match finished[i].take() {
+                Some(pieces) => pieces,
+                None => whole(i, &cuts, &outlines)?,
+            };
+            if pieces.len() > 1 {
+                for &(k, _) in mine {
+                    if regions[k].short.is_some() && !plans[k].short && !shortened.iter().any(|&(q, _)| q == k) {
+                        shortened.push((k, i));
+                    }
+                }
+            }
+            finished[i] = Some(pieces);
+        }
+        if shortened.is_empty() {
+            break;
+        }
+        for &(k, i) in &shortened {
+            plans[k].short = true;
+            used[k] = variant(&regions[k], plans[k]);
+            cuts[k] = cut(plates, &used[k], plans[k], style)?;
+            adapted_for[k] = Some(i);
+            for p in [regions[k].a, regions[k].b] {
+                finished[p] = None;
+            }
+        }
+        for (p, done) in finished.iter().enumerate() {
+            if done.is_none() {
+                outlines[p] = outline(&plates[p], &used, &touching[p])?;
+            }
+        }
+    }
     for (i, mine) in touching.iter().enumerate() {
-        let mut pieces = whole(i, &cuts)?;
+        let mut pieces = match finished[i].take() {
+            Some(pieces) => pieces,
+            None => whole(i, &cuts, &outlines)?,
+        };
         // Each connection that cuts this plate, in order, until it holds together.
         for &(k, side) in mine {
             if pieces.len() <= 1 {
@@ -355,46 +438,67 @@ pub(super) fn apply(
                 continue;
             }
             let r = &regions[k];
-            let fewer = Plan {
-                segments: 3,
-                ..plans[k]
-            };
-            let keep = Plan {
-                keeper: Some(i),
-                ..plans[k]
-            };
+            let other = if i == r.a { r.b } else { r.a };
+            let other_loss = loss(&whole(other, &cuts, &outlines)?);
             // A junction's row of fingers is shared by its connections: it cannot widen for one.
             let wider = plans[k].segments > 3 && r.kind != ConnectionKind::Cross && r.junction.is_none();
-            let other = if i == r.a { r.b } else { r.a };
-            let other_pieces = whole(other, &cuts)?.len();
-            for plan in [wider.then_some(fewer), Some(keep)].into_iter().flatten() {
+            let shorter = (r.short.is_some() && !plans[k].short).then_some(Plan {
+                short: true,
+                ..plans[k]
+            });
+            let fewer = wider.then_some(Plan {
+                segments: 3,
+                ..plans[k]
+            });
+            let keep = Some(Plan {
+                keeper: Some(i),
+                ..plans[k]
+            });
+            for tried in [shorter, fewer, keep] {
+                let Some(mut plan) = tried else { continue };
                 if pieces.len() <= 1 {
                     break;
                 }
-                let before = std::mem::replace(&mut cuts[k], cut(plates, r, plan, style)?);
-                let p = whole(i, &cuts)?;
+                // Wider fingers and keeping the region build on shorter fingers taken before.
+                plan.short |= plans[k].short;
+                let before = (
+                    used[k].clone(),
+                    cuts[k].clone(),
+                    outlines[r.a].clone(),
+                    outlines[r.b].clone(),
+                );
+                used[k] = variant(r, plan);
+                cuts[k] = cut(plates, &used[k], plan, style)?;
+                if plan.short != plans[k].short {
+                    outlines[r.a] = outline(&plates[r.a], &used, &touching[r.a])?;
+                    outlines[r.b] = outline(&plates[r.b], &used, &touching[r.b])?;
+                }
+                let p = whole(i, &cuts, &outlines)?;
                 // Better for this plate, and not worse for its partner.
-                if p.len() < pieces.len() && whole(other, &cuts)?.len() <= other_pieces {
+                if loss(&p) < loss(&pieces) && loss(&whole(other, &cuts, &outlines)?) <= other_loss {
                     plans[k] = plan;
                     pieces = p;
                     adapted_for[k] = Some(i);
                     finished[other] = None;
                 } else {
-                    cuts[k] = before;
+                    (used[k], cuts[k], outlines[r.a], outlines[r.b]) = before;
                 }
             }
         }
         finished[i] = Some(pieces);
     }
     let mut warnings: Vec<String> = (0..regions.len())
-        .filter_map(|k| adapted_for[k].map(|i| adapted(k, &regions[k], plans[k], i)))
+        .filter_map(|k| {
+            let widened = plans[k].segments != first_plan(plates, &regions[k], settings, style).segments;
+            adapted_for[k].map(|i| adapted(k, &regions[k], plans[k], widened, i))
+        })
         .collect();
     let mut outlines_final = Vec::with_capacity(plates.len());
     for (i, done) in finished.into_iter().enumerate() {
         // A plate whose partner adapted after it was finished is finished again.
         let pieces = match done {
             Some(pieces) => pieces,
-            None => whole(i, &cuts)?,
+            None => whole(i, &cuts, &outlines)?,
         };
         if pieces.len() > 1 {
             let dropped: f64 = pieces[1..].iter().map(Polygon::area).sum();
@@ -409,7 +513,7 @@ pub(super) fn apply(
     }
     let mut connections = Vec::with_capacity(regions.len());
     let mut edges: Vec<Vec<(u32, [DVec2; 2])>> = vec![Vec::new(); plates.len()];
-    for (k, (r, plan)) in regions.iter().zip(&plans).enumerate() {
+    for (k, (r, plan)) in used.iter().zip(&plans).enumerate() {
         let label = k as u32 + 1;
         edges[r.a].push((label, edge_of(&plates[r.a], &r.in_a, r.axis)));
         edges[r.b].push((label, edge_of(&plates[r.b], &r.in_b, r.axis)));
@@ -430,7 +534,7 @@ pub(super) fn apply(
             label,
         });
     }
-    let keys = regions
+    let keys = used
         .iter()
         .zip(&cuts)
         .enumerate()
@@ -455,14 +559,18 @@ pub(super) fn apply(
 }
 
 /// The warning for a connection whose joint adapted so that plate `i` stays whole.
-fn adapted(k: usize, r: &Region, plan: Plan, i: usize) -> String {
+fn adapted(k: usize, r: &Region, plan: Plan, widened: bool, i: usize) -> String {
     let (n, plate) = (k + 1, i + 1);
     let other = if i == r.a { r.b } else { r.a } + 1;
     match (plan.keeper, r.kind) {
-        (None, _) => format!(
-            "connection {n}: {} wider fingers so that plate {plate} holds together",
-            plan.segments
-        ),
+        (None, _) => {
+            let how = match (plan.short, widened) {
+                (true, true) => format!("{} shorter and wider fingers", plan.segments),
+                (true, false) => "shorter fingers".to_string(),
+                _ => format!("{} wider fingers", plan.segments),
+            };
+            format!("connection {n}: {how} so that plate {plate} holds together")
+        }
         (Some(_), ConnectionKind::Tee) if r.through != Some(i) => {
             format!("connection {n}: tabs would cut plate {plate} apart; it gets one long tab through plate {other}")
         }

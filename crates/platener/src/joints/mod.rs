@@ -18,6 +18,7 @@
 
 #[cfg(test)]
 mod assembly_tests;
+mod cap;
 mod connect;
 mod fingers;
 mod junction;

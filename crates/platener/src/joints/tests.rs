@@ -226,8 +226,10 @@ mod properties {
 
         /// Below about 50° the outer faces' ridge remnant is wider than twice the thickness and
         /// becomes an extruded plate of its own (a known limit of plate finding, not of joints).
+        /// Above 150° fingers are capped and no longer fill the mitre exactly
+        /// (`assembly_tests::shallow_corners_keep_the_150_degree_finger_length`).
         #[test]
-        fn random_angles_rebuild_exactly(enclosed in 30.0f64..160.0, run in 30.0f64..80.0) {
+        fn random_angles_rebuild_exactly(enclosed in 30.0f64..150.0, run in 30.0f64..80.0) {
             let model = samples::roof(run, (180.0 - enclosed) / 2.0, 60.0, 3.0);
             let plates = plates_of(model.clone());
             prop_assert_eq!(plates.len(), 2);
