@@ -325,11 +325,12 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
         }
     }
     pairs.sort_unstable();
-    // Each plate's outline grown by a quarter of the thinnest sheet: whatever lies within
-    // reaches a joint region (plates end at the region's edge or inside it; trimming leaves
-    // them a grid step off).
+    // Each plate's outline grown by the thinnest sheet's thickness: whatever lies within
+    // reaches a joint region (plates end at the region's edge or inside it, and plate finding
+    // trims a plate back by up to about a thickness where it overlapped another; a quarter
+    // of it lost two of the four joints of plycutter's PlyTest).
     let t_min = plates.iter().map(|p| p.thickness).fold(f64::INFINITY, f64::min);
-    let grow = |polys: &[Polygon]| offset(polys, t_min / 4.0);
+    let grow = |polys: &[Polygon]| offset(polys, t_min);
     let mut near: Vec<Vec<Polygon>> = plates
         .iter()
         .map(|p| grow(std::slice::from_ref(&p.polygon)))
