@@ -49,7 +49,7 @@ fn crossing(a: &Plate, b: &Plate) -> [DVec3; 4] {
 }
 
 /// The point on both plates' middle planes closest to `near`.
-fn middle_line(a: &Plate, b: &Plate, near: DVec3) -> DVec3 {
+pub(super) fn middle_line(a: &Plate, b: &Plate, near: DVec3) -> DVec3 {
     let (na, nb) = (a.frame.n, b.frame.n);
     let c = na.dot(nb);
     let h1 = na.dot(a.frame.origin) + a.thickness / 2.0;

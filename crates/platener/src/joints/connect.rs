@@ -8,9 +8,9 @@ use platener_geom::polygon::total_area;
 use platener_geom::slab::{Slab, strip_in_box};
 use platener_geom::{GridError, Polygon};
 
-use super::cap;
 use super::junction::{self, Junction};
 use super::{ConnectionKind, JointSettings};
+use super::{along, cap};
 use crate::plates::Plate;
 
 /// A shared volume of two grown plates, before it is trimmed along the joint line.
@@ -22,6 +22,11 @@ pub(super) struct Raw {
     pub axis: DVec3,
     /// The junction line (three or more plates) it runs along, if any.
     pub line: Option<usize>,
+    /// Where both plates run along the line (positions along `axis`); `in_a` and `in_b` span
+    /// it, or more where a corner is closed ([`close_corners`]).
+    pub real: (f64, f64),
+    /// `in_a` and `in_b` before they were cut to `real`.
+    pub whole: (Polygon, Polygon),
 }
 
 /// How far plate `p` reaches along `axis` at its joint with `other`: its own outline, and the
@@ -146,11 +151,18 @@ fn centroid(plate: &Plate, poly: &Polygon) -> DVec3 {
     at(plate, (lo + hi) / 2.0)
 }
 
-/// How far plate `a` must grow to cross plate `b`'s slab: the slab's width seen in a's plane.
-fn crossing_width(a: &Plate, b: &Plate) -> f64 {
+/// How far plate `a` must grow to cross plate `b`'s slab: the slab's width seen in a's plane,
+/// as wide at most as where the normals are [`cap::CAP_DEG`] apart (no finger reaches
+/// further: towards parallel plates the crossing grows without bound).
+pub(super) fn crossing_width(a: &Plate, b: &Plate) -> f64 {
+    let (sin_cap, cos_cap) = cap::CAP_DEG.to_radians().sin_cos();
     let c = a.frame.n.dot(b.frame.n).abs();
     let s = a.frame.n.cross(b.frame.n).length();
-    (b.thickness + a.thickness * c) / s
+    if s < sin_cap {
+        (b.thickness + a.thickness * cos_cap) / sin_cap
+    } else {
+        (b.thickness + a.thickness * c) / s
+    }
 }
 
 /// Direction from the joint line into the plate, in its plane.
@@ -231,11 +243,18 @@ fn meeting(a: &[Slab], b: &[Slab]) -> Result<Vec<Polygon>, GridError> {
     Ok(out)
 }
 
+/// A plate as far as it reaches a joint: its outline (on a second pass with its joints to
+/// other plates), and that grown by the thinnest sheet's thickness.
+struct Reaching {
+    shape: Vec<Polygon>,
+    near: Vec<Polygon>,
+}
+
 /// The stretches where plates `a` and `b`, each grown across the other's slab (minus `keep_out`
 /// in its own plane), share volume: the columns of each that meet the other.
 fn shared(
     plates: &[Plate],
-    near: &[Vec<Polygon>],
+    reaching: &[Reaching],
     a: usize,
     b: usize,
     keep_out_a: &[Polygon],
@@ -255,14 +274,24 @@ fn shared(
     );
     let mut in_a = meeting(&ga, &gb)?;
     let mut in_b = meeting(&gb, &ga)?;
+
     // Where the plates themselves (grown a little) meet: only there is it a joint (the "real
     // segment"); grown plates also share volume where they merely pass each other's corners.
-    let contact = meeting(&slabs(pa, near[a].clone()), &slabs(pb, near[b].clone()))?;
+    let contact = meeting(
+        &slabs(pa, reaching[a].near.clone()),
+        &slabs(pb, reaching[b].near.clone()),
+    )?;
     let min_area = (pa.thickness.min(pb.thickness) / 2.0).powi(2);
     let min_length = pa.thickness.max(pb.thickness) / 2.0;
     in_a.retain(|p| p.area() > min_area);
     in_b.retain(|p| p.area() > min_area);
     let axis = pa.frame.n.cross(pb.frame.n).normalize();
+    let near = centroid(pa, &pa.polygon);
+    let slack = pa.thickness.min(pb.thickness);
+    let both = along::common(
+        &along::stretches(pa, &reaching[a].shape, pb, axis, near, slack)?,
+        &along::stretches(pb, &reaching[b].shape, pa, axis, near, slack)?,
+    );
     // Disjoint stretches are separate connections: pair the pieces by their extent along the
     // joint line.
     let mut out = Vec::new();
@@ -275,40 +304,104 @@ fn shared(
             continue;
         };
         let touching = intersection(&contact, std::slice::from_ref(ra))?;
-        let real = touching.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |acc, p| {
+        let grown = touching.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |acc, p| {
             let e = extent(pa, p, axis);
             (acc.0.min(e.0), acc.1.max(e.1))
         });
-        if real.1 - real.0 < min_length {
+        // Only where both plates run along the line (not where they merely touch at a vertex).
+        let Some(real) = along::hull_within(&both, grown).filter(|r| r.1 - r.0 >= min_length) else {
             continue;
-        }
-        // A plate ending a thickness short of a corner still joins there (the third plate's
-        // joint takes it on), so the stretch keeps a thickness on either side.
-        let t = pa.thickness.max(pb.thickness);
-        let (s0, s1) = (real.0 - t, real.1 + t);
-        let (Some(ra), Some(rb)) = (
-            largest(band(pa, ra, axis, s0, s1)?),
-            largest(band(pb, rb, axis, s0, s1)?),
+        };
+        let (Some(in_a), Some(in_b)) = (
+            largest(band(pa, ra, axis, real.0, real.1)?),
+            largest(band(pb, rb, axis, real.0, real.1)?),
         ) else {
             continue;
         };
         out.push(Raw {
             a,
             b,
-            in_a: ra,
-            in_b: rb,
+            in_a,
+            in_b,
             axis,
             line: None,
+            real,
+            whole: (ra.clone(), rb.clone()),
         });
     }
     Ok(out)
+}
+
+/// The joints of `a` and of `b` with the same third plate across the end of their line (a box
+/// corner: plate finding leaves the corner's cube to one of the three, or to none).
+fn corner_plates<'r>(raw: &'r [Raw], r: &Raw) -> Vec<(&'r Raw, &'r Raw)> {
+    let other = |x: &Raw, p: usize| {
+        if x.a == p {
+            Some(x.b)
+        } else if x.b == p {
+            Some(x.a)
+        } else {
+            None
+        }
+    };
+    let steep = |x: &Raw| x.axis.dot(r.axis).abs() <= 0.5;
+    let mut out = Vec::new();
+    for x in raw.iter().filter(|x| steep(x)) {
+        let Some(c) = other(x, r.a).filter(|&c| c != r.b) else {
+            continue;
+        };
+        for y in raw.iter().filter(|y| steep(y) && other(y, r.b) == Some(c)) {
+            out.push((x, y));
+        }
+    }
+    out
+}
+
+/// Each joint runs on past where both plates are over a corner that a third plate closes
+/// with both, so that the fingers of the three joints decide who owns the corner's cube.
+/// Elsewhere a joint ends where one of its plates does: on a low-poly ball four facets meet
+/// at a vertex and only neighbours along an edge are joined, so a joint running on would
+/// reach into a facet it has no joint with.
+fn close_corners(plates: &[Plate], raw: &mut [Raw]) -> Result<(), GridError> {
+    let in_plate = |x: &Raw, p: usize| if x.a == p { x.in_a.clone() } else { x.in_b.clone() };
+    let mut ends = Vec::with_capacity(raw.len());
+    for r in raw.iter() {
+        let t = plates[r.a].thickness.max(plates[r.b].thickness);
+        let (mut s0, mut s1) = r.real;
+        for (x, y) in corner_plates(raw, r) {
+            let ea = extent(&plates[r.a], &in_plate(x, r.a), r.axis);
+            let eb = extent(&plates[r.b], &in_plate(y, r.b), r.axis);
+            let e = (ea.0.min(eb.0), ea.1.max(eb.1));
+            if e.0 <= r.real.0 + t && e.1 >= r.real.0 - t {
+                s0 = s0.min(e.0);
+            }
+            if e.0 <= r.real.1 + t && e.1 >= r.real.1 - t {
+                s1 = s1.max(e.1);
+            }
+        }
+        ends.push((s0, s1));
+    }
+    for (r, (s0, s1)) in raw.iter_mut().zip(ends) {
+        if (s0, s1) == r.real {
+            continue;
+        }
+        let (pa, pb) = (&plates[r.a], &plates[r.b]);
+        if let (Some(a), Some(b)) = (
+            largest(band(pa, &r.whole.0, r.axis, s0, s1)?),
+            largest(band(pb, &r.whole.1, r.axis, s0, s1)?),
+        ) {
+            (r.in_a, r.in_b) = (a, b);
+        }
+    }
+    Ok(())
 }
 
 /// Every joint region between the plates.
 pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Region>, GridError> {
     let sin_min = settings.min_angle_deg.to_radians().sin();
     let t_max = plates.iter().map(|p| p.thickness).fold(0.0, f64::max);
-    let reach = 2.0 * t_max / sin_min;
+    // The furthest a plate grows towards a joint (the crossing of two layers, capped).
+    let reach = 2.0 * t_max / cap::CAP_DEG.to_radians().sin();
     let bounds: Vec<(DVec3, DVec3)> = plates.iter().map(Plate::bounds).collect();
     // Sweep along x: only plates whose grown boxes overlap in x are compared.
     let mut order: Vec<usize> = (0..plates.len()).collect();
@@ -330,10 +423,15 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
     // trims a plate back by up to about a thickness where it overlapped another; a quarter
     // of it lost two of the four joints of plycutter's PlyTest).
     let t_min = plates.iter().map(|p| p.thickness).fold(f64::INFINITY, f64::min);
-    let grow = |polys: &[Polygon]| offset(polys, t_min);
-    let mut near: Vec<Vec<Polygon>> = plates
+    let reaching_as = |shape: Vec<Polygon>| -> Result<Reaching, GridError> {
+        Ok(Reaching {
+            near: offset(&shape, t_min)?,
+            shape,
+        })
+    };
+    let mut reaching: Vec<Reaching> = plates
         .iter()
-        .map(|p| grow(std::slice::from_ref(&p.polygon)))
+        .map(|p| reaching_as(vec![p.polygon.clone()]))
         .collect::<Result<_, _>>()?;
     let mut raw = Vec::new();
     let mut unreached = Vec::new();
@@ -342,7 +440,7 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
         if pa.frame.n.cross(pb.frame.n).length() < sin_min {
             continue;
         }
-        let found = shared(plates, &near, a, b, &[], &[])?;
+        let found = shared(plates, &reaching, a, b, &[], &[])?;
         if found.is_empty() {
             unreached.push((a, b));
         }
@@ -360,12 +458,12 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
     for &(a, b) in &unreached {
         for p in [a, b] {
             if !regrown[p] && via[p].len() > 1 {
-                near[p] = grow(&union_all(&via[p])?)?;
+                reaching[p] = reaching_as(union_all(&via[p])?)?;
                 regrown[p] = true;
             }
         }
         if regrown[a] || regrown[b] {
-            raw.extend(shared(plates, &near, a, b, &[], &[])?);
+            raw.extend(shared(plates, &reaching, a, b, &[], &[])?);
         }
     }
     let min_length = t_max / 2.0;
@@ -396,7 +494,7 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
         pairs.sort_unstable();
         pairs.dedup();
         for (a, b) in pairs {
-            redone.push((a, b, shared(plates, &near, a, b, &beyond(a), &beyond(b))?, id));
+            redone.push((a, b, shared(plates, &reaching, a, b, &beyond(a), &beyond(b))?, id));
         }
     }
     raw.retain(|r| !redone.iter().any(|(a, b, _, _)| (*a, *b) == (r.a, r.b)));
@@ -404,6 +502,7 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
         raw.extend(stretches.into_iter().map(|r| Raw { line: Some(id), ..r }));
     }
     raw.sort_by_key(|r| (r.a, r.b));
+    close_corners(plates, &mut raw)?;
     let mut regions = Vec::with_capacity(raw.len());
     // The junction line of each region.
     let mut lines_of = Vec::with_capacity(raw.len());
@@ -416,7 +515,8 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
             reach_along(plates, &raw, r.a, r.b, r.axis),
             reach_along(plates, &raw, r.b, r.a, r.axis),
         );
-        let range = (la.0.max(lb.0), la.1.min(lb.1));
+        let own = extent(pa, &r.in_a, r.axis);
+        let range = (la.0.max(lb.0).max(own.0), la.1.min(lb.1).min(own.1));
         if range.1 - range.0 < min_length {
             continue;
         }

@@ -89,7 +89,7 @@ fn barb(
 }
 
 /// Gaps narrower than this (mm) between a plate and its joint regions are grid noise.
-const HAIRLINE: f64 = 0.01;
+pub(super) const HAIRLINE: f64 = 0.01;
 
 /// Pieces smaller than this (mm²) are grid noise, not slivers.
 const NOISE_AREA: f64 = 1e-4;
@@ -290,6 +290,9 @@ fn finish(
         pieces.extend(add.iter().cloned());
         pieces = union_all(&pieces)?;
     }
+    // Regions computed through different frames leave hairlines where their edges should
+    // meet (a spike of zero width along a plate's edge beside a notch): gone.
+    pieces = opening(&pieces, HAIRLINE)?;
     let r = 0.499 * min_feature;
     let opened = intersection(&opening(&pieces, r)?, &pieces)?;
     let mut slivers = difference(&pieces, &opened)?;
@@ -301,7 +304,7 @@ fn finish(
         let zone = offset(&changed, 2.0 * r)?;
         pieces = difference(&pieces, &intersection(&slivers, &zone)?)?;
     }
-    pieces.sort_by(|a, b| b.area().total_cmp(&a.area()));
+    pieces = of_plate(plate, pieces)?;
     // Debris: pieces with nothing a laser could cut (the sliver's rim left by the grid).
     let mut kept = Vec::with_capacity(pieces.len());
     for (n, p) in pieces.into_iter().enumerate() {
@@ -310,6 +313,31 @@ fn finish(
         }
     }
     Ok(kept)
+}
+
+/// The pieces of `plate`'s outline that hold some of the plate, largest first. A finger cut
+/// off at a corner by the notch of the other edge lies wholly outside the plate: it is
+/// dropped (the plate itself is whole; its partner's notch stays empty).
+pub(super) fn of_plate(plate: &Plate, mut pieces: Vec<Polygon>) -> Result<Vec<Polygon>, GridError> {
+    if pieces.len() > 1 {
+        let mut kept = Vec::with_capacity(pieces.len());
+        for (n, p) in pieces.into_iter().enumerate() {
+            let inside = total_area(&intersection(
+                std::slice::from_ref(&p),
+                std::slice::from_ref(&plate.polygon),
+            )?);
+            kept.push((inside, n, p));
+        }
+        kept.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        pieces = kept
+            .into_iter()
+            .enumerate()
+            .filter(|(k, (inside, _, _))| *k == 0 || *inside > NOISE_AREA)
+            .map(|(_, (_, _, p))| p)
+            .collect();
+    }
+    pieces.sort_by(|a, b| b.area().total_cmp(&a.area()));
+    Ok(pieces)
 }
 
 /// What a plate in `pieces` (largest first) loses: how many pieces fall off, and their area
@@ -487,13 +515,8 @@ pub(super) fn apply(
         }
         finished[i] = Some(pieces);
     }
-    let mut warnings: Vec<String> = (0..regions.len())
-        .filter_map(|k| {
-            let widened = plans[k].segments != first_plan(plates, &regions[k], settings, style).segments;
-            adapted_for[k].map(|i| adapted(k, &regions[k], plans[k], widened, i))
-        })
-        .collect();
     let mut outlines_final = Vec::with_capacity(plates.len());
+    let mut split = Vec::new();
     for (i, done) in finished.into_iter().enumerate() {
         // A plate whose partner adapted after it was finished is finished again.
         let pieces = match done {
@@ -503,7 +526,7 @@ pub(super) fn apply(
         if pieces.len() > 1 {
             let dropped: f64 = pieces[1..].iter().map(Polygon::area).sum();
             let share = 100.0 * dropped / pieces.iter().map(Polygon::area).sum::<f64>();
-            warnings.push(format!(
+            split.push(format!(
                 "plate {} would fall into {} pieces at its joints; the largest is kept ({dropped:.1} mm², {share:.1} % of the plate, dropped)",
                 i + 1,
                 pieces.len()
@@ -511,10 +534,49 @@ pub(super) fn apply(
         }
         outlines_final.push(pieces.into_iter().next().unwrap_or_else(|| plates[i].polygon.clone()));
     }
+    let mut decided = super::claims::Decided::new();
+    for r in &used {
+        let [in_a, in_b] = decided.entry((r.a, r.b)).or_default();
+        in_a.push(r.in_a.clone());
+        in_b.push(r.in_b.clone());
+    }
+    super::claims::settle(plates, &mut outlines_final, &decided)?;
+    // A joint whose parts no longer meet (other joints at a crowded vertex took all of it) is
+    // no joint: it is dropped, and the others are numbered on without it.
+    let mut labels: Vec<Option<u32>> = Vec::with_capacity(used.len());
+    let mut unjoined = Vec::new();
+    let mut next = 0;
+    for r in &used {
+        let length = min_feature(plates[r.a].thickness.max(plates[r.b].thickness));
+        let meet = |i: usize, j: usize| super::claims::meet(plates, &outlines_final, i, j, length);
+        if meet(r.a, r.b)? || meet(r.b, r.a)? {
+            next += 1;
+            labels.push(Some(next));
+        } else {
+            labels.push(None);
+            unjoined.push(format!("{}–{}", r.a + 1, r.b + 1));
+        }
+    }
+    let mut warnings = Vec::new();
+    if !unjoined.is_empty() {
+        warnings.push(format!(
+            "{} places where two plates meet are not joined: other joints there already hold all of the volume (plates {})",
+            unjoined.len(),
+            unjoined.join(", ")
+        ));
+    }
+    for (k, r) in regions.iter().enumerate() {
+        let (Some(i), Some(label)) = (adapted_for[k], labels[k]) else {
+            continue;
+        };
+        let widened = plans[k].segments != first_plan(plates, r, settings, style).segments;
+        warnings.push(adapted(label, r, plans[k], widened, i));
+    }
+    warnings.extend(split);
     let mut connections = Vec::with_capacity(regions.len());
     let mut edges: Vec<Vec<(u32, [DVec2; 2])>> = vec![Vec::new(); plates.len()];
-    for (k, (r, plan)) in used.iter().zip(&plans).enumerate() {
-        let label = k as u32 + 1;
+    for ((r, plan), label) in used.iter().zip(&plans).zip(&labels) {
+        let Some(label) = *label else { continue };
         edges[r.a].push((label, edge_of(&plates[r.a], &r.in_a, r.axis)));
         edges[r.b].push((label, edge_of(&plates[r.b], &r.in_b, r.axis)));
         connections.push(Connection {
@@ -537,15 +599,16 @@ pub(super) fn apply(
     let keys = used
         .iter()
         .zip(&cuts)
-        .enumerate()
-        .flat_map(|(k, (r, c))| {
+        .zip(&labels)
+        .filter_map(|((r, c), label)| label.map(|label| (r, c, label)))
+        .flat_map(|(r, c, label)| {
             let male = dovetailed(r);
             let notched = if male == r.a { r.b } else { r.a };
             c.keys.iter().filter(|p| p.area() > NOISE_AREA).map(move |outline| Key {
                 plate: male as u32,
                 notched: notched as u32,
                 outline: outline.clone(),
-                label: k as u32 + 1,
+                label,
             })
         })
         .collect();
@@ -559,8 +622,8 @@ pub(super) fn apply(
 }
 
 /// The warning for a connection whose joint adapted so that plate `i` stays whole.
-fn adapted(k: usize, r: &Region, plan: Plan, widened: bool, i: usize) -> String {
-    let (n, plate) = (k + 1, i + 1);
+fn adapted(n: u32, r: &Region, plan: Plan, widened: bool, i: usize) -> String {
+    let plate = i + 1;
     let other = if i == r.a { r.b } else { r.a } + 1;
     match (plan.keeper, r.kind) {
         (None, _) => {

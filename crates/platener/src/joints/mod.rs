@@ -16,9 +16,11 @@
 //! 3. [`junction`]: three or more plates on one line (a "Y") reach past it only as far as the
 //!    model goes and share one row of fingers in which they take turns.
 
+mod along;
 #[cfg(test)]
 mod assembly_tests;
 mod cap;
+mod claims;
 mod connect;
 mod fingers;
 mod junction;
@@ -81,8 +83,9 @@ pub struct JointSettings {
     pub style: Option<JointStyle>,
     /// Finger width as a multiple of the thicker plate's thickness.
     pub finger_factor: f64,
-    /// Plates closer to parallel than this many degrees are not joined (their joint region
-    /// would be a long sliver); at least this angle caps finger length at shallow angles.
+    /// Plates closer to parallel than this many degrees are not joined. Fingers are capped
+    /// at shallow angles whatever this is (`cap`); below a few degrees two plates are one
+    /// bent sheet rather than a corner.
     pub min_angle_deg: f64,
 }
 
@@ -91,7 +94,7 @@ impl Default for JointSettings {
         Self {
             style: None,
             finger_factor: 3.0,
-            min_angle_deg: 15.0,
+            min_angle_deg: 5.0,
         }
     }
 }
