@@ -130,6 +130,46 @@ pub(super) fn hull_within(s: &Stretches, within: (f64, f64)) -> Option<(f64, f64
 mod tests {
     use super::*;
 
+    use crate::joints::tests::plate;
+    use platener_geom::Frame;
+    use platener_geom::polygon::rect;
+
+    /// Where a 10 × 10 floor (z 0–3) and a wall (x 10–13, 20 high) standing beside it over
+    /// `y0`–`y1` both run along their line (which runs along y).
+    fn floor_and_wall(y0: f64, y1: f64) -> Stretches {
+        let floor = plate(
+            Frame::on_plane(DVec3::ZERO, DVec3::Z),
+            Polygon::new(rect(0.0, 0.0, 10.0, 10.0)),
+        );
+        let wall = plate(
+            Frame::on_plane(DVec3::new(10.0, 0.0, 0.0), DVec3::X),
+            Polygon::new(rect(y0, 0.0, y1, 20.0)),
+        );
+        let axis = floor.frame.n.cross(wall.frame.n);
+        let near = DVec3::new(10.0, 5.0, 1.5);
+        let of =
+            |p: &Plate, q: &Plate| stretches(p, std::slice::from_ref(&p.polygon), q, axis, near, 3.0).expect("grid");
+        common(&of(&floor, &wall), &of(&wall, &floor))
+    }
+
+    #[test]
+    fn plates_along_one_edge_meet_over_it_and_at_a_corner_not_at_all() {
+        let edge = floor_and_wall(0.0, 10.0);
+        assert_eq!(edge.len(), 1);
+        assert!(
+            (edge[0].0 - 0.0).abs() < 1e-3 && (edge[0].1 - 10.0).abs() < 1e-3,
+            "{edge:?}"
+        );
+        let half = floor_and_wall(5.0, 30.0);
+        assert!(
+            (half[0].0 - 5.0).abs() < 1e-3 && (half[0].1 - 10.0).abs() < 1e-3,
+            "{half:?}"
+        );
+        // Touching at the corner (10, 10) only.
+        let corner = floor_and_wall(10.0, 20.0);
+        assert!(corner.iter().all(|(lo, hi)| hi - lo < 1e-3), "{corner:?}");
+    }
+
     #[test]
     fn overlapping_stretches_merge_and_common_keeps_overlaps() {
         let a = merged(vec![(3.0, 5.0), (0.0, 1.0), (0.5, 2.0)]);

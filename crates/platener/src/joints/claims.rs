@@ -121,3 +121,58 @@ pub(super) fn meet(plates: &[Plate], outlines: &[Polygon], a: usize, b: usize, l
     }
     Ok(area >= TOUCH * length)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::joints::tests::plate;
+    use platener_geom::Frame;
+    use platener_geom::polygon::rect;
+
+    /// A 20 × 20 floor (z 0–3) and a wall standing on it (x 10–13, its plane's y is the model's
+    /// z), whose outline has grown 8 mm down through the floor.
+    fn floor_and_wall() -> (Vec<Plate>, Vec<Polygon>) {
+        let floor = plate(
+            Frame::on_plane(DVec3::ZERO, DVec3::Z),
+            Polygon::new(rect(0.0, 0.0, 20.0, 20.0)),
+        );
+        let wall = plate(
+            Frame::on_plane(DVec3::new(10.0, 0.0, 0.0), DVec3::X),
+            Polygon::new(rect(0.0, 3.0, 20.0, 20.0)),
+        );
+        let grown = Polygon::new(rect(0.0, -5.0, 20.0, 20.0));
+        let outlines = vec![floor.polygon.clone(), grown];
+        (vec![floor, wall], outlines)
+    }
+
+    #[test]
+    fn growth_into_a_part_with_no_joint_is_cut_back_to_the_plate() {
+        let (plates, mut outlines) = floor_and_wall();
+        assert_eq!(settle(&plates, &mut outlines, &Decided::new()).expect("grid"), 1);
+        // The floor keeps everything; the wall loses what passed through the floor, and what
+        // hung below it lost its hold on the wall.
+        assert!((outlines[0].area() - 400.0).abs() < 1e-6);
+        assert!((outlines[1].area() - 340.0).abs() < 1e-3, "{}", outlines[1].area());
+        let (lo, _) = outlines[1].bounds();
+        assert!((lo.y - 3.0).abs() < 1e-3, "{lo:?}");
+        assert!(meet(&plates, &outlines, 1, 0, 1.0).expect("grid"));
+    }
+
+    #[test]
+    fn what_a_joint_between_the_two_decided_stays() {
+        let (plates, mut outlines) = floor_and_wall();
+        let mut decided = Decided::new();
+        decided.insert((0, 1), [Vec::new(), vec![Polygon::new(rect(0.0, -5.0, 20.0, 3.0))]]);
+        let before = outlines.clone();
+        assert_eq!(settle(&plates, &mut outlines, &decided).expect("grid"), 0);
+        assert_eq!(outlines, before);
+    }
+
+    #[test]
+    fn parts_a_millimetre_apart_do_not_meet() {
+        let (plates, mut outlines) = floor_and_wall();
+        outlines[1] = Polygon::new(rect(0.0, 4.0, 20.0, 20.0));
+        assert!(!meet(&plates, &outlines, 1, 0, 1.0).expect("grid"));
+        assert!(!meet(&plates, &outlines, 0, 1, 1.0).expect("grid"));
+    }
+}

@@ -17,6 +17,18 @@ pub(super) fn plates_with(triangles: Vec<Triangle>, thickness: f64) -> Vec<Plate
         .clone()
 }
 
+/// A 3 mm extruded plate with `outline` in `frame`'s plane.
+pub(super) fn plate(frame: platener_geom::Frame, outline: Polygon) -> Plate {
+    Plate {
+        kind: crate::plates::PlateKind::Extruded,
+        thickness: 3.0,
+        frame,
+        area: outline.area(),
+        polygon: outline,
+        shapes: Vec::new(),
+    }
+}
+
 /// The final parts as slabs (plates, then dovetail keys).
 pub(super) fn parts(plates: &[Plate], joints: &Joints) -> Vec<Slab> {
     joints.parts(plates)
