@@ -1,5 +1,6 @@
 //! Joints on a grid of closed 3 mm boxes (every plate has four corner joints): finger joints
-//! and dovetails with their keys; and three plates on one line (a Y, 50 mm long).
+//! and dovetails with their keys; three plates on one line (a Y, 50 mm long); a 12 × 8
+//! low-poly ball.
 //!
 //! Run: `cargo bench -p platener --bench joints`. Figures go in docs/performance.md.
 
@@ -40,6 +41,17 @@ fn bench(c: &mut Criterion) {
     let plates = state.plates.clone().expect("plates");
     assert_eq!(plates.plates.len(), 3);
     group.bench_function("Finger/Y of 3 plates", |b| {
+        b.iter(|| compute(&plates.plates, &JointSettings::default()).expect("grid"));
+    });
+    // A low-poly ball: 72 facets at 147°–163°, shorter fingers and growth cut back at vertices.
+    let source = Source::Triangles {
+        name: "ball".into(),
+        triangles: Arc::new(samples::sphere(glam::DVec3::ZERO, 40.0, 12, 8)),
+    };
+    let mut state = platener::State::new(source, Settings::default());
+    platener::pipeline::run(&platener::pipeline::plate_steps(), &mut state, &Cancel::default()).expect("runs");
+    let plates = state.plates.clone().expect("plates");
+    group.bench_function(format!("Finger/ball of {} plates", plates.plates.len()), |b| {
         b.iter(|| compute(&plates.plates, &JointSettings::default()).expect("grid"));
     });
     group.finish();

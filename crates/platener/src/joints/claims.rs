@@ -10,11 +10,11 @@
 use std::collections::BTreeMap;
 
 use glam::DVec3;
-use platener_geom::boolean::difference;
+use platener_geom::boolean::{difference, intersection};
 use platener_geom::offset::{offset, opening};
 use platener_geom::polygon::total_area;
 use platener_geom::slab::Slab;
-use platener_geom::{GridError, Polygon};
+use platener_geom::{GridError, Polygon, polygon};
 
 use super::fingers::{HAIRLINE, of_plate};
 use crate::plates::Plate;
@@ -48,29 +48,47 @@ fn bounds(plate: &Plate, outline: &Polygon) -> (DVec3, DVec3) {
 /// The joint regions between two plates, in each one's plane: what their joints decided.
 pub(super) type Decided = BTreeMap<(usize, usize), [Vec<Polygon>; 2]>;
 
-/// Cuts `j`'s growth back where it meets part `i`, outside what a joint between them decided;
-/// whether it changed.
+/// The columns of `polygons` (in `plate`'s plane) that meet `other`'s volume: one shadow of
+/// `other` for all of them (it does not depend on them, only on the box they lie in).
+fn columns_meeting(
+    plate: &Plate,
+    polygons: &[Polygon],
+    other: &Slab,
+    clearance: f64,
+) -> Result<Vec<Polygon>, GridError> {
+    let Some((lo, hi)) = polygons
+        .iter()
+        .map(Polygon::bounds)
+        .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))
+    else {
+        return Ok(Vec::new());
+    };
+    let cover = slab(plate, Polygon::new(polygon::rect(lo.x, lo.y, hi.x, hi.y)));
+    let shadow = cover.columns_meeting(other, clearance)?;
+    if shadow.is_empty() {
+        return Ok(shadow);
+    }
+    intersection(&shadow, polygons)
+}
+
+/// Cuts `j`'s growth (`growth[j]`, kept up to date) back where it meets part `i`, outside what
+/// a joint between them decided; whether it changed.
 fn give_way(
     plates: &[Plate],
     outlines: &mut [Polygon],
+    growth: &mut [Vec<Polygon>],
     decided: &Decided,
-    j: usize,
-    i: usize,
+    (j, i): (usize, usize),
 ) -> Result<bool, GridError> {
-    let (pj, pi) = (&plates[j], &plates[i]);
-    let mut own = vec![pj.polygon.clone()];
+    let pj = &plates[j];
+    let mut mine = growth[j].clone();
     if let Some(regions) = decided.get(&(i.min(j), i.max(j))) {
-        own.extend(regions[usize::from(j > i)].iter().cloned());
+        mine = difference(&mine, &regions[usize::from(j > i)])?;
     }
-    let growth = difference(std::slice::from_ref(&outlines[j]), &own)?;
-    if total_area(&growth) < NOISE_AREA {
+    if total_area(&mine) < NOISE_AREA {
         return Ok(false);
     }
-    let other = slab(pi, outlines[i].clone());
-    let mut cut = Vec::new();
-    for g in growth {
-        cut.extend(slab(pj, g).columns_meeting(&other, 1e-3)?);
-    }
+    let cut = columns_meeting(pj, &mine, &slab(&plates[i], outlines[i].clone()), 1e-3)?;
     if total_area(&cut) < NOISE_AREA {
         return Ok(false);
     }
@@ -78,7 +96,15 @@ fn give_way(
     if let Some(main) = of_plate(pj, pieces)?.into_iter().next() {
         outlines[j] = main;
     }
+    growth[j] = grown_by(pj, &outlines[j])?;
     Ok(true)
+}
+
+/// What of `outline` lies outside `plate`'s own outline.
+fn grown_by(plate: &Plate, outline: &Polygon) -> Result<Vec<Polygon>, GridError> {
+    let mut g = difference(std::slice::from_ref(outline), std::slice::from_ref(&plate.polygon))?;
+    g.retain(|p| p.area() > NOISE_AREA);
+    Ok(g)
 }
 
 /// Cuts back the growth of every part that reaches into another, lower-ranked (higher index)
@@ -87,6 +113,11 @@ fn give_way(
 /// takes a little more than the overlap). Returns how many parts gave way somewhere.
 pub(super) fn settle(plates: &[Plate], outlines: &mut [Polygon], decided: &Decided) -> Result<usize, GridError> {
     let boxes: Vec<(DVec3, DVec3)> = plates.iter().zip(outlines.iter()).map(|(p, o)| bounds(p, o)).collect();
+    let mut growth: Vec<Vec<Polygon>> = plates
+        .iter()
+        .zip(outlines.iter())
+        .map(|(p, o)| grown_by(p, o))
+        .collect::<Result<_, _>>()?;
     let mut order: Vec<usize> = (0..plates.len()).collect();
     order.sort_by(|&a, &b| boxes[a].0.x.total_cmp(&boxes[b].0.x).then(a.cmp(&b)));
     let mut pairs = Vec::new();
@@ -103,21 +134,37 @@ pub(super) fn settle(plates: &[Plate], outlines: &mut [Polygon], decided: &Decid
     pairs.sort_unstable();
     let mut changed = vec![false; plates.len()];
     for (i, j) in pairs {
-        changed[j] |= give_way(plates, outlines, decided, j, i)?;
-        changed[i] |= give_way(plates, outlines, decided, i, j)?;
+        if growth[i].is_empty() && growth[j].is_empty() {
+            continue;
+        }
+        changed[j] |= give_way(plates, outlines, &mut growth, decided, (j, i))?;
+        changed[i] |= give_way(plates, outlines, &mut growth, decided, (i, j))?;
     }
     Ok(changed.iter().filter(|&&c| c).count())
 }
 
-/// Whether parts `a` and `b` still hold each other: they touch (within a twentieth of a
-/// millimetre) along at least `length` mm, or overlap.
-pub(super) fn meet(plates: &[Plate], outlines: &[Polygon], a: usize, b: usize, length: f64) -> Result<bool, GridError> {
+/// Whether parts `a` and `b` still hold each other at their joint (`near_a`, `near_b`: its
+/// region in each plane): they touch (within a twentieth of a millimetre) along at least
+/// `length` mm there, or overlap.
+pub(super) fn meet(
+    plates: &[Plate],
+    outlines: &[Polygon],
+    (a, near_a): (usize, &Polygon),
+    (b, near_b): (usize, &Polygon),
+    length: f64,
+) -> Result<bool, GridError> {
     const TOUCH: f64 = 0.05;
-    let grown = offset(std::slice::from_ref(&outlines[a]), TOUCH)?;
-    let other = slab(&plates[b], outlines[b].clone());
+    // Only around the joint: the rest of two large parts is far from each other.
+    let local = |p: usize, near: &Polygon| -> Result<Vec<Polygon>, GridError> {
+        intersection(
+            std::slice::from_ref(&outlines[p]),
+            &offset(std::slice::from_ref(near), 1.0)?,
+        )
+    };
+    let grown = offset(&local(a, near_a)?, TOUCH)?;
     let mut area = 0.0;
-    for g in grown {
-        area += total_area(&slab(&plates[a], g).columns_meeting(&other, -TOUCH)?);
+    for other in local(b, near_b)? {
+        area += total_area(&columns_meeting(&plates[a], &grown, &slab(&plates[b], other), -TOUCH)?);
     }
     Ok(area >= TOUCH * length)
 }
@@ -145,6 +192,14 @@ mod tests {
         (vec![floor, wall], outlines)
     }
 
+    /// Where the wall stands on the floor, in the floor's plane and in the wall's.
+    fn joint() -> (Polygon, Polygon) {
+        (
+            Polygon::new(rect(10.0, 0.0, 13.0, 20.0)),
+            Polygon::new(rect(0.0, 0.0, 20.0, 3.0)),
+        )
+    }
+
     #[test]
     fn growth_into_a_part_with_no_joint_is_cut_back_to_the_plate() {
         let (plates, mut outlines) = floor_and_wall();
@@ -155,7 +210,8 @@ mod tests {
         assert!((outlines[1].area() - 340.0).abs() < 1e-3, "{}", outlines[1].area());
         let (lo, _) = outlines[1].bounds();
         assert!((lo.y - 3.0).abs() < 1e-3, "{lo:?}");
-        assert!(meet(&plates, &outlines, 1, 0, 1.0).expect("grid"));
+        let (floor, wall) = joint();
+        assert!(meet(&plates, &outlines, (1, &wall), (0, &floor), 1.0).expect("grid"));
     }
 
     #[test]
@@ -172,7 +228,8 @@ mod tests {
     fn parts_a_millimetre_apart_do_not_meet() {
         let (plates, mut outlines) = floor_and_wall();
         outlines[1] = Polygon::new(rect(0.0, 4.0, 20.0, 20.0));
-        assert!(!meet(&plates, &outlines, 1, 0, 1.0).expect("grid"));
-        assert!(!meet(&plates, &outlines, 0, 1, 1.0).expect("grid"));
+        let (floor, wall) = joint();
+        assert!(!meet(&plates, &outlines, (1, &wall), (0, &floor), 1.0).expect("grid"));
+        assert!(!meet(&plates, &outlines, (0, &floor), (1, &wall), 1.0).expect("grid"));
     }
 }

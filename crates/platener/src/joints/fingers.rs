@@ -548,8 +548,9 @@ pub(super) fn apply(
     let mut next = 0;
     for r in &used {
         let length = min_feature(plates[r.a].thickness.max(plates[r.b].thickness));
-        let meet = |i: usize, j: usize| super::claims::meet(plates, &outlines_final, i, j, length);
-        if meet(r.a, r.b)? || meet(r.b, r.a)? {
+        let (a, b) = ((r.a, &r.in_a), (r.b, &r.in_b));
+        let meet = |x, y| super::claims::meet(plates, &outlines_final, x, y, length);
+        if meet(a, b)? || meet(b, a)? {
             next += 1;
             labels.push(Some(next));
         } else {
