@@ -22,14 +22,6 @@ use crate::plates::Plate;
 /// Overlaps smaller than this (mm²) are grid noise.
 const NOISE_AREA: f64 = 1e-3;
 
-fn slab(plate: &Plate, polygon: Polygon) -> Slab {
-    Slab {
-        frame: plate.frame,
-        polygon,
-        thickness: plate.thickness,
-    }
-}
-
 /// The model-space box of a part.
 fn bounds(plate: &Plate, outline: &Polygon) -> (DVec3, DVec3) {
     let (lo, hi) = outline.bounds();
@@ -63,7 +55,7 @@ fn columns_meeting(
     else {
         return Ok(Vec::new());
     };
-    let cover = slab(plate, Polygon::new(polygon::rect(lo.x, lo.y, hi.x, hi.y)));
+    let cover = plate.slab_of(Polygon::new(polygon::rect(lo.x, lo.y, hi.x, hi.y)));
     let shadow = cover.columns_meeting(other, clearance)?;
     if shadow.is_empty() {
         return Ok(shadow);
@@ -88,7 +80,7 @@ fn give_way(
     if total_area(&mine) < NOISE_AREA {
         return Ok(false);
     }
-    let cut = columns_meeting(pj, &mine, &slab(&plates[i], outlines[i].clone()), 1e-3)?;
+    let cut = columns_meeting(pj, &mine, &plates[i].slab_of(outlines[i].clone()), 1e-3)?;
     if total_area(&cut) < NOISE_AREA {
         return Ok(false);
     }
@@ -164,7 +156,7 @@ pub(super) fn meet(
     let grown = offset(&local(a, near_a)?, TOUCH)?;
     let mut area = 0.0;
     for other in local(b, near_b)? {
-        area += total_area(&columns_meeting(&plates[a], &grown, &slab(&plates[b], other), -TOUCH)?);
+        area += total_area(&columns_meeting(&plates[a], &grown, &plates[b].slab_of(other), -TOUCH)?);
     }
     Ok(area >= TOUCH * length)
 }

@@ -222,14 +222,7 @@ fn extension(
 
 /// `polygons` in `plate`'s frame, as slabs of its thickness.
 fn slabs(plate: &Plate, polygons: Vec<Polygon>) -> Vec<Slab> {
-    polygons
-        .into_iter()
-        .map(|polygon| Slab {
-            frame: plate.frame,
-            polygon,
-            thickness: plate.thickness,
-        })
-        .collect()
+    polygons.into_iter().map(|p| plate.slab_of(p)).collect()
 }
 
 /// The columns of `a` whose volume meets `b`'s: each plate's slabs as given.

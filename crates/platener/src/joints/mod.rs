@@ -151,13 +151,11 @@ impl Joints {
     /// The parts as solids: each plate's outline with its joints, then each dovetail key, as
     /// slabs in the model (for checks such as interference and volume).
     pub fn parts(&self, plates: &[Plate]) -> Vec<platener_geom::slab::Slab> {
-        let slab = |p: &Plate, polygon: &Polygon| platener_geom::slab::Slab {
-            frame: p.frame,
-            polygon: polygon.clone(),
-            thickness: p.thickness,
-        };
-        let outlines = plates.iter().zip(&self.outlines).map(|(p, o)| slab(p, o));
-        let keys = self.keys.iter().map(|k| slab(&plates[k.plate as usize], &k.outline));
+        let outlines = plates.iter().zip(&self.outlines).map(|(p, o)| p.slab_of(o.clone()));
+        let keys = self
+            .keys
+            .iter()
+            .map(|k| plates[k.plate as usize].slab_of(k.outline.clone()));
         outlines.chain(keys).collect()
     }
 }

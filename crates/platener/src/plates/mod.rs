@@ -63,9 +63,15 @@ pub struct Plate {
 impl Plate {
     /// The plate as a slab, for volume questions.
     pub fn slab(&self) -> Slab {
+        self.slab_of(self.polygon.clone())
+    }
+
+    /// Another outline in the plate's plane (its part with joints, a joint region) as a slab
+    /// of its thickness.
+    pub fn slab_of(&self, polygon: Polygon) -> Slab {
         Slab {
             frame: self.frame,
-            polygon: self.polygon.clone(),
+            polygon,
             thickness: self.thickness,
         }
     }
