@@ -80,7 +80,8 @@ pub(super) fn stretches(
     Ok(merged(out))
 }
 
-fn span(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+/// The smallest interval holding all `values` (empty, lo > hi, when there are none).
+pub(super) fn span(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
     values
         .into_iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))

@@ -99,9 +99,7 @@ pub(super) fn capped(
     }
     let cut = clip(&clip(&region, |p| -into_a.dot(p), limit_a), |p| -into_b.dot(p), limit_b);
     let cut_to = |plate: &Plate, into: DVec3, region: &Polygon| -> Result<Option<Polygon>, GridError> {
-        let (lo, hi) = cut.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-            (lo.min(into.dot(*p)), hi.max(into.dot(*p)))
-        });
+        let (lo, hi) = super::along::span(cut.iter().map(|p| into.dot(*p)));
         let s = into.dot(m);
         let pieces = band(plate, region, into, s + lo, s + hi)?;
         Ok(pieces.into_iter().max_by(|x, y| x.area().total_cmp(&y.area())))

@@ -16,6 +16,7 @@ use platener_geom::polygon::total_area;
 use platener_geom::slab::Slab;
 use platener_geom::{GridError, Polygon, polygon};
 
+use super::connect::Region;
 use super::fingers::{HAIRLINE, of_plate};
 use crate::plates::Plate;
 
@@ -39,6 +40,44 @@ fn bounds(plate: &Plate, outline: &Polygon) -> (DVec3, DVec3) {
 
 /// The joint regions between two plates, in each one's plane: what their joints decided.
 pub(super) type Decided = BTreeMap<(usize, usize), [Vec<Polygon>; 2]>;
+
+/// What the joints `regions` decided, pair by pair.
+pub(super) fn decided(regions: &[Region]) -> Decided {
+    let mut out = Decided::new();
+    for r in regions {
+        let [in_a, in_b] = out.entry((r.a, r.b)).or_default();
+        in_a.push(r.in_a.clone());
+        in_b.push(r.in_b.clone());
+    }
+    out
+}
+
+/// The label of each joint in `regions` (numbered from 1), or `None` where its parts no longer
+/// meet (other joints at a crowded vertex took all of it): that is no joint, and the others are
+/// numbered on without it. Also the pairs of plates (1-based, "a–b") left unjoined so.
+/// `min_feature`: the narrowest feature in plates of a thickness, the least they must touch.
+pub(super) fn labels(
+    plates: &[Plate],
+    outlines: &[Polygon],
+    regions: &[Region],
+    min_feature: impl Fn(f64) -> f64,
+) -> Result<(Vec<Option<u32>>, Vec<String>), GridError> {
+    let mut labels = Vec::with_capacity(regions.len());
+    let mut unjoined = Vec::new();
+    let mut next = 0;
+    for r in regions {
+        let length = min_feature(plates[r.a].thickness.max(plates[r.b].thickness));
+        let (a, b) = ((r.a, &r.in_a), (r.b, &r.in_b));
+        if meet(plates, outlines, a, b, length)? || meet(plates, outlines, b, a, length)? {
+            next += 1;
+            labels.push(Some(next));
+        } else {
+            labels.push(None);
+            unjoined.push(format!("{}–{}", r.a + 1, r.b + 1));
+        }
+    }
+    Ok((labels, unjoined))
+}
 
 /// The columns of `polygons` (in `plate`'s plane) that meet `other`'s volume: one shadow of
 /// `other` for all of them (it does not depend on them, only on the box they lie in).

@@ -137,13 +137,18 @@ pub(super) fn at(plate: &Plate, p: DVec2) -> DVec3 {
     plate.frame.to_model(DVec3::new(p.x, p.y, plate.thickness / 2.0))
 }
 
+/// Where `poly` (in `plate`'s plane) lies along `axis`, in model coordinates.
 pub(super) fn extent(plate: &Plate, poly: &Polygon, axis: DVec3) -> (f64, f64) {
-    poly.outer
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-            let l = axis.dot(at(plate, *p));
-            (lo.min(l), hi.max(l))
-        })
+    extent_of(plate, std::slice::from_ref(poly), axis)
+}
+
+/// Where all of `polys` (in `plate`'s plane) lie along `axis`.
+fn extent_of(plate: &Plate, polys: &[Polygon], axis: DVec3) -> (f64, f64) {
+    along::span(
+        polys
+            .iter()
+            .flat_map(|poly| poly.outer.iter().map(|p| axis.dot(at(plate, *p)))),
+    )
 }
 
 fn centroid(plate: &Plate, poly: &Polygon) -> DVec3 {
@@ -297,12 +302,9 @@ fn shared(
             continue;
         };
         let touching = intersection(&contact, std::slice::from_ref(ra))?;
-        let grown = touching.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |acc, p| {
-            let e = extent(pa, p, axis);
-            (acc.0.min(e.0), acc.1.max(e.1))
-        });
+        let near_each_other = extent_of(pa, &touching, axis);
         // Only where both plates run along the line (not where they merely touch at a vertex).
-        let Some(real) = along::hull_within(&both, grown).filter(|r| r.1 - r.0 >= min_length) else {
+        let Some(real) = along::hull_within(&both, near_each_other).filter(|r| r.1 - r.0 >= min_length) else {
             continue;
         };
         let (Some(in_a), Some(in_b)) = (
@@ -356,14 +358,16 @@ fn corner_plates<'r>(raw: &'r [Raw], r: &Raw) -> Vec<(&'r Raw, &'r Raw)> {
 /// at a vertex and only neighbours along an edge are joined, so a joint running on would
 /// reach into a facet it has no joint with.
 fn close_corners(plates: &[Plate], raw: &mut [Raw]) -> Result<(), GridError> {
-    let in_plate = |x: &Raw, p: usize| if x.a == p { x.in_a.clone() } else { x.in_b.clone() };
+    fn in_plate(x: &Raw, p: usize) -> &Polygon {
+        if x.a == p { &x.in_a } else { &x.in_b }
+    }
     let mut ends = Vec::with_capacity(raw.len());
     for r in raw.iter() {
         let t = plates[r.a].thickness.max(plates[r.b].thickness);
         let (mut s0, mut s1) = r.real;
         for (x, y) in corner_plates(raw, r) {
-            let ea = extent(&plates[r.a], &in_plate(x, r.a), r.axis);
-            let eb = extent(&plates[r.b], &in_plate(y, r.b), r.axis);
+            let ea = extent(&plates[r.a], in_plate(x, r.a), r.axis);
+            let eb = extent(&plates[r.b], in_plate(y, r.b), r.axis);
             let e = (ea.0.min(eb.0), ea.1.max(eb.1));
             if e.0 <= r.real.0 + t && e.1 >= r.real.0 - t {
                 s0 = s0.min(e.0);

@@ -321,19 +321,21 @@ fn finish(
 pub(super) fn of_plate(plate: &Plate, mut pieces: Vec<Polygon>) -> Result<Vec<Polygon>, GridError> {
     if pieces.len() > 1 {
         let mut kept = Vec::with_capacity(pieces.len());
-        for (n, p) in pieces.into_iter().enumerate() {
+        for p in pieces {
             let inside = total_area(&intersection(
                 std::slice::from_ref(&p),
                 std::slice::from_ref(&plate.polygon),
             )?);
-            kept.push((inside, n, p));
+            kept.push((inside, p));
         }
-        kept.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        // The piece with most of the plate stays whatever happens (a stable sort: ties keep
+        // their order).
+        kept.sort_by(|a, b| b.0.total_cmp(&a.0));
         pieces = kept
             .into_iter()
             .enumerate()
-            .filter(|(k, (inside, _, _))| *k == 0 || *inside > NOISE_AREA)
-            .map(|(_, (_, _, p))| p)
+            .filter(|(k, (inside, _))| *k == 0 || *inside > NOISE_AREA)
+            .map(|(_, (_, p))| p)
             .collect();
     }
     pieces.sort_by(|a, b| b.area().total_cmp(&a.area()));
@@ -534,30 +536,8 @@ pub(super) fn apply(
         }
         outlines_final.push(pieces.into_iter().next().unwrap_or_else(|| plates[i].polygon.clone()));
     }
-    let mut decided = super::claims::Decided::new();
-    for r in &used {
-        let [in_a, in_b] = decided.entry((r.a, r.b)).or_default();
-        in_a.push(r.in_a.clone());
-        in_b.push(r.in_b.clone());
-    }
-    super::claims::settle(plates, &mut outlines_final, &decided)?;
-    // A joint whose parts no longer meet (other joints at a crowded vertex took all of it) is
-    // no joint: it is dropped, and the others are numbered on without it.
-    let mut labels: Vec<Option<u32>> = Vec::with_capacity(used.len());
-    let mut unjoined = Vec::new();
-    let mut next = 0;
-    for r in &used {
-        let length = min_feature(plates[r.a].thickness.max(plates[r.b].thickness));
-        let (a, b) = ((r.a, &r.in_a), (r.b, &r.in_b));
-        let meet = |x, y| super::claims::meet(plates, &outlines_final, x, y, length);
-        if meet(a, b)? || meet(b, a)? {
-            next += 1;
-            labels.push(Some(next));
-        } else {
-            labels.push(None);
-            unjoined.push(format!("{}–{}", r.a + 1, r.b + 1));
-        }
-    }
+    super::claims::settle(plates, &mut outlines_final, &super::claims::decided(&used))?;
+    let (labels, unjoined) = super::claims::labels(plates, &outlines_final, &used, min_feature)?;
     let mut warnings = Vec::new();
     if !unjoined.is_empty() {
         warnings.push(format!(
