@@ -11,7 +11,7 @@ use glam::{DVec2, DVec3};
 use platener_geom::{GridError, Polygon};
 
 use super::cap::middle_line;
-use super::connect::{band, crossing_width, into_plate};
+use super::connect::{band, growth, into_plate};
 use crate::plates::Plate;
 
 /// Edges up to this many degrees off the line follow it (a trimmed plate's end follows its
@@ -24,16 +24,15 @@ pub(super) type Stretches = Vec<(f64, f64)>;
 /// The stretches (positions along `axis`, in model coordinates) where `shape` (in `plate`'s
 /// plane: its outline, or that with its other joints) runs along the line on which `plate`'s
 /// and `other`'s middle planes meet, near the model point `near`. An edge follows the line
-/// within the width of `other`'s layer plus `slack` (plate finding trims a plate back by up to
-/// about a thickness, and where two plates were laminated into one wall, the inner one ends a
-/// layer away).
+/// within [`growth`]: the width of `other`'s layer plus a thickness (plate finding trims a
+/// plate back by up to about a thickness, a fillet leaves a gap, and where two plates were
+/// laminated into one wall, the inner one ends a layer away).
 pub(super) fn stretches(
     plate: &Plate,
     shape: &[Polygon],
     other: &Plate,
     axis: DVec3,
     near: DVec3,
-    slack: f64,
 ) -> Result<Stretches, GridError> {
     let m = middle_line(plate, other, near);
     let f = &plate.frame;
@@ -53,7 +52,7 @@ pub(super) fn stretches(
         }
     }
     // Along: edges nearly parallel to the line, within the other's layer.
-    let reach = crossing_width(plate, other) + slack;
+    let reach = growth(plate, other);
     let follow = FOLLOW_DEG.to_radians().sin();
     for ring in shape.iter().flat_map(|p| std::iter::once(&p.outer).chain(&p.holes)) {
         for (i, &p) in ring.iter().enumerate() {
@@ -148,8 +147,7 @@ mod tests {
         );
         let axis = floor.frame.n.cross(wall.frame.n);
         let near = DVec3::new(10.0, 5.0, 1.5);
-        let of =
-            |p: &Plate, q: &Plate| stretches(p, std::slice::from_ref(&p.polygon), q, axis, near, 3.0).expect("grid");
+        let of = |p: &Plate, q: &Plate| stretches(p, std::slice::from_ref(&p.polygon), q, axis, near).expect("grid");
         common(&of(&floor, &wall), &of(&wall, &floor))
     }
 

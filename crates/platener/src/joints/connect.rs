@@ -29,6 +29,82 @@ pub(super) struct Raw {
     pub whole: (Polygon, Polygon),
 }
 
+impl Raw {
+    /// A point on its line: the middle of its region in plate a, at mid-thickness.
+    pub fn centre(&self, plates: &[Plate]) -> DVec3 {
+        let (lo, hi) = self.in_a.bounds();
+        at(&plates[self.a], (lo + hi) / 2.0)
+    }
+
+    /// Its region in plate `p` (a or b).
+    fn in_plate(&self, p: usize) -> &Polygon {
+        if self.a == p { &self.in_a } else { &self.in_b }
+    }
+
+    /// The other plate of the joint, if `p` is one of its two.
+    fn other(&self, p: usize) -> Option<usize> {
+        if self.a == p {
+            Some(self.b)
+        } else if self.b == p {
+            Some(self.a)
+        } else {
+            None
+        }
+    }
+}
+
+/// Joints that bridge a third plate: the two plates do not reach their joint region (they
+/// were grown across a gap, see [`growth`]), while each reaches its joint with a third plate
+/// along a parallel line apart from theirs, over the same region. That third plate is a bevel
+/// or chamfer between them (the 12.7 mm plate's chamfered rim), which the bridging joint
+/// would cut away. A filleted corner has no such plate, and a "Y" of three plates is one line.
+fn bridging(plates: &[Plate], raw: &[Raw], near: f64) -> Result<Vec<bool>, GridError> {
+    let cos_max = 1f64.to_radians().cos();
+    // Whether each joint's regions touch their plates.
+    let touched = plates
+        .iter()
+        .map(|p| offset(std::slice::from_ref(&p.polygon), 0.05))
+        .collect::<Result<Vec<_>, _>>()?;
+    let reaches = |r: &Raw, p: usize| -> Result<bool, GridError> {
+        Ok(total_area(&intersection(std::slice::from_ref(r.in_plate(p)), &touched[p])?) > 0.01)
+    };
+    let mut direct = Vec::with_capacity(raw.len());
+    for r in raw {
+        direct.push(reaches(r, r.a)? && reaches(r, r.b)?);
+    }
+    let mut out = vec![false; raw.len()];
+    for (k, r) in raw.iter().enumerate().filter(|(k, _)| !direct[*k]) {
+        let c0 = r.centre(plates);
+        let beside = |x: &Raw, p: usize| -> Result<bool, GridError> {
+            let off = x.centre(plates) - c0;
+            if x.axis.dot(r.axis).abs() < cos_max || (off - r.axis * off.dot(r.axis)).length() <= near {
+                return Ok(false);
+            }
+            let overlap = intersection(std::slice::from_ref(r.in_plate(p)), std::slice::from_ref(x.in_plate(p)))?;
+            Ok(total_area(&overlap) > 1e-3 * r.in_plate(p).area())
+        };
+        let direct = &direct;
+        let thirds = |p: usize| {
+            raw.iter()
+                .enumerate()
+                .filter(move |(i, x)| direct[*i] && x.other(p).is_some_and(|c| c != r.a && c != r.b))
+        };
+        'third: for (_, x) in thirds(r.a) {
+            let c = x.other(r.a);
+            if !beside(x, r.a)? {
+                continue;
+            }
+            for (_, y) in thirds(r.b).filter(|(_, y)| y.other(r.b) == c) {
+                if beside(y, r.b)? {
+                    out[k] = true;
+                    break 'third;
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
 /// How far plate `p` reaches along `axis` at its joint with `other`: its own outline, and the
 /// regions of its connections to third plates across that axis (a box corner).
 fn reach_along(plates: &[Plate], raw: &[Raw], p: usize, other: usize, axis: DVec3) -> (f64, f64) {
@@ -160,14 +236,26 @@ fn centroid(plate: &Plate, poly: &Polygon) -> DVec3 {
 /// as wide at most as where the normals are [`cap::CAP_DEG`] apart (no finger reaches
 /// further: towards parallel plates the crossing grows without bound).
 pub(super) fn crossing_width(a: &Plate, b: &Plate) -> f64 {
-    let (sin_cap, cos_cap) = cap::CAP_DEG.to_radians().sin_cos();
-    let c = a.frame.n.dot(b.frame.n).abs();
-    let s = a.frame.n.cross(b.frame.n).length();
-    if s < sin_cap {
-        (b.thickness + a.thickness * cos_cap) / sin_cap
-    } else {
-        (b.thickness + a.thickness * c) / s
-    }
+    crossing_at(a, b, a.frame.n.cross(b.frame.n).length()).min(widest_crossing(a, b))
+}
+
+/// The crossing where the normals are [`cap::CAP_DEG`] apart.
+fn widest_crossing(a: &Plate, b: &Plate) -> f64 {
+    crossing_at(a, b, cap::CAP_DEG.to_radians().sin())
+}
+
+/// `b`'s slab seen in a's plane where the sine of the angle between their normals is `sin`.
+fn crossing_at(a: &Plate, b: &Plate, sin: f64) -> f64 {
+    let cos = (1.0 - sin * sin).max(0.0).sqrt();
+    (b.thickness + a.thickness * cos) / sin.max(1e-9)
+}
+
+/// How far `a` grows towards `b` to find where they meet: across `b`'s layer, and a
+/// thickness more, as a plate may end that far short of it (plate finding trims a plate back
+/// by up to about a thickness, and a filleted corner leaves a gap of its radius); at shallow
+/// angles no more than the widest crossing, which already spans such gaps.
+pub(super) fn growth(a: &Plate, b: &Plate) -> f64 {
+    (crossing_width(a, b) + a.thickness.min(b.thickness)).min(widest_crossing(a, b))
 }
 
 /// Direction from the joint line into the plate, in its plane.
@@ -185,10 +273,11 @@ fn boxes_touch(a: (DVec3, DVec3), b: (DVec3, DVec3), grow: f64) -> bool {
 }
 
 /// How far `plate` grows towards a joint `region`: its outline grown by `grow`, within the
-/// joint's `range` along `axis`, from the plate's middle to the far side of the region. Where
-/// the plates meet at a right or obtuse angle this is the region itself; at acute angles the
-/// plate ends before the neighbour's slab begins, and the wedge in between (inside the model,
-/// in this plate's layer only) is added.
+/// joint's `range` along `axis`, from the plate's middle to the far side of the region, and
+/// within `grow` of the region (holes and notches elsewhere stay open). Where the plates meet
+/// at a right or obtuse angle this is the region itself; at acute angles, or where a plate
+/// ends short of the corner (trimmed, or a fillet), the gap between the plate and the region
+/// (inside the model, in this plate's layer only) is added.
 fn extension(
     plate: &Plate,
     region: &Polygon,
@@ -220,7 +309,11 @@ fn extension(
     ) else {
         return Ok(vec![region.clone()]);
     };
-    let mut out = intersection(&intersection(&grown, &[in_range])?, &[towards])?;
+    let near_region = offset(std::slice::from_ref(region), grow)?;
+    let mut out = intersection(
+        &intersection(&intersection(&grown, &[in_range])?, &[towards])?,
+        &near_region,
+    )?;
     out.push(region.clone());
     Ok(out)
 }
@@ -267,8 +360,8 @@ fn shared(
         Ok(slabs(p, g))
     };
     let (ga, gb) = (
-        grown(pa, crossing_width(pa, pb), keep_out_a)?,
-        grown(pb, crossing_width(pb, pa), keep_out_b)?,
+        grown(pa, growth(pa, pb), keep_out_a)?,
+        grown(pb, growth(pb, pa), keep_out_b)?,
     );
     let mut in_a = meeting(&ga, &gb)?;
     let mut in_b = meeting(&gb, &ga)?;
@@ -285,10 +378,9 @@ fn shared(
     in_b.retain(|p| p.area() > min_area);
     let axis = pa.frame.n.cross(pb.frame.n).normalize();
     let near = centroid(pa, &pa.polygon);
-    let slack = pa.thickness.min(pb.thickness);
     let both = along::common(
-        &along::stretches(pa, &reaching[a].shape, pb, axis, near, slack)?,
-        &along::stretches(pb, &reaching[b].shape, pa, axis, near, slack)?,
+        &along::stretches(pa, &reaching[a].shape, pb, axis, near)?,
+        &along::stretches(pb, &reaching[b].shape, pa, axis, near)?,
     );
     // Disjoint stretches are separate connections: pair the pieces by their extent along the
     // joint line.
@@ -330,22 +422,13 @@ fn shared(
 /// The joints of `a` and of `b` with the same third plate across the end of their line (a box
 /// corner: plate finding leaves the corner's cube to one of the three, or to none).
 fn corner_plates<'r>(raw: &'r [Raw], r: &Raw) -> Vec<(&'r Raw, &'r Raw)> {
-    let other = |x: &Raw, p: usize| {
-        if x.a == p {
-            Some(x.b)
-        } else if x.b == p {
-            Some(x.a)
-        } else {
-            None
-        }
-    };
     let steep = |x: &Raw| x.axis.dot(r.axis).abs() <= 0.5;
     let mut out = Vec::new();
     for x in raw.iter().filter(|x| steep(x)) {
-        let Some(c) = other(x, r.a).filter(|&c| c != r.b) else {
+        let Some(c) = x.other(r.a).filter(|&c| c != r.b) else {
             continue;
         };
-        for y in raw.iter().filter(|y| steep(y) && other(y, r.b) == Some(c)) {
+        for y in raw.iter().filter(|y| steep(y) && y.other(r.b) == Some(c)) {
             out.push((x, y));
         }
     }
@@ -358,16 +441,13 @@ fn corner_plates<'r>(raw: &'r [Raw], r: &Raw) -> Vec<(&'r Raw, &'r Raw)> {
 /// at a vertex and only neighbours along an edge are joined, so a joint running on would
 /// reach into a facet it has no joint with.
 fn close_corners(plates: &[Plate], raw: &mut [Raw]) -> Result<(), GridError> {
-    fn in_plate(x: &Raw, p: usize) -> &Polygon {
-        if x.a == p { &x.in_a } else { &x.in_b }
-    }
     let mut ends = Vec::with_capacity(raw.len());
     for r in raw.iter() {
         let t = plates[r.a].thickness.max(plates[r.b].thickness);
         let (mut s0, mut s1) = r.real;
         for (x, y) in corner_plates(raw, r) {
-            let ea = extent(&plates[r.a], in_plate(x, r.a), r.axis);
-            let eb = extent(&plates[r.b], in_plate(y, r.b), r.axis);
+            let ea = extent(&plates[r.a], x.in_plate(r.a), r.axis);
+            let eb = extent(&plates[r.b], y.in_plate(r.b), r.axis);
             let e = (ea.0.min(eb.0), ea.1.max(eb.1));
             if e.0 <= r.real.0 + t && e.1 >= r.real.0 - t {
                 s0 = s0.min(e.0);
@@ -415,14 +495,15 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
         }
     }
     pairs.sort_unstable();
-    // Each plate's outline grown by the thinnest sheet's thickness: whatever lies within
-    // reaches a joint region (plates end at the region's edge or inside it, and plate finding
-    // trims a plate back by up to about a thickness where it overlapped another; a quarter
-    // of it lost two of the four joints of plycutter's PlyTest).
+    // Each plate's outline grown by twice the thinnest sheet's thickness: whatever lies
+    // within reaches a joint region. Plates end at the region's edge or inside it, but plate
+    // finding trims a plate back by up to about a thickness where it overlapped another (a
+    // quarter of it lost two of the four joints of plycutter's PlyTest), and at a filleted
+    // corner both plates end short of it (the smartphone stand's 2 mm fillets: 3.4 mm).
     let t_min = plates.iter().map(|p| p.thickness).fold(f64::INFINITY, f64::min);
     let reaching_as = |shape: Vec<Polygon>| -> Result<Reaching, GridError> {
         Ok(Reaching {
-            near: offset(&shape, t_min)?,
+            near: offset(&shape, 2.0 * t_min)?,
             shape,
         })
     };
@@ -443,6 +524,12 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
         }
         raw.extend(found);
     }
+    let bridges = bridging(plates, &raw, t_min / 2.0)?;
+    let mut k = 0;
+    raw.retain(|_| {
+        k += 1;
+        !bridges[k - 1]
+    });
     // A plate may reach a joint only through its joints with others: a wall ending against
     // one side of a V still meets the board the V stands on, on the same line.
     let mut via: Vec<Vec<Polygon>> = plates.iter().map(|p| vec![p.polygon.clone()]).collect();
@@ -558,8 +645,8 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
         };
         let reach = |sa: Polygon, sb: Polygon| -> Result<Reach, GridError> {
             Ok(Reach {
-                reach_a: extension(pa, &sa, r.axis, range, crossing_width(pa, pb))?,
-                reach_b: extension(pb, &sb, r.axis, range, crossing_width(pb, pa))?,
+                reach_a: extension(pa, &sa, r.axis, range, growth(pa, pb))?,
+                reach_b: extension(pb, &sb, r.axis, range, growth(pb, pa))?,
                 in_a: sa,
                 in_b: sb,
             })

@@ -56,11 +56,7 @@ pub(super) struct Line {
 /// overlapping extents) and keeps the groups of three or more plates that all meet each other.
 pub(super) fn lines(plates: &[Plate], raw: &[Raw], near: f64) -> Vec<Line> {
     let cos_max = 1f64.to_radians().cos();
-    let centre = |r: &Raw| {
-        let (lo, hi) = r.in_a.bounds();
-        at(&plates[r.a], (lo + hi) / 2.0)
-    };
-    let centres: Vec<DVec3> = raw.iter().map(centre).collect();
+    let centres: Vec<DVec3> = raw.iter().map(|r| r.centre(plates)).collect();
     let ranges: Vec<(f64, f64)> = raw.iter().map(|r| extent(&plates[r.a], &r.in_a, r.axis)).collect();
     let mut groups_of = UnionFind::new(raw.len());
     for i in 0..raw.len() {

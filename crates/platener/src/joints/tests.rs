@@ -376,3 +376,79 @@ fn dovetails_with_their_keys_rebuild_the_box_exactly() {
         assert!((slope - 0.25).abs() < 1e-3, "{d:?}");
     }
 }
+
+/// An L of 3 mm walls (a 40 mm floor, a 40 mm wall at its right end), 30 mm deep, whose
+/// corner is rounded (radius 5 outside, 2 inside) or cut by a 45° chamfer as thick as the
+/// walls. Either way the flat faces end short of the corner.
+fn l_profile(corner: &str) -> Vec<glam::DVec2> {
+    use glam::DVec2;
+    let mut p = vec![DVec2::new(0.0, 0.0)];
+    match corner {
+        "fillet" => {
+            let c = DVec2::new(35.0, 5.0);
+            p.extend((0..=8).map(|k| c + 5.0 * DVec2::from_angle((-90.0 + 11.25 * k as f64).to_radians())));
+            p.extend([DVec2::new(40.0, 40.0), DVec2::new(37.0, 40.0)]);
+            p.extend((0..=8).map(|k| c + 2.0 * DVec2::from_angle((-11.25 * k as f64).to_radians())));
+        }
+        _ => {
+            let inner = 35.0 - 3.0 * 2f64.sqrt();
+            p.extend([DVec2::new(35.0, 0.0), DVec2::new(40.0, 5.0), DVec2::new(40.0, 40.0)]);
+            p.extend([
+                DVec2::new(37.0, 40.0),
+                DVec2::new(37.0, 37.0 - inner),
+                DVec2::new(inner + 3.0, 3.0),
+            ]);
+        }
+    }
+    p.push(DVec2::new(0.0, 3.0));
+    p
+}
+
+#[test]
+fn plates_ending_short_of_a_rounded_corner_are_joined_across_it() {
+    let plates = plates_of(samples::prism(&l_profile("fillet"), 30.0));
+    assert_eq!(plates.len(), 2, "floor and wall");
+    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    assert_eq!(joints.connections.len(), 1);
+    let c = &joints.connections[0];
+    assert_eq!(c.kind, ConnectionKind::Corner);
+    // Plate finding fits the faces' planes a tenth of a degree off (the fillet's first facet).
+    assert!((c.angle_deg - 90.0).abs() < 0.5, "{}", c.angle_deg);
+    // Along the whole depth, on the line where the walls' middle planes meet.
+    let (a, b) = (c.line[0], c.line[1]);
+    assert!(((a - b).length() - 30.0).abs() < 1e-3, "{a} {b}");
+    for p in [a, b] {
+        assert!((p.x - 38.5).abs() < 0.1 && (p.z - 1.5).abs() < 0.1, "{p}");
+    }
+    // The parts fill the square corner the fillet rounded off, without overlapping.
+    let parts = parts(&plates, &joints);
+    assert!(worst_overlap(&parts) < 1e-6, "{}", worst_overlap(&parts));
+    let square_l = (40.0 * 3.0 + 37.0 * 3.0) * 30.0;
+    assert!(
+        (volume(&parts) / square_l - 1.0).abs() < 0.005,
+        "{} vs {square_l}",
+        volume(&parts)
+    );
+}
+
+#[test]
+fn plates_on_either_side_of_a_chamfer_are_joined_to_it_not_across_it() {
+    let plates = plates_of(samples::prism(&l_profile("chamfer"), 30.0));
+    assert_eq!(plates.len(), 3, "floor, chamfer and wall");
+    let chamfer = plates
+        .iter()
+        .position(|p| (p.frame.n.x.abs() - p.frame.n.z.abs()).abs() < 1e-6)
+        .expect("the chamfer is a plate") as u32;
+    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    assert_eq!(joints.connections.len(), 2, "{:?}", joints.connections);
+    for c in &joints.connections {
+        assert!(c.plates.contains(&chamfer), "{:?} bridges the chamfer", c.plates);
+        assert!((c.angle_deg - 135.0).abs() < 1e-6, "{}", c.angle_deg);
+    }
+    let parts = parts(&plates, &joints);
+    let worst = (0..parts.len())
+        .flat_map(|i| (i + 1..parts.len()).map(move |j| (i, j)))
+        .map(|(i, j)| shared_volume(&parts[i], &parts[j]))
+        .fold(0.0, f64::max);
+    assert!(worst < 1.0, "{worst} mm³ shared");
+}
