@@ -116,6 +116,9 @@ struct Plan {
     /// When fingers would cut a plate apart: that plate keeps the whole joint region and the
     /// other butts against it.
     keeper: Option<usize>,
+    /// At a corner, plate b owns the first segment (a does otherwise): with two segments, a
+    /// lap, the plate that would be cut apart keeps the end it needs.
+    b_first: bool,
 }
 
 /// What a connection takes from and adds to its two plates (`[a, b]`).
@@ -181,6 +184,7 @@ fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: Joi
             segments,
             short: false,
             keeper: None,
+            b_first: false,
         };
     }
     let t = plates[r.a].thickness.max(plates[r.b].thickness);
@@ -196,6 +200,7 @@ fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: Joi
         segments,
         short: false,
         keeper: None,
+        b_first: false,
     }
 }
 
@@ -226,7 +231,7 @@ fn cut(plates: &[Plate], r: &Region, plan: Plan, style: JointStyle) -> Result<Cu
     for s in 0..segments {
         let owner = match (&r.junction, r.kind) {
             (Some(j), _) => j.owner(s, r.a, r.b),
-            (None, ConnectionKind::Corner) => [r.a, r.b][s % 2],
+            (None, ConnectionKind::Corner) => [r.a, r.b][(s + plan.b_first as usize) % 2],
             (None, ConnectionKind::Tee) => {
                 let through = r.through.unwrap_or(r.a);
                 let ending = if through == r.a { r.b } else { r.a };
@@ -341,6 +346,9 @@ pub(super) fn of_plate(plate: &Plate, mut pieces: Vec<Polygon>) -> Result<Vec<Po
     pieces.sort_by(|a, b| b.area().total_cmp(&a.area()));
     Ok(pieces)
 }
+
+/// The widest corner at which a butt joint is left as it is: past it a lap is tried first.
+const BUTT_MAX_DEG: f64 = 135.0;
 
 /// What a plate in `pieces` (largest first) loses: how many pieces fall off, and their area
 /// (compared in that order, areas to a hundredth of a mm²).
@@ -480,11 +488,23 @@ pub(super) fn apply(
                 segments: 3,
                 ..plans[k]
             });
+            // At a shallow angle a butt joint meets its partner along a line only (two ends cut
+            // square to plates far from square to each other). A lap (one finger each, the
+            // plate keeping either end in turn) interlocks and meets it over the whole
+            // cross-section.
+            let lap = |b_first| {
+                let shallow = r.kind == ConnectionKind::Corner && r.angle_deg > BUTT_MAX_DEG;
+                (shallow && r.junction.is_none() && plans[k].segments > 2).then_some(Plan {
+                    segments: 2,
+                    b_first,
+                    ..plans[k]
+                })
+            };
             let keep = Some(Plan {
                 keeper: Some(i),
                 ..plans[k]
             });
-            for tried in [shorter, fewer, keep] {
+            for tried in [shorter, fewer, lap(false), lap(true), keep] {
                 let Some(mut plan) = tried else { continue };
                 if pieces.len() <= 1 {
                     break;
@@ -607,6 +627,10 @@ fn adapted(n: u32, r: &Region, plan: Plan, widened: bool, i: usize) -> String {
     let plate = i + 1;
     let other = if i == r.a { r.b } else { r.a } + 1;
     match (plan.keeper, r.kind) {
+        (None, ConnectionKind::Corner) if plan.segments == 2 => {
+            let shorter = if plan.short { "shorter " } else { "" };
+            format!("connection {n}: one {shorter}finger on each plate (a lap) so that plate {plate} holds together")
+        }
         (None, _) => {
             let how = match (plan.short, widened) {
                 (true, true) => format!("{} shorter and wider fingers", plan.segments),

@@ -79,3 +79,18 @@ fn a_cardboard_box_snaps_together_with_jim_joints() {
     assert!(!v.interference.is_empty(), "the barbs overlap on purpose");
     assert!(v.passed(), "{:?}", v.problems);
 }
+
+/// The coarsest ball (8 × 6 facets, 40 mm radius, corners at 135° to 150°): where fingers
+/// would cut a small facet apart, the joint becomes a lap (one finger each) rather than a
+/// butt joint, whose square-cut ends would meet only along a line. Every joint meets. The
+/// ball as an STL file stores it (single precision), which has two such joints.
+#[test]
+fn coarse_ball_joints_all_meet() {
+    let ball = samples::sphere(glam::DVec3::ZERO, 40.0, 8, 6);
+    let stored = ball.into_iter().map(|t| t.map(|v| v.as_vec3().as_dvec3())).collect();
+    let v = check(stored);
+    assert!(v.passed(), "{:?}", v.problems);
+    assert!(v.joints_not_meeting.is_empty(), "{:?}", v.joints_not_meeting);
+    assert_eq!(v.groups, 1);
+    assert!(v.interference_share < 0.001, "{}", v.interference_share);
+}
