@@ -1,4 +1,4 @@
-//! Rejoining plates that a plate passing through them split in two.
+//! Rejoining plates that a plate passing through them split in two, or that touch.
 //!
 //! Two coplanar plates of one thickness on either side of a third plate (a board crossing a
 //! divider, or a shelf board ending against a side), or of several side by side (a board
@@ -9,7 +9,7 @@
 
 use glam::DVec3;
 use platener_geom::boolean::{intersection, union_all};
-use platener_geom::offset::offset;
+use platener_geom::offset::{closing, offset};
 use platener_geom::polygon::convex_hull;
 use platener_geom::slab::Slab;
 use platener_geom::{GridError, Polygon};
@@ -37,6 +37,18 @@ fn bridge(a: &Plate, b: &Plate, others: &[&Plate], clearance: f64) -> Result<Opt
         polygon: hull,
         thickness: a.thickness,
     };
+    // Pieces that already touch (an enclosure's front wall and the lip above it, found from
+    // two faces) need no third plate.
+    let touching = intersection(
+        &offset(std::slice::from_ref(&a.polygon), HAIRLINE)?,
+        &offset(std::slice::from_ref(&b_in_a), HAIRLINE)?,
+    )?;
+    if !touching.is_empty() {
+        let mut closed = closing(&union_all(&[a.polygon.clone(), b_in_a.clone()])?, HAIRLINE)?;
+        if closed.len() == 1 {
+            return Ok(closed.pop());
+        }
+    }
     let mut bands = Vec::new();
     for third in others {
         // The third plate grown in its plane by a's thickness: a plate that ends against the
@@ -141,4 +153,41 @@ pub(super) fn rejoin(mut plates: Vec<Plate>, angle: f64, clearance: f64) -> Resu
         break;
     }
     Ok((plates, joins))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plates::PlateKind;
+    use platener_geom::Frame;
+    use platener_geom::polygon::rect;
+
+    fn plate(outline: Polygon) -> Plate {
+        Plate {
+            kind: PlateKind::Inherent,
+            thickness: 3.0,
+            frame: Frame::on_plane(DVec3::ZERO, DVec3::Z),
+            area: outline.area(),
+            polygon: outline,
+            shapes: Vec::new(),
+        }
+    }
+
+    /// A wall and the lip above it, found from two faces: edge to edge, one plate. A piece a
+    /// millimetre away stays apart (nothing bridges it).
+    #[test]
+    fn coplanar_pieces_that_touch_become_one_plate() {
+        let wall = plate(Polygon::new(rect(0.0, 0.0, 50.0, 30.0)));
+        let lip = plate(Polygon::new(rect(-4.0, 30.0, 54.0, 34.0)));
+        let (plates, joins) = rejoin(vec![wall.clone(), lip], 1f64.to_radians(), 0.01).expect("grid");
+        assert_eq!((plates.len(), joins), (1, 1));
+        assert!(
+            (plates[0].area - (50.0 * 30.0 + 58.0 * 4.0)).abs() < 1e-6,
+            "{}",
+            plates[0].area
+        );
+        let apart = plate(Polygon::new(rect(-4.0, 31.0, 54.0, 35.0)));
+        let (plates, joins) = rejoin(vec![wall, apart], 1f64.to_radians(), 0.01).expect("grid");
+        assert_eq!((plates.len(), joins), (2, 0));
+    }
 }
