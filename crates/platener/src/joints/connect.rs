@@ -60,42 +60,58 @@ impl Raw {
 /// would cut away. A filleted corner has no such plate, and a "Y" of three plates is one line.
 fn bridging(plates: &[Plate], raw: &[Raw], near: f64) -> Result<Vec<bool>, GridError> {
     let cos_max = 1f64.to_radians().cos();
-    // Whether each joint's regions touch their plates.
-    let touched = plates
-        .iter()
-        .map(|p| offset(std::slice::from_ref(&p.polygon), 0.05))
-        .collect::<Result<Vec<_>, _>>()?;
-    let reaches = |r: &Raw, p: usize| -> Result<bool, GridError> {
-        Ok(total_area(&intersection(std::slice::from_ref(r.in_plate(p)), &touched[p])?) > 0.01)
-    };
-    let mut direct = Vec::with_capacity(raw.len());
-    for r in raw {
-        direct.push(reaches(r, r.a)? && reaches(r, r.b)?);
+    let mut of_plate: Vec<Vec<usize>> = vec![Vec::new(); plates.len()];
+    for (k, r) in raw.iter().enumerate() {
+        of_plate[r.a].push(k);
+        of_plate[r.b].push(k);
     }
-    let mut out = vec![false; raw.len()];
-    for (k, r) in raw.iter().enumerate().filter(|(k, _)| !direct[*k]) {
-        let c0 = r.centre(plates);
-        let beside = |x: &Raw, p: usize| -> Result<bool, GridError> {
-            let off = x.centre(plates) - c0;
-            if x.axis.dot(r.axis).abs() < cos_max || (off - r.axis * off.dot(r.axis)).length() <= near {
-                return Ok(false);
+    let centres: Vec<DVec3> = raw.iter().map(|r| r.centre(plates)).collect();
+    // Parallel lines apart: the cheap test, before any geometry.
+    let beside = |k: usize, x: usize| {
+        let off = centres[x] - centres[k];
+        let axis = raw[k].axis;
+        raw[x].axis.dot(axis).abs() >= cos_max && (off - axis * off.dot(axis)).length() > near
+    };
+    let overlap = |k: usize, x: usize, p: usize| -> Result<bool, GridError> {
+        let (mine, theirs) = (raw[k].in_plate(p), raw[x].in_plate(p));
+        let shared = intersection(std::slice::from_ref(mine), std::slice::from_ref(theirs))?;
+        Ok(total_area(&shared) > 1e-3 * mine.area())
+    };
+    // Whether a joint's regions touch both its plates (computed when first asked).
+    let mut direct: Vec<Option<bool>> = vec![None; raw.len()];
+    let mut touched: Vec<Option<Vec<Polygon>>> = vec![None; plates.len()];
+    let mut is_direct = |k: usize| -> Result<bool, GridError> {
+        if let Some(d) = direct[k] {
+            return Ok(d);
+        }
+        let mut d = true;
+        for p in [raw[k].a, raw[k].b] {
+            if touched[p].is_none() {
+                touched[p] = Some(offset(std::slice::from_ref(&plates[p].polygon), 0.05)?);
             }
-            let overlap = intersection(std::slice::from_ref(r.in_plate(p)), std::slice::from_ref(x.in_plate(p)))?;
-            Ok(total_area(&overlap) > 1e-3 * r.in_plate(p).area())
-        };
-        let direct = &direct;
-        let thirds = |p: usize| {
-            raw.iter()
-                .enumerate()
-                .filter(move |(i, x)| direct[*i] && x.other(p).is_some_and(|c| c != r.a && c != r.b))
-        };
-        'third: for (_, x) in thirds(r.a) {
-            let c = x.other(r.a);
-            if !beside(x, r.a)? {
+            let near_plate = touched[p].as_deref().unwrap_or_default();
+            d &= total_area(&intersection(std::slice::from_ref(raw[k].in_plate(p)), near_plate)?) > 0.01;
+        }
+        direct[k] = Some(d);
+        Ok(d)
+    };
+    let mut out = vec![false; raw.len()];
+    for (k, r) in raw.iter().enumerate() {
+        'third: for &x in &of_plate[r.a] {
+            let Some(c) = raw[x].other(r.a).filter(|&c| c != r.b) else {
+                continue;
+            };
+            if !beside(k, x) {
                 continue;
             }
-            for (_, y) in thirds(r.b).filter(|(_, y)| y.other(r.b) == c) {
-                if beside(y, r.b)? {
+            for &y in of_plate[r.b].iter().filter(|&&y| raw[y].other(r.b) == Some(c)) {
+                if beside(k, y)
+                    && !is_direct(k)?
+                    && is_direct(x)?
+                    && is_direct(y)?
+                    && overlap(k, x, r.a)?
+                    && overlap(k, y, r.b)?
+                {
                     out[k] = true;
                     break 'third;
                 }
