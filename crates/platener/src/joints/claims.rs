@@ -56,10 +56,13 @@ pub(super) fn decided(regions: &[Region]) -> Decided {
 /// meet (other joints at a crowded vertex took all of it): that is no joint, and the others are
 /// numbered on without it. Also the pairs of plates (1-based, "a–b") left unjoined so.
 /// `min_feature`: the narrowest feature in plates of a thickness, the least they must touch.
+/// Only joints of parts that gave way (`gave_way`, from [`settle`]) are checked: the others
+/// are as their joint cut them.
 pub(super) fn labels(
     plates: &[Plate],
     outlines: &[Polygon],
     regions: &[Region],
+    gave_way: &[bool],
     min_feature: impl Fn(f64) -> f64,
 ) -> Result<(Vec<Option<u32>>, Vec<String>), GridError> {
     let mut labels = Vec::with_capacity(regions.len());
@@ -68,7 +71,8 @@ pub(super) fn labels(
     for r in regions {
         let length = min_feature(plates[r.a].thickness.max(plates[r.b].thickness));
         let (a, b) = ((r.a, &r.in_a), (r.b, &r.in_b));
-        if meet(plates, outlines, a, b, length)? || meet(plates, outlines, b, a, length)? {
+        let as_cut = !gave_way[r.a] && !gave_way[r.b];
+        if as_cut || meet(plates, outlines, a, b, length)? || meet(plates, outlines, b, a, length)? {
             next += 1;
             labels.push(Some(next));
         } else {
@@ -141,8 +145,8 @@ fn grown_by(plate: &Plate, outline: &Polygon) -> Result<Vec<Polygon>, GridError>
 /// Cuts back the growth of every part that reaches into another, lower-ranked (higher index)
 /// first, except where a joint between the two decided who owns what (`decided`; JimJoints'
 /// barbs overlap there on purpose, and the test here is by columns, which at oblique angles
-/// takes a little more than the overlap). Returns how many parts gave way somewhere.
-pub(super) fn settle(plates: &[Plate], outlines: &mut [Polygon], decided: &Decided) -> Result<usize, GridError> {
+/// takes a little more than the overlap). Returns which parts gave way somewhere.
+pub(super) fn settle(plates: &[Plate], outlines: &mut [Polygon], decided: &Decided) -> Result<Vec<bool>, GridError> {
     let boxes: Vec<(DVec3, DVec3)> = plates.iter().zip(outlines.iter()).map(|(p, o)| bounds(p, o)).collect();
     let mut growth: Vec<Vec<Polygon>> = plates
         .iter()
@@ -171,7 +175,7 @@ pub(super) fn settle(plates: &[Plate], outlines: &mut [Polygon], decided: &Decid
         changed[j] |= give_way(plates, outlines, &mut growth, decided, (j, i))?;
         changed[i] |= give_way(plates, outlines, &mut growth, decided, (i, j))?;
     }
-    Ok(changed.iter().filter(|&&c| c).count())
+    Ok(changed)
 }
 
 /// Whether parts `a` and `b` still hold each other at their joint (`near_a`, `near_b`: its
@@ -234,7 +238,10 @@ mod tests {
     #[test]
     fn growth_into_a_part_with_no_joint_is_cut_back_to_the_plate() {
         let (plates, mut outlines) = floor_and_wall();
-        assert_eq!(settle(&plates, &mut outlines, &Decided::new()).expect("grid"), 1);
+        assert_eq!(
+            settle(&plates, &mut outlines, &Decided::new()).expect("grid"),
+            [false, true]
+        );
         // The floor keeps everything; the wall loses what passed through the floor, and what
         // hung below it lost its hold on the wall.
         assert!((outlines[0].area() - 400.0).abs() < 1e-6);
@@ -251,7 +258,7 @@ mod tests {
         let mut decided = Decided::new();
         decided.insert((0, 1), [Vec::new(), vec![Polygon::new(rect(0.0, -5.0, 20.0, 3.0))]]);
         let before = outlines.clone();
-        assert_eq!(settle(&plates, &mut outlines, &decided).expect("grid"), 0);
+        assert_eq!(settle(&plates, &mut outlines, &decided).expect("grid"), [false, false]);
         assert_eq!(outlines, before);
     }
 

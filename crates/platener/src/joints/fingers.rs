@@ -556,8 +556,8 @@ pub(super) fn apply(
         }
         outlines_final.push(pieces.into_iter().next().unwrap_or_else(|| plates[i].polygon.clone()));
     }
-    super::claims::settle(plates, &mut outlines_final, &super::claims::decided(&used))?;
-    let (labels, unjoined) = super::claims::labels(plates, &outlines_final, &used, min_feature)?;
+    let gave_way = super::claims::settle(plates, &mut outlines_final, &super::claims::decided(&used))?;
+    let (labels, unjoined) = super::claims::labels(plates, &outlines_final, &used, &gave_way, min_feature)?;
     let mut warnings = Vec::new();
     if !unjoined.is_empty() {
         warnings.push(format!(
