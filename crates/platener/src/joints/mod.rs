@@ -7,6 +7,8 @@
 //!    connected. That shared prism is the joint region (the thesis' parallelogram, so finger
 //!    length follows the enclosed angle by construction); disjoint stretches are separate
 //!    connections. A plate whose original outline already covers the region passes through.
+//!    Only where both plates run along the line is it a joint ([`along`]), and not across a
+//!    chamfer plate between them ([`bridge`]).
 //! 2. [`fingers`]: the region is cut into segments along the joint line; each segment belongs to
 //!    one plate and is removed from the other, so the two sides are exact negatives. Corners
 //!    (neither passes through): an odd number of fingers, the ends to the higher-ranked plate, so
@@ -19,6 +21,7 @@
 mod along;
 #[cfg(test)]
 mod assembly_tests;
+mod bridge;
 mod cap;
 mod claims;
 mod connect;
