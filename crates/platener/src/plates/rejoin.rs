@@ -38,16 +38,10 @@ fn bridge(a: &Plate, b: &Plate, others: &[&Plate], clearance: f64) -> Result<Opt
         thickness: a.thickness,
     };
     // Pieces that already touch (an enclosure's front wall and the lip above it, found from
-    // two faces) need no third plate.
-    let touching = intersection(
-        &offset(std::slice::from_ref(&a.polygon), HAIRLINE)?,
-        &offset(std::slice::from_ref(&b_in_a), HAIRLINE)?,
-    )?;
-    if !touching.is_empty() {
-        let mut closed = closing(&union_all(&[a.polygon.clone(), b_in_a.clone()])?, HAIRLINE)?;
-        if closed.len() == 1 {
-            return Ok(closed.pop());
-        }
+    // two faces) need no third plate: closing hairline gaps makes them one.
+    let mut closed = closing(&union_all(&[a.polygon.clone(), b_in_a.clone()])?, HAIRLINE)?;
+    if closed.len() == 1 {
+        return Ok(closed.pop());
     }
     let mut bands = Vec::new();
     for third in others {
