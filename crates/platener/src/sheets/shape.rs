@@ -10,6 +10,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use glam::DVec2;
 use jagua_rs::geometry::primitives::{Point, SPolygon};
+use platener_geom::polygon::remove_straight_vertices;
 use platener_geom::{Polygon, Ring, offset};
 
 /// Rotations closer than this (radians, 0.5°) to a multiple of 90° count as that multiple.
@@ -137,14 +138,21 @@ pub(crate) fn to_spolygon(ring: &[DVec2]) -> Option<SPolygon> {
     })
 }
 
-/// The outline of `cut` grown by `grow` mm (miter joins), holes dropped.
+/// Vertices this close (mm) to the straight line past them are dropped from a nest shape:
+/// joints leave runs of vertices microns apart (hairline notches, grid steps), and collision
+/// checks cost by the edge. A part's nest shape is its cut grown by half the spacing, so
+/// cutting a corner this much still keeps parts far apart.
+const NEST_SIMPLIFY: f64 = 0.02;
+
+/// The outline of `cut` grown by `grow` mm (miter joins), holes dropped, without vertices on
+/// straight runs ([`NEST_SIMPLIFY`]).
 pub(crate) fn grown_outline(cut: &Polygon, grow: f64) -> Option<Ring> {
     let outer = Polygon::new(cut.outer.clone());
     let grown = offset::offset(&[outer], grow).ok()?;
     grown
         .into_iter()
         .max_by(|a, b| a.area().total_cmp(&b.area()))
-        .map(|p| p.outer)
+        .map(|p| remove_straight_vertices(&p.outer, NEST_SIMPLIFY))
 }
 
 /// The nest shape of a part with cut path `cut` and nominal area `area`.
@@ -206,6 +214,35 @@ mod tests {
             .fold(f64::INFINITY, f64::min);
         // 42 × 12 once straightened (miter-grown by 1 mm).
         assert!((smallest - 42.0 * 12.0).abs() < 0.01, "{smallest}");
+    }
+
+    /// A 40 × 10 plate whose long edges step by 5 µm every millimetre (as joints leave them):
+    /// its nest shape is a plain rectangle, still at least half the spacing minus the
+    /// simplification around every point of the cut.
+    #[test]
+    fn micro_steps_do_not_reach_the_nest_shape() {
+        let mut ring = Vec::new();
+        for i in 0..40 {
+            let y = if i % 2 == 0 { 0.0 } else { 0.005 };
+            ring.extend([DVec2::new(f64::from(i), y), DVec2::new(f64::from(i + 1), y)]);
+        }
+        ring.extend([DVec2::new(40.0, 10.0), DVec2::new(0.0, 10.0)]);
+        let cut = Polygon::new(ring);
+        let grown = grown_outline(&cut, 1.0).expect("grows");
+        assert!(grown.len() <= 6, "{} vertices", grown.len());
+        let nest = Polygon::new(grown.clone());
+        let to_edge = |p: DVec2| {
+            (0..grown.len())
+                .map(|i| {
+                    let (a, b) = (grown[i], grown[(i + 1) % grown.len()]);
+                    let t = ((p - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+                    p.distance(a + (b - a) * t)
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        for p in &cut.outer {
+            assert!(nest.contains(*p) && to_edge(*p) >= 1.0 - NEST_SIMPLIFY, "{p}");
+        }
     }
 
     #[test]
