@@ -11,11 +11,13 @@
 //! | [`boolean`] | union / intersection / difference, even-odd hole detection (i_overlay) |
 //! | [`offset`] | outward/inward offsets with miter joins (i_overlay) |
 //! | [`slab`] | plates as extruded polygons: where one plate's outline meets another's volume |
+//! | [`boxes`] | which pairs of 3D boxes come near each other (a sweep along x) |
 //! | [`frame`] | rigid 3D ↔ 2D frames of planes |
 //! | [`dedup`] | finding equal items among millions (sorted fingerprints) |
 //! | [`weld`] | merging nearby points in 2D or 3D (spatial hash) |
 
 pub mod boolean;
+pub mod boxes;
 pub mod dedup;
 pub mod frame;
 pub mod grid;

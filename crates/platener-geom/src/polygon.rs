@@ -95,8 +95,14 @@ impl Polygon {
     /// Distance from `p` to the polygon: 0 inside, else to the nearest point of its boundary.
     pub fn distance_to(&self, p: DVec2) -> f64 {
         if self.contains(p) {
-            return 0.0;
+            0.0
+        } else {
+            self.boundary_distance(p)
         }
+    }
+
+    /// Distance from `p` to the nearest point of the polygon's boundary, inside or out.
+    pub fn boundary_distance(&self, p: DVec2) -> f64 {
         std::iter::once(&self.outer)
             .chain(&self.holes)
             .flat_map(|ring| (0..ring.len()).map(move |i| (ring[i], ring[(i + 1) % ring.len()])))

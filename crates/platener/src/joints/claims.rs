@@ -9,8 +9,8 @@
 
 use std::collections::BTreeMap;
 
-use glam::DVec3;
 use platener_geom::boolean::{difference, intersection};
+use platener_geom::boxes::{Box3, near_pairs};
 use platener_geom::offset::{offset, opening};
 use platener_geom::polygon::total_area;
 use platener_geom::slab::Slab;
@@ -22,21 +22,6 @@ use crate::plates::Plate;
 
 /// Overlaps smaller than this (mm²) are grid noise.
 const NOISE_AREA: f64 = 1e-3;
-
-/// The model-space box of a part.
-fn bounds(plate: &Plate, outline: &Polygon) -> (DVec3, DVec3) {
-    let (lo, hi) = outline.bounds();
-    let mut b = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-    for x in [lo.x, hi.x] {
-        for y in [lo.y, hi.y] {
-            for z in [0.0, plate.thickness] {
-                let q = plate.frame.to_model(DVec3::new(x, y, z));
-                b = (b.0.min(q), b.1.max(q));
-            }
-        }
-    }
-    b
-}
 
 /// The joint regions between two plates, in each one's plane: what their joints decided.
 pub(super) type Decided = BTreeMap<(usize, usize), [Vec<Polygon>; 2]>;
@@ -147,25 +132,17 @@ fn grown_by(plate: &Plate, outline: &Polygon) -> Result<Vec<Polygon>, GridError>
 /// barbs overlap there on purpose, and the test here is by columns, which at oblique angles
 /// takes a little more than the overlap). Returns which parts gave way somewhere.
 pub(super) fn settle(plates: &[Plate], outlines: &mut [Polygon], decided: &Decided) -> Result<Vec<bool>, GridError> {
-    let boxes: Vec<(DVec3, DVec3)> = plates.iter().zip(outlines.iter()).map(|(p, o)| bounds(p, o)).collect();
+    let boxes: Vec<Box3> = plates
+        .iter()
+        .zip(outlines.iter())
+        .map(|(p, o)| p.bounds_of(o))
+        .collect();
     let mut growth: Vec<Vec<Polygon>> = plates
         .iter()
         .zip(outlines.iter())
         .map(|(p, o)| grown_by(p, o))
         .collect::<Result<_, _>>()?;
-    let mut order: Vec<usize> = (0..plates.len()).collect();
-    order.sort_by(|&a, &b| boxes[a].0.x.total_cmp(&boxes[b].0.x).then(a.cmp(&b)));
-    let mut pairs = Vec::new();
-    for (k, &a) in order.iter().enumerate() {
-        for &b in &order[k + 1..] {
-            if boxes[b].0.x > boxes[a].1.x {
-                break;
-            }
-            if boxes[a].0.cmple(boxes[b].1).all() && boxes[b].0.cmple(boxes[a].1).all() {
-                pairs.push((a.min(b), a.max(b)));
-            }
-        }
-    }
+    let mut pairs = near_pairs(&boxes, 0.0);
     pairs.sort_unstable();
     let mut changed = vec![false; plates.len()];
     for (i, j) in pairs {
@@ -206,6 +183,8 @@ pub(super) fn meet(
 
 #[cfg(test)]
 mod tests {
+    use glam::DVec3;
+
     use super::*;
     use crate::joints::tests::plate;
     use platener_geom::Frame;

@@ -3,6 +3,7 @@
 
 use glam::{DVec2, DVec3};
 use platener_geom::boolean::{difference, intersection, union_all};
+use platener_geom::boxes::{Box3, near_pairs};
 use platener_geom::offset::offset;
 use platener_geom::polygon::total_area;
 use platener_geom::slab::{Slab, strip_in_box};
@@ -180,19 +181,8 @@ fn centroid(plate: &Plate, poly: &Polygon) -> DVec3 {
     at(plate, (lo + hi) / 2.0)
 }
 
-/// How far plate `a` must grow to cross plate `b`'s slab: the slab's width seen in a's plane,
-/// as wide at most as where the normals are [`cap::CAP_DEG`] apart (no finger reaches
-/// further: towards parallel plates the crossing grows without bound).
-pub(super) fn crossing_width(a: &Plate, b: &Plate) -> f64 {
-    crossing_at(a, b, a.frame.n.cross(b.frame.n).length()).min(widest_crossing(a, b))
-}
-
-/// The crossing where the normals are [`cap::CAP_DEG`] apart.
-fn widest_crossing(a: &Plate, b: &Plate) -> f64 {
-    crossing_at(a, b, cap::CAP_DEG.to_radians().sin())
-}
-
-/// `b`'s slab seen in a's plane where the sine of the angle between their normals is `sin`.
+/// `b`'s slab seen in a's plane where the sine of the angle between their normals is `sin`:
+/// how far `a` must grow to cross it.
 fn crossing_at(a: &Plate, b: &Plate, sin: f64) -> f64 {
     let cos = (1.0 - sin * sin).max(0.0).sqrt();
     (b.thickness + a.thickness * cos) / sin.max(1e-9)
@@ -200,10 +190,13 @@ fn crossing_at(a: &Plate, b: &Plate, sin: f64) -> f64 {
 
 /// How far `a` grows towards `b` to find where they meet: across `b`'s layer, and a
 /// thickness more, as a plate may end that far short of it (plate finding trims a plate back
-/// by up to about a thickness, and a filleted corner leaves a gap of its radius); at shallow
-/// angles no more than the widest crossing, which already spans such gaps.
+/// by up to about a thickness, and a filleted corner leaves a gap of its radius). At most as
+/// far as the crossing where the normals are [`cap::CAP_DEG`] apart: no finger reaches
+/// further (towards parallel plates the crossing grows without bound), and that crossing
+/// already spans such gaps.
 pub(super) fn growth(a: &Plate, b: &Plate) -> f64 {
-    (crossing_width(a, b) + a.thickness.min(b.thickness)).min(widest_crossing(a, b))
+    let crossing = crossing_at(a, b, a.frame.n.cross(b.frame.n).length());
+    (crossing + a.thickness.min(b.thickness)).min(crossing_at(a, b, cap::CAP_DEG.to_radians().sin()))
 }
 
 /// Direction from the joint line into the plate, in its plane.
@@ -214,10 +207,6 @@ pub(super) fn into_plate(plate: &Plate, axis: DVec3, joint: DVec3) -> DVec3 {
     } else {
         -d
     }
-}
-
-fn boxes_touch(a: (DVec3, DVec3), b: (DVec3, DVec3), grow: f64) -> bool {
-    (a.0 - DVec3::splat(grow)).cmple(b.1).all() && (b.0 - DVec3::splat(grow)).cmple(a.1).all()
 }
 
 /// How far `plate` grows towards a joint `region`: its outline grown by `grow`, within the
@@ -427,21 +416,8 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
     let t_max = plates.iter().map(|p| p.thickness).fold(0.0, f64::max);
     // The furthest a plate grows towards a joint (the crossing of two layers, capped).
     let reach = 2.0 * t_max / cap::CAP_DEG.to_radians().sin();
-    let bounds: Vec<(DVec3, DVec3)> = plates.iter().map(Plate::bounds).collect();
-    // Sweep along x: only plates whose grown boxes overlap in x are compared.
-    let mut order: Vec<usize> = (0..plates.len()).collect();
-    order.sort_by(|&i, &j| bounds[i].0.x.total_cmp(&bounds[j].0.x).then(i.cmp(&j)));
-    let mut pairs = Vec::new();
-    for (k, &i) in order.iter().enumerate() {
-        for &j in &order[k + 1..] {
-            if bounds[j].0.x > bounds[i].1.x + 2.0 * reach {
-                break;
-            }
-            if boxes_touch(bounds[i], bounds[j], reach) {
-                pairs.push((i.min(j), i.max(j)));
-            }
-        }
-    }
+    let bounds: Vec<Box3> = plates.iter().map(Plate::bounds).collect();
+    let mut pairs = near_pairs(&bounds, reach);
     pairs.sort_unstable();
     // Each plate's outline grown by twice the thinnest sheet's thickness: whatever lies
     // within reaches a joint region. Plates end at the region's edge or inside it, but plate

@@ -7,8 +7,8 @@
 //! ends against their plane (within their convex hull) joins them into one piece, they become
 //! one plate; the joint step later joins the third plate to it with a cross or T joint.
 
-use glam::DVec3;
 use platener_geom::boolean::{intersection, union_all};
+use platener_geom::boxes::{Box3, near, near_pairs};
 use platener_geom::offset::{closing, offset};
 use platener_geom::polygon::convex_hull;
 use platener_geom::slab::Slab;
@@ -88,14 +88,6 @@ fn joined(a: &Plate, b_in_a: &Polygon, band: &[Polygon], hull: &Polygon) -> Resu
 /// Gaps (mm) between a piece and a bridging band that are grid noise.
 const HAIRLINE: f64 = 0.01;
 
-fn grow(b: (DVec3, DVec3), by: f64) -> (DVec3, DVec3) {
-    (b.0 - DVec3::splat(by), b.1 + DVec3::splat(by))
-}
-
-fn touch(a: (DVec3, DVec3), b: (DVec3, DVec3)) -> bool {
-    a.0.cmple(b.1).all() && b.0.cmple(a.1).all()
-}
-
 /// Returns the plates with split pairs rejoined, and how many joins were made.
 pub(super) fn rejoin(mut plates: Vec<Plate>, angle: f64, clearance: f64) -> Result<(Vec<Plate>, usize), GridError> {
     let cos_max = angle.cos();
@@ -106,42 +98,33 @@ pub(super) fn rejoin(mut plates: Vec<Plate>, angle: f64, clearance: f64) -> Resu
     let reach = plates.iter().map(|p| p.thickness).fold(0.0, f64::max) * 4.0 + clearance;
     // Repeat until nothing joins: a plate split into three by two dividers needs two rounds.
     'again: loop {
-        let bounds: Vec<(DVec3, DVec3)> = plates.iter().map(Plate::bounds).collect();
-        // Sweep along x: only plates whose grown boxes overlap in x are compared.
-        let mut order: Vec<usize> = (0..plates.len()).collect();
-        order.sort_by(|&a, &b| bounds[a].0.x.total_cmp(&bounds[b].0.x).then(a.cmp(&b)));
-        for (oi, &i) in order.iter().enumerate() {
-            for &j in &order[oi + 1..] {
-                if bounds[j].0.x > bounds[i].1.x + reach {
-                    break;
-                }
-                let (i, j) = (i.min(j), i.max(j));
-                if !coplanar(&plates[i], &plates[j], cos_max, clearance) || !touch(grow(bounds[i], reach), bounds[j]) {
-                    continue;
-                }
-                let span = (bounds[i].0.min(bounds[j].0), bounds[i].1.max(bounds[j].1));
-                let others: Vec<&Plate> = plates
-                    .iter()
-                    .enumerate()
-                    .filter(|(k, p)| {
-                        *k != i
-                            && *k != j
-                            && p.frame.n.dot(plates[i].frame.n).abs() < cos_max
-                            && touch(grow(span, reach), bounds[*k])
-                    })
-                    .map(|(_, p)| p)
-                    .collect();
-                if let Some(joined) = bridge(&plates[i], &plates[j], &others, clearance)? {
-                    let b = plates.remove(j);
-                    let a = &mut plates[i];
-                    a.area = joined.area();
-                    a.polygon = joined;
-                    a.shapes.extend(b.shapes);
-                    a.shapes.sort_unstable();
-                    a.shapes.dedup();
-                    joins += 1;
-                    continue 'again;
-                }
+        let bounds: Vec<Box3> = plates.iter().map(Plate::bounds).collect();
+        for (i, j) in near_pairs(&bounds, reach) {
+            if !coplanar(&plates[i], &plates[j], cos_max, clearance) {
+                continue;
+            }
+            let span = (bounds[i].0.min(bounds[j].0), bounds[i].1.max(bounds[j].1));
+            let others: Vec<&Plate> = plates
+                .iter()
+                .enumerate()
+                .filter(|(k, p)| {
+                    *k != i
+                        && *k != j
+                        && p.frame.n.dot(plates[i].frame.n).abs() < cos_max
+                        && near(span, bounds[*k], reach)
+                })
+                .map(|(_, p)| p)
+                .collect();
+            if let Some(joined) = bridge(&plates[i], &plates[j], &others, clearance)? {
+                let b = plates.remove(j);
+                let a = &mut plates[i];
+                a.area = joined.area();
+                a.polygon = joined;
+                a.shapes.extend(b.shapes);
+                a.shapes.sort_unstable();
+                a.shapes.dedup();
+                joins += 1;
+                continue 'again;
             }
         }
         break;
@@ -151,6 +134,8 @@ pub(super) fn rejoin(mut plates: Vec<Plate>, angle: f64, clearance: f64) -> Resu
 
 #[cfg(test)]
 mod tests {
+    use glam::DVec3;
+
     use super::*;
     use crate::plates::PlateKind;
     use platener_geom::Frame;

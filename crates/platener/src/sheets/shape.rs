@@ -230,18 +230,12 @@ mod tests {
         let cut = Polygon::new(ring);
         let grown = grown_outline(&cut, 1.0).expect("grows");
         assert!(grown.len() <= 6, "{} vertices", grown.len());
-        let nest = Polygon::new(grown.clone());
-        let to_edge = |p: DVec2| {
-            (0..grown.len())
-                .map(|i| {
-                    let (a, b) = (grown[i], grown[(i + 1) % grown.len()]);
-                    let t = ((p - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
-                    p.distance(a + (b - a) * t)
-                })
-                .fold(f64::INFINITY, f64::min)
-        };
+        let nest = Polygon::new(grown);
         for p in &cut.outer {
-            assert!(nest.contains(*p) && to_edge(*p) >= 1.0 - NEST_SIMPLIFY, "{p}");
+            assert!(
+                nest.contains(*p) && nest.boundary_distance(*p) >= 1.0 - NEST_SIMPLIFY,
+                "{p}"
+            );
         }
     }
 
