@@ -121,6 +121,18 @@ struct Plan {
     b_first: bool,
 }
 
+impl Plan {
+    /// Full fingers, `segments` of them, owned in turn from plate a.
+    fn of(segments: usize) -> Self {
+        Self {
+            segments,
+            short: false,
+            keeper: None,
+            b_first: false,
+        }
+    }
+}
+
 /// What a connection takes from and adds to its two plates (`[a, b]`).
 #[derive(Debug, Clone, Default)]
 struct Cut {
@@ -180,12 +192,7 @@ fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: Joi
         if segments < j.plates.len() && len / j.plates.len() as f64 >= narrowest {
             segments = j.plates.len();
         }
-        return Plan {
-            segments,
-            short: false,
-            keeper: None,
-            b_first: false,
-        };
+        return Plan::of(segments);
     }
     let t = plates[r.a].thickness.max(plates[r.b].thickness);
     let narrowest = match style {
@@ -196,12 +203,7 @@ fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: Joi
         ConnectionKind::Cross => 2,
         _ => segment_count(r.range.1 - r.range.0, settings.finger_factor * t, narrowest),
     };
-    Plan {
-        segments,
-        short: false,
-        keeper: None,
-        b_first: false,
-    }
+    Plan::of(segments)
 }
 
 /// The fingers, tabs and slots of one connection under `plan`.
@@ -431,10 +433,7 @@ pub(super) fn apply(
     for _ in 0..3 {
         let mut shortened = Vec::new();
         for (i, mine) in touching.iter().enumerate() {
-            let pieces = match finished[i].take() {
-                Some(pieces) => pieces,
-                None => whole(i, &cuts, &outlines)?,
-            };
+            let pieces = finished[i].take().map_or_else(|| whole(i, &cuts, &outlines), Ok)?;
             if pieces.len() > 1 {
                 for &(k, _) in mine {
                     if regions[k].short.is_some() && !plans[k].short && !shortened.iter().any(|&(q, _)| q == k) {
@@ -463,10 +462,7 @@ pub(super) fn apply(
         }
     }
     for (i, mine) in touching.iter().enumerate() {
-        let mut pieces = match finished[i].take() {
-            Some(pieces) => pieces,
-            None => whole(i, &cuts, &outlines)?,
-        };
+        let mut pieces = finished[i].take().map_or_else(|| whole(i, &cuts, &outlines), Ok)?;
         // Each connection that cuts this plate, in order, until it holds together.
         for &(k, side) in mine {
             if pieces.len() <= 1 {
@@ -541,10 +537,7 @@ pub(super) fn apply(
     let mut split = Vec::new();
     for (i, done) in finished.into_iter().enumerate() {
         // A plate whose partner adapted after it was finished is finished again.
-        let pieces = match done {
-            Some(pieces) => pieces,
-            None => whole(i, &cuts, &outlines)?,
-        };
+        let pieces = done.map_or_else(|| whole(i, &cuts, &outlines), Ok)?;
         if pieces.len() > 1 {
             let dropped: f64 = pieces[1..].iter().map(Polygon::area).sum();
             let share = 100.0 * dropped / pieces.iter().map(Polygon::area).sum::<f64>();
