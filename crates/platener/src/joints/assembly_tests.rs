@@ -6,7 +6,9 @@ use glam::{DVec2, DVec3};
 use platener_geom::Polygon;
 use platener_geom::slab::Slab;
 
-use super::tests::{in_slab, mesh_of, model_volume, parts, plates_with, shared_volume, volume, worst_overlap};
+use super::tests::{
+    in_slab, mesh_of, model_volume, parts, plates_with, shared_volume, shared_volumes, volume, worst_overlap,
+};
 use super::*;
 use crate::assembly::Inside;
 use crate::samples;
@@ -239,14 +241,11 @@ fn three_and_four_plates_on_one_line_share_no_volume() {
         assert!(joints.warnings.is_empty(), "{:?}", joints.warnings);
         let parts = parts(&plates, &joints);
         let total = volume(&parts);
-        for i in 0..parts.len() {
-            for j in i + 1..parts.len() {
-                let shared = shared_volume(&parts[i], &parts[j]);
-                assert!(
-                    shared < 1e-3 * total,
-                    "{arms} arms: parts {i} and {j} share {shared} mm³"
-                );
-            }
+        for ((i, j), shared) in shared_volumes(&parts) {
+            assert!(
+                shared < 1e-3 * total,
+                "{arms} arms: parts {i} and {j} share {shared} mm³"
+            );
         }
         assert!(
             (total - (expected - missing * depth)).abs() < 1e-3 * expected,
@@ -438,12 +437,7 @@ fn low_poly_ball_keeps_every_facet_whole() {
     assert!(per_plate.iter().all(|&n| (1..=5).contains(&n)), "{per_plate:?}");
     let parts = parts(&plates, &joints);
     let total = volume(&parts);
-    let mut shared = 0.0;
-    for (i, a) in parts.iter().enumerate() {
-        for b in &parts[i + 1..] {
-            shared += shared_volume(a, b);
-        }
-    }
+    let shared: f64 = shared_volumes(&parts).into_iter().map(|(_, v)| v).sum();
     eprintln!("parts {total:.0} mm³, shared {shared:.1} mm³");
     assert!(shared < 0.001 * total, "parts share {shared} of {total} mm³");
     // Parts lie inside the ball: at most a plate's layer of volume more than its surface holds.

@@ -98,6 +98,14 @@ pub(super) fn shared_volume(a: &Slab, b: &Slab) -> f64 {
     count as f64 * step * step * dz
 }
 
+/// The volume (mm³) every two parts share ([`shared_volume`]), by pair of indices.
+pub(super) fn shared_volumes(parts: &[Slab]) -> Vec<((usize, usize), f64)> {
+    (0..parts.len())
+        .flat_map(|i| (i + 1..parts.len()).map(move |j| (i, j)))
+        .map(|(i, j)| ((i, j), shared_volume(&parts[i], &parts[j])))
+        .collect()
+}
+
 /// The parts' total volume (mm³).
 pub(super) fn volume(parts: &[Slab]) -> f64 {
     parts.iter().map(|s| s.polygon.area() * s.thickness).sum()
@@ -377,20 +385,26 @@ fn dovetails_with_their_keys_rebuild_the_box_exactly() {
     }
 }
 
+/// How the L below turns its corner.
+enum Corner {
+    Fillet,
+    Chamfer,
+}
+
 /// An L of 3 mm walls (a 40 mm floor, a 40 mm wall at its right end), 30 mm deep, whose
 /// corner is rounded (radius 5 outside, 2 inside) or cut by a 45° chamfer as thick as the
 /// walls. Either way the flat faces end short of the corner.
-fn l_profile(corner: &str) -> Vec<glam::DVec2> {
+fn l_profile(corner: Corner) -> Vec<glam::DVec2> {
     use glam::DVec2;
     let mut p = vec![DVec2::new(0.0, 0.0)];
     match corner {
-        "fillet" => {
+        Corner::Fillet => {
             let c = DVec2::new(35.0, 5.0);
             p.extend((0..=8).map(|k| c + 5.0 * DVec2::from_angle((-90.0 + 11.25 * k as f64).to_radians())));
             p.extend([DVec2::new(40.0, 40.0), DVec2::new(37.0, 40.0)]);
             p.extend((0..=8).map(|k| c + 2.0 * DVec2::from_angle((-11.25 * k as f64).to_radians())));
         }
-        _ => {
+        Corner::Chamfer => {
             let inner = 35.0 - 3.0 * 2f64.sqrt();
             p.extend([DVec2::new(35.0, 0.0), DVec2::new(40.0, 5.0), DVec2::new(40.0, 40.0)]);
             p.extend([
@@ -406,7 +420,7 @@ fn l_profile(corner: &str) -> Vec<glam::DVec2> {
 
 #[test]
 fn plates_ending_short_of_a_rounded_corner_are_joined_across_it() {
-    let plates = plates_of(samples::prism(&l_profile("fillet"), 30.0));
+    let plates = plates_of(samples::prism(&l_profile(Corner::Fillet), 30.0));
     assert_eq!(plates.len(), 2, "floor and wall");
     let joints = compute(&plates, &JointSettings::default()).expect("grid");
     assert_eq!(joints.connections.len(), 1);
@@ -433,7 +447,7 @@ fn plates_ending_short_of_a_rounded_corner_are_joined_across_it() {
 
 #[test]
 fn plates_on_either_side_of_a_chamfer_are_joined_to_it_not_across_it() {
-    let plates = plates_of(samples::prism(&l_profile("chamfer"), 30.0));
+    let plates = plates_of(samples::prism(&l_profile(Corner::Chamfer), 30.0));
     assert_eq!(plates.len(), 3, "floor, chamfer and wall");
     let chamfer = plates
         .iter()
@@ -446,9 +460,6 @@ fn plates_on_either_side_of_a_chamfer_are_joined_to_it_not_across_it() {
         assert!((c.angle_deg - 135.0).abs() < 1e-6, "{}", c.angle_deg);
     }
     let parts = parts(&plates, &joints);
-    let worst = (0..parts.len())
-        .flat_map(|i| (i + 1..parts.len()).map(move |j| (i, j)))
-        .map(|(i, j)| shared_volume(&parts[i], &parts[j]))
-        .fold(0.0, f64::max);
+    let worst = shared_volumes(&parts).into_iter().map(|(_, v)| v).fold(0.0, f64::max);
     assert!(worst < 1.0, "{worst} mm³ shared");
 }
