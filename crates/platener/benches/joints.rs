@@ -19,7 +19,7 @@ fn bench(c: &mut Criterion) {
             triangles: Arc::new(samples::box_grid(n, n, 40.0, 3.0, 10.0)),
         };
         let mut state = platener::State::new(source, Settings::default());
-        platener::pipeline::run(&platener::pipeline::plate_steps(), &mut state, &Cancel::default()).expect("runs");
+        platener::pipeline::run(&platener::pipeline::PLATE, &mut state, &Cancel::default()).expect("runs");
         let plates = state.plates.clone().expect("plates");
         assert_eq!(plates.plates.len(), 6 * n * n);
         for style in [JointStyle::Finger, JointStyle::Dovetail] {
@@ -37,7 +37,7 @@ fn bench(c: &mut Criterion) {
         triangles: Arc::new(samples::star(3, 40.0, 3.0, 50.0)),
     };
     let mut state = platener::State::new(source, Settings::default());
-    platener::pipeline::run(&platener::pipeline::plate_steps(), &mut state, &Cancel::default()).expect("runs");
+    platener::pipeline::run(&platener::pipeline::PLATE, &mut state, &Cancel::default()).expect("runs");
     let plates = state.plates.clone().expect("plates");
     assert_eq!(plates.plates.len(), 3);
     group.bench_function("Finger/Y of 3 plates", |b| {
@@ -49,7 +49,7 @@ fn bench(c: &mut Criterion) {
         triangles: Arc::new(samples::sphere(glam::DVec3::ZERO, 40.0, 12, 8)),
     };
     let mut state = platener::State::new(source, Settings::default());
-    platener::pipeline::run(&platener::pipeline::plate_steps(), &mut state, &Cancel::default()).expect("runs");
+    platener::pipeline::run(&platener::pipeline::PLATE, &mut state, &Cancel::default()).expect("runs");
     let plates = state.plates.clone().expect("plates");
     group.bench_function(format!("Finger/ball of {} plates", plates.plates.len()), |b| {
         b.iter(|| compute(&plates.plates, &JointSettings::default()).expect("grid"));

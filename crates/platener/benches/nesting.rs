@@ -51,13 +51,15 @@ fn part_sets() -> Vec<(&'static str, Vec<Part>)> {
     ]
 }
 
-fn run(parts: &[Part], settings: &CutSettings) -> Nesting {
-    let cut = cut_paths(parts, settings.kerf()).expect("cut paths");
-    nest(parts, &cut, settings, &|| false).expect("nests")
+fn run(parts: &[Part], settings: &CutSettings) -> (Nesting, f64) {
+    let start = std::time::Instant::now();
+    let (cut, _) = cut_paths(parts, settings.kerf()).expect("cut paths");
+    let (nesting, _) = nest(parts, &cut, settings, &|| false).expect("nests");
+    (nesting, start.elapsed().as_secs_f64() * 1e3)
 }
 
 /// Overall density and the density of every sheet but the last (full sheets).
-fn summary(n: &Nesting) -> String {
+fn summary((n, millis): &(Nesting, f64)) -> String {
     let parts: f64 = n.sheets.iter().map(|s| s.parts_area).sum();
     let used: f64 = n.sheets.iter().map(|s| s.used_area).sum();
     let per: Vec<String> = n.sheets.iter().map(|s| format!("{:.1}", 100.0 * s.density)).collect();
@@ -66,7 +68,7 @@ fn summary(n: &Nesting) -> String {
         n.sheets.len(),
         100.0 * parts / used,
         per.join(" / "),
-        n.millis
+        millis
     )
 }
 

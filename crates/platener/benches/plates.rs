@@ -35,7 +35,7 @@ fn bench(c: &mut Criterion) {
     group.bench_function("file-to-plates/box-grid-100k", |b| {
         b.iter(|| {
             let mut state = platener::State::new(source.clone(), settings.clone());
-            platener::pipeline::run(&platener::pipeline::plate_steps(), &mut state, &Cancel::default()).expect("runs")
+            platener::pipeline::run(&platener::pipeline::PLATE, &mut state, &Cancel::default()).expect("runs")
         });
     });
     group.finish();

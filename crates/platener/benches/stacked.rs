@@ -13,7 +13,8 @@ use platener::glam::DVec3;
 use platener::mesh::Mesh;
 use platener::pipeline::{self, Cancel, Source, State};
 use platener::settings::{StackAxis, StackedSettings};
-use platener::stacked::{AxisChoice, SlicePlan, StackedStep, islands_of, slice};
+use platener::pipeline::{FOUNDATION, StepId};
+use platener::stacked::{AxisChoice, SlicePlan, islands_of, slice};
 use platener::weld::weld_soup;
 use platener::{Settings, samples};
 
@@ -65,11 +66,11 @@ fn whole_step(c: &mut Criterion) {
         triangles: Arc::new(tris),
     };
     let mut state = State::new(source, platener::method::MethodKind::Stacked.adjust(settings));
-    pipeline::run(&pipeline::foundation_steps(), &mut state, &Cancel::default()).expect("foundation");
+    pipeline::run(&FOUNDATION, &mut state, &Cancel::default()).expect("foundation");
     group.bench_function(BenchmarkId::new("sphere-100mm", count), |b| {
         b.iter(|| {
             let mut s = state.clone();
-            pipeline::run(&[&StackedStep], &mut s, &Cancel::default()).expect("stacked")
+            pipeline::run(&[StepId::Stacked], &mut s, &Cancel::default()).expect("stacked")
         });
     });
     group.finish();

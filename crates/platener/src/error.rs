@@ -1,24 +1,30 @@
-//! The library's error type. Each variant says whose fault it is: the input's (a file we
-//! cannot read, a model with nothing left to convert), the caller's (settings out of range,
-//! a cancelled run), or ours (an invariant that broke: please report it).
+//! The library's error type. Each variant says whose fault it is: the model's (a file we
+//! cannot read, with file and line or triangle; a model with nothing left to convert), the
+//! caller's (settings out of range, a cancelled or timed-out run), or ours ([`Error::Internal`]:
+//! an invariant that broke, with the step; please report it). Callers render these; the
+//! library never prints.
 
+use platener_geom::GridError;
+
+use crate::context::Cancelled;
+use crate::plan::PlanError;
 use crate::read::ReadError;
 
 /// Everything that can stop a conversion.
-#[derive(Debug, thiserror::Error)]
+#[derive(Debug, Clone, thiserror::Error)]
 pub enum Error {
-    /// The model file could not be read (input's fault; the message names file and place).
+    /// The model file could not be read (the model's fault; the message names file and place).
     #[error(transparent)]
     Read(#[from] ReadError),
-    /// The model has nothing left after a step (input's fault).
-    #[error("{model}: {message}")]
+    /// The model was read but cannot be converted (the model's fault).
+    #[error("{model}: {problem}")]
     Model {
         /// The model's name.
         model: String,
-        /// What is missing and what to do.
-        message: String,
+        /// What is wrong with it and what to do.
+        problem: ModelProblem,
     },
-    /// A setting is out of range (caller's fault).
+    /// A setting is out of range (the caller's fault).
     #[error("invalid setting {name}: {message}")]
     Setting {
         /// The setting.
@@ -32,7 +38,75 @@ pub enum Error {
         /// The step that noticed the cancellation.
         step: &'static str,
     },
-    /// A step ran before the steps it depends on (our fault).
+    /// The run took longer than the caller's time limit and was cancelled.
+    #[error("timed out after {seconds} s (--timeout); cancelled")]
+    TimedOut {
+        /// The limit, seconds.
+        seconds: f64,
+    },
+    /// A bug of ours: an invariant broke in `step` (please report it).
+    #[error("{problem}")]
+    Internal {
+        /// The step (or `convert` for the orchestration) where it happened.
+        step: &'static str,
+        /// What broke.
+        problem: Internal,
+    },
+}
+
+/// Why a model that was read cannot be converted.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ModelProblem {
+    /// No triangles at all.
+    #[error("the model has no triangles")]
+    NoTriangles,
+    /// A coordinate is NaN or infinite after units and scale.
+    #[error("triangle {triangle} has a coordinate that is not a finite number after scaling; check --scale")]
+    NonFinite {
+        /// The triangle, 0-based.
+        triangle: usize,
+    },
+    /// Cleanup removed every triangle.
+    #[error("no triangle with an area is left after cleanup")]
+    EmptyAfterCleanup,
+    /// Welding collapsed every triangle.
+    #[error("no triangle with an area is left after welding; try --weld 0")]
+    EmptyAfterWeld,
+    /// A coordinate is beyond what the 2D grid holds.
+    #[error("{0}: scale the model down (--scale) or check its units")]
+    OffGrid(GridError),
+    /// The stacked method found nothing to slice.
+    #[error("the model has no triangles to slice")]
+    NothingToSlice,
+    /// Every layer of the stacked method was too small to cut.
+    #[error(
+        "no layer is large enough to cut ({islands} island(s) under {min_area} mm² or thinner than {min_width} mm; \
+         the stack is {height:.1} mm tall): scale the model up (--scale) or use thinner sheets"
+    )]
+    NoLayer {
+        /// Islands dropped.
+        islands: usize,
+        /// The smallest island area kept, mm².
+        min_area: f64,
+        /// The narrowest island kept, mm.
+        min_width: f64,
+        /// The stack's height, mm.
+        height: f64,
+    },
+    /// A method made no parts (its step warnings say why).
+    #[error(
+        "the {method} method made no parts to cut (the warnings say why; `platener inspect --plates` shows more)"
+    )]
+    NoParts {
+        /// The method.
+        method: &'static str,
+    },
+}
+
+/// A bug of ours, by kind.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Internal {
+    /// A step ran before the steps it depends on.
     #[error("internal error: step {step} needs the result of step {needs}; please report this")]
     MissingStep {
         /// The step that ran.
@@ -40,14 +114,113 @@ pub enum Error {
         /// The step whose snapshot was missing.
         needs: &'static str,
     },
-    /// A coordinate could not be put on the 2D grid (input's fault, validated before geometry).
-    #[error("{model}: {message}")]
-    Geometry {
-        /// The model's name.
-        model: String,
-        /// What was wrong.
+    /// The code panicked; the panic was caught.
+    #[error("{} (a bug in platener: please report it)", panic_text(message, location.as_deref()))]
+    Panic {
+        /// The panic's message.
+        message: String,
+        /// `file:line:column`, when known.
+        location: Option<String>,
+    },
+    /// A cutting-plan step made or met a part it cannot use.
+    #[error("internal error: part {part}: {message}; please report this")]
+    Part {
+        /// The part's id.
+        part: u32,
+        /// What is wrong with it.
         message: String,
     },
+    /// Writing a file into memory failed.
+    #[error("internal error writing {file}: {message}; please report this")]
+    Write {
+        /// The file being written.
+        file: String,
+        /// The writer's message.
+        message: String,
+    },
+    /// The thread running the conversion stopped without a result.
+    #[error("internal error: the conversion thread stopped without a result ({message}); please report this")]
+    Thread {
+        /// What happened.
+        message: String,
+    },
+    /// A caller asked, for a test, that the method fail.
+    #[error("the {method} method was asked to fail (fault injection)")]
+    Injected {
+        /// The method.
+        method: &'static str,
+    },
+}
+
+fn panic_text(message: &str, location: Option<&str>) -> String {
+    match location {
+        Some(at) => format!("panicked at {at}: {message}"),
+        None => format!("panicked: {message}"),
+    }
+}
+
+/// Whose fault an error is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Culprit {
+    /// The model (file, line or triangle named in the message).
+    Model,
+    /// The settings or the caller (cancelled, timed out).
+    Caller,
+    /// platener itself.
+    Internal,
+}
+
+impl Error {
+    /// Whose fault this error is.
+    pub fn culprit(&self) -> Culprit {
+        match self {
+            Error::Read(_) | Error::Model { .. } => Culprit::Model,
+            Error::Setting { .. } | Error::Cancelled { .. } | Error::TimedOut { .. } => Culprit::Caller,
+            Error::Internal { .. } => Culprit::Internal,
+        }
+    }
+
+    /// A model error.
+    pub(crate) fn model(model: impl Into<String>, problem: ModelProblem) -> Self {
+        Error::Model {
+            model: model.into(),
+            problem,
+        }
+    }
+
+    /// A step ran without the snapshot of a step it needs.
+    pub(crate) fn missing(step: &'static str, needs: &'static str) -> Self {
+        Error::Internal {
+            step,
+            problem: Internal::MissingStep { step, needs },
+        }
+    }
+}
+
+impl From<Cancelled> for Error {
+    fn from(c: Cancelled) -> Self {
+        Error::Cancelled { step: c.step }
+    }
+}
+
+impl From<PlanError> for Error {
+    /// Cutting-plan errors: settings are the caller's, cancellation too, the rest ours.
+    fn from(e: PlanError) -> Self {
+        let step = "cutting plan";
+        match e {
+            PlanError::Setting { name, message } => Error::Setting { name, message },
+            PlanError::Cancelled { step } => Error::Cancelled { step },
+            PlanError::Part { part, message } => Error::Internal {
+                step,
+                problem: Internal::Part { part, message },
+            },
+            PlanError::Write { file, message } => Error::Internal {
+                step,
+                problem: Internal::Write { file, message },
+            },
+        }
+    }
 }
 
 /// Shorthand for results of this crate.

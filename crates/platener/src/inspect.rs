@@ -5,7 +5,8 @@ use serde::Serialize;
 
 use crate::error::Result;
 use crate::mesh::Health;
-use crate::pipeline::{self, Cancel, Source, State, StepRecord, Warning};
+use crate::context::{Cancel, StepRecord, Warning};
+use crate::pipeline::{self, FOUNDATION, PLATE, Source, State, StepId};
 use crate::read::Bounds;
 use crate::settings::Settings;
 
@@ -117,18 +118,14 @@ impl Inspection {
 
 /// Runs the foundation steps on `source` and returns the final state and its records.
 pub fn run_foundation(source: Source, settings: Settings, cancel: &Cancel) -> Result<(State, Vec<StepRecord>)> {
-    run_steps(&pipeline::foundation_steps(), source, settings, cancel)
+    run_steps(&FOUNDATION, source, settings, cancel)
 }
 
-fn run_steps(
-    steps: &[&dyn pipeline::Step],
-    source: Source,
-    settings: Settings,
-    cancel: &Cancel,
-) -> Result<(State, Vec<StepRecord>)> {
+fn run_steps(steps: &[StepId], source: Source, settings: Settings, cancel: &Cancel) -> Result<(State, Vec<StepRecord>)> {
     settings.validate()?;
     let mut state = State::new(source, settings);
-    let records = pipeline::run(steps, &mut state, cancel)?;
+    pipeline::run(steps, &mut state, cancel)?;
+    let records = state.records.clone();
     Ok((state, records))
 }
 
@@ -162,12 +159,8 @@ fn plates_report(plates: &crate::plates::Plates) -> PlatesReport {
 
 /// Runs the foundation steps (and plate finding when `with_plates`) and summarises them.
 pub fn inspect(source: Source, settings: Settings, cancel: &Cancel, with_plates: bool) -> Result<Inspection> {
-    let steps = if with_plates {
-        pipeline::plate_steps()
-    } else {
-        pipeline::foundation_steps()
-    };
-    let (state, steps) = run_steps(&steps, source, settings, cancel)?;
+    let steps: &[StepId] = if with_plates { &PLATE } else { &FOUNDATION };
+    let (state, steps) = run_steps(steps, source, settings, cancel)?;
     let model = pipeline::need(&state.read, "inspect", "read")?;
     let cleaned = pipeline::need(&state.cleanup, "inspect", "cleanup")?;
     let welded = pipeline::need(&state.weld, "inspect", "weld")?;

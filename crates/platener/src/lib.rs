@@ -16,6 +16,8 @@
 
 pub mod assembly;
 pub mod cleanup;
+pub mod context;
+pub mod convert;
 pub mod coplanar;
 pub mod error;
 pub mod export;
@@ -25,6 +27,7 @@ pub mod kerf;
 pub mod labels;
 pub mod mesh;
 pub mod method;
+pub mod parts;
 pub mod pipeline;
 pub mod plan;
 pub mod plates;
@@ -38,7 +41,10 @@ pub mod stacked;
 pub mod verify;
 pub mod weld;
 
+pub use context::{Cancel, Warning, WarningKind};
+pub use convert::{Conversions, Request, convert, convert_all};
 pub use error::{Error, Result};
-pub use pipeline::{Cancel, Source, State};
+pub use pipeline::State;
+pub use read::Source;
 pub use platener_geom::glam;
 pub use settings::{PlateMode, PlateSettings, Settings, Units, Weld};

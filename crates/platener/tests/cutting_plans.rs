@@ -9,12 +9,14 @@ mod svg_read;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-use platener::export::{CuttingPlan, cutting_plan, cutting_plan_steps, dxf};
+use platener::export::{Bundle, dxf};
+use platener::labels::Labels;
+use platener::sheets::Nesting;
 use platener::glam::{DVec2, DVec3};
-use platener::pipeline::{self, Source, State};
+use platener::pipeline::{self, State};
 use platener::plan::samples::{fingered, l_shape, rectangle, window};
 use platener::plan::{CutSettings, Joint, JointKind, Method, Part, Plan, PlanInput, SheetSize, SourceInfo};
-use platener::{Cancel, Settings};
+use platener::Cancel;
 use platener_geom::polygon::signed_area;
 use platener_geom::{Polygon, boolean, offset};
 
@@ -59,7 +61,7 @@ fn mixed_parts() -> Vec<Part> {
 
 fn run(parts: Vec<Part>, settings: CutSettings) -> (PlanInput, CuttingPlan) {
     let input = input(parts, settings);
-    let plan = cutting_plan(&input, &|| false).expect("a cutting plan");
+    let plan = cutting_plan(&input);
     (input, plan)
 }
 
@@ -223,7 +225,7 @@ fn fitted_sheets_and_oversized_parts_keep_the_rules() {
     parts.push(rectangle(10, 650.0, 100.0));
     let (input, plan) = run(parts, CutSettings::default());
     check(&input, &plan);
-    assert!(plan.nesting.warnings.iter().any(|w| w.part == Some(10)));
+    assert!(plan.state.warnings().any(|w| w.step == "sheets" && w.part == Some(10)));
 }
 
 #[test]
@@ -345,19 +347,38 @@ fn dxf_read_back_has_the_svg_areas() {
 }
 
 #[test]
-fn the_pipeline_steps_make_the_same_bundle() {
+fn the_cutting_plan_steps_leave_one_record_each() {
     let input = input(mixed_parts(), CutSettings::default());
-    let source = Source::Triangles {
-        name: "test box".into(),
-        triangles: Arc::new(Vec::new()),
-    };
-    let mut state = State::new(source, Settings::default());
-    state.parts = Some(Arc::new(input.clone()));
-    let records = pipeline::run(&cutting_plan_steps(), &mut state, &Cancel::default()).expect("runs");
-    let names: Vec<&str> = records.iter().map(|r| r.name).collect();
+    let plan = cutting_plan(&input);
+    let names: Vec<&str> = plan.state.records.iter().map(|r| r.name).collect();
     assert_eq!(names, ["kerf", "labels", "sheets", "export"]);
-    let direct = cutting_plan(&input, &|| false).expect("plan");
-    assert_eq!(state.export.expect("bundle").zip, direct.bundle.zip);
+    // report.json's steps are the records, plus export.
+    let report: serde_json::Value = serde_json::from_slice(&plan.bundle.files["report.json"]).expect("json");
+    let listed: Vec<&str> = report["steps"]
+        .as_array()
+        .expect("steps")
+        .iter()
+        .map(|s| s["name"].as_str().expect("name"))
+        .collect();
+    assert_eq!(listed, names);
+}
+
+/// Everything the cutting-plan steps made for parts made in a test.
+struct CuttingPlan {
+    state: State,
+    bundle: Arc<Bundle>,
+    labels: Arc<Labels>,
+    nesting: Arc<Nesting>,
+}
+
+fn cutting_plan(input: &PlanInput) -> CuttingPlan {
+    let state = pipeline::cutting_plan(input.clone(), &Cancel::default()).expect("a cutting plan");
+    CuttingPlan {
+        bundle: state.export.clone().expect("exported"),
+        labels: state.labels.clone().expect("labelled"),
+        nesting: state.sheets.clone().expect("nested"),
+        state,
+    }
 }
 
 #[path = "cutting_plans/more.rs"]

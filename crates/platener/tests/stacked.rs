@@ -12,7 +12,11 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
 use platener::glam::{DVec2, DVec3};
-use platener::method::{Conversion, MethodKind, convert};
+use platener::convert;
+use platener::method::MethodKind;
+use platener::pipeline::StepId;
+
+type Conversion = platener::State;
 use platener::plan::{JointKind, PartKind, Plan, PlanPart};
 use platener::settings::StackAxis;
 use platener::{Cancel, Settings, Source, samples};
@@ -186,7 +190,7 @@ fn surface_covered(plan: &Plan, center: DVec3, radius: f64, reach: f64) -> f64 {
 /// layer lost to its slots is as large as the shafts' sections through it.
 fn assert_slots_match(c: &Conversion) {
     let plan = plan(c);
-    let stack = c.state.stacked.as_ref().expect("stack");
+    let stack = c.stacked.as_ref().expect("stack");
     let outlines: BTreeMap<u32, &Polygon> = stack
         .layers
         .iter()
@@ -233,7 +237,7 @@ fn assert_slots_match(c: &Conversion) {
 
 /// Every pair of islands in adjacent layers that overlap is joined through a common shaft.
 fn assert_neighbours_joined(c: &Conversion) {
-    let stack = c.state.stacked.as_ref().expect("stack");
+    let stack = c.stacked.as_ref().expect("stack");
     assert!(stack.unjoined.is_empty(), "{:?}", stack.unjoined);
     for w in stack.layers.windows(2) {
         for a in &w[0].islands {
@@ -323,7 +327,7 @@ fn layer_outlines_lie_on_the_surface_at_their_mid_plane() {
 #[test]
 fn shafts_never_bridge_a_layer_they_do_not_pass_through() {
     let c = sphere();
-    let stack = c.state.stacked.as_ref().expect("stack");
+    let stack = c.stacked.as_ref().expect("stack");
     let plan = plan(c);
     for s in &stack.shafts {
         let layers: Vec<usize> = s.bands.iter().map(|b| b.layer).collect();
@@ -343,7 +347,7 @@ fn shafts_never_bridge_a_layer_they_do_not_pass_through() {
 fn a_standing_torus_has_two_islands_in_the_middle_and_all_are_joined() {
     let tris = samples::torus(DVec3::ZERO, DVec3::Y, 40.0, 15.0, 96, 32);
     let c = run("torus", tris, quick(StackAxis::Auto));
-    let stack = c.state.stacked.as_ref().expect("stack");
+    let stack = c.stacked.as_ref().expect("stack");
     let counts: Vec<usize> = stack.layers.iter().map(|l| l.islands.len()).collect();
     eprintln!("torus: islands per layer {counts:?}, {} shafts", stack.shafts.len());
     assert_eq!(counts.len(), 37);
@@ -360,7 +364,7 @@ fn a_standing_torus_has_two_islands_in_the_middle_and_all_are_joined() {
 #[test]
 fn two_separate_bodies_are_each_joined_to_their_neighbours() {
     let c = run("two bodies", samples::two_bodies(20.0), quick(StackAxis::Auto));
-    let stack = c.state.stacked.as_ref().expect("stack");
+    let stack = c.stacked.as_ref().expect("stack");
     let counts: Vec<usize> = stack.layers.iter().map(|l| l.islands.len()).collect();
     eprintln!(
         "two bodies: islands per layer {counts:?}, {} shafts",
@@ -440,7 +444,7 @@ fn organic_corpus_models_convert() {
         // of islands the method could not join is reported.
         let mut probe = platener::State::new(Source::File(file.clone()), Settings::default());
         platener::pipeline::run(
-            &platener::pipeline::foundation_steps()[..1],
+            &[StepId::Read],
             &mut probe,
             &Cancel::default(),
         )
@@ -453,7 +457,7 @@ fn organic_corpus_models_convert() {
         };
         let c = convert(MethodKind::Stacked, Source::File(file), settings, &Cancel::default())
             .unwrap_or_else(|e| panic!("{name} at 100 mm: {e}"));
-        let stack = c.state.stacked.as_ref().expect("stack");
+        let stack = c.stacked.as_ref().expect("stack");
         let islands: usize = stack.layers.iter().map(|l| l.islands.len()).sum();
         let plan = plan(&c);
         eprintln!(
@@ -472,7 +476,7 @@ fn organic_corpus_models_convert() {
 /// `platener verify` against the model: no interference, no more groups than solids, at least
 /// 90 % of the surface within its cover distance of a part and 90 % of the parts' volume inside.
 fn assert_verified(c: &Conversion) -> platener::verify::Verification {
-    let mesh = c.state.mesh.as_ref().expect("mesh");
+    let mesh = c.mesh.as_ref().expect("mesh");
     let v = platener::verify::verify(plan(c), Some(mesh));
     eprintln!(
         "verify {}: {} parts, interference {:.4} %, {} group(s), surface covered {:?}, volume inside {:?}",

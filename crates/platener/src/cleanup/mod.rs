@@ -12,8 +12,8 @@ use platener_geom::dedup::first_equal;
 use serde::Serialize;
 
 use crate::error::Result;
-use crate::pipeline::{State, Step, StepContext, WarningKind, need};
-use crate::read::Triangle;
+use crate::context::{StepContext, WarningKind};
+use crate::read::{Model, Triangle};
 
 /// The snapshot of step `cleanup`.
 #[derive(Debug, Clone, Serialize)]
@@ -70,38 +70,29 @@ pub fn clean(triangles: &[Triangle], tolerances: &Tolerances) -> (Vec<Triangle>,
     (kept, degenerate, duplicates)
 }
 
-/// Step `cleanup`.
-pub struct CleanupStep;
-
-impl Step for CleanupStep {
-    fn name(&self) -> &'static str {
-        "cleanup"
+/// Step `cleanup`: the model's triangles without zero-area and duplicate ones, and the
+/// tolerances every later step uses.
+pub fn run(model: &Model, cx: &mut StepContext<'_>) -> Result<Cleaned> {
+    let tolerances = Tolerances::for_model(model.bounds.diagonal());
+    let (kept, degenerate, duplicates) = clean(&model.triangles, &tolerances);
+    if degenerate > 0 {
+        cx.warn(
+            WarningKind::DegenerateFaces,
+            format!("{degenerate} degenerate (zero-area) triangles removed"),
+        );
     }
-
-    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
-        let model = need(&state.read, self.name(), "read")?;
-        let tolerances = Tolerances::for_model(model.bounds.diagonal());
-        let (kept, degenerate, duplicates) = clean(&model.triangles, &tolerances);
-        if degenerate > 0 {
-            cx.warn(
-                WarningKind::DegenerateFaces,
-                format!("{degenerate} degenerate (zero-area) triangles removed"),
-            );
-        }
-        if duplicates > 0 {
-            cx.warn(
-                WarningKind::DuplicateFaces,
-                format!("{duplicates} duplicate triangles removed"),
-            );
-        }
-        state.cleanup = Some(Arc::new(Cleaned {
-            triangles: Arc::new(kept),
-            degenerate_removed: degenerate,
-            duplicates_removed: duplicates,
-            tolerances,
-        }));
-        Ok(())
+    if duplicates > 0 {
+        cx.warn(
+            WarningKind::DuplicateFaces,
+            format!("{duplicates} duplicate triangles removed"),
+        );
     }
+    Ok(Cleaned {
+        triangles: Arc::new(kept),
+        degenerate_removed: degenerate,
+        duplicates_removed: duplicates,
+        tolerances,
+    })
 }
 
 #[cfg(test)]

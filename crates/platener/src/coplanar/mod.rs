@@ -6,15 +6,13 @@
 //! faceted cylinder drift all the way round into one "plane".
 
 use std::collections::VecDeque;
-use std::sync::Arc;
 
 use glam::DVec3;
 use rayon::slice::ParallelSliceMut;
 use serde::Serialize;
 
-use crate::error::Result;
 use crate::mesh::Mesh;
-use crate::pipeline::{State, Step, StepContext, need};
+use crate::settings::Settings;
 
 /// Connected faces in one plane.
 #[derive(Debug, Clone, Serialize)]
@@ -124,18 +122,7 @@ fn summarise(mesh: &Mesh, faces: Vec<u32>) -> PlanarGroup {
     }
 }
 
-/// Step `coplanar`.
-pub struct CoplanarStep;
-
-impl Step for CoplanarStep {
-    fn name(&self) -> &'static str {
-        "coplanar"
-    }
-
-    fn run(&self, state: &mut State, _cx: &mut StepContext<'_>) -> Result<()> {
-        let mesh = need(&state.mesh, self.name(), "mesh")?;
-        let groups = group_faces(mesh, state.settings.coplanar_angle_deg.to_radians());
-        state.coplanar = Some(Arc::new(groups));
-        Ok(())
-    }
+/// Step `coplanar`: the mesh's faces grouped into connected planar groups.
+pub fn run(mesh: &Mesh, settings: &Settings) -> PlanarGroups {
+    group_faces(mesh, settings.coplanar_angle_deg.to_radians())
 }

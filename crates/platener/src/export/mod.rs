@@ -10,25 +10,23 @@ pub mod dxf;
 pub mod plan_json;
 pub mod png;
 pub mod report;
-mod run;
 pub mod svg;
 
 use std::collections::BTreeMap;
 use std::io::{Cursor, Write};
-use std::sync::Arc;
 
 use serde::Serialize;
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, DateTime, ZipWriter};
 
-use crate::error::Result;
+use crate::context::StepRecord;
 use crate::kerf::CutPaths;
 use crate::labels::Labels;
-use crate::pipeline::{State, Step, StepContext, need};
-use crate::plan::{Plan, PlanError, PlanInput, PlanWarning};
+use crate::plan::{Plan, PlanError, PlanInput};
 use crate::sheets::Nesting;
 use report::{Report, ReportStep};
-pub use run::{CuttingPlan, cutting_plan, cutting_plan_steps};
+/// The cutting-plan steps before `export`, whose warnings report.json lists with their parts.
+pub const CUTTING_PLAN_STEPS: [&str; 3] = ["kerf", "labels", "sheets"];
 use svg::{SvgStyle, sheet_svg};
 
 /// Stroke widths of the PNG previews, mm: visible at 1200 pixels across a 600 mm sheet.
@@ -53,8 +51,15 @@ pub struct Bundle {
     pub zip: Vec<u8>,
 }
 
-/// Writes every file and the ZIP from the snapshots (the `export` step without a pipeline).
-pub fn export(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting: &Nesting) -> Result<Bundle, PlanError> {
+/// Step `export`: every file and the ZIP from the snapshots; `steps` are the records of every
+/// step that ran before (report.json lists them).
+pub fn run(
+    input: &PlanInput,
+    cut: &CutPaths,
+    labels: &Labels,
+    nesting: &Nesting,
+    steps: &[StepRecord],
+) -> Result<Bundle, PlanError> {
     let stem = plan_json::file_stem(&input.source.name);
     let stems = plan_json::sheet_stems(&stem, nesting);
     let plan = plan_json::build_plan(input, cut, labels, nesting, &stems);
@@ -69,7 +74,7 @@ pub fn export(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting: &Nest
         let preview = sheet_svg(sheet.width, sheet.height, g, &PREVIEW_STYLE);
         files.insert(name.clone(), png::render_png(&preview, &name)?);
     }
-    let report = build_report(input, cut, labels, nesting, &groups, &stems);
+    let report = build_report(input, nesting, steps, &groups, &stems);
     files.insert("plan.json".into(), plan.to_json()?.into_bytes());
     let report_json = serde_json::to_string_pretty(&report).map_err(|e| PlanError::write("report.json", e))?;
     files.insert("report.json".into(), report_json.into_bytes());
@@ -84,34 +89,20 @@ pub fn export(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting: &Nest
 
 fn build_report(
     input: &PlanInput,
-    cut: &CutPaths,
-    labels: &Labels,
     nesting: &Nesting,
+    records: &[StepRecord],
     groups: &[Vec<svg::SvgGroup>],
     stems: &[String],
 ) -> Report {
     let timed = input.settings.report_timings;
-    let messages = |w: &[PlanWarning]| w.iter().map(|w| w.message.clone()).collect::<Vec<_>>();
-    let mut steps: Vec<ReportStep> = input
-        .earlier_steps
+    let mut steps: Vec<ReportStep> = records
         .iter()
         .map(|s| ReportStep {
-            name: s.name.clone(),
+            name: s.name.into(),
             millis: timed.then_some(s.millis),
-            warnings: s.warnings.clone(),
+            warnings: s.warnings.iter().map(|w| w.message.clone()).collect(),
         })
         .collect();
-    for (name, millis, warnings) in [
-        ("kerf", cut.millis, &cut.warnings),
-        ("labels", labels.millis, &labels.warnings),
-        ("sheets", nesting.millis, &nesting.warnings),
-    ] {
-        steps.push(ReportStep {
-            name: name.into(),
-            millis: timed.then_some(millis),
-            warnings: messages(warnings),
-        });
-    }
     steps.push(ReportStep {
         name: "export".into(),
         millis: None,
@@ -127,10 +118,10 @@ fn build_report(
         method: input.method,
         settings: plan_json::plan_settings(input),
         steps,
-        warnings: [&cut.warnings, &labels.warnings, &nesting.warnings]
-            .into_iter()
-            .flatten()
-            .cloned()
+        warnings: records
+            .iter()
+            .filter(|r| CUTTING_PLAN_STEPS.contains(&r.name))
+            .flat_map(|r| r.warnings.iter().cloned())
             .collect(),
         part_count: input.parts.len(),
         sheet_count: nesting.sheets.len(),
@@ -162,21 +153,3 @@ pub fn zip_files(files: &BTreeMap<String, Vec<u8>>) -> Result<Vec<u8>, PlanError
     Ok(cursor.into_inner())
 }
 
-/// The `export` step: reads `parts`, `kerf`, `labels` and `sheets`, adds the [`Bundle`].
-pub struct ExportStep;
-
-impl Step for ExportStep {
-    fn name(&self) -> &'static str {
-        "export"
-    }
-
-    fn run(&self, state: &mut State, _cx: &mut StepContext<'_>) -> Result<()> {
-        let input = need(&state.parts, "export", "parts")?;
-        let cut = need(&state.kerf, "export", "kerf")?;
-        let labels = need(&state.labels, "export", "labels")?;
-        let nesting = need(&state.sheets, "export", "sheets")?;
-        let bundle = export(input, cut, labels, nesting)?;
-        state.export = Some(Arc::new(bundle));
-        Ok(())
-    }
-}

@@ -7,7 +7,8 @@
 use serde::Serialize;
 
 use super::svg::SvgGroup;
-use crate::plan::{Method, PlanSettings, PlanWarning};
+use crate::context::Warning;
+use crate::plan::{Method, PlanSettings};
 use crate::sheets::Nesting;
 
 /// One step in report.json.
@@ -57,7 +58,8 @@ pub struct Report {
     /// Every step: earlier ones (read, plates…) and kerf, labels, sheets, export.
     pub steps: Vec<ReportStep>,
     /// Every warning of the cutting-plan steps, with the part it concerns.
-    pub warnings: Vec<PlanWarning>,
+    #[serde(serialize_with = "part_warnings")]
+    pub warnings: Vec<Warning>,
     /// Number of parts.
     pub part_count: usize,
     /// Number of sheets.
@@ -140,4 +142,19 @@ pub fn totals(nesting: &Nesting, files: &[String]) -> Totals {
         used_area,
         sheet_area: nesting.sheets.iter().map(|s| s.width * s.height).sum(),
     }
+}
+
+/// report.json's form of a cutting-plan warning: the step, the part (or null), the message.
+fn part_warnings<S: serde::Serializer>(warnings: &[Warning], serializer: S) -> Result<S::Ok, S::Error> {
+    #[derive(Serialize)]
+    struct Entry<'a> {
+        step: &'a str,
+        part: Option<u32>,
+        message: &'a str,
+    }
+    serializer.collect_seq(warnings.iter().map(|w| Entry {
+        step: w.step,
+        part: w.part,
+        message: &w.message,
+    }))
 }

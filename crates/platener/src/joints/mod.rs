@@ -30,15 +30,14 @@ mod junction;
 #[cfg(test)]
 mod tests;
 
-use std::sync::Arc;
-
 use glam::{DVec2, DVec3};
 use platener_geom::{GridError, Polygon};
 use serde::Serialize;
 
-use crate::error::{Error, Result};
-use crate::pipeline::{State, Step, StepContext, WarningKind, need};
-use crate::plates::Plate;
+use crate::context::{StepContext, WarningKind};
+use crate::error::{Error, ModelProblem, Result};
+use crate::plates::{Plate, Plates};
+use crate::settings::Settings;
 
 /// How two plates meet.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -169,35 +168,19 @@ pub fn compute(plates: &[Plate], settings: &JointSettings) -> Result<Joints, Gri
     fingers::apply(plates, regions, settings, settings.style.unwrap_or(JointStyle::Finger))
 }
 
-/// Step `joints`.
-pub struct JointsStep;
-
-impl Step for JointsStep {
-    fn name(&self) -> &'static str {
-        "joints"
+/// Step `joints`: the plate graph and the joints along it, in the style the user chose or
+/// the one that holds in the material.
+pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Result<Joints> {
+    cx.check_cancel()?;
+    let chosen = &settings.joints;
+    let joint_settings = JointSettings {
+        style: Some(chosen.style.unwrap_or(JointStyle::for_material(settings.cut.material))),
+        ..chosen.clone()
+    };
+    let mut joints =
+        compute(&plates.plates, &joint_settings).map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?;
+    for w in std::mem::take(&mut joints.warnings) {
+        cx.warn(WarningKind::Joints, w);
     }
-
-    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
-        let plates = need(&state.plates, self.name(), "plates")?;
-        cx.check_cancel()?;
-        // The style the user chose, or the one that holds in the material.
-        let chosen = &state.settings.joints;
-        let settings = JointSettings {
-            style: Some(
-                chosen
-                    .style
-                    .unwrap_or(JointStyle::for_material(state.settings.cut.material)),
-            ),
-            ..chosen.clone()
-        };
-        let joints = compute(&plates.plates, &settings).map_err(|e| Error::Geometry {
-            model: state.source.name(),
-            message: e.to_string(),
-        })?;
-        for w in &joints.warnings {
-            cx.warn(WarningKind::Joints, w.clone());
-        }
-        state.joints = Some(Arc::new(joints));
-        Ok(())
-    }
+    Ok(joints)
 }

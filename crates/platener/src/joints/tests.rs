@@ -11,7 +11,7 @@ fn plates_of(triangles: Vec<Triangle>) -> Vec<Plate> {
 
 /// The plates the pipeline finds in `triangles` for sheets `thickness` thick.
 pub(super) fn plates_with(triangles: Vec<Triangle>, thickness: f64) -> Vec<Plate> {
-    crate::plates::plates_of_triangles("test", triangles, &[thickness])
+    crate::pipeline::plates_of_triangles("test", triangles, &[thickness])
         .expect("converts")
         .plates
         .clone()

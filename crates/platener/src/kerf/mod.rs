@@ -9,17 +9,13 @@
 
 pub mod strip;
 
-use std::sync::Arc;
-use std::time::Instant;
-
 use glam::DVec2;
 use platener_geom::{Polygon, Ring, offset};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::error::Result;
-use crate::pipeline::{State, Step, StepContext, need};
-use crate::plan::{Part, PlanError, PlanWarning};
+use crate::context::{StepContext, Warning, WarningKind};
+use crate::plan::{Part, PlanError, PlanInput};
 
 /// One part's cut path.
 #[derive(Debug, Clone, Serialize)]
@@ -39,10 +35,6 @@ pub struct CutPaths {
     pub kerf: f64,
     /// Per part, in the order of the input.
     pub parts: Vec<CutPart>,
-    /// Holes that closed (narrower than the kerf) and other oddities.
-    pub warnings: Vec<PlanWarning>,
-    /// Wall time of the computation, ms.
-    pub millis: f64,
 }
 
 /// The cut path of one nominal polygon: offset outward by `kerf / 2` with miter joins.
@@ -76,10 +68,10 @@ pub fn open_ring(ring: &[DVec2]) -> Ring {
     out
 }
 
-/// Cut paths of all `parts` for `kerf` mm (the `kerf` step without a pipeline).
-pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<CutPaths, PlanError> {
-    let start = Instant::now();
-    let results: Vec<Result<(CutPart, Option<PlanWarning>), PlanError>> = parts
+/// Cut paths of all `parts` for `kerf` mm, with a warning for each part whose holes close
+/// (narrower than the kerf).
+pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<(CutPaths, Vec<Warning>), PlanError> {
+    let results: Vec<Result<(CutPart, Option<Warning>), PlanError>> = parts
         .par_iter()
         .map(|part| {
             let mut nominal = Polygon {
@@ -98,8 +90,9 @@ pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<CutPaths, PlanError> {
                 });
             }
             let closed = nominal.holes.len().saturating_sub(cut.holes.len());
-            let warning = (closed > 0).then(|| PlanWarning {
+            let warning = (closed > 0).then(|| Warning {
                 step: "kerf",
+                kind: WarningKind::CuttingPlan,
                 part: Some(part.id),
                 message: format!(
                     "{closed} hole(s) of part {} are narrower than the kerf ({kerf} mm) and are not cut",
@@ -119,34 +112,22 @@ pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<CutPaths, PlanError> {
     let mut out = CutPaths {
         kerf,
         parts: Vec::with_capacity(parts.len()),
-        warnings: Vec::new(),
-        millis: 0.0,
     };
+    let mut warnings = Vec::new();
     for r in results {
         let (part, warning) = r?;
         out.parts.push(part);
-        out.warnings.extend(warning);
+        warnings.extend(warning);
     }
-    out.millis = start.elapsed().as_secs_f64() * 1e3;
-    Ok(out)
+    Ok((out, warnings))
 }
 
-/// The `kerf` step: reads the `parts` snapshot, adds [`CutPaths`].
-pub struct KerfStep;
-
-impl Step for KerfStep {
-    fn name(&self) -> &'static str {
-        "kerf"
-    }
-
-    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
-        let input = need(&state.parts, "kerf", "parts")?;
-        input.validate()?;
-        let cut = cut_paths(&input.parts, input.settings.kerf())?;
-        cx.warn_all(&cut.warnings);
-        state.kerf = Some(Arc::new(cut));
-        Ok(())
-    }
+/// Step `kerf`: the cut path of every part, offset by half the kerf.
+pub fn run(input: &PlanInput, cx: &mut StepContext<'_>) -> Result<CutPaths, PlanError> {
+    input.validate()?;
+    let (cut, warnings) = cut_paths(&input.parts, input.settings.kerf())?;
+    cx.extend(warnings);
+    Ok(cut)
 }
 
 #[cfg(test)]

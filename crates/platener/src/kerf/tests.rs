@@ -68,11 +68,11 @@ fn cut_paths_keep_the_part_order_and_warn_about_closed_holes() {
         holes: vec![rect(4.0, 4.0, 4.1, 6.0)],
     };
     let parts = [part(7, Polygon::new(rect(0.0, 0.0, 5.0, 5.0))), part(3, tiny_hole)];
-    let cut = cut_paths(&parts, 0.2).expect("valid");
+    let (cut, warnings) = cut_paths(&parts, 0.2).expect("valid");
     assert_eq!(cut.parts.iter().map(|p| p.id).collect::<Vec<_>>(), [7, 3]);
     assert!(cut.parts[1].cut.holes.is_empty());
-    assert_eq!(cut.warnings.len(), 1);
-    assert_eq!(cut.warnings[0].part, Some(3));
+    assert_eq!(warnings.len(), 1);
+    assert_eq!(warnings[0].part, Some(3));
 }
 
 #[test]
@@ -87,6 +87,6 @@ fn closed_input_rings_are_opened() {
     let mut closed = rect(0.0, 0.0, 4.0, 4.0);
     closed.push(closed[0]);
     closed.insert(1, closed[0]);
-    let cut = cut_paths(&[part(1, Polygon::new(closed))], 0.0).expect("valid");
+    let (cut, _) = cut_paths(&[part(1, Polygon::new(closed))], 0.0).expect("valid");
     assert_eq!(cut.parts[0].nominal.outer, rect(0.0, 0.0, 4.0, 4.0));
 }

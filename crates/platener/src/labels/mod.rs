@@ -11,9 +11,6 @@
 pub mod font;
 mod place;
 
-use std::sync::Arc;
-use std::time::Instant;
-
 use glam::DVec2;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -21,9 +18,8 @@ use serde::Serialize;
 pub use place::{MIN_SIZE, TextBox, clearance};
 use place::{Room, up_of};
 
-use crate::error::Result;
-use crate::pipeline::{State, Step, StepContext, need};
-use crate::plan::{EdgeLabel, LabelMode, Mark, MarkKind, Part, PlanWarning};
+use crate::context::{StepContext, Warning, WarningKind};
+use crate::plan::{EdgeLabel, LabelMode, Mark, MarkKind, Part, PlanInput};
 
 /// Sizes tried for part numbers, mm, largest first.
 const PART_SIZES: [f64; 8] = [8.0, 6.0, 5.0, 4.0, 3.0, 2.5, 2.0, MIN_SIZE];
@@ -53,10 +49,6 @@ pub struct Labels {
     pub mode: LabelMode,
     /// Per part, in the input's order.
     pub parts: Vec<PartLabels>,
-    /// Labels that found no room.
-    pub warnings: Vec<PlanWarning>,
-    /// Wall time of the computation, ms.
-    pub millis: f64,
 }
 
 /// The text engraved next to a jointed edge.
@@ -64,36 +56,36 @@ pub fn connection_text(connection: u32) -> String {
     format!("#{connection}")
 }
 
-/// Labels all `parts` (the `labels` step without a pipeline).
-pub fn label_parts(parts: &[Part], mode: LabelMode, kerf: f64) -> Labels {
-    let start = Instant::now();
-    let done: Vec<(PartLabels, Vec<PlanWarning>)> = parts.par_iter().map(|p| label_part(p, mode, kerf)).collect();
+/// Labels all `parts`, with a warning for each label that found no room.
+pub fn label_parts(parts: &[Part], mode: LabelMode, kerf: f64) -> (Labels, Vec<Warning>) {
+    let done: Vec<(PartLabels, Vec<Warning>)> = parts.par_iter().map(|p| label_part(p, mode, kerf)).collect();
     let mut labels = Labels {
         mode,
         parts: Vec::with_capacity(parts.len()),
-        warnings: Vec::new(),
-        millis: 0.0,
     };
+    let mut warnings = Vec::new();
     // Many small parts (dovetail keys) without room for a number make one warning, not one each.
     let mut unnumbered = Vec::new();
-    for (part, warnings) in done {
-        for w in warnings {
+    for (part, found) in done {
+        for w in found {
             match w.part {
                 Some(id) if w.message.ends_with(NO_ROOM_FOR_NUMBER) => unnumbered.push(id),
-                _ => labels.warnings.push(w),
+                _ => warnings.push(w),
             }
         }
         labels.parts.push(part);
     }
     match unnumbered[..] {
         [] => {}
-        [id] => labels.warnings.push(PlanWarning {
+        [id] => warnings.push(Warning {
             step: "labels",
+            kind: WarningKind::CuttingPlan,
             part: Some(id),
             message: format!("part {id}{NO_ROOM_FOR_NUMBER}"),
         }),
-        _ => labels.warnings.push(PlanWarning {
+        _ => warnings.push(Warning {
             step: "labels",
+            kind: WarningKind::CuttingPlan,
             part: None,
             message: format!(
                 "{} parts ({}) have no room for their numbers; they are not engraved",
@@ -102,8 +94,7 @@ pub fn label_parts(parts: &[Part], mode: LabelMode, kerf: f64) -> Labels {
             ),
         }),
     }
-    labels.millis = start.elapsed().as_secs_f64() * 1e3;
-    labels
+    (labels, warnings)
 }
 
 const NO_ROOM_FOR_NUMBER: &str = " has no room for its number; it is not engraved";
@@ -128,7 +119,7 @@ fn id_ranges(ids: &[u32]) -> String {
 }
 
 /// The labels of one part cut with `kerf` mm.
-pub fn label_part(part: &Part, mode: LabelMode, kerf: f64) -> (PartLabels, Vec<PlanWarning>) {
+pub fn label_part(part: &Part, mode: LabelMode, kerf: f64) -> (PartLabels, Vec<Warning>) {
     let mut polygon = part.polygon.clone();
     polygon.normalize_orientation();
     let mark_paths: Vec<Vec<DVec2>> = part.marks.iter().map(|m| m.path.clone()).collect();
@@ -136,8 +127,9 @@ pub fn label_part(part: &Part, mode: LabelMode, kerf: f64) -> (PartLabels, Vec<P
     let mut boxes = Vec::new();
     let mut warnings = Vec::new();
     let mut warn = |message: String| {
-        warnings.push(PlanWarning {
+        warnings.push(Warning {
             step: "labels",
+            kind: WarningKind::CuttingPlan,
             part: Some(part.id),
             message,
         })
@@ -262,21 +254,11 @@ fn place_edge(room: &Room<'_>, edge: &EdgeLabel, thickness: f64) -> Option<TextB
     None
 }
 
-/// The `labels` step: reads the `parts` snapshot, adds [`Labels`].
-pub struct LabelsStep;
-
-impl Step for LabelsStep {
-    fn name(&self) -> &'static str {
-        "labels"
-    }
-
-    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
-        let input = need(&state.parts, "labels", "parts")?;
-        let labels = label_parts(&input.parts, input.settings.labels, input.settings.kerf());
-        cx.warn_all(&labels.warnings);
-        state.labels = Some(Arc::new(labels));
-        Ok(())
-    }
+/// Step `labels`: part and connection numbers of every part, as engraved marks.
+pub fn run(input: &PlanInput, cx: &mut StepContext<'_>) -> Labels {
+    let (labels, warnings) = label_parts(&input.parts, input.settings.labels, input.settings.kerf());
+    cx.extend(warnings);
+    labels
 }
 
 #[cfg(test)]

@@ -50,8 +50,8 @@ fn every_part_gets_its_number_inside_it() {
         holes: vec![rect(10.0, 10.0, 30.0, 30.0)],
     };
     let parts = [part(1, Polygon::new(rect(0.0, 0.0, 80.0, 50.0))), part(12, with_hole)];
-    let labels = label_parts(&parts, LabelMode::Parts, KERF);
-    assert!(labels.warnings.is_empty(), "{:?}", labels.warnings);
+    let (labels, warnings) = label_parts(&parts, LabelMode::Parts, KERF);
+    assert!(warnings.is_empty(), "{:?}", warnings);
     for (p, l) in parts.iter().zip(&labels.parts) {
         assert_eq!(l.boxes.len(), 1);
         assert_eq!(l.boxes[0].text, p.id.to_string());
@@ -69,8 +69,8 @@ fn a_fingered_edge_gets_its_connection_number_beyond_the_fingers() {
         connection: 7,
         segment: [DVec2::new(60.0, 30.0), DVec2::new(0.0, 30.0)],
     }];
-    let labels = label_parts(std::slice::from_ref(&p), LabelMode::Edges, KERF);
-    assert!(labels.warnings.is_empty(), "{:?}", labels.warnings);
+    let (labels, warnings) = label_parts(std::slice::from_ref(&p), LabelMode::Edges, KERF);
+    assert!(warnings.is_empty(), "{:?}", warnings);
     let l = &labels.parts[0];
     assert_eq!(l.boxes.len(), 2);
     let edge = &l.boxes[1];
@@ -92,11 +92,11 @@ fn labels_that_cannot_fit_are_skipped_with_a_warning() {
         connection: 1,
         segment: [DVec2::new(0.0, 0.0), DVec2::new(2.0, 0.0)],
     }];
-    let labels = label_parts(&[p], LabelMode::Edges, KERF);
+    let (labels, warnings) = label_parts(&[p], LabelMode::Edges, KERF);
     assert!(labels.parts[0].boxes.is_empty());
-    assert_eq!(labels.warnings.len(), 2);
+    assert_eq!(warnings.len(), 2);
     assert_eq!(
-        label_parts(&[part(1, fingered())], LabelMode::None, KERF).parts[0]
+        label_parts(&[part(1, fingered())], LabelMode::None, KERF).0.parts[0]
             .marks
             .len(),
         0
@@ -114,10 +114,10 @@ proptest! {
         let mut p = part(5, Polygon { outer: rect(0.0, 0.0, w, h), holes: vec![hole] });
         p.edge_labels = vec![EdgeLabel { connection: 2, segment: [DVec2::new(0.0, 0.0), DVec2::new(w, 0.0)] },
                              EdgeLabel { connection: 3, segment: [DVec2::new(w, 0.0), DVec2::new(w, h)] }];
-        let labels = label_parts(std::slice::from_ref(&p), LabelMode::Edges, KERF);
+        let (labels, warnings) = label_parts(std::slice::from_ref(&p), LabelMode::Edges, KERF);
         p.polygon.normalize_orientation();
         assert_inside(&p, &labels.parts[0]);
-        prop_assert_eq!(labels.parts[0].boxes.len() + labels.warnings.len(), 3);
+        prop_assert_eq!(labels.parts[0].boxes.len() + warnings.len(), 3);
     }
 }
 

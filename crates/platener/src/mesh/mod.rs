@@ -8,14 +8,14 @@
 mod orient;
 mod topology;
 
-use std::sync::Arc;
-
 use glam::DVec3;
 use serde::Serialize;
 
 use crate::cleanup::is_degenerate;
-use crate::error::{Error, Result};
-use crate::pipeline::{State, Step, StepContext, WarningKind, need};
+use crate::cleanup::Cleaned;
+use crate::context::{StepContext, WarningKind};
+use crate::error::{Error, ModelProblem, Result};
+use crate::weld::Welded;
 
 pub use topology::Topology;
 
@@ -128,53 +128,39 @@ impl Mesh {
     }
 }
 
-/// Step `mesh`.
-pub struct MeshStep;
-
-impl Step for MeshStep {
-    fn name(&self) -> &'static str {
-        "mesh"
+/// Step `mesh`: the welded triangles as an indexed mesh with topology, consistent winding and
+/// a health report.
+pub fn run(welded: &Welded, cleaned: &Cleaned, cx: &mut StepContext<'_>) -> Result<Mesh> {
+    let mesh = Mesh::build(
+        welded.vertices.clone(),
+        &welded.triangles,
+        cleaned.tolerances.degenerate_height,
+    );
+    if mesh.triangles.is_empty() {
+        return Err(Error::model(cx.model(), ModelProblem::EmptyAfterWeld));
     }
-
-    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
-        let welded = need(&state.weld, self.name(), "weld")?;
-        let cleaned = need(&state.cleanup, self.name(), "cleanup")?;
-        let mesh = Mesh::build(
-            welded.vertices.clone(),
-            &welded.triangles,
-            cleaned.tolerances.degenerate_height,
+    // Open and non-manifold edges are reported by `weld` for the model as given; the
+    // welded mesh's own counts (which welding can raise) are in the health report.
+    let h = &mesh.health;
+    if h.flipped_faces > 0 {
+        cx.warn(
+            WarningKind::FlippedFaces,
+            format!(
+                "{} flipped faces were turned round to agree with their neighbours",
+                h.flipped_faces
+            ),
         );
-        if mesh.triangles.is_empty() {
-            let model = need(&state.read, self.name(), "read")?;
-            return Err(Error::Model {
-                model: model.name.clone(),
-                message: "no triangle with an area is left after welding; try --weld 0".into(),
-            });
-        }
-        // Open and non-manifold edges are reported by `weld` for the model as given; the
-        // welded mesh's own counts (which welding can raise) are in the health report.
-        let h = &mesh.health;
-        if h.flipped_faces > 0 {
-            cx.warn(
-                WarningKind::FlippedFaces,
-                format!(
-                    "{} flipped faces were turned round to agree with their neighbours",
-                    h.flipped_faces
-                ),
-            );
-        }
-        if h.degenerate_after_weld > 0 {
-            cx.warn(
-                WarningKind::DegenerateFaces,
-                format!(
-                    "{} triangles lost their area in welding and were removed",
-                    h.degenerate_after_weld
-                ),
-            );
-        }
-        state.mesh = Some(Arc::new(mesh));
-        Ok(())
     }
+    if h.degenerate_after_weld > 0 {
+        cx.warn(
+            WarningKind::DegenerateFaces,
+            format!(
+                "{} triangles lost their area in welding and were removed",
+                h.degenerate_after_weld
+            ),
+        );
+    }
+    Ok(mesh)
 }
 
 #[cfg(test)]

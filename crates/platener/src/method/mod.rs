@@ -2,25 +2,18 @@
 //!
 //! A method is a list of pipeline steps ending in a `parts` snapshot (the parts to cut and how
 //! they connect), followed by the cutting-plan steps (`kerf`, `labels`, `sheets`, `export`),
-//! which never need to know which method made the parts.
+//! which never need to know which method made the parts. The lists are the pipeline's
+//! (`pipeline::StepId::of_method`); [`crate::convert`] runs them.
 //!
 //! | method | steps |
 //! |---|---|
 //! | plate | foundation, `plates`, `joints`, `parts` (plates with joints → parts) |
 //! | stacked | foundation without welding, `stacked` (layers and shafts → parts) |
 
-mod plate_parts;
-
-use std::sync::Arc;
-
 use serde::Serialize;
 
 use crate::error::{Error, Result};
-use crate::export::{Bundle, cutting_plan_steps};
-use crate::pipeline::{self, Cancel, Source, State, Step, StepRecord};
 use crate::settings::{Settings, Weld};
-
-pub use plate_parts::PlatePartsStep;
 
 /// The fabrication methods.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, PartialOrd, Ord)]
@@ -44,22 +37,6 @@ impl MethodKind {
         }
     }
 
-    /// The steps up to and including the `parts` snapshot.
-    pub fn steps(self) -> Vec<&'static dyn Step> {
-        match self {
-            MethodKind::Plate => {
-                let mut steps = pipeline::plate_steps();
-                steps.push(&PlatePartsStep);
-                steps
-            }
-            MethodKind::Stacked => {
-                let mut steps = pipeline::foundation_steps();
-                steps.push(&crate::stacked::StackedStep);
-                steps
-            }
-        }
-    }
-
     /// The settings this method runs with: the stacked method keeps every surface detail, so
     /// it merges exact duplicates only.
     pub fn adjust(self, mut settings: Settings) -> Settings {
@@ -70,41 +47,17 @@ impl MethodKind {
     }
 }
 
-/// A finished conversion: every snapshot, the step records, and the cutting plan.
-#[derive(Debug, Clone)]
-pub struct Conversion {
-    /// The method that ran.
-    pub method: MethodKind,
-    /// Every step's snapshot.
-    pub state: State,
-    /// Every step that ran, with times and warnings.
-    pub steps: Vec<StepRecord>,
-}
+impl std::str::FromStr for MethodKind {
+    type Err = Error;
 
-impl Conversion {
-    /// The cutting plan: plan.json, report.json, sheets and the ZIP.
-    pub fn bundle(&self) -> Result<&Arc<Bundle>> {
-        pipeline::need(&self.state.export, "convert", "export")
+    /// `plate` or `stacked`.
+    fn from_str(s: &str) -> Result<Self> {
+        MethodKind::ALL
+            .into_iter()
+            .find(|m| m.name() == s.trim().to_ascii_lowercase())
+            .ok_or_else(|| Error::Setting {
+                name: "method",
+                message: format!("{s:?} is none of plate, stacked"),
+            })
     }
 }
-
-/// Converts `source` with one method, all the way to the ZIP.
-pub fn convert(method: MethodKind, source: Source, settings: Settings, cancel: &Cancel) -> Result<Conversion> {
-    let settings = method.adjust(settings);
-    settings.validate()?;
-    let mut state = State::new(source, settings);
-    let mut steps = pipeline::run(&method.steps(), &mut state, cancel)?;
-    // report.json lists the steps that made the parts, too.
-    let parts = state.parts.as_ref().ok_or(Error::MissingStep {
-        step: "convert",
-        needs: "parts",
-    })?;
-    let mut input = (**parts).clone();
-    input.earlier_steps = steps.iter().map(Into::into).collect();
-    state.parts = Some(Arc::new(input));
-    steps.extend(pipeline::run(&cutting_plan_steps(), &mut state, cancel)?);
-    Ok(Conversion { method, state, steps })
-}
-
-#[cfg(test)]
-mod tests;

@@ -1,7 +1,5 @@
 //! Errors of the cutting-plan steps, each saying whose fault it is.
 
-use crate::error::Error;
-
 /// Everything that stops a cutting plan.
 #[derive(Debug, thiserror::Error)]
 pub enum PlanError {
@@ -44,24 +42,6 @@ impl PlanError {
         PlanError::Write {
             file: file.into(),
             message: e.to_string(),
-        }
-    }
-}
-
-impl From<PlanError> for Error {
-    /// Maps onto the crate's error until it has a variant for cutting plans.
-    fn from(e: PlanError) -> Self {
-        match e {
-            PlanError::Setting { name, message } => Error::Setting { name, message },
-            PlanError::Cancelled { step } => Error::Cancelled { step },
-            PlanError::Part { .. } => Error::Geometry {
-                model: "parts".into(),
-                message: e.to_string(),
-            },
-            PlanError::Write { .. } => Error::Model {
-                model: "cutting plan".into(),
-                message: e.to_string(),
-            },
         }
     }
 }

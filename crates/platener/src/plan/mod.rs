@@ -33,36 +33,16 @@ pub struct SourceInfo {
     pub bbox_max: DVec3,
 }
 
-/// A step that ran before the cutting plan (read, plates…), for report.json.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct StepSummary {
-    /// The step's name.
-    pub name: String,
-    /// Wall time in milliseconds.
-    pub millis: f64,
-    /// Its warnings, as messages.
-    pub warnings: Vec<String>,
-}
-
-impl From<&crate::pipeline::StepRecord> for StepSummary {
-    fn from(r: &crate::pipeline::StepRecord) -> Self {
+impl From<&crate::read::Model> for SourceInfo {
+    /// The plan's description of the model as read.
+    fn from(model: &crate::read::Model) -> Self {
         Self {
-            name: r.name.to_string(),
-            millis: r.millis,
-            warnings: r.warnings.iter().map(|w| w.message.clone()).collect(),
+            name: model.name.clone(),
+            triangles: model.triangles.len() as u64,
+            bbox_min: model.bounds.min,
+            bbox_max: model.bounds.max,
         }
     }
-}
-
-/// A warning of a cutting-plan step: the plan is still made, the user should know.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct PlanWarning {
-    /// The step that raised it.
-    pub step: &'static str,
-    /// The part it concerns, if one.
-    pub part: Option<u32>,
-    /// What happened and what to do.
-    pub message: String,
 }
 
 /// Everything the cutting-plan steps start from (the pipeline's `parts` snapshot).
@@ -80,8 +60,6 @@ pub struct PlanInput {
     pub settings: CutSettings,
     /// Method settings recorded in plan.json's `settings` (joint kind, units…).
     pub method_settings: BTreeMap<String, SettingValue>,
-    /// Steps that ran before (for report.json's `steps`).
-    pub earlier_steps: Vec<StepSummary>,
     /// What the method reports about itself (the plate method: its coverage report), copied
     /// into report.json as `method_report`.
     pub method_report: Option<serde_json::Value>,
@@ -97,7 +75,6 @@ impl PlanInput {
             joints,
             settings: CutSettings::default(),
             method_settings: BTreeMap::new(),
-            earlier_steps: Vec::new(),
             method_report: None,
         }
     }

@@ -19,15 +19,15 @@ mod rejoin;
 #[cfg(test)]
 mod tests;
 
-use std::sync::Arc;
-
 use glam::DVec3;
 use platener_geom::slab::Slab;
-use platener_geom::{Frame, Polygon, polygon};
+use platener_geom::{Frame, GridError, Polygon, polygon};
 use serde::Serialize;
 
-use crate::error::{Error, Result};
-use crate::pipeline::{State, Step, StepContext, need};
+use crate::context::StepContext;
+use crate::error::{Error, ModelProblem, Result};
+use crate::mesh::Mesh;
+use crate::read::Model;
 use crate::settings::{PlateMode, Settings};
 use crate::shapes::Shapes;
 
@@ -145,35 +145,10 @@ pub(crate) fn map_polygon(p: &Polygon, from: &Frame, to: &Frame) -> Polygon {
     out
 }
 
-/// The plates of a model made in code (`name` for messages), for sheets of the given
-/// `thicknesses`: every step up to `plates` with default settings otherwise.
-pub fn plates_of_triangles(
-    name: &str,
-    triangles: Vec<crate::read::Triangle>,
-    thicknesses: &[f64],
-) -> Result<Arc<Plates>> {
-    let source = crate::pipeline::Source::Triangles {
-        name: name.into(),
-        triangles: Arc::new(triangles),
-    };
-    let settings = Settings {
-        thicknesses: thicknesses.to_vec(),
-        ..Settings::default()
-    };
-    let mut state = State::new(source, settings);
-    crate::pipeline::run(
-        &crate::pipeline::plate_steps(),
-        &mut state,
-        &crate::pipeline::Cancel::default(),
-    )?;
-    need(&state.plates, "plates", "plates").cloned()
-}
-
 /// Finds the plates of a model's shapes; `surface_area` is the model's, for the coverage share.
-pub fn find_plates(shapes: &Shapes, surface_area: f64, center: DVec3, settings: &Settings) -> Result<Plates, String> {
+pub fn find_plates(shapes: &Shapes, surface_area: f64, center: DVec3, settings: &Settings) -> Result<Plates, GridError> {
     let ps = &settings.plates;
-    let geometry = |e: platener_geom::GridError| e.to_string();
-    let mut found = inherent::find(shapes, center, settings).map_err(geometry)?;
+    let mut found = inherent::find(shapes, center, settings)?;
     if ps.mode == PlateMode::InherentAndExtruded {
         inherent::extrude_leftovers(shapes, &mut found, settings);
     }
@@ -184,9 +159,8 @@ pub fn find_plates(shapes: &Shapes, surface_area: f64, center: DVec3, settings: 
         .map(|(s, rest)| (s.area - polygon::total_area(rest)).max(0.0))
         .collect();
     let clearance = 1e-3;
-    let (plates, contained, trimmed) = overlap::resolve(found.plates, ps.min_area, clearance).map_err(geometry)?;
-    let (mut plates, rejoined) =
-        rejoin::rejoin(plates, ps.parallel_angle_deg.to_radians(), clearance).map_err(geometry)?;
+    let (plates, contained, trimmed) = overlap::resolve(found.plates, ps.min_area, clearance)?;
+    let (mut plates, rejoined) = rejoin::rejoin(plates, ps.parallel_angle_deg.to_radians(), clearance)?;
     plates.sort_by(|a, b| {
         (a.kind == PlateKind::Extruded)
             .cmp(&(b.kind == PlateKind::Extruded))
@@ -202,26 +176,15 @@ pub fn find_plates(shapes: &Shapes, surface_area: f64, center: DVec3, settings: 
     })
 }
 
-/// Step `plates`.
-pub struct PlatesStep;
-
-impl Step for PlatesStep {
-    fn name(&self) -> &'static str {
-        "plates"
-    }
-
-    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
-        let shapes = need(&state.shapes, self.name(), "shapes")?;
-        let mesh = need(&state.mesh, self.name(), "mesh")?;
-        let model = need(&state.read, self.name(), "read")?;
-        cx.check_cancel()?;
-        let center = (model.bounds.min + model.bounds.max) / 2.0;
-        let plates =
-            find_plates(shapes, mesh.surface_area, center, &state.settings).map_err(|message| Error::Geometry {
-                model: model.name.clone(),
-                message,
-            })?;
-        state.plates = Some(Arc::new(plates));
-        Ok(())
-    }
+/// Step `plates`: the plates the model's shapes make, with the coverage report.
+pub fn run(
+    shapes: &Shapes,
+    mesh: &Mesh,
+    model: &Model,
+    settings: &Settings,
+    cx: &mut StepContext<'_>,
+) -> Result<Plates> {
+    cx.check_cancel()?;
+    let center = (model.bounds.min + model.bounds.max) / 2.0;
+    find_plates(shapes, mesh.surface_area, center, settings).map_err(|e| Error::model(&model.name, ModelProblem::OffGrid(e)))
 }

@@ -15,7 +15,7 @@ fn plates_of(triangles: Vec<Triangle>, settings: Settings) -> Arc<Plates> {
         triangles: Arc::new(triangles),
     };
     let mut state = State::new(source, settings);
-    pipeline::run(&pipeline::plate_steps(), &mut state, &Cancel::default()).expect("converts");
+    pipeline::run(&pipeline::PLATE, &mut state, &Cancel::default()).expect("converts");
     state.plates.expect("plates step ran")
 }
 
@@ -207,7 +207,7 @@ fn the_phone_stand_file_gives_three_plates_and_a_whole_base() {
     // short of the base, which must still be rejoined under it.
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/phone-stand.stl");
     let mut state = State::new(Source::File(path), with(&[3.0]));
-    pipeline::run(&pipeline::plate_steps(), &mut state, &Cancel::default()).expect("converts");
+    pipeline::run(&pipeline::PLATE, &mut state, &Cancel::default()).expect("converts");
     let plates = state.plates.expect("plates");
     let mut areas: Vec<f64> = plates.plates.iter().map(|p| p.area).collect();
     areas.sort_by(f64::total_cmp);

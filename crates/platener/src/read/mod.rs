@@ -10,6 +10,7 @@ pub mod stl;
 mod threemf;
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use glam::DVec3;
 use serde::Serialize;
@@ -136,28 +137,92 @@ pub struct ReadError {
     pub kind: ReadErrorKind,
 }
 
+/// Where a model comes from.
+#[derive(Debug, Clone)]
+pub enum Source {
+    /// A file on disk; the format follows the extension.
+    File(PathBuf),
+    /// A file's bytes held in memory (an upload never touches the disk); the format follows
+    /// the extension of `name`.
+    Bytes {
+        /// The file's name as the user gave it (`box.stl`): its extension picks the reader,
+        /// its stem names the model, and errors name it.
+        name: String,
+        /// The file's content.
+        bytes: Arc<[u8]>,
+    },
+    /// Triangles made in code (tests, benchmarks, generated models), already in mm.
+    Triangles {
+        /// A name for reports.
+        name: String,
+        /// The triangles.
+        triangles: Arc<Vec<Triangle>>,
+    },
+}
+
+impl Source {
+    /// The model's name for messages: the file stem, or the given name.
+    pub fn name(&self) -> String {
+        let stem = |p: &Path| {
+            p.file_stem()
+                .map_or_else(|| p.display().to_string(), |s| s.to_string_lossy().into())
+        };
+        match self {
+            Source::File(p) => stem(p),
+            Source::Bytes { name, .. } => stem(Path::new(name)),
+            Source::Triangles { name, .. } => name.clone(),
+        }
+    }
+}
+
 /// Reads any supported model file, choosing the reader by extension (case-insensitive).
 pub fn read_file(path: &Path) -> Result<(Format, RawMesh), ReadError> {
     let wrap = |kind| ReadError {
         path: path.to_path_buf(),
         kind,
     };
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    let (format, mesh) = match extension.as_str() {
+    let (format, mesh) = match extension_of(path).as_str() {
         "stl" => stl::read_path(path).map_err(wrap)?,
         "obj" => (Format::Obj, obj::read_path(path).map_err(wrap)?),
         "3mf" => (Format::ThreeMf, threemf::read_path(path).map_err(wrap)?),
-        _ => return Err(wrap(ReadErrorKind::Unsupported { extension })),
+        extension => return Err(wrap(ReadErrorKind::Unsupported { extension: extension.into() })),
     };
+    non_empty(format, mesh).map_err(wrap)
+}
+
+/// Reads a model file held in memory; `name` is its file name (the extension picks the
+/// reader, errors name it).
+pub fn read_bytes(name: &str, bytes: &[u8]) -> Result<(Format, RawMesh), ReadError> {
+    let path = Path::new(name);
+    let wrap = |kind| ReadError {
+        path: path.to_path_buf(),
+        kind,
+    };
+    if bytes.is_empty() {
+        return Err(wrap(ReadErrorKind::Empty));
+    }
+    let (format, mesh) = match extension_of(path).as_str() {
+        "stl" => stl::parse_bytes(bytes).map_err(wrap)?,
+        "obj" => (Format::Obj, obj::parse_bytes(bytes).map_err(wrap)?),
+        "3mf" => (Format::ThreeMf, threemf::parse_bytes(bytes).map_err(wrap)?),
+        extension => return Err(wrap(ReadErrorKind::Unsupported { extension: extension.into() })),
+    };
+    non_empty(format, mesh).map_err(wrap)
+}
+
+fn extension_of(path: &Path) -> String {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase()
+}
+
+fn non_empty(format: Format, mesh: RawMesh) -> Result<(Format, RawMesh), ReadErrorKind> {
     if mesh.triangles.is_empty() {
-        return Err(wrap(ReadErrorKind::NoTriangles));
+        return Err(ReadErrorKind::NoTriangles);
     }
     Ok((format, mesh))
 }
 
 mod step;
-pub use step::{Bounds, Model, ReadStep, SUSPICIOUSLY_LARGE, SUSPICIOUSLY_SMALL};
+pub use step::{Bounds, Model, SUSPICIOUSLY_LARGE, SUSPICIOUSLY_SMALL, run};

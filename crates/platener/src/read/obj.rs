@@ -18,7 +18,12 @@ use super::{RawMesh, ReadErrorKind, Triangle};
 /// holds faces counts as one solid. An empty file gives an empty mesh.
 pub fn read_path(path: &Path) -> Result<RawMesh, ReadErrorKind> {
     let bytes = std::fs::read(path).map_err(|e| ReadErrorKind::Io(e.to_string()))?;
-    let text = String::from_utf8_lossy(&bytes);
+    parse_bytes(&bytes)
+}
+
+/// Reads an OBJ held in memory (uploads), as [`read_path`] reads a file.
+pub fn parse_bytes(bytes: &[u8]) -> Result<RawMesh, ReadErrorKind> {
+    let text = String::from_utf8_lossy(bytes);
     let prepared = prepare(&text, matches!(text, Cow::Owned(_)))?;
     read_prepared(prepared)
 }

@@ -5,9 +5,10 @@ use std::sync::Arc;
 use glam::DVec3;
 use serde::Serialize;
 
-use super::{Format, Triangle, read_file};
-use crate::error::{Error, Result};
-use crate::pipeline::{Source, State, Step, StepContext, WarningKind};
+use super::{Format, Source, Triangle, read_bytes, read_file};
+use crate::context::{StepContext, WarningKind};
+use crate::error::{Error, ModelProblem, Result};
+use crate::settings::Settings;
 
 /// Models smaller than this (largest extent, mm) are probably in cm, inches or metres.
 pub const SUSPICIOUSLY_SMALL: f64 = 1.0;
@@ -68,73 +69,81 @@ pub struct Model {
     pub unit_factor: f64,
 }
 
-/// Step `read`.
-pub struct ReadStep;
-
-impl Step for ReadStep {
-    fn name(&self) -> &'static str {
-        "read"
+/// Step `read`: the model's triangles in mm, with its bounds and what the reader noticed.
+pub fn run(source: &Source, settings: &Settings, cx: &mut StepContext<'_>) -> Result<Model> {
+    let name = source.name();
+    let factor = settings.unit_factor();
+    let scale = |mut tris: Vec<Triangle>| {
+        if factor != 1.0 {
+            tris.iter_mut().flatten().for_each(|p| *p *= factor);
+        }
+        tris
+    };
+    let (format, raw) = match source {
+        Source::File(path) => read_file(path)?,
+        Source::Bytes { name, bytes } => read_bytes(name, bytes)?,
+        Source::Triangles { triangles, .. } => {
+            let triangles = if factor == 1.0 {
+                triangles.clone()
+            } else {
+                Arc::new(scale(triangles.to_vec()))
+            };
+            return model(name, None, 1, 0, triangles, factor, cx);
+        }
+    };
+    for note in &raw.notes {
+        cx.warn(WarningKind::Reader, note.clone());
     }
+    let against = raw.normals_against_winding;
+    if against > 0 {
+        cx.warn(
+            WarningKind::StoredNormals,
+            format!("{against} stored facet normals point against the winding; the winding is used"),
+        );
+    }
+    let triangles = Arc::new(scale(raw.triangles));
+    model(name, Some(format), raw.solids, against, triangles, factor, cx)
+}
 
-    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
-        let name = state.source.name();
-        let factor = state.settings.unit_factor();
-        let (format, solids, against, triangles) = match &state.source {
-            Source::File(path) => {
-                let (format, raw) = read_file(path)?;
-                for note in &raw.notes {
-                    cx.warn(WarningKind::Reader, note.clone());
-                }
-                let mut tris = raw.triangles;
-                if factor != 1.0 {
-                    tris.iter_mut().flatten().for_each(|p| *p *= factor);
-                }
-                (Some(format), raw.solids, raw.normals_against_winding, Arc::new(tris))
-            }
-            Source::Triangles { triangles, .. } if factor == 1.0 => (None, 1, 0, triangles.clone()),
-            Source::Triangles { triangles, .. } => {
-                let scaled = triangles.iter().map(|t| t.map(|p| p * factor)).collect();
-                (None, 1, 0, Arc::new(scaled))
-            }
-        };
-        if against > 0 {
-            cx.warn(
-                WarningKind::StoredNormals,
-                format!("{against} stored facet normals point against the winding; the winding is used"),
-            );
-        }
-        validate_finite(&name, &triangles)?;
-        let bounds = Bounds::of(&triangles).ok_or_else(|| Error::Model {
-            model: name.clone(),
-            message: "the model has no triangles".into(),
-        })?;
-        let extent = bounds.largest_extent();
-        if extent < SUSPICIOUSLY_SMALL {
-            cx.warn(
-                WarningKind::Units,
-                format!(
-                    "the model is only {extent:.4} mm across: if its unit is not mm, use --units cm|in or --scale F"
-                ),
-            );
-        } else if extent > SUSPICIOUSLY_LARGE {
-            cx.warn(
-                WarningKind::Units,
-                format!(
-                    "the model is {:.1} m across: if its unit is not mm, use --scale F (e.g. 0.001 for µm)",
-                    extent / 1000.0
-                ),
-            );
-        }
-        state.read = Some(Arc::new(Model {
-            name,
-            format,
-            triangles,
-            solids,
-            bounds,
-            normals_against_winding: against,
-            unit_factor: factor,
-        }));
-        Ok(())
+/// The snapshot, once the triangles are in mm: checked finite, bounded, sized.
+fn model(
+    name: String,
+    format: Option<Format>,
+    solids: usize,
+    against: usize,
+    triangles: Arc<Vec<Triangle>>,
+    factor: f64,
+    cx: &mut StepContext<'_>,
+) -> Result<Model> {
+    validate_finite(&name, &triangles)?;
+    let bounds = Bounds::of(&triangles).ok_or_else(|| Error::model(&name, ModelProblem::NoTriangles))?;
+    warn_units(bounds.largest_extent(), cx);
+    Ok(Model {
+        name,
+        format,
+        triangles,
+        solids,
+        bounds,
+        normals_against_winding: against,
+        unit_factor: factor,
+    })
+}
+
+/// A model far too small or too large for millimetres is probably in other units.
+fn warn_units(extent: f64, cx: &mut StepContext<'_>) {
+    if extent < SUSPICIOUSLY_SMALL {
+        cx.warn(
+            WarningKind::Units,
+            format!("the model is only {extent:.4} mm across: if its unit is not mm, use --units cm|in or --scale F"),
+        );
+    } else if extent > SUSPICIOUSLY_LARGE {
+        cx.warn(
+            WarningKind::Units,
+            format!(
+                "the model is {:.1} m across: if its unit is not mm, use --scale F (e.g. 0.001 for µm)",
+                extent / 1000.0
+            ),
+        );
     }
 }
 
@@ -142,9 +151,6 @@ impl Step for ReadStep {
 fn validate_finite(name: &str, triangles: &[Triangle]) -> Result<()> {
     match triangles.iter().position(|t| !t.iter().all(|p| p.is_finite())) {
         None => Ok(()),
-        Some(i) => Err(Error::Model {
-            model: name.to_string(),
-            message: format!("triangle {i} has a coordinate that is not a finite number after scaling; check --scale"),
-        }),
+        Some(i) => Err(Error::model(name, ModelProblem::NonFinite { triangle: i })),
     }
 }

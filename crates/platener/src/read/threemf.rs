@@ -37,6 +37,15 @@ pub fn read_path(path: &Path) -> Result<RawMesh, ReadErrorKind> {
     Package::new(&parts)?.expand()
 }
 
+/// Reads a 3MF held in memory (uploads), as [`read_path`] reads a file.
+pub fn parse_bytes(bytes: &[u8]) -> Result<RawMesh, ReadErrorKind> {
+    if bytes.is_empty() {
+        return Err(ReadErrorKind::Empty);
+    }
+    let parts = threemf::read(std::io::Cursor::new(bytes)).map_err(describe_error)?;
+    Package::new(&parts)?.expand()
+}
+
 /// Turns a `threemf` error into a message saying what to do.
 fn describe_error(error: threemf::Error) -> ReadErrorKind {
     ReadErrorKind::ThreeMf(match error {

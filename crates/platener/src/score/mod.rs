@@ -36,11 +36,10 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::assembly::{Inside, Prism};
-use crate::error::Result;
 use crate::export::report::Report;
 use crate::mesh::Mesh;
-use crate::method::Conversion;
-use crate::pipeline::need;
+use crate::export::Bundle;
+use crate::plates::Plates;
 use crate::plan::{Plan, PlanJoint};
 use sample::Rng;
 
@@ -143,19 +142,17 @@ pub struct Score {
     pub effort: EffortScore,
 }
 
-/// Scores a finished conversion with the default settings.
-pub fn score(conversion: &Conversion) -> Result<Score> {
-    score_with(conversion, &ScoreSettings::default())
+/// Scores a finished conversion with the default settings: its model's `mesh` against its
+/// plan; `plates` (the plate method's) adds the coverage report's surface share.
+pub fn score(mesh: &Mesh, bundle: &Bundle, plates: Option<&Plates>) -> Score {
+    score_with(mesh, bundle, plates, &ScoreSettings::default())
 }
 
-/// Scores a finished conversion: its model's mesh against its plan.
-pub fn score_with(conversion: &Conversion, settings: &ScoreSettings) -> Result<Score> {
-    let mesh = need(&conversion.state.mesh, "score", "mesh")?;
-    let bundle = conversion.bundle()?;
-    let plates_surface_share = conversion.state.plates.as_ref().map(|p| p.coverage.surface_share);
+/// [`score`] with the given sampling settings.
+pub fn score_with(mesh: &Mesh, bundle: &Bundle, plates: Option<&Plates>, settings: &ScoreSettings) -> Score {
     let mut s = evaluate(mesh, &bundle.plan, &bundle.report, settings);
-    s.shape.plates_surface_share = plates_surface_share;
-    Ok(s)
+    s.shape.plates_surface_share = plates.map(|p| p.coverage.surface_share);
+    s
 }
 
 /// The score of `plan` as a reproduction of `mesh`; effort figures come from `report`.

@@ -3,12 +3,23 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use super::*;
-use crate::method::{MethodKind, convert};
+use crate::convert::convert;
+use crate::method::MethodKind;
+use crate::pipeline::State;
 use crate::plan::JointKind;
 use crate::read::Triangle;
 use crate::{Cancel, Settings, Source, samples};
 
-fn box_conversion() -> Conversion {
+/// The score of a converted state.
+fn score_of(c: &State) -> Score {
+    score(
+        c.mesh.as_ref().expect("mesh"),
+        c.bundle().expect("bundle"),
+        c.plates.as_deref(),
+    )
+}
+
+fn box_conversion() -> State {
     let source = Source::Triangles {
         name: "box".into(),
         triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
@@ -28,7 +39,7 @@ fn indexed(triangles: &[Triangle]) -> (Vec<DVec3>, Vec<[u32; 3]>) {
 #[test]
 fn the_box_plan_reproduces_the_box() {
     let c = box_conversion();
-    let s = score(&c).expect("scored");
+    let s = score_of(&c);
     // Six plates (with their joints) are the whole box: the surface is covered, nothing sticks
     // out, nothing overlaps (±1 point for sampling).
     assert!(s.shape.surface_covered > 0.95, "{s:?}");
@@ -50,7 +61,7 @@ fn the_box_plan_reproduces_the_box() {
 #[test]
 fn the_same_conversion_always_gets_the_same_score() {
     let c = box_conversion();
-    assert_eq!(score(&c).expect("scored"), score(&c).expect("scored"));
+    assert_eq!(score_of(&c), score_of(&c));
 }
 
 #[test]
@@ -64,7 +75,7 @@ fn joints_connect_the_assembly() {
         angle: 90.0,
         label: a,
     };
-    let mesh = c.state.mesh.as_ref().expect("mesh");
+    let mesh = c.mesh.as_ref().expect("mesh");
     let settings = ScoreSettings::default();
     // Parts 1–2–3, 4–5 and 6: three connections of the five one solid needs.
     plan.joints = vec![joint(1, 2), joint(2, 3), joint(4, 5)];
@@ -90,7 +101,7 @@ fn parts_away_from_the_model_reproduce_nothing() {
     for part in &mut plan.parts {
         part.transform[0][3] += 1000.0;
     }
-    let mesh = c.state.mesh.as_ref().expect("mesh");
+    let mesh = c.mesh.as_ref().expect("mesh");
     let s = evaluate(mesh, &plan, &bundle.report, &ScoreSettings::default());
     assert_eq!(s.shape.surface_covered, 0.0);
     assert_eq!(s.shape.volume_inside, 0.0);
@@ -113,7 +124,7 @@ fn overlapping_parts_interfere() {
         })
         .collect();
     plan.parts.extend(copies);
-    let mesh = c.state.mesh.as_ref().expect("mesh");
+    let mesh = c.mesh.as_ref().expect("mesh");
     let s = evaluate(mesh, &plan, &bundle.report, &ScoreSettings::default());
     assert!(s.assembly.interference > 0.99, "{s:?}");
 }

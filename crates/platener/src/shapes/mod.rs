@@ -8,17 +8,18 @@
 
 mod loops;
 
-use std::sync::Arc;
 
 use platener_geom::polygon::remove_straight_vertices;
-use platener_geom::{Frame, Polygon, Ring, boolean};
+use platener_geom::{Frame, GridError, Polygon, Ring, boolean};
 use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::coplanar::{PlanarGroup, PlanarGroups};
-use crate::error::{Error, Result};
+use crate::cleanup::Cleaned;
+use crate::context::StepContext;
+use crate::error::{Error, ModelProblem, Result};
 use crate::mesh::Mesh;
-use crate::pipeline::{State, Step, StepContext, need};
+use crate::settings::Settings;
 
 /// One planar shape: a polygon with holes in its plane, and where that plane is.
 #[derive(Debug, Clone, Serialize)]
@@ -52,7 +53,7 @@ struct GroupShapes {
     removed: usize,
 }
 
-fn shapes_of_group(mesh: &Mesh, groups: &PlanarGroups, gid: usize, tolerance: f64) -> Result<GroupShapes, String> {
+fn shapes_of_group(mesh: &Mesh, groups: &PlanarGroups, gid: usize, tolerance: f64) -> Result<GroupShapes, GridError> {
     let group: &PlanarGroup = &groups.groups[gid];
     let (loops, open) = loops::boundary_loops(mesh, &groups.face_group, gid as u32, &group.faces);
     let origin_on_plane = {
@@ -77,7 +78,7 @@ fn shapes_of_group(mesh: &Mesh, groups: &PlanarGroups, gid: usize, tolerance: f6
             rings.push(simple);
         }
     }
-    let polygons = boolean::from_rings_even_odd(&rings).map_err(|e| e.to_string())?;
+    let polygons = boolean::from_rings_even_odd(&rings)?;
     let shapes = polygons
         .into_iter()
         .map(|polygon| Shape {
@@ -95,7 +96,7 @@ fn shapes_of_group(mesh: &Mesh, groups: &PlanarGroups, gid: usize, tolerance: f6
 }
 
 /// Finds the shapes of every planar group.
-pub fn find_shapes(mesh: &Mesh, groups: &PlanarGroups, tolerance: f64) -> Result<Shapes, String> {
+pub fn find_shapes(mesh: &Mesh, groups: &PlanarGroups, tolerance: f64) -> Result<Shapes, GridError> {
     let per_group: Vec<GroupShapes> = (0..groups.groups.len())
         .into_par_iter()
         .map(|g| shapes_of_group(mesh, groups, g, tolerance))
@@ -117,27 +118,17 @@ pub fn find_shapes(mesh: &Mesh, groups: &PlanarGroups, tolerance: f64) -> Result
     })
 }
 
-/// Step `shapes`.
-pub struct ShapesStep;
-
-impl Step for ShapesStep {
-    fn name(&self) -> &'static str {
-        "shapes"
-    }
-
-    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
-        let mesh = need(&state.mesh, self.name(), "mesh")?;
-        let groups = need(&state.coplanar, self.name(), "coplanar")?;
-        let cleaned = need(&state.cleanup, self.name(), "cleanup")?;
-        let tolerance = state.settings.straight_tolerance.unwrap_or(cleaned.tolerances.straight);
-        cx.check_cancel()?;
-        let shapes = find_shapes(mesh, groups, tolerance).map_err(|message| Error::Geometry {
-            model: state.source.name(),
-            message,
-        })?;
-        state.shapes = Some(Arc::new(shapes));
-        Ok(())
-    }
+/// Step `shapes`: each planar group's outline with holes, in its own 2D frame.
+pub fn run(
+    mesh: &Mesh,
+    groups: &PlanarGroups,
+    cleaned: &Cleaned,
+    settings: &Settings,
+    cx: &mut StepContext<'_>,
+) -> Result<Shapes> {
+    let tolerance = settings.straight_tolerance.unwrap_or(cleaned.tolerances.straight);
+    cx.check_cancel()?;
+    find_shapes(mesh, groups, tolerance).map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))
 }
 
 #[cfg(test)]

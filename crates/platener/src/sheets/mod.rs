@@ -14,16 +14,13 @@ mod shape;
 #[cfg(test)]
 mod tests;
 
-use std::sync::Arc;
-use std::time::Instant;
 
 use glam::DVec2;
 use serde::Serialize;
 
-use crate::error::Result;
+use crate::context::{StepContext, Warning, WarningKind};
 use crate::kerf::CutPaths;
-use crate::pipeline::{State, Step, StepContext, need};
-use crate::plan::{CutSettings, Part, PlanError, PlanWarning, SheetPlacement, SheetSize};
+use crate::plan::{CutSettings, Part, PlanError, PlanInput, SheetPlacement, SheetSize};
 use holes::Child;
 use search::{best_layout, fit_height, fits_empty, sheet_region};
 use shape::{NestShape, nest_shape, rotate};
@@ -59,22 +56,17 @@ pub struct Nesting {
     pub sheets: Vec<Sheet>,
     /// Where each part sits, in the input's part order.
     pub placements: Vec<SheetPlacement>,
-    /// Oversized parts and the like.
-    pub warnings: Vec<PlanWarning>,
-    /// Wall time of the computation, ms.
-    pub millis: f64,
 }
 
-/// Nests `parts` (with cut paths `cut`, same order) onto sheets (the `sheets` step without a
-/// pipeline). `cancelled` is polled between parts.
+/// Nests `parts` (with cut paths `cut`, same order) onto sheets, with a warning for each part
+/// larger than the sheet. `cancelled` is polled between parts.
 pub fn nest(
     parts: &[Part],
     cut: &CutPaths,
     settings: &CutSettings,
     cancelled: &(dyn Fn() -> bool + Sync),
-) -> Result<Nesting, PlanError> {
+) -> Result<(Nesting, Vec<Warning>), PlanError> {
     settings.validate()?;
-    let start = Instant::now();
     let spacing = settings.spacing;
     let shapes: Vec<NestShape> = parts
         .iter()
@@ -100,9 +92,8 @@ pub fn nest(
             };
             parts.len()
         ],
-        warnings: Vec::new(),
-        millis: 0.0,
     };
+    let mut warnings = Vec::new();
     // Placement of each shape: (sheet slot in this group, angle, translation).
     for thickness in thicknesses {
         let group: Vec<usize> = (0..parts.len()).filter(|&i| parts[i].thickness == thickness).collect();
@@ -161,8 +152,9 @@ pub fn nest(
             let (w, h) = (round_up(t.size.x + frame), round_up(t.size.y + frame));
             let (angle, tr) = t.placement(DVec2::splat(settings.margin - spacing / 2.0));
             placed[i] = Some((nesting.sheets.len(), angle, tr));
-            nesting.warnings.push(PlanWarning {
+            warnings.push(Warning {
                 step: "sheets",
+                kind: WarningKind::CuttingPlan,
                 part: Some(parts[i].id),
                 message: format!(
                     "part {} does not fit a {width:.0} × {height:.0} mm sheet; it gets a sheet of its own, {w:.1} × {h:.1} mm",
@@ -186,8 +178,7 @@ pub fn nest(
         }
     }
     finish_sheets(&mut nesting, parts, &shapes, settings);
-    nesting.millis = start.elapsed().as_secs_f64() * 1e3;
-    Ok(nesting)
+    Ok((nesting, warnings))
 }
 
 fn empty_sheet(thickness: f64, width: f64, height: f64, oversize: bool) -> Sheet {
@@ -272,24 +263,12 @@ fn finish_sheets(nesting: &mut Nesting, parts: &[Part], shapes: &[NestShape], se
     }
 }
 
-/// The `sheets` step: reads `parts` and `kerf`, adds [`Nesting`].
-pub struct SheetsStep;
-
-impl Step for SheetsStep {
-    fn name(&self) -> &'static str {
-        "sheets"
-    }
-
-    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
-        let input = need(&state.parts, "sheets", "parts")?;
-        let cut = need(&state.kerf, "sheets", "kerf")?;
-        let nesting = {
-            let cx: &StepContext<'_> = cx;
-            let cancelled = || cx.check_cancel().is_err();
-            nest(&input.parts, cut, &input.settings, &cancelled)?
-        };
-        cx.warn_all(&nesting.warnings);
-        state.sheets = Some(Arc::new(nesting));
-        Ok(())
-    }
+/// Step `sheets`: every part placed on a sheet of its thickness.
+pub fn run(input: &PlanInput, cut: &CutPaths, cx: &mut StepContext<'_>) -> Result<Nesting, PlanError> {
+    let (nesting, warnings) = {
+        let cx: &StepContext<'_> = cx;
+        nest(&input.parts, cut, &input.settings, &|| cx.is_cancelled())?
+    };
+    cx.extend(warnings);
+    Ok(nesting)
 }

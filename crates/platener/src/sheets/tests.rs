@@ -9,7 +9,11 @@ use platener_geom::polygon::rect;
 use crate::plan::samples::flat_part as part;
 
 fn nest_all(parts: &[Part], settings: &CutSettings) -> Nesting {
-    let cut = cut_paths(parts, settings.kerf()).expect("cut");
+    nest_warned(parts, settings).0
+}
+
+fn nest_warned(parts: &[Part], settings: &CutSettings) -> (Nesting, Vec<crate::context::Warning>) {
+    let (cut, _) = cut_paths(parts, settings.kerf()).expect("cut");
     nest(parts, &cut, settings, &|| false).expect("nests")
 }
 
@@ -62,9 +66,10 @@ fn an_oversized_part_gets_its_own_sheet_and_a_warning() {
         part(1, Polygon::new(rect(0.0, 0.0, 700.0, 100.0))),
         part(2, Polygon::new(rect(0.0, 0.0, 50.0, 50.0))),
     ];
-    let n = nest_all(&parts, &CutSettings::default());
+    let (n, warnings) = nest_warned(&parts, &CutSettings::default());
     assert_eq!(n.sheets.len(), 2);
-    assert_eq!(n.warnings.len(), 1);
+    assert_eq!(warnings.len(), 1);
+    assert_eq!(warnings[0].part, Some(1));
     let big = &n.sheets[n.placements[0].index as usize];
     assert!(big.oversize && (big.width - 710.2).abs() < 1e-6 && (big.height - 110.2).abs() < 1e-6);
 }

@@ -32,14 +32,18 @@ mod parts;
 mod shafts;
 mod slice;
 
-use std::sync::Arc;
-
 use glam::{DVec2, DVec3};
 use platener_geom::{Frame, Polygon};
 use serde::Serialize;
 
-use crate::error::{Error, Result};
-use crate::pipeline::{State, Step, StepContext, WarningKind, need};
+use crate::cleanup::Cleaned;
+use crate::context::{StepContext, WarningKind};
+use crate::coplanar::PlanarGroups;
+use crate::error::{Error, ModelProblem, Result};
+use crate::mesh::Mesh;
+use crate::plan::PlanInput;
+use crate::read::Model;
+use crate::settings::Settings;
 
 pub use islands::{DroppedIsland, LayerIslands, islands_of};
 pub use loops::LoopStats;
@@ -155,58 +159,44 @@ impl Stack {
     }
 }
 
-/// Step `stacked`.
-pub struct StackedStep;
-
-impl Step for StackedStep {
-    fn name(&self) -> &'static str {
-        "stacked"
+/// Step `stacked`: the model sliced into layers joined by shafts, and those as the parts to
+/// cut (the stacked method's `parts` snapshot, made here: the layers are the parts).
+pub fn run(
+    model: &Model,
+    cleaned: &Cleaned,
+    mesh: &Mesh,
+    groups: Option<&PlanarGroups>,
+    settings: &Settings,
+    cx: &mut StepContext<'_>,
+) -> Result<(Stack, PlanInput)> {
+    let tolerance = settings.straight_tolerance.unwrap_or(cleaned.tolerances.straight);
+    let (up, choice) = choose_up(mesh, groups, settings.stacked.axis);
+    let plan = SlicePlan::new(mesh, up, choice, settings.layer_thickness())
+        .ok_or_else(|| Error::model(&model.name, ModelProblem::NothingToSlice))?;
+    let sliced = slice(mesh, &plan, tolerance);
+    cx.check_cancel()?;
+    let geometry = |e: platener_geom::GridError| Error::model(&model.name, ModelProblem::OffGrid(e));
+    let layers = islands_of(&sliced, &settings.stacked).map_err(geometry)?;
+    if layers.islands.iter().all(Vec::is_empty) {
+        return Err(Error::model(
+            &model.name,
+            ModelProblem::NoLayer {
+                islands: layers.dropped.len(),
+                min_area: settings.stacked.min_area,
+                min_width: settings.stacked.min_width,
+                height: plan.thickness * plan.count as f64,
+            },
+        ));
     }
-
-    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
-        let mesh = need(&state.mesh, self.name(), "mesh")?;
-        let cleaned = need(&state.cleanup, self.name(), "cleanup")?;
-        let settings = state.settings.clone();
-        let model = state.source.name();
-        let tolerance = settings.straight_tolerance.unwrap_or(cleaned.tolerances.straight);
-        let (up, choice) = choose_up(mesh, state.coplanar.as_deref(), settings.stacked.axis);
-        let plan = SlicePlan::new(mesh, up, choice, settings.layer_thickness()).ok_or_else(|| Error::Model {
-            model: model.clone(),
-            message: "the model has no triangles to slice".into(),
-        })?;
-        let sliced = slice(mesh, &plan, tolerance);
-        cx.check_cancel()?;
-        let geometry = |e: platener_geom::GridError| Error::Geometry {
-            model: model.clone(),
-            message: e.to_string(),
-        };
-        let layers = islands_of(&sliced, &settings.stacked).map_err(geometry)?;
-        if layers.islands.iter().all(Vec::is_empty) {
-            let extent = plan.thickness * plan.count as f64;
-            return Err(Error::Model {
-                model,
-                message: format!(
-                    "no layer is large enough to cut ({} island(s) under {} mm² or thinner than {} mm; \
-                     the stack is {extent:.1} mm tall): scale the model up (--scale) or use thinner sheets",
-                    layers.dropped.len(),
-                    settings.stacked.min_area,
-                    settings.stacked.min_width
-                ),
-            });
-        }
-        cx.check_cancel()?;
-        let placed = shafts::place(&layers.islands, &settings.stacked, settings.shaft_thickness()).map_err(geometry)?;
-        cx.check_cancel()?;
-        let stack =
-            assemble::assemble(plan, settings.shaft_thickness(), layers, placed, sliced.stats).map_err(geometry)?;
-        for w in warnings(&stack) {
-            cx.warn(WarningKind::CuttingPlan, w);
-        }
-        let input = plan_input(&stack, state)?;
-        state.stacked = Some(Arc::new(stack));
-        state.parts = Some(Arc::new(input));
-        Ok(())
+    cx.check_cancel()?;
+    let placed = shafts::place(&layers.islands, &settings.stacked, settings.shaft_thickness()).map_err(geometry)?;
+    cx.check_cancel()?;
+    let stack = assemble::assemble(plan, settings.shaft_thickness(), layers, placed, sliced.stats).map_err(geometry)?;
+    for w in warnings(&stack) {
+        cx.warn(WarningKind::CuttingPlan, w);
     }
+    let input = plan_input(&stack, model, settings)?;
+    Ok((stack, input))
 }
 
 /// What the user should know about a stack: dropped islands, unjoined layers, repaired loops.

@@ -11,17 +11,14 @@ use glam::DVec2;
 
 use super::Stack;
 use super::marks::tag;
-use crate::error::{Error, Result};
-use crate::pipeline::{State, need};
+use crate::error::{Error, ModelProblem, Result};
+use crate::read::Model;
 use crate::plan::{Joint, JointKind, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
-use crate::settings::StackAxis;
+use crate::settings::{Settings, StackAxis};
 
-/// The parts, joints and settings of `stack`, converted from `state`'s model.
-pub fn plan_input(stack: &Stack, state: &State) -> Result<PlanInput> {
-    let geometry = |e: platener_geom::GridError| Error::Geometry {
-        model: state.source.name(),
-        message: e.to_string(),
-    };
+/// The parts, joints and settings of `stack`, converted from `model`.
+pub fn plan_input(stack: &Stack, model: &Model, settings: &Settings) -> Result<PlanInput> {
+    let geometry = |e: platener_geom::GridError| Error::model(&model.name, ModelProblem::OffGrid(e));
     let mut parts = Vec::new();
     for (k, layer) in stack.layers.iter().enumerate() {
         for island in &layer.islands {
@@ -76,7 +73,7 @@ pub fn plan_input(stack: &Stack, state: &State) -> Result<PlanInput> {
             });
         }
     }
-    let s = &state.settings;
+    let s = settings;
     let mut method_settings = BTreeMap::new();
     let axis = match s.stacked.axis {
         StackAxis::Auto => "auto",
@@ -101,14 +98,7 @@ pub fn plan_input(stack: &Stack, state: &State) -> Result<PlanInput> {
         SettingValue::Numbers(vec![s.stacked.shaft_min_width, s.stacked.shaft_max_width]),
     );
     method_settings.insert("weld".to_string(), SettingValue::Number(0.0));
-    let model = need(&state.read, "stacked", "read")?;
-    let source = SourceInfo {
-        name: model.name.clone(),
-        triangles: model.triangles.len() as u64,
-        bbox_min: model.bounds.min,
-        bbox_max: model.bounds.max,
-    };
-    let mut input = PlanInput::new(source, Method::Stacked, parts, joints);
+    let mut input = PlanInput::new(SourceInfo::from(model), Method::Stacked, parts, joints);
     input.settings = s.cut.clone();
     input.method_settings = method_settings;
     Ok(input)

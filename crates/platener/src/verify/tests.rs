@@ -1,7 +1,8 @@
 use std::sync::Arc;
 
 use super::*;
-use crate::method::{MethodKind, convert};
+use crate::convert::convert;
+use crate::method::MethodKind;
 use crate::pipeline::{Cancel, Source};
 use crate::samples;
 use crate::settings::Settings;
@@ -13,7 +14,7 @@ fn check(model: Vec<crate::read::Triangle>) -> Verification {
     };
     let c = convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts");
     let bundle = c.bundle().expect("plan");
-    verify(&bundle.plan, c.state.mesh.as_deref())
+    verify(&bundle.plan, c.mesh.as_deref())
 }
 
 #[test]
@@ -75,7 +76,7 @@ fn a_cardboard_box_snaps_together_with_jim_joints() {
     let c = convert(MethodKind::Plate, source, settings, &Cancel::default()).expect("converts");
     let plan = &c.bundle().expect("plan").plan;
     assert!(plan.joints.iter().all(|j| j.kind == crate::plan::JointKind::Jim));
-    let v = verify(plan, c.state.mesh.as_deref());
+    let v = verify(plan, c.mesh.as_deref());
     assert!(!v.interference.is_empty(), "the barbs overlap on purpose");
     assert!(v.passed(), "{:?}", v.problems);
 }

@@ -13,15 +13,16 @@
 
 mod topology;
 
-use std::sync::Arc;
-
 use glam::DVec3;
 use platener_geom::dedup::first_equal;
 use platener_geom::weld::{Welded as Welded2, weld, weld_connected};
 use serde::Serialize;
 
-use crate::error::{Error, Result};
-use crate::pipeline::{State, Step, StepContext, WarningKind, need};
+use crate::cleanup::Cleaned;
+use crate::context::{StepContext, WarningKind};
+use crate::error::{Error, ModelProblem, Result};
+use crate::read::Model;
+use crate::settings::Settings;
 
 pub use topology::{EdgeCounts, edge_counts};
 
@@ -206,71 +207,63 @@ pub fn weld_soup(soup: &[[DVec3; 3]], distance: f64) -> Welded {
     ExactSoup::new(soup).weld(distance)
 }
 
-/// Step `weld`.
-pub struct WeldStep;
-
-impl Step for WeldStep {
-    fn name(&self) -> &'static str {
-        "weld"
+/// Step `weld`: the cleaned triangles with nearby vertices merged, at the distance the
+/// settings ask for, reduced where welding would change the model's topology.
+pub fn run(model: &Model, cleaned: &Cleaned, settings: &Settings, cx: &mut StepContext<'_>) -> Result<Welded> {
+    let distance = settings.weld_distance(model.bounds.largest_extent());
+    let exact = ExactSoup::new(&cleaned.triangles);
+    cx.check_cancel()?;
+    let (mut welded, refused) = exact.weld_keeping_topology(distance);
+    if let Some(first) = refused.first() {
+        cx.warn(
+            WarningKind::WeldReduced,
+            format!(
+                "welding at {first:.3} mm would close holes or fuse parts; welded at {:.3} mm instead (set --weld to choose)",
+                welded.distance
+            ),
+        );
     }
+    if welded.triangles.is_empty() && welded.distance > 0.0 {
+        cx.warn(
+            WarningKind::WeldFallback,
+            format!(
+                "welding at {:.3} mm would remove every triangle; the unwelded mesh is used (try --weld 0)",
+                welded.distance
+            ),
+        );
+        welded = Welded {
+            fell_back: true,
+            distance_asked: distance,
+            ..exact.weld(0.0)
+        };
+    }
+    cx.check_cancel()?;
+    warn_edges(&welded, cx);
+    if welded.triangles.is_empty() {
+        return Err(Error::model(&model.name, ModelProblem::EmptyAfterCleanup));
+    }
+    Ok(welded)
+}
 
-    fn run(&self, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
-        let model = need(&state.read, self.name(), "read")?;
-        let cleaned = need(&state.cleanup, self.name(), "cleanup")?;
-        let distance = state.settings.weld_distance(model.bounds.largest_extent());
-        let exact = ExactSoup::new(&cleaned.triangles);
-        cx.check_cancel()?;
-        let (mut welded, refused) = exact.weld_keeping_topology(distance);
-        if let Some(first) = refused.first() {
-            cx.warn(
-                WarningKind::WeldReduced,
-                format!(
-                    "welding at {first:.3} mm would close holes or fuse parts; welded at {:.3} mm instead (set --weld to choose)",
-                    welded.distance
-                ),
-            );
-        }
-        if welded.triangles.is_empty() && welded.distance > 0.0 {
-            cx.warn(
-                WarningKind::WeldFallback,
-                format!(
-                    "welding at {:.3} mm would remove every triangle; the unwelded mesh is used (try --weld 0)",
-                    welded.distance
-                ),
-            );
-            welded = Welded {
-                fell_back: true,
-                distance_asked: distance,
-                ..exact.weld(0.0)
-            };
-        }
-        cx.check_cancel()?;
-        if welded.input_open_edges > 0 {
-            cx.warn(
-                WarningKind::OpenEdges,
-                format!(
-                    "{} open edges: the model's surface has holes (not watertight)",
-                    welded.input_open_edges
-                ),
-            );
-        }
-        if welded.input_non_manifold_edges > 0 {
-            cx.warn(
-                WarningKind::NonManifoldEdges,
-                format!(
-                    "{} non-manifold edges: some edges of the model are shared by more than two triangles",
-                    welded.input_non_manifold_edges
-                ),
-            );
-        }
-        if welded.triangles.is_empty() {
-            return Err(Error::Model {
-                model: model.name.clone(),
-                message: "no triangle with an area is left after cleanup".into(),
-            });
-        }
-        state.weld = Some(Arc::new(welded));
-        Ok(())
+/// Open and non-manifold edges of the model as given.
+fn warn_edges(welded: &Welded, cx: &mut StepContext<'_>) {
+    if welded.input_open_edges > 0 {
+        cx.warn(
+            WarningKind::OpenEdges,
+            format!(
+                "{} open edges: the model's surface has holes (not watertight)",
+                welded.input_open_edges
+            ),
+        );
+    }
+    if welded.input_non_manifold_edges > 0 {
+        cx.warn(
+            WarningKind::NonManifoldEdges,
+            format!(
+                "{} non-manifold edges: some edges of the model are shared by more than two triangles",
+                welded.input_non_manifold_edges
+            ),
+        );
     }
 }
 

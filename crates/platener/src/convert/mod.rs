@@ -1,0 +1,278 @@
+//! One call converts a model with every method asked for: [`convert_all`].
+//!
+//! This is the product's one orchestration; the CLI and the web service only fill a
+//! [`Request`], watch the [`Event`]s and render the [`Conversions`]. It runs the steps every
+//! method shares (`read`, `cleanup`) once, and the rest of the foundation once per distinct
+//! weld setting (the stacked method keeps every surface detail, so it welds exact duplicates
+//! only and cannot share the plate method's welded mesh), forking the state for each method.
+//! It applies the time limit to the model as a whole, catches errors and panics per method,
+//! scores every plan and names the best.
+
+mod panic;
+mod work;
+#[cfg(test)]
+mod tests;
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use serde::Serialize;
+
+use crate::context::{Cancel, StepRecord, Warning};
+use crate::error::{Error, Internal, Result};
+use crate::export::Bundle;
+use crate::method::MethodKind;
+use crate::pipeline::{Source, State, StepEvent};
+use crate::score::Score;
+use crate::settings::Settings;
+
+pub use panic::PanicHook;
+
+/// What to convert and how.
+#[derive(Debug, Clone)]
+pub struct Request {
+    /// The model: a path, a file's bytes with its name, or triangles.
+    pub source: Source,
+    /// The settings.
+    pub settings: Settings,
+    /// The methods to run, in order.
+    pub methods: Vec<MethodKind>,
+    /// The time limit for the model, all its methods together; `None`: no limit.
+    pub timeout: Option<Duration>,
+    /// Failures to inject, for tests of callers that must survive them.
+    pub faults: Vec<Fault>,
+}
+
+impl Request {
+    /// Every method, no time limit, no faults.
+    pub fn new(source: Source, settings: Settings) -> Self {
+        Self {
+            source,
+            settings,
+            methods: MethodKind::ALL.to_vec(),
+            timeout: None,
+            faults: Vec::new(),
+        }
+    }
+}
+
+/// A failure a caller's test asks a method to have, so it can show that it survives it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Fault {
+    /// The method that fails.
+    pub method: MethodKind,
+    /// How.
+    pub kind: FaultKind,
+}
+
+/// How an injected fault fails.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FaultKind {
+    /// Returns an error.
+    Error,
+    /// Panics.
+    Panic,
+    /// Runs until cancelled (or the time limit).
+    Hang,
+}
+
+/// How one method did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Status {
+    /// It made a plan.
+    Converted,
+    /// It stopped with an error.
+    Failed,
+    /// It panicked (a bug of ours; the error says where).
+    Panicked,
+    /// The model ran past the time limit before this method finished.
+    TimedOut,
+    /// The caller cancelled the run.
+    Cancelled,
+}
+
+impl Status {
+    /// The status an error stands for.
+    pub fn of(error: &Error) -> Self {
+        match error {
+            Error::Cancelled { .. } => Status::Cancelled,
+            Error::TimedOut { .. } => Status::TimedOut,
+            Error::Internal {
+                problem: Internal::Panic { .. },
+                ..
+            } => Status::Panicked,
+            _ => Status::Failed,
+        }
+    }
+}
+
+/// One method's result: its snapshots and records, its plan and score, or its error.
+#[derive(Debug, Clone)]
+pub struct MethodResult {
+    /// The method.
+    pub method: MethodKind,
+    /// How it went.
+    pub status: Status,
+    /// Wall time, seconds (0 for a method the time limit stopped).
+    pub seconds: f64,
+    /// Every snapshot and step record it reached (`None` when it panicked or timed out).
+    pub state: Option<State>,
+    /// The score of its plan, when converted.
+    pub score: Option<Score>,
+    /// Why it did not convert.
+    pub error: Option<Error>,
+}
+
+impl MethodResult {
+    /// The plan, report, files and ZIP, when converted.
+    pub fn bundle(&self) -> Option<&Arc<Bundle>> {
+        self.state.as_ref().and_then(|s| s.export.as_ref())
+    }
+
+    /// The records of every step it ran (shared steps included).
+    pub fn steps(&self) -> &[StepRecord] {
+        self.state.as_ref().map_or(&[], |s| &s.records)
+    }
+
+    /// Every warning of every step it ran.
+    pub fn warnings(&self) -> impl Iterator<Item = &Warning> {
+        self.steps().iter().flat_map(|r| r.warnings.iter())
+    }
+}
+
+/// Everything one call made.
+#[derive(Debug, Clone)]
+pub struct Conversions {
+    /// The model's name.
+    pub name: String,
+    /// The state after the shared steps (the model as read and cleaned), when they ran.
+    pub shared: Option<State>,
+    /// Per method asked for, in order.
+    pub methods: Vec<MethodResult>,
+    /// The converted method with the highest score (the first on a tie).
+    pub best: Option<MethodKind>,
+    /// Wall time, seconds.
+    pub seconds: f64,
+}
+
+impl Conversions {
+    /// The result of `method`, if it was asked for.
+    pub fn method(&self, method: MethodKind) -> Option<&MethodResult> {
+        self.methods.iter().find(|m| m.method == method)
+    }
+
+    /// The best method's result.
+    pub fn best(&self) -> Option<&MethodResult> {
+        self.best.and_then(|m| self.method(m))
+    }
+}
+
+/// What a conversion tells its observer, as it happens.
+#[derive(Debug, Clone, Copy)]
+pub enum Event<'a> {
+    /// A step started or finished; `method` is `None` for the shared steps.
+    Step {
+        /// The method it runs for.
+        method: Option<MethodKind>,
+        /// Started or finished, with its record.
+        event: StepEvent<'a>,
+    },
+    /// A method finished (converted, failed, panicked or timed out).
+    Method(&'a MethodResult),
+}
+
+/// Receives [`Event`]s; called from the conversion's thread.
+pub trait Progress: Send + Sync {
+    /// Handles one event.
+    fn event(&self, event: Event<'_>);
+}
+
+impl<F: Fn(Event<'_>) + Send + Sync> Progress for F {
+    fn event(&self, event: Event<'_>) {
+        self(event)
+    }
+}
+
+/// An observer that ignores everything.
+pub fn no_progress() -> Arc<dyn Progress> {
+    Arc::new(|_: Event<'_>| {})
+}
+
+/// Converts the request's model with each of its methods: see the module documentation.
+///
+/// The work runs on a thread of its own, so a model past its time limit is cancelled and,
+/// when a step does not notice within a grace period, left behind while the call returns.
+/// `cancel` stops the run at the next check of any step. Never fails: every error is a
+/// method's (or, for the shared steps, every method's).
+pub fn convert_all(request: Request, cancel: &Cancel, progress: Arc<dyn Progress>) -> Conversions {
+    let start = Instant::now();
+    let name = request.source.name();
+    let live = Arc::new(AtomicBool::new(true));
+    let gated: Arc<dyn Progress> = Arc::new(Gate {
+        live: live.clone(),
+        inner: progress.clone(),
+    });
+    let received = work::run(&request, cancel, gated);
+    let methods = work::complete(&request, received.results, received.timed_out, &received.missing);
+    live.store(false, Ordering::Relaxed);
+    for m in methods.iter().filter(|m| m.status == Status::TimedOut) {
+        progress.event(Event::Method(m));
+    }
+    let best = best_of(&methods);
+    Conversions {
+        name,
+        shared: received.shared,
+        methods,
+        best,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// Converts with one method, no time limit: its snapshots, or its error.
+pub fn convert(method: MethodKind, source: Source, settings: Settings, cancel: &Cancel) -> Result<State> {
+    let request = Request {
+        methods: vec![method],
+        ..Request::new(source, settings)
+    };
+    let mut all = convert_all(request, cancel, no_progress());
+    let result = all.methods.pop().ok_or(Error::Internal {
+        step: "convert",
+        problem: Internal::Thread {
+            message: "no method result".into(),
+        },
+    })?;
+    match (result.error, result.state) {
+        (None, Some(state)) => Ok(state),
+        (Some(e), _) => Err(e),
+        (None, None) => Err(Error::missing("convert", "export")),
+    }
+}
+
+/// The converted method with the highest score, the first on a tie.
+fn best_of(methods: &[MethodResult]) -> Option<MethodKind> {
+    let mut best: Option<(MethodKind, f64)> = None;
+    for m in methods.iter().filter(|m| m.status == Status::Converted) {
+        let total = m.score.as_ref().map_or(0.0, |s| s.total);
+        if best.is_none_or(|(_, b)| total > b) {
+            best = Some((m.method, total));
+        }
+    }
+    best.map(|(m, _)| m)
+}
+
+/// Forwards events until the call returns; a thread left behind after a time limit reports
+/// nothing more.
+struct Gate {
+    live: Arc<AtomicBool>,
+    inner: Arc<dyn Progress>,
+}
+
+impl Progress for Gate {
+    fn event(&self, event: Event<'_>) {
+        if self.live.load(Ordering::Relaxed) {
+            self.inner.event(event);
+        }
+    }
+}

@@ -1,0 +1,208 @@
+use std::io::Read;
+use std::sync::Arc;
+
+use super::*;
+use crate::samples;
+use crate::verify::plan_from_zip;
+
+#[test]
+fn the_box_becomes_a_zip_with_six_parts_on_sheets() {
+    let source = Source::Triangles {
+        name: "box".into(),
+        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
+    };
+    let c = convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts");
+    let bundle = c.export.as_ref().expect("exported");
+    assert_eq!(bundle.plan.parts.len(), 6);
+    let names: Vec<&str> = c.records.iter().map(|s| s.name).collect();
+    assert_eq!(
+        names,
+        [
+            "read", "cleanup", "weld", "mesh", "coplanar", "shapes", "plates", "joints", "parts", "kerf", "labels",
+            "sheets", "export"
+        ]
+    );
+    // The ZIP holds plan.json, which lists the same six parts.
+    let mut zip = zip::ZipArchive::new(std::io::Cursor::new(bundle.zip.clone())).expect("a ZIP");
+    let mut plan = String::new();
+    zip.by_name("plan.json")
+        .expect("plan.json")
+        .read_to_string(&mut plan)
+        .expect("utf-8");
+    let plan: serde_json::Value = serde_json::from_str(&plan).expect("JSON");
+    assert_eq!(plan["parts"].as_array().expect("parts").len(), 6);
+    assert_eq!(plan["method"], "plate");
+    // Twelve finger-jointed edges, each naming its two parts and the 90° they enclose.
+    let joints = plan["joints"].as_array().expect("joints");
+    assert_eq!(joints.len(), 12);
+    for j in joints {
+        assert_eq!(j["kind"], "finger");
+        assert!((j["angle"].as_f64().expect("angle") - 90.0).abs() < 1e-6);
+    }
+}
+
+#[test]
+fn plan_json_reads_back_as_a_plan() {
+    let source = Source::Triangles {
+        name: "box".into(),
+        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
+    };
+    let c = convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts");
+    let bundle = c.export.as_ref().expect("exported");
+    // No key twice (a flattened settings object could repeat one), and every field parses back.
+    let plan = plan_from_zip(&bundle.zip).expect("plan.json parses");
+    assert_eq!(plan.parts.len(), bundle.plan.parts.len());
+    assert_eq!(plan.joints, bundle.plan.joints);
+    assert_eq!(plan.settings.method, bundle.plan.settings.method);
+    assert!(plan.settings.method.contains_key("offered_thicknesses"));
+    // report.json carries the coverage report: every one of the box's 12 faces used by a plate.
+    let report: serde_json::Value = serde_json::from_slice(&bundle.files["report.json"]).expect("JSON");
+    let shapes = report["method_report"]["coverage"]["shapes"]
+        .as_array()
+        .expect("coverage");
+    assert_eq!(shapes.len(), 12);
+    assert!(
+        shapes
+            .iter()
+            .all(|s| !s["plates"].as_array().expect("plates").is_empty())
+    );
+    assert_eq!(
+        report["method_report"]["connections"]
+            .as_array()
+            .expect("connections")
+            .len(),
+        12
+    );
+}
+
+fn box_request(methods: Vec<MethodKind>) -> Request {
+    let source = Source::Triangles {
+        name: "box".into(),
+        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
+    };
+    Request {
+        methods,
+        ..Request::new(source, Settings::default())
+    }
+}
+
+#[test]
+fn the_shared_steps_run_once_and_every_method_starts_from_them() {
+    let all = convert_all(box_request(MethodKind::ALL.to_vec()), &Cancel::default(), no_progress());
+    assert_eq!(all.methods.len(), 2);
+    let shared = all.shared.as_ref().expect("shared steps ran");
+    let read = shared.read.as_ref().expect("read");
+    for m in &all.methods {
+        assert_eq!(m.status, Status::Converted, "{:?}", m.error);
+        let state = m.state.as_ref().expect("state");
+        // The very same snapshot, not a second reading.
+        assert!(Arc::ptr_eq(read, state.read.as_ref().expect("read")));
+        assert!(Arc::ptr_eq(
+            shared.cleanup.as_ref().expect("cleanup"),
+            state.cleanup.as_ref().expect("cleanup")
+        ));
+        assert!(m.score.is_some());
+    }
+    // The stacked method welds exact duplicates only: its own weld snapshot.
+    let weld = |k: usize| all.methods[k].state.as_ref().and_then(|s| s.weld.clone()).expect("weld");
+    assert!(!Arc::ptr_eq(&weld(0), &weld(1)));
+    assert_eq!(all.best, Some(MethodKind::Plate));
+}
+
+#[test]
+fn convert_all_gives_the_same_zip_as_one_method_alone() {
+    let all = convert_all(box_request(MethodKind::ALL.to_vec()), &Cancel::default(), no_progress());
+    for m in &all.methods {
+        let alone = convert_all(box_request(vec![m.method]), &Cancel::default(), no_progress());
+        let (a, b) = (m.bundle().expect("zip"), alone.methods[0].bundle().expect("zip"));
+        assert_eq!(a.zip, b.zip, "{}", m.method.name());
+    }
+}
+
+#[test]
+fn events_name_every_step_and_method_in_order() {
+    let seen = Arc::new(std::sync::Mutex::new(Vec::new()));
+    let sink = {
+        let seen = seen.clone();
+        move |e: Event<'_>| {
+            let line = match e {
+                Event::Step {
+                    method,
+                    event: StepEvent::Finished(r),
+                } => format!("{}:{}", method.map_or("shared", MethodKind::name), r.name),
+                Event::Step { .. } => return,
+                Event::Method(m) => format!("{} {:?}", m.method.name(), m.status),
+            };
+            seen.lock().expect("not poisoned").push(line);
+        }
+    };
+    convert_all(box_request(vec![MethodKind::Plate]), &Cancel::default(), Arc::new(sink));
+    let seen = seen.lock().expect("not poisoned").clone();
+    assert_eq!(
+        seen,
+        [
+            "shared:read", "shared:cleanup", "plate:weld", "plate:mesh", "plate:coplanar", "plate:shapes",
+            "plate:plates", "plate:joints", "plate:parts", "plate:kerf", "plate:labels", "plate:sheets",
+            "plate:export", "plate Converted"
+        ]
+    );
+}
+
+#[test]
+fn a_failing_panicking_or_hanging_method_leaves_the_others_converted() {
+    for (kind, status) in [
+        (FaultKind::Error, Status::Failed),
+        (FaultKind::Panic, Status::Panicked),
+        (FaultKind::Hang, Status::TimedOut),
+    ] {
+        let request = Request {
+            faults: vec![Fault {
+                method: MethodKind::Plate,
+                kind,
+            }],
+            timeout: (kind == FaultKind::Hang).then(|| std::time::Duration::from_millis(300)),
+            methods: vec![MethodKind::Plate],
+            ..box_request(Vec::new())
+        };
+        let all = convert_all(request.clone(), &Cancel::default(), no_progress());
+        assert_eq!(all.methods[0].status, status, "{kind:?}: {:?}", all.methods[0].error);
+        assert!(all.best.is_none());
+        if kind != FaultKind::Hang {
+            // The next method still runs.
+            let two = Request {
+                methods: vec![MethodKind::Plate, MethodKind::Stacked],
+                ..request
+            };
+            let all = convert_all(two, &Cancel::default(), no_progress());
+            assert_eq!(all.methods[1].status, Status::Converted);
+            assert_eq!(all.best, Some(MethodKind::Stacked));
+        }
+    }
+}
+
+#[test]
+fn a_cancelled_conversion_says_so() {
+    let cancel = Cancel::default();
+    cancel.cancel();
+    let all = convert_all(box_request(vec![MethodKind::Plate]), &cancel, no_progress());
+    assert_eq!(all.methods[0].status, Status::Cancelled);
+}
+
+#[test]
+fn an_unreadable_upload_fails_every_method_naming_the_file() {
+    let request = Request::new(
+        Source::Bytes {
+            name: "broken.stl".into(),
+            bytes: Arc::from(&b"solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 nope\n"[..]),
+        },
+        Settings::default(),
+    );
+    let all = convert_all(request, &Cancel::default(), no_progress());
+    for m in &all.methods {
+        assert_eq!(m.status, Status::Failed);
+        let error = m.error.as_ref().expect("an error");
+        assert_eq!(error.culprit(), crate::error::Culprit::Model);
+        let text = error.to_string();
+        assert!(text.contains("broken.stl") && text.contains("line"), "{text}");
+    }
+}

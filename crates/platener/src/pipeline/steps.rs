@@ -1,0 +1,173 @@
+//! The steps the pipeline knows: their names, the lists methods run, and how each step's
+//! inputs are taken from the state and its snapshot stored back.
+
+use std::sync::Arc;
+
+use super::{State, need};
+use crate::context::StepContext;
+use crate::error::Result;
+use crate::method::MethodKind;
+use crate::{cleanup, coplanar, export, joints, kerf, labels, mesh, parts, plates, read, shapes, sheets, stacked, weld};
+
+/// Every pipeline step, named as in report.json and as the module it lives in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum StepId {
+    /// [`read`]: triangles in mm.
+    Read,
+    /// [`cleanup`]: degenerate and duplicate triangles removed.
+    Cleanup,
+    /// [`weld`]: nearby vertices merged.
+    Weld,
+    /// [`mesh`]: topology, winding, health.
+    Mesh,
+    /// [`coplanar`]: planar groups.
+    Coplanar,
+    /// [`shapes`]: each group's outline.
+    Shapes,
+    /// [`plates`]: the plates.
+    Plates,
+    /// [`joints`]: the joints between plates.
+    Joints,
+    /// [`parts`]: plates as parts to cut (plate method).
+    Parts,
+    /// [`stacked`]: layers and shafts as parts to cut (stacked method).
+    Stacked,
+    /// [`kerf`]: cut paths.
+    Kerf,
+    /// [`labels`]: engraved numbers.
+    Labels,
+    /// [`sheets`]: nesting.
+    Sheets,
+    /// [`export`]: files and the ZIP.
+    Export,
+}
+
+/// The steps that turn a model into planar shapes (the foundation every method builds on).
+pub const FOUNDATION: [StepId; 6] = [
+    StepId::Read,
+    StepId::Cleanup,
+    StepId::Weld,
+    StepId::Mesh,
+    StepId::Coplanar,
+    StepId::Shapes,
+];
+
+/// The foundation steps, then plate finding and joints.
+pub const PLATE: [StepId; 8] = [
+    StepId::Read,
+    StepId::Cleanup,
+    StepId::Weld,
+    StepId::Mesh,
+    StepId::Coplanar,
+    StepId::Shapes,
+    StepId::Plates,
+    StepId::Joints,
+];
+
+/// The cutting-plan steps: they start from the `parts` snapshot, whichever method made it.
+pub const CUTTING_PLAN: [StepId; 4] = [StepId::Kerf, StepId::Labels, StepId::Sheets, StepId::Export];
+
+impl StepId {
+    /// Every step, in pipeline order.
+    pub const ALL: [StepId; 14] = [
+        StepId::Read,
+        StepId::Cleanup,
+        StepId::Weld,
+        StepId::Mesh,
+        StepId::Coplanar,
+        StepId::Shapes,
+        StepId::Plates,
+        StepId::Joints,
+        StepId::Parts,
+        StepId::Stacked,
+        StepId::Kerf,
+        StepId::Labels,
+        StepId::Sheets,
+        StepId::Export,
+    ];
+
+    /// The step's name, as in report.json and the module it lives in.
+    pub fn name(self) -> &'static str {
+        match self {
+            StepId::Read => "read",
+            StepId::Cleanup => "cleanup",
+            StepId::Weld => "weld",
+            StepId::Mesh => "mesh",
+            StepId::Coplanar => "coplanar",
+            StepId::Shapes => "shapes",
+            StepId::Plates => "plates",
+            StepId::Joints => "joints",
+            StepId::Parts => "parts",
+            StepId::Stacked => "stacked",
+            StepId::Kerf => "kerf",
+            StepId::Labels => "labels",
+            StepId::Sheets => "sheets",
+            StepId::Export => "export",
+        }
+    }
+
+    /// The steps of `method` up to and including its `parts` snapshot, then the cutting plan.
+    pub fn of_method(method: MethodKind) -> Vec<StepId> {
+        let mut steps = match method {
+            MethodKind::Plate => [&PLATE[..], &[StepId::Parts]].concat(),
+            MethodKind::Stacked => [&FOUNDATION[..], &[StepId::Stacked]].concat(),
+        };
+        steps.extend(CUTTING_PLAN);
+        steps
+    }
+}
+
+/// Runs `step` on the snapshots it reads and stores the one it makes.
+pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -> Result<()> {
+    let s = Arc::clone(&state.settings);
+    let name = step.name();
+    match step {
+        StepId::Read => state.read = Some(Arc::new(read::run(&state.source, &s, cx)?)),
+        StepId::Cleanup => state.cleanup = Some(Arc::new(cleanup::run(need(&state.read, name, "read")?, cx)?)),
+        StepId::Weld => {
+            let (model, cleaned) = (need(&state.read, name, "read")?, need(&state.cleanup, name, "cleanup")?);
+            state.weld = Some(Arc::new(weld::run(model, cleaned, &s, cx)?));
+        }
+        StepId::Mesh => {
+            let (welded, cleaned) = (need(&state.weld, name, "weld")?, need(&state.cleanup, name, "cleanup")?);
+            state.mesh = Some(Arc::new(mesh::run(welded, cleaned, cx)?));
+        }
+        StepId::Coplanar => state.coplanar = Some(Arc::new(coplanar::run(need(&state.mesh, name, "mesh")?, &s))),
+        StepId::Shapes => {
+            let (mesh, groups) = (need(&state.mesh, name, "mesh")?, need(&state.coplanar, name, "coplanar")?);
+            let cleaned = need(&state.cleanup, name, "cleanup")?;
+            state.shapes = Some(Arc::new(shapes::run(mesh, groups, cleaned, &s, cx)?));
+        }
+        StepId::Plates => {
+            let (shapes, mesh) = (need(&state.shapes, name, "shapes")?, need(&state.mesh, name, "mesh")?);
+            let model = need(&state.read, name, "read")?;
+            state.plates = Some(Arc::new(plates::run(shapes, mesh, model, &s, cx)?));
+        }
+        StepId::Joints => state.joints = Some(Arc::new(joints::run(need(&state.plates, name, "plates")?, &s, cx)?)),
+        StepId::Parts => {
+            let (model, plates) = (need(&state.read, name, "read")?, need(&state.plates, name, "plates")?);
+            let welded = need(&state.weld, name, "weld")?;
+            let input = parts::run(model, plates, state.joints.as_deref(), welded, &s);
+            state.parts = Some(Arc::new(input));
+        }
+        StepId::Stacked => {
+            let (model, cleaned) = (need(&state.read, name, "read")?, need(&state.cleanup, name, "cleanup")?);
+            let mesh = need(&state.mesh, name, "mesh")?;
+            let (stack, input) = stacked::run(model, cleaned, mesh, state.coplanar.as_deref(), &s, cx)?;
+            state.stacked = Some(Arc::new(stack));
+            state.parts = Some(Arc::new(input));
+        }
+        StepId::Kerf => state.kerf = Some(Arc::new(kerf::run(need(&state.parts, name, "parts")?, cx)?)),
+        StepId::Labels => state.labels = Some(Arc::new(labels::run(need(&state.parts, name, "parts")?, cx))),
+        StepId::Sheets => {
+            let (input, cut) = (need(&state.parts, name, "parts")?, need(&state.kerf, name, "kerf")?);
+            state.sheets = Some(Arc::new(sheets::run(input, cut, cx)?));
+        }
+        StepId::Export => {
+            let (input, cut) = (need(&state.parts, name, "parts")?, need(&state.kerf, name, "kerf")?);
+            let (labels, nesting) = (need(&state.labels, name, "labels")?, need(&state.sheets, name, "sheets")?);
+            state.export = Some(Arc::new(export::run(input, cut, labels, nesting, &state.records)?));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,140 @@
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use super::*;
+use crate::samples::cuboid;
+
+fn source(size: f64) -> Source {
+    Source::Triangles {
+        name: "cube".into(),
+        triangles: Arc::new(cuboid(DVec3::ZERO, DVec3::splat(size))),
+    }
+}
+
+#[test]
+fn a_cancelled_run_stops_with_the_step_it_reached() {
+    let cancel = Cancel::default();
+    cancel.cancel();
+    let mut state = State::new(source(10.0), Settings::default());
+    let err = run(&FOUNDATION, &mut state, &cancel).expect_err("cancelled");
+    assert!(matches!(err, Error::Cancelled { step: "read" }));
+    assert!(state.read.is_none());
+}
+
+#[test]
+fn a_step_without_its_input_says_which_step_is_missing() {
+    let mut state = State::new(source(10.0), Settings::default());
+    let err = run(&[StepId::Mesh], &mut state, &Cancel::default()).expect_err("no weld yet");
+    assert!(matches!(
+        err,
+        Error::Internal {
+            step: "mesh",
+            problem: crate::error::Internal::MissingStep { needs: "weld", .. }
+        }
+    ));
+    assert_eq!(err.culprit(), crate::error::Culprit::Internal);
+}
+
+#[test]
+fn every_step_leaves_a_snapshot_and_a_record() {
+    let mut state = State::new(source(10.0), Settings::default());
+    run(&FOUNDATION, &mut state, &Cancel::default()).expect("runs");
+    let names: Vec<_> = state.records.iter().map(|r| r.name).collect();
+    assert_eq!(names, ["read", "cleanup", "weld", "mesh", "coplanar", "shapes"]);
+    let before = state.read.clone().expect("read");
+    // Snapshots are shared, not copied: a later state holds the very same read result.
+    let later = state.clone();
+    assert!(Arc::ptr_eq(&before, later.read.as_ref().expect("read")));
+    assert_eq!(state.shapes.expect("shapes").shapes.len(), 6);
+}
+
+#[test]
+fn tiny_and_huge_models_get_a_units_warning() {
+    for (size, warned) in [(0.5, true), (50.0, false), (6000.0, true)] {
+        let mut state = State::new(source(size), Settings::default());
+        run(&FOUNDATION, &mut state, &Cancel::default()).expect("runs");
+        let units = state.records[0].warnings.iter().any(|w| w.kind == WarningKind::Units);
+        assert_eq!(units, warned, "size {size}");
+    }
+}
+
+#[test]
+fn scale_is_applied_in_the_read_step() {
+    let settings = Settings {
+        units: crate::Units::In,
+        scale: 2.0,
+        ..Settings::default()
+    };
+    let mut state = State::new(source(1.0), settings);
+    run(&FOUNDATION, &mut state, &Cancel::default()).expect("runs");
+    let b = state.read.expect("read").bounds;
+    assert!((b.max - DVec3::splat(50.8)).length() < 1e-12);
+}
+
+#[test]
+fn a_file_read_from_bytes_is_the_file_read_from_disk() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/box-3mm.stl");
+    let bytes: Arc<[u8]> = std::fs::read(&path).expect("example exists").into();
+    let mut from_disk = State::new(Source::File(path), Settings::default());
+    let mut from_bytes = State::new(
+        Source::Bytes {
+            name: "box-3mm.stl".into(),
+            bytes,
+        },
+        Settings::default(),
+    );
+    run(&FOUNDATION, &mut from_disk, &Cancel::default()).expect("reads");
+    run(&FOUNDATION, &mut from_bytes, &Cancel::default()).expect("reads");
+    let (a, b) = (from_disk.read.expect("read"), from_bytes.read.expect("read"));
+    assert_eq!(a.name, b.name);
+    assert_eq!(a.triangles, b.triangles);
+    assert_eq!(a.format, b.format);
+}
+
+/// The layering rule of docs/architecture.md: a step module is a function of its inputs and
+/// knows nothing of the pipeline (nor of the orchestration above it). Test files may use it
+/// to set up their inputs.
+#[test]
+fn no_step_module_imports_the_pipeline() {
+    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut checked = 0;
+    for step in StepId::ALL {
+        let dir = src.join(step.name());
+        assert!(dir.is_dir(), "step {} has no module folder {}", step.name(), dir.display());
+        for file in rust_files(&dir) {
+            let name = file.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            if name.ends_with("tests.rs") {
+                continue;
+            }
+            let text = std::fs::read_to_string(&file).expect("readable");
+            for forbidden in ["crate::pipeline", "crate::convert", "crate::inspect", "super::pipeline"] {
+                assert!(
+                    !text.contains(forbidden),
+                    "{} (step {}) uses {forbidden}: steps take their inputs as arguments",
+                    file.display(),
+                    step.name()
+                );
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= StepId::ALL.len(), "checked only {checked} files");
+    // The step context imports nothing else of the crate.
+    let context = std::fs::read_to_string(src.join("context.rs")).expect("readable");
+    assert!(!context.contains("crate::"), "context.rs must not import the crate");
+}
+
+fn rust_files(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(dir).expect("listable").flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            out.extend(rust_files(&path));
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+    out.sort();
+    out
+}
