@@ -84,6 +84,7 @@ pub fn run(args: &ConvertArgs) -> anyhow::Result<u8> {
         sub_reports: args.sub_reports,
         joint: args.joint,
         jobs,
+        faults: crate::fault::from_env(),
     };
     let start = Instant::now();
     let found = inputs::collect(&args.inputs, args.max_filesize);

@@ -12,8 +12,6 @@ pub const MODEL_EXTENSIONS: [&str; 3] = ["stl", "obj", "3mf"];
 /// A model file to convert.
 #[derive(Debug, Clone)]
 pub struct ModelFile {
-    /// Position in the batch (reports keep this order).
-    pub index: usize,
     /// The file.
     pub path: PathBuf,
     /// Its size in bytes.
@@ -137,7 +135,6 @@ pub fn collect(inputs: &[PathBuf], max_mb: Option<f64>) -> Inputs {
         }
         stems.insert(stem.clone());
         out.models.push(ModelFile {
-            index: out.models.len(),
             path,
             bytes,
             stem,

@@ -4,25 +4,12 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
+use platener::convert::Status;
 use platener::score::Score;
 use serde::Serialize;
 
 use crate::args::JointArg;
 use crate::inputs::Problem;
-
-/// How one method did on one model.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Status {
-    /// The ZIP was written.
-    Converted,
-    /// The method returned an error (or its output could not be written).
-    Failed,
-    /// The method panicked (a bug of ours; the message says where).
-    Panicked,
-    /// The model ran past `--timeout` before this method finished.
-    TimedOut,
-}
 
 /// One method on one model.
 #[derive(Debug, Clone, Serialize)]
@@ -87,27 +74,29 @@ pub struct ModelReport {
 }
 
 impl ModelReport {
-    /// Fills in the status and the best method from the method reports.
-    pub fn new(file: String, stem: String, bytes: u64, methods: Vec<MethodReport>, seconds: f64) -> Self {
+    /// Fills in the status from the method reports; `best` is the library's choice, kept
+    /// only when that method's ZIP was written.
+    pub fn new(
+        file: String,
+        stem: String,
+        bytes: u64,
+        methods: Vec<MethodReport>,
+        best: Option<&'static str>,
+        seconds: f64,
+    ) -> Self {
         let converted = methods.iter().filter(|m| m.status == Status::Converted).count();
         let status = match converted {
             0 => ModelStatus::Failed,
             n if n == methods.len() => ModelStatus::Converted,
             _ => ModelStatus::Partial,
         };
-        let mut best: Option<(&'static str, f64)> = None;
-        for m in methods.iter().filter(|m| m.status == Status::Converted) {
-            let total = m.score.as_ref().map_or(0.0, |s| s.total);
-            if best.is_none_or(|(_, b)| total > b) {
-                best = Some((m.method, total));
-            }
-        }
+        let best = best.filter(|b| methods.iter().any(|m| m.method == *b && m.status == Status::Converted));
         Self {
             file,
             stem,
             bytes,
             status,
-            best: best.map(|(name, _)| name),
+            best,
             methods,
             seconds,
         }
@@ -227,6 +216,7 @@ fn status_name(s: Status) -> &'static str {
         Status::Failed => "failed",
         Status::Panicked => "panicked",
         Status::TimedOut => "timed out",
+        Status::Cancelled => "cancelled",
     }
 }
 
@@ -259,7 +249,7 @@ pub fn summarize(
                         scores.entry(m.method).or_default().push(score.total);
                     }
                 }
-                Status::Failed => s.failed += 1,
+                Status::Failed | Status::Cancelled => s.failed += 1,
                 Status::Panicked => {
                     s.failed += 1;
                     s.panicked += 1;
