@@ -16,7 +16,11 @@ const MAIN_EXAMPLES: &str = "Examples:
   platener test-strip -t 3 -o strip.svg
   platener completions bash > /etc/bash_completion.d/platener
 
-Exit codes: 0 success, 1 a model (or a method) failed, 2 a usage error.";
+Exit codes: 0 success; 1 something failed: for convert, a model that no method converted or an
+input that gave no model (every other model is still converted and reported; a method that fails
+on a model another method converted is reported, the model as partial, and exits 0); for verify,
+a check that failed; for inspect and test-strip, a model or file that could not be read or
+written; 2 a usage error.";
 
 /// Turns 3D-printing models (STL, OBJ, 3MF) into laser-cut construction plans.
 #[derive(Debug, Parser)]

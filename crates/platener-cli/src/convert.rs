@@ -27,9 +27,10 @@ pub const EXAMPLES: &str = "Examples:
 Output: OUT_DIR/<model>-<method>.zip per model and method that converted; with --sub-reports
 also OUT_DIR/<model>-<method>.report.json. The score (0-1) weighs how much of the model the
 parts reproduce, whether they hold together and the work; docs/score.md defines it.
-Exit codes: 0 every model converted (by at least one method; a method that fails on a model
-is reported, the model as partial), 1 a model failed (all else still runs and is reported),
-2 a usage error. Files left out by --max-filesize do not count as failures.";
+Exit codes: 0 every model converted by at least one method (a method that fails on a model is
+reported, the model as partial), 1 a model no method converted or an input that gave no model
+(all else still runs and is reported), 2 a usage error. Files left out by --max-filesize do
+not count as failures.";
 
 /// A mistake in the flags: exit code 2.
 #[derive(Debug)]

@@ -1,6 +1,7 @@
 //! The `platener` command line: parses flags, resolves them into library settings, prints.
 //!
-//! Exit codes: 0 success, 1 a model failed (no method converted it), 2 usage error.
+//! Exit codes: as `platener --help` and the README say (`args::MAIN_EXAMPLES`): 0 success, 1
+//! something failed, 2 a usage error.
 
 mod args;
 mod batch;

@@ -354,6 +354,13 @@ fn help_completions_and_version() {
         "{}",
         r.stdout
     );
+    // The exit codes `--help` states are the README's, word for word.
+    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md"))
+        .expect("README readable");
+    let words = |t: &str| t.split_whitespace().collect::<Vec<_>>().join(" ");
+    let help = words(&r.stdout);
+    let stated = help.find("Exit codes:").map(|i| &help[i..]).expect("--help states exit codes");
+    assert!(words(&readme).contains(stated), "README lacks: {stated}");
     let r = run(platener().arg("--version"));
     assert_eq!(r.code, 0);
     assert!(r.stdout.starts_with("platener "), "{}", r.stdout);
@@ -365,13 +372,7 @@ fn help_completions_and_version() {
 
 /// The shared corpus, or `None` (with a message) when it is absent.
 fn corpus() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
-    if dir.is_dir() {
-        Some(dir.canonicalize().unwrap_or(dir))
-    } else {
-        eprintln!("skipping: the shared corpus is not at {}", dir.display());
-        None
-    }
+    platener::samples::shared_corpus().map_err(|m| eprintln!("{m}")).ok()
 }
 
 #[test]

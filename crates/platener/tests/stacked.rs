@@ -8,7 +8,7 @@
 //! 0.01 %); the surface is sampled at [`SURFACE_SAMPLES`] evenly spread points.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
 
 use platener::glam::{DVec2, DVec3};
@@ -399,14 +399,12 @@ fn the_output_is_the_same_every_time() {
     );
 }
 
+/// The corpus' organic models, or `None` after saying why this test skips (CI fails instead).
 fn corpus_organic() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/organic");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!("skipping: the organic corpus is not at {}", dir.display());
-        None
-    }
+    platener::samples::shared_corpus()
+        .map(|d| d.join("organic"))
+        .map_err(|m| eprintln!("{m}"))
+        .ok()
 }
 
 #[test]

@@ -47,9 +47,11 @@ pub(super) fn run(request: &Request, caller: &Cancel, progress: Arc<dyn Progress
     };
     let thread = {
         let (request, cancel) = (request.clone(), cancel.clone());
+        // The caller's span (a batch's progress bar, a job) stays the parent of the steps'.
+        let parent = tracing::Span::current();
         std::thread::Builder::new()
             .name(format!("convert {}", request.source.name()))
-            .spawn(move || work(&request, &cancel, progress.as_ref(), &tx))
+            .spawn(move || parent.in_scope(|| work(&request, &cancel, progress.as_ref(), &tx)))
     };
     let handle = match thread {
         Ok(handle) => handle,
@@ -168,6 +170,8 @@ fn work(request: &Request, cancel: &Cancel, progress: &dyn Progress, tx: &Sender
     let mut foundations: Vec<State> = Vec::new();
     for (k, &method) in request.methods.iter().enumerate() {
         let start = Instant::now();
+        let span = tracing::info_span!("method", name = method.name());
+        let _entered = span.enter();
         let outcome = catch(|| {
             run_method(method, &base, &mut foundations, request, cancel, progress).map(|state| {
                 let score = score_of(&state);

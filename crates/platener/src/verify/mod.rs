@@ -71,16 +71,34 @@ impl Verification {
     }
 }
 
+/// Why a file is not a cutting plan platener can verify (the file's fault).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlanFileError {
+    /// Not a ZIP archive.
+    #[error("not a ZIP: {0}")]
+    NotZip(String),
+    /// A ZIP without plan.json.
+    #[error("the ZIP holds no plan.json: is it a platener cutting plan?")]
+    NoPlan,
+    /// plan.json is not UTF-8 or cannot be read.
+    #[error("plan.json cannot be read: {0}")]
+    Unreadable(String),
+    /// plan.json does not parse as a plan.
+    #[error("plan.json is not a platener plan: {0}")]
+    NotAPlan(String),
+}
+
 /// Reads plan.json out of a conversion's ZIP.
-pub fn plan_from_zip(bytes: &[u8]) -> Result<Plan, String> {
+pub fn plan_from_zip(bytes: &[u8]) -> Result<Plan, PlanFileError> {
     use std::io::Read;
-    let mut zip = zip::ZipArchive::new(std::io::Cursor::new(bytes)).map_err(|e| format!("not a ZIP: {e}"))?;
+    let mut zip =
+        zip::ZipArchive::new(std::io::Cursor::new(bytes)).map_err(|e| PlanFileError::NotZip(e.to_string()))?;
     let mut text = String::new();
     zip.by_name("plan.json")
-        .map_err(|_| "the ZIP holds no plan.json: is it a platener cutting plan?".to_string())?
+        .map_err(|_| PlanFileError::NoPlan)?
         .read_to_string(&mut text)
-        .map_err(|e| format!("plan.json cannot be read: {e}"))?;
-    serde_json::from_str(&text).map_err(|e| format!("plan.json is not a platener plan: {e}"))
+        .map_err(|e| PlanFileError::Unreadable(e.to_string()))?;
+    serde_json::from_str(&text).map_err(|e| PlanFileError::NotAPlan(e.to_string()))
 }
 
 /// Verifies a plan, optionally against the model it was made from.

@@ -8,9 +8,6 @@ use std::path::{Path, PathBuf};
 use platener::read::stl::{parse_bytes, read_path};
 use platener::read::{Format, RawMesh, ReadErrorKind};
 
-fn corpus_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus")
-}
 
 /// `folder/file.stl` → (triangles, "binary" | "ascii" | …, mesh-health text) from SOURCES.md.
 fn stated(sources: &str) -> BTreeMap<String, (usize, String, String)> {
@@ -112,11 +109,11 @@ fn check_special(name: &str, result: &Result<(Format, RawMesh), ReadErrorKind>) 
 
 #[test]
 fn corpus_files_read_as_stated() {
-    let dir = corpus_dir();
-    let Ok(sources) = std::fs::read_to_string(dir.join("SOURCES.md")) else {
-        eprintln!("skipping the corpus test: no corpus at {}", dir.display());
-        return;
+    let dir = match platener::samples::shared_corpus() {
+        Ok(dir) => dir,
+        Err(skip) => return eprintln!("{skip}"),
     };
+    let sources = std::fs::read_to_string(dir.join("SOURCES.md")).expect("the corpus has SOURCES.md");
     let table = stated(&sources);
     let mut files = Vec::new();
     stl_files(&dir, &mut files);
