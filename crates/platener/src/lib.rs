@@ -1,7 +1,8 @@
 //! platener turns 3D-printing models into laser-cut construction plans.
 //!
-//! The modules below read in pipeline order; each pipeline step is one module named like its
-//! entry in the conversion report, and adds one immutable snapshot to the [`pipeline::State`]:
+//! Each pipeline step is one module named like its entry in the conversion report, with a
+//! `run` function of its inputs that returns one immutable snapshot; the [`pipeline`] runs
+//! them and keeps the snapshots in its [`State`]:
 //!
 //! | step | module | what it adds |
 //! |---|---|---|
@@ -11,8 +12,31 @@
 //! | `mesh` | [`mesh`] | topology, consistent winding, health report |
 //! | `coplanar` | [`coplanar`] | groups of connected faces in one plane |
 //! | `shapes` | [`shapes`] | each group's outline with holes in its own 2D frame |
+//! | `plates` | [`plates`] | the plates and the coverage report |
+//! | `joints` | [`joints`] | the plate graph and its joints |
+//! | `parts` / `stacked` | [`parts`] / [`stacked`] | the parts to cut (plate / stacked method) |
+//! | `kerf`, `labels`, `sheets`, `export` | [`kerf`] … [`export`] | the cutting plan and its ZIP |
 //!
 //! [`inspect`] runs these and summarises them (`platener inspect`).
+//!
+//! Programs convert a model in one call, [`convert_all`]: every method, each with its plan,
+//! ZIP, score and warnings or error, and the best named. An upload never touches the disk:
+//!
+//! ```
+//! use std::sync::Arc;
+//! use platener::convert::{Request, Status, convert_all, no_progress};
+//! use platener::{Cancel, Settings, Source};
+//!
+//! let bytes = platener::samples::to_binary_stl(&platener::samples::closed_box(100.0, 80.0, 60.0, 3.0), "box");
+//! let source = Source::Bytes { name: "box.stl".into(), bytes: Arc::from(bytes) };
+//! let all = convert_all(Request::new(source, Settings::default()), &Cancel::default(), no_progress());
+//! let best = all.best().expect("a method converted the box");
+//! assert_eq!(best.status, Status::Converted);
+//! let plan = &best.bundle().expect("a plan").plan;
+//! assert_eq!(plan.parts.len(), 6);
+//! ```
+//!
+//! docs/architecture.md says which module may use which.
 
 pub mod assembly;
 pub mod cleanup;
