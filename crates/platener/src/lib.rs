@@ -30,6 +30,7 @@ pub mod plan;
 pub mod plates;
 pub mod read;
 pub mod samples;
+pub mod scene;
 pub mod score;
 pub mod settings;
 pub mod shapes;
