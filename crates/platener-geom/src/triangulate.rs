@@ -105,7 +105,76 @@ pub fn triangulate(polygon: &Polygon) -> Result<Triangulation, GridError> {
             if orient(pa, pb, pc) < 0 { [a, c, b] } else { [a, b, c] }
         })
         .collect();
-    Ok(Triangulation { points, triangles })
+    let mut t = Triangulation { points, triangles };
+    t.split_pinches();
+    Ok(t)
+}
+
+impl Triangulation {
+    /// Gives each fan of triangles around a point its own copy of the point, so that where
+    /// the outline touches itself or a hole (a pinch) the boundary still runs as separate
+    /// simple loops: every boundary point then has one edge in and one out, and a solid
+    /// extruded from it uses every edge exactly twice. The copies keep the coordinates.
+    fn split_pinches(&mut self) {
+        let slots = self.triangles.len() * 3;
+        // Directed edge → the slot (3 · triangle + corner) it starts at.
+        let mut edges: Vec<([u32; 2], usize)> = (0..slots)
+            .map(|s| ([self.corner(s), self.corner(next(s))], s))
+            .collect();
+        edges.sort_unstable();
+        let find_edge = |e: [u32; 2]| edges.binary_search_by(|(k, _)| k.cmp(&e)).ok().map(|i| edges[i].1);
+        let mut fans = UnionFind::new(slots);
+        for s in 0..slots {
+            // Across the edge leaving this corner lies the neighbour's slot of the same point.
+            if let Some(t) = find_edge([self.corner(next(s)), self.corner(s)]) {
+                fans.union(s, next(t));
+            }
+        }
+        let mut first_fan: BTreeMap<u32, usize> = BTreeMap::new();
+        let mut copy_of_fan: BTreeMap<usize, u32> = BTreeMap::new();
+        for s in 0..slots {
+            let (point, fan) = (self.corner(s), fans.find(s));
+            if *first_fan.entry(point).or_insert(fan) == fan {
+                continue;
+            }
+            let copy = *copy_of_fan.entry(fan).or_insert_with(|| {
+                self.points.push(self.points[point as usize]);
+                (self.points.len() - 1) as u32
+            });
+            self.triangles[s / 3][s % 3] = copy;
+        }
+    }
+
+    fn corner(&self, slot: usize) -> u32 {
+        self.triangles[slot / 3][slot % 3]
+    }
+}
+
+/// The next corner's slot in the same triangle.
+fn next(slot: usize) -> usize {
+    slot - slot % 3 + (slot + 1) % 3
+}
+
+/// Disjoint sets of slots (path halving, union by index), for the fans around each point.
+struct UnionFind(Vec<usize>);
+
+impl UnionFind {
+    fn new(n: usize) -> Self {
+        UnionFind((0..n).collect())
+    }
+
+    fn find(&mut self, mut x: usize) -> usize {
+        while self.0[x] != x {
+            self.0[x] = self.0[self.0[x]];
+            x = self.0[x];
+        }
+        x
+    }
+
+    fn union(&mut self, a: usize, b: usize) {
+        let (a, b) = (self.find(a), self.find(b));
+        self.0[a.max(b)] = a.min(b);
+    }
 }
 
 /// Twice the signed area of an integer ring, exact in i64.

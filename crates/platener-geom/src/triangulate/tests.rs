@@ -103,3 +103,46 @@ proptest! {
         prop_assert!(t.boundary_edges().len() <= p.vertex_count());
     }
 }
+
+/// Every boundary point has exactly one boundary edge out and one in (simple loops).
+fn assert_simple_loops(t: &Triangulation) {
+    let edges = t.boundary_edges();
+    let mut out = vec![0; t.points.len()];
+    let mut inn = vec![0; t.points.len()];
+    for [a, b] in &edges {
+        out[*a as usize] += 1;
+        inn[*b as usize] += 1;
+    }
+    assert!(out.iter().zip(&inn).all(|(o, i)| *o == *i && *o <= 1), "{edges:?}");
+}
+
+#[test]
+fn where_the_boundary_touches_itself_each_side_gets_its_own_point() {
+    // Two squares meeting at one corner, as one self-touching ring.
+    let bowtie = Polygon::new(vec![
+        DVec2::new(0.0, 0.0),
+        DVec2::new(10.0, 0.0),
+        DVec2::new(10.0, 10.0),
+        DVec2::new(20.0, 10.0),
+        DVec2::new(20.0, 20.0),
+        DVec2::new(10.0, 20.0),
+        DVec2::new(10.0, 10.0),
+        DVec2::new(0.0, 10.0),
+    ]);
+    // A hole touching the outline at (10, 5).
+    let notch = Polygon {
+        outer: rect(0.0, 0.0, 10.0, 10.0),
+        holes: vec![vec![DVec2::new(5.0, 3.0), DVec2::new(10.0, 5.0), DVec2::new(5.0, 7.0)]],
+    };
+    for p in [bowtie, notch] {
+        let t = assert_area(&p);
+        assert_simple_loops(&t);
+        let copies = t.points.len() - {
+            let mut u: Vec<[u64; 2]> = t.points.iter().map(|q| q.to_array().map(f64::to_bits)).collect();
+            u.sort_unstable();
+            u.dedup();
+            u.len()
+        };
+        assert_eq!(copies, 1, "the pinch point is doubled once");
+    }
+}
