@@ -56,9 +56,7 @@ impl Triangulation {
     }
 
     fn directed_edges(&self) -> impl Iterator<Item = [u32; 2]> + '_ {
-        self.triangles
-            .iter()
-            .flat_map(|&[a, b, c]| [[a, b], [b, c], [c, a]])
+        self.triangles.iter().flat_map(|&[a, b, c]| [[a, b], [b, c], [c, a]])
     }
 }
 
@@ -94,7 +92,12 @@ pub fn triangulate(polygon: &Polygon) -> Result<Triangulation, GridError> {
     let points: Vec<DVec2> = raw
         .points
         .iter()
-        .map(|q| exact.get(&[q.x, q.y]).copied().unwrap_or_else(|| grid::from_grid([q.x, q.y])))
+        .map(|q| {
+            exact
+                .get(&[q.x, q.y])
+                .copied()
+                .unwrap_or_else(|| grid::from_grid([q.x, q.y]))
+        })
         .collect();
     let triangles = raw
         .indices

@@ -7,7 +7,8 @@ mod check;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::time::Instant;
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
 
 use check::{Loaded, assert_root, bounds, load, volume, watertight};
 use glam::DVec3;
@@ -58,7 +59,13 @@ fn stl_files(dir: &Path) -> Vec<PathBuf> {
 }
 
 fn run(method: MethodKind, path: &Path) -> platener::Result<State> {
-    convert(method, Source::File(path.into()), Settings::default(), &Cancel::default()).map(|c| c.state)
+    convert(
+        method,
+        Source::File(path.into()),
+        Settings::default(),
+        &Cancel::default(),
+    )
+    .map(|c| c.state)
 }
 
 /// One view of a conversion's snapshots.
@@ -96,7 +103,11 @@ fn check_view(v: View, scene: &Scene, parts: &[Part]) -> Loaded {
             assert_eq!(n.name, format!("plate-{}", i + 1));
         }
         let Some(mode) = n.mode else { continue };
-        let want = if v == View::Wireframe { gltf::mesh::Mode::Lines } else { gltf::mesh::Mode::Triangles };
+        let want = if v == View::Wireframe {
+            gltf::mesh::Mode::Lines
+        } else {
+            gltf::mesh::Mode::Triangles
+        };
         assert_eq!(mode, want, "{v}");
         if matches!(v, View::Plates | View::Bent | View::Final) {
             let tris = n.triangles();
@@ -121,7 +132,11 @@ fn assert_parts(l: &Loaded, parts: &[Part]) {
         assert_eq!(n.name, format!("part-{}", p.id));
         let want = p.polygon.area() * p.thickness;
         let got = volume(&n.positions, &n.triangles());
-        assert!((got - want).abs() <= 1e-3 * want, "{}: volume {got}, plan {want}", n.name);
+        assert!(
+            (got - want).abs() <= 1e-3 * want,
+            "{}: volume {got}, plan {want}",
+            n.name
+        );
         let (lo, hi) = bounds(n.world());
         let corners = p
             .polygon
@@ -159,8 +174,13 @@ fn every_view_of_the_examples_loads_back_and_final_matches_the_parts() {
 #[test]
 fn scenes_are_byte_identical_and_every_plan_zip_holds_the_assembly() {
     let path = &examples()[0];
-    let c = convert(MethodKind::Plate, Source::File(path.clone()), Settings::default(), &Cancel::default())
-        .expect("plate method");
+    let c = convert(
+        MethodKind::Plate,
+        Source::File(path.clone()),
+        Settings::default(),
+        &Cancel::default(),
+    )
+    .expect("plate method");
     let again = run(MethodKind::Plate, path).expect("plate method");
     for v in View::ALL {
         assert_eq!(view(&c.state, v).glb, view(&again, v).glb, "{v}");
@@ -183,19 +203,55 @@ fn view_names_round_trip_in_order() {
 /// debug build on two cores; the others are counted and named as skipped.
 const CORPUS_MAX_BYTES: u64 = 450_000;
 
+/// A corpus model whose conversion (a debug build) takes longer is cancelled, counted and
+/// named, not checked: the views take well under a second, the conversion is what is slow.
+const CORPUS_MODEL_BUDGET: Duration = Duration::from_secs(8);
+
+/// The plate method, cancelled when it runs past `budget`.
+fn run_within(path: &Path, budget: Duration) -> platener::Result<State> {
+    let cancel = Cancel::default();
+    let (done, wait) = mpsc::channel::<()>();
+    let timer = {
+        let cancel = cancel.clone();
+        std::thread::spawn(move || {
+            if wait.recv_timeout(budget) == Err(mpsc::RecvTimeoutError::Timeout) {
+                cancel.cancel();
+            }
+        })
+    };
+    let result = convert(
+        MethodKind::Plate,
+        Source::File(path.into()),
+        Settings::default(),
+        &cancel,
+    )
+    .map(|c| c.state);
+    // The timer may have finished already; then there is no one to tell.
+    let _ = done.send(());
+    timer.join().expect("timer thread");
+    result
+}
+
 #[test]
 fn every_view_of_every_corpus_model_that_converts() {
     let Some(dir) = corpus_dir() else { return };
     let start = Instant::now();
-    let (mut checked, mut failed, mut large) = (0, 0, Vec::new());
+    let (mut checked, mut failed, mut large, mut slow) = (0, 0, Vec::new(), Vec::new());
     for path in stl_files(&dir) {
         if std::fs::metadata(&path).map_or(0, |m| m.len()) > CORPUS_MAX_BYTES {
             large.push(path.file_name().map(|n| n.to_string_lossy().into_owned()));
             continue;
         }
-        let Ok(state) = run(MethodKind::Plate, &path) else {
-            failed += 1;
-            continue;
+        let state = match run_within(&path, CORPUS_MODEL_BUDGET) {
+            Ok(state) => state,
+            Err(platener::Error::Cancelled { .. }) => {
+                slow.push(path.file_name().map(|n| n.to_string_lossy().into_owned()));
+                continue;
+            }
+            Err(_) => {
+                failed += 1;
+                continue;
+            }
         };
         for v in View::ALL {
             check_view(v, &view(&state, v), parts_of(&state));
@@ -203,8 +259,11 @@ fn every_view_of_every_corpus_model_that_converts() {
         checked += 1;
     }
     eprintln!(
-        "corpus scenes: {checked} models checked (six views each), {failed} did not convert, {} larger than {CORPUS_MAX_BYTES} bytes skipped {large:?}, {:.1} s",
+        "corpus scenes: {checked} models checked (six views each), {failed} did not convert, \
+         {} larger than {CORPUS_MAX_BYTES} bytes skipped {large:?}, {} slower than {:?} to convert skipped {slow:?}, {:.1} s",
         large.len(),
+        slow.len(),
+        CORPUS_MODEL_BUDGET,
         start.elapsed().as_secs_f64()
     );
     assert!(checked > 0, "no corpus model was checked");
@@ -215,11 +274,9 @@ fn planar_shapes_of_the_corpus_triangulate_to_their_area() {
     let Some(dir) = corpus_dir() else { return };
     let (mut models, mut shapes) = (0, 0);
     for path in stl_files(&dir) {
-        let Ok((state, _)) = platener::inspect::run_foundation(
-            Source::File(path.clone()),
-            Settings::default(),
-            &Cancel::default(),
-        ) else {
+        let Ok((state, _)) =
+            platener::inspect::run_foundation(Source::File(path.clone()), Settings::default(), &Cancel::default())
+        else {
             continue;
         };
         let Some(s) = state.shapes.as_ref() else { continue };
@@ -251,9 +308,16 @@ fn planar_shapes_of_the_corpus_triangulate_to_their_area() {
 fn the_khronos_validator_finds_no_errors() {
     let tool = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tools/gltf-validator");
     let required = std::env::var("PLATENER_REQUIRE_VALIDATOR").as_deref() == Ok("1");
-    let node = Command::new("node").arg("--version").output().is_ok_and(|o| o.status.success());
+    let node = Command::new("node")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success());
     if !node || !tool.join("node_modules/gltf-validator").is_dir() {
-        assert!(!required, "PLATENER_REQUIRE_VALIDATOR=1 but node or {}/node_modules is missing", tool.display());
+        assert!(
+            !required,
+            "PLATENER_REQUIRE_VALIDATOR=1 but node or {}/node_modules is missing",
+            tool.display()
+        );
         eprintln!("skipping: node or the validator is missing (npm ci --prefix tools/gltf-validator)");
         return;
     }

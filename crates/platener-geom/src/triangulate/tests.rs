@@ -8,7 +8,11 @@ use crate::polygon::{perimeter, rect};
 /// Snapping moves each corner by at most half a grid step along each axis, so the area
 /// changes by at most the perimeter times a grid step.
 fn area_tolerance(p: &Polygon) -> f64 {
-    std::iter::once(&p.outer).chain(&p.holes).map(|r| perimeter(r)).sum::<f64>() * STEP
+    std::iter::once(&p.outer)
+        .chain(&p.holes)
+        .map(|r| perimeter(r))
+        .sum::<f64>()
+        * STEP
 }
 
 fn assert_area(p: &Polygon) -> Triangulation {

@@ -34,7 +34,12 @@ pub(crate) struct MeshData {
 }
 
 /// The root node's rotation: -90° about X, turning the model's +Z into glTF's +Y.
-const Z_UP_TO_Y_UP: [f64; 4] = [-std::f64::consts::FRAC_1_SQRT_2, 0.0, 0.0, std::f64::consts::FRAC_1_SQRT_2];
+const Z_UP_TO_Y_UP: [f64; 4] = [
+    -std::f64::consts::FRAC_1_SQRT_2,
+    0.0,
+    0.0,
+    std::f64::consts::FRAC_1_SQRT_2,
+];
 /// The root node's scale: vertex positions are in mm, glTF's unit is the metre.
 const MM_TO_M: f64 = 0.001;
 /// `bufferView.target` of vertex data.
@@ -82,7 +87,7 @@ impl GlbBuilder {
     fn view(&mut self, bytes: &[u8], target: u32) -> usize {
         let offset = self.bin.len();
         self.bin.extend_from_slice(bytes);
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         self.views.push(json!({
@@ -106,7 +111,7 @@ impl GlbBuilder {
             return Ok(None);
         }
         let count = u32::try_from(data.positions.len()).map_err(|_| SceneError::TooLarge { what: name.into() })?;
-        if data.indices.iter().any(|&i| i >= count) || data.indices.len() % per != 0 {
+        if data.indices.iter().any(|&i| i >= count) || !data.indices.len().is_multiple_of(per) {
             return Err(SceneError::Bug(format!("mesh {name}: indices do not fit its vertices")));
         }
         let position = self.positions(&data.positions);
@@ -220,7 +225,7 @@ impl GlbBuilder {
 
 /// Packs the two chunks into a GLB container (glTF 2.0 spec, section 4.4).
 fn pack(mut json: Vec<u8>, bin: Vec<u8>) -> Result<Vec<u8>, SceneError> {
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let bin_chunk = if bin.is_empty() { 0 } else { 8 + bin.len() };

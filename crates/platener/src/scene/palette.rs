@@ -47,7 +47,11 @@ impl Colour {
     pub(crate) fn linear(self) -> [f64; 3] {
         self.entry().1.map(|c| {
             let s = f64::from(c) / 255.0;
-            if s <= 0.04045 { s / 12.92 } else { ((s + 0.055) / 1.055).powf(2.4) }
+            if s <= 0.04045 {
+                s / 12.92
+            } else {
+                ((s + 0.055) / 1.055).powf(2.4)
+            }
         })
     }
 }

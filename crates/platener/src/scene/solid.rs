@@ -26,9 +26,7 @@ pub fn plates(plates: &Plates) -> Result<Scene, SceneError> {
 /// into bent parts yet, so each plate is its own part and the view equals `plates`.
 pub fn bent(plates_snapshot: &Plates) -> Result<Scene, SceneError> {
     let mut scene = plates(plates_snapshot)?;
-    scene
-        .notes
-        .push("no bent parts yet: each plate is its own part".into());
+    scene.notes.push("no bent parts yet: each plate is its own part".into());
     Ok(scene)
 }
 
@@ -41,7 +39,14 @@ pub fn assembly(parts: &[Part]) -> Result<Scene, SceneError> {
     let mut glb = GlbBuilder::default();
     for p in order {
         let colour = Colour::nth(p.id.saturating_sub(1) as usize);
-        solid(&mut glb, &format!("part-{}", p.id), &p.polygon, p.thickness, &p.frame, colour)?;
+        solid(
+            &mut glb,
+            &format!("part-{}", p.id),
+            &p.polygon,
+            p.thickness,
+            &p.frame,
+            colour,
+        )?;
     }
     Scene::finish(glb, "assembly", Vec::new())
 }

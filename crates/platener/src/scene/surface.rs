@@ -68,7 +68,13 @@ pub fn coplanar(mesh: &Mesh, groups: &PlanarGroups) -> Result<Scene, SceneError>
         .collect();
     let mut notes = Vec::new();
     if !rest.is_empty() {
-        let m = glb.mesh("group-rest", &faces_of(mesh, &rest), Mode::Triangles, Colour::GREY, true)?;
+        let m = glb.mesh(
+            "group-rest",
+            &faces_of(mesh, &rest),
+            Mode::Triangles,
+            Colour::GREY,
+            true,
+        )?;
         glb.node("group-rest", m, None);
         notes.push(format!(
             "{} faces of the smaller planar groups (past the first {GROUP_NODE_LIMIT}) drawn as one grey node",

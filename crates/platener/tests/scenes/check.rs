@@ -16,7 +16,10 @@ pub struct Node {
 impl Node {
     /// Positions after the node's transform (model coordinates, mm).
     pub fn world(&self) -> Vec<DVec3> {
-        self.positions.iter().map(|p| self.matrix.transform_point3(*p)).collect()
+        self.positions
+            .iter()
+            .map(|p| self.matrix.transform_point3(*p))
+            .collect()
     }
 
     /// Triangles as index triples (solid meshes).
