@@ -12,7 +12,8 @@
 //! | `coplanar` | [`coplanar`] | groups of connected faces in one plane |
 //! | `shapes` | [`shapes`] | each group's outline with holes in its own 2D frame |
 //!
-//! [`inspect`] runs these and summarises them (`platener inspect`).
+//! [`inspect`] runs these and summarises them (`platener inspect`); [`scene`] draws any
+//! snapshot as a 3D scene (glTF binary) for viewers.
 
 pub mod assembly;
 pub mod cleanup;
