@@ -1,7 +1,7 @@
 //! platener's geometry kernel.
 //!
 //! Everything that must be exact or shared lives here, so the pipeline crates never reason about
-//! epsilons or call i_overlay themselves:
+//! epsilons or call i_overlay or i_triangle themselves:
 //!
 //! | module | what |
 //! |---|---|
@@ -13,6 +13,7 @@
 //! | [`slab`] | plates as extruded polygons: where one plate's outline meets another's volume |
 //! | [`boxes`] | which pairs of 3D boxes come near each other (a sweep along x) |
 //! | [`frame`] | rigid 3D ↔ 2D frames of planes |
+//! | [`triangulate`] | triangles covering a polygon with holes (i_triangle), for 3D scenes |
 //! | [`dedup`] | finding equal items among millions (sorted fingerprints) |
 //! | [`weld`] | merging nearby points in 2D or 3D (spatial hash) |
 
@@ -25,6 +26,7 @@ pub mod offset;
 pub mod polygon;
 pub mod slab;
 pub mod tolerance;
+pub mod triangulate;
 pub mod weld;
 
 pub use frame::Frame;

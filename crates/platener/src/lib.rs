@@ -17,7 +17,8 @@
 //! | `parts` / `stacked` | [`parts`] / [`stacked`] | the parts to cut (plate / stacked method) |
 //! | `kerf`, `labels`, `sheets`, `export` | [`kerf`] … [`export`] | the cutting plan and its ZIP |
 //!
-//! [`inspect`] runs these and summarises them (`platener inspect`).
+//! [`inspect`] runs these and summarises them (`platener inspect`); [`scene`] draws any
+//! snapshot as a 3D scene (glTF binary) for viewers.
 //!
 //! Programs convert a model in one call, [`convert_all`]: every method, each with its plan,
 //! ZIP, score and warnings or error, and the best named. An upload never touches the disk:
@@ -57,6 +58,7 @@ pub mod plan;
 pub mod plates;
 pub mod read;
 pub mod samples;
+pub mod scene;
 pub mod score;
 pub mod settings;
 pub mod shapes;

@@ -237,6 +237,7 @@ fn a_zip_written_twice_is_byte_identical() {
     assert_eq!(
         names,
         [
+            "assembly.glb",
             "plan.json",
             "report.json",
             "test-box-3mm-1.dxf",

@@ -2,7 +2,7 @@
 //!
 //! Everything the user takes to the laser and everything third-party programs read comes out
 //! of here as one ZIP: plan.json (the contract in `shared/spec/plan-format.md`), report.json,
-//! and per sheet an SVG ([`svg`]), a DXF ([`dxf`]) and a PNG preview ([`png`]). Entries are
+//! assembly.glb (the assembled parts in 3D, [`crate::scene::assembly`]), and per sheet an SVG ([`svg`]), a DXF ([`dxf`]) and a PNG preview ([`png`]). Entries are
 //! sorted by name and stamped 1980-01-01 with mode 0644, and report.json carries no timings
 //! unless asked, so the same input and settings give a byte-identical ZIP.
 
@@ -43,7 +43,8 @@ pub struct Bundle {
     pub plan: Plan,
     /// report.json as data.
     pub report: Report,
-    /// Every file of the ZIP by name (plan.json, report.json, the sheets' .svg/.dxf/.png).
+    /// Every file of the ZIP by name (plan.json, report.json, assembly.glb, the sheets'
+    /// .svg/.dxf/.png).
     #[serde(skip)]
     pub files: BTreeMap<String, Vec<u8>>,
     /// The ZIP.
@@ -78,6 +79,9 @@ pub fn run(
     files.insert("plan.json".into(), plan.to_json()?.into_bytes());
     let report_json = serde_json::to_string_pretty(&report).map_err(|e| PlanError::write("report.json", e))?;
     files.insert("report.json".into(), report_json.into_bytes());
+    // The parts were validated by now, so a scene that cannot be written is our bug.
+    let scene = crate::scene::assembly(&input.parts).map_err(|e| PlanError::write("assembly.glb", e))?;
+    files.insert("assembly.glb".into(), scene.glb);
     let zip = zip_files(&files)?;
     Ok(Bundle {
         plan,

@@ -10,6 +10,7 @@
 mod steps;
 #[cfg(test)]
 mod tests;
+mod view;
 
 use std::sync::Arc;
 use std::time::Instant;
