@@ -57,9 +57,42 @@ pub enum Command {
         after_help = "Examples:\n  platener verify out/box-3mm-plate.zip\n  platener verify out/box-3mm-plate.zip --model examples/box-3mm.stl --json"
     )]
     Verify(VerifyArgs),
+    /// Writes one view of a conversion as a 3D scene (glTF binary, .glb) for any viewer: the
+    /// model as read, its edges, its planar groups, the plates, the bent parts, or the final
+    /// assembly of the cut parts.
+    #[command(after_help = crate::scene::EXAMPLES)]
+    Scene(SceneArgs),
     /// Prints a shell completion script.
     #[command(after_help = crate::completions::EXAMPLES)]
     Completions(CompletionsArgs),
+}
+
+/// `platener scene`.
+#[derive(Debug, Args)]
+pub struct SceneArgs {
+    /// The model file (.stl, .obj, .3mf).
+    pub model: PathBuf,
+    /// The view: model, wireframe, coplanar, plates, bent or final.
+    #[arg(long, default_value = "final")]
+    pub view: String,
+    /// The .glb file to write.
+    #[arg(short = 'o', long = "output", value_name = "FILE.glb")]
+    pub output: PathBuf,
+    /// The method whose snapshots are drawn (`all`: the best by score).
+    #[arg(long, value_enum, default_value = "all")]
+    pub method: MethodArg,
+    /// The sheet material (decides the default joint).
+    #[arg(short = 'm', long, value_enum, default_value = "wood")]
+    pub material: MaterialArg,
+    /// The joint type.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub joint: JointArg,
+    /// The stacked method's slicing direction.
+    #[arg(long, value_name = "x|y|z|auto", default_value = "auto")]
+    pub axis: String,
+    /// Model options.
+    #[command(flatten)]
+    pub model_args: ModelArgs,
 }
 
 /// `platener verify`.

@@ -7,7 +7,7 @@ use platener::Settings;
 use platener::joints::JointStyle;
 use platener::plan::SheetSize;
 
-use crate::args::{ConvertArgs, JointArg};
+use crate::args::{ConvertArgs, JointArg, MaterialArg, ModelArgs};
 use crate::batch::{self, BatchConfig};
 use crate::inputs;
 use crate::progress::Ui;
@@ -46,18 +46,31 @@ impl std::error::Error for UsageError {}
 
 /// The library settings the flags ask for.
 pub fn settings(args: &ConvertArgs) -> anyhow::Result<Settings> {
-    let mut settings = args.model_args.settings()?;
-    settings.cut.material = args.material.material();
+    let mut settings = part_settings(&args.model_args, args.material, args.joint, &args.axis)?;
     settings.cut.kerf = args.kerf;
     settings.cut.labels = args.labels.mode();
     settings.cut.sheet = args.sheet;
-    settings.joints.style = match args.joint {
+    settings.validate()?;
+    Ok(settings)
+}
+
+/// The settings that decide the parts (what `convert` and `scene` share): model options,
+/// material, joint style and stacking axis.
+pub fn part_settings(
+    model_args: &ModelArgs,
+    material: MaterialArg,
+    joint: JointArg,
+    axis: &str,
+) -> anyhow::Result<Settings> {
+    let mut settings = model_args.settings()?;
+    settings.cut.material = material.material();
+    settings.joints.style = match joint {
         JointArg::Auto => None,
         JointArg::Finger => Some(JointStyle::Finger),
         JointArg::Jim => Some(JointStyle::Jim),
         JointArg::Dovetail => Some(JointStyle::Dovetail),
     };
-    settings.stacked.axis = args.axis.parse().map_err(|e| anyhow::anyhow!("--axis: {e}"))?;
+    settings.stacked.axis = axis.parse().map_err(|e| anyhow::anyhow!("--axis: {e}"))?;
     settings.validate()?;
     Ok(settings)
 }

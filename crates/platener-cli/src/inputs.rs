@@ -134,11 +134,7 @@ pub fn collect(inputs: &[PathBuf], max_mb: Option<f64>) -> Inputs {
             stem = format!("{base}-{k}");
         }
         stems.insert(stem.clone());
-        out.models.push(ModelFile {
-            path,
-            bytes,
-            stem,
-        });
+        out.models.push(ModelFile { path, bytes, stem });
     }
     out
 }

@@ -12,6 +12,7 @@ mod inputs;
 mod inspect;
 mod progress;
 mod report;
+mod scene;
 mod test_strip;
 mod verify;
 
@@ -26,6 +27,7 @@ fn main() -> ExitCode {
         args::Command::Inspect(a) => inspect::run(&a).map(|()| 0),
         args::Command::TestStrip(a) => test_strip::run(&a).map(|()| 0),
         args::Command::Verify(a) => verify::run(&a),
+        args::Command::Scene(a) => scene::run(&a).map(|()| 0),
         args::Command::Completions(a) => {
             completions::run(&a);
             Ok(0)

@@ -343,7 +343,7 @@ fn sub_reports_and_zips_are_the_same_every_run() {
 
 #[test]
 fn help_completions_and_version() {
-    for sub in ["convert", "inspect", "test-strip", "completions"] {
+    for sub in ["convert", "inspect", "test-strip", "verify", "scene", "completions"] {
         let r = run(platener().args([sub, "--help"]));
         assert_eq!(r.code, 0);
         assert!(r.stdout.contains("Examples:"), "{sub}: {}", r.stdout);
@@ -359,7 +359,10 @@ fn help_completions_and_version() {
         .expect("README readable");
     let words = |t: &str| t.split_whitespace().collect::<Vec<_>>().join(" ");
     let help = words(&r.stdout);
-    let stated = help.find("Exit codes:").map(|i| &help[i..]).expect("--help states exit codes");
+    let stated = help
+        .find("Exit codes:")
+        .map(|i| &help[i..])
+        .expect("--help states exit codes");
     assert!(words(&readme).contains(stated), "README lacks: {stated}");
     let r = run(platener().arg("--version"));
     assert_eq!(r.code, 0);

@@ -12,8 +12,8 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use platener::glam::DVec3;
 use platener::mesh::Mesh;
 use platener::pipeline::{self, Cancel, Source, State};
-use platener::settings::{StackAxis, StackedSettings};
 use platener::pipeline::{FOUNDATION, StepId};
+use platener::settings::{StackAxis, StackedSettings};
 use platener::stacked::{AxisChoice, SlicePlan, islands_of, slice};
 use platener::weld::weld_soup;
 use platener::{Settings, samples};

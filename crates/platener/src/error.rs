@@ -94,9 +94,7 @@ pub enum ModelProblem {
         height: f64,
     },
     /// A method made no parts (its step warnings say why).
-    #[error(
-        "the {method} method made no parts to cut (the warnings say why; `platener inspect --plates` shows more)"
-    )]
+    #[error("the {method} method made no parts to cut (the warnings say why; `platener inspect --plates` shows more)")]
     NoParts {
         /// The method.
         method: &'static str,

@@ -3,9 +3,9 @@
 use glam::DVec3;
 use serde::Serialize;
 
+use crate::context::{Cancel, StepRecord, Warning};
 use crate::error::Result;
 use crate::mesh::Health;
-use crate::context::{Cancel, StepRecord, Warning};
 use crate::pipeline::{self, FOUNDATION, PLATE, Source, State, StepId};
 use crate::read::Bounds;
 use crate::settings::Settings;
@@ -121,7 +121,12 @@ pub fn run_foundation(source: Source, settings: Settings, cancel: &Cancel) -> Re
     run_steps(&FOUNDATION, source, settings, cancel)
 }
 
-fn run_steps(steps: &[StepId], source: Source, settings: Settings, cancel: &Cancel) -> Result<(State, Vec<StepRecord>)> {
+fn run_steps(
+    steps: &[StepId],
+    source: Source,
+    settings: Settings,
+    cancel: &Cancel,
+) -> Result<(State, Vec<StepRecord>)> {
     settings.validate()?;
     let mut state = State::new(source, settings);
     pipeline::run(steps, &mut state, cancel)?;

@@ -71,6 +71,6 @@ pub use context::{Cancel, Warning, WarningKind};
 pub use convert::{Conversions, Request, convert, convert_all};
 pub use error::{Error, Result};
 pub use pipeline::State;
-pub use read::Source;
 pub use platener_geom::glam;
+pub use read::Source;
 pub use settings::{PlateMode, PlateSettings, Settings, Units, Weld};

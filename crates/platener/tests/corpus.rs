@@ -150,7 +150,10 @@ fn shapes_cover_the_surface_of_closed_models() {
         );
     }
     eprintln!("{checked} closed models checked, {open} open ones passed over");
-    assert!(checked >= 20, "only {checked} closed models were checked (23 of the 53-file corpus are closed)");
+    assert!(
+        checked >= 20,
+        "only {checked} closed models were checked (23 of the 53-file corpus are closed)"
+    );
 }
 
 #[test]
@@ -222,7 +225,11 @@ fn a_thin_curved_wall_does_not_become_hundreds_of_slivers() {
         let rings = std::iter::once(&x.polygon.outer).chain(&x.polygon.holes);
         let perimeter: f64 = rings.map(|r| perimeter(r)).sum();
         let width = 2.0 * x.polygon.area() / perimeter;
-        assert!(width >= x.thickness, "a plate {width:.2} mm wide on average, {} thick", x.thickness);
+        assert!(
+            width >= x.thickness,
+            "a plate {width:.2} mm wide on average, {} thick",
+            x.thickness
+        );
     }
 }
 

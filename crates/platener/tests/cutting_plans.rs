@@ -9,14 +9,14 @@ mod svg_read;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
+use platener::Cancel;
 use platener::export::{Bundle, dxf};
-use platener::labels::Labels;
-use platener::sheets::Nesting;
 use platener::glam::{DVec2, DVec3};
+use platener::labels::Labels;
 use platener::pipeline::{self, State};
 use platener::plan::samples::{fingered, l_shape, rectangle, window};
 use platener::plan::{CutSettings, Joint, JointKind, Method, Part, Plan, PlanInput, SheetSize, SourceInfo};
-use platener::Cancel;
+use platener::sheets::Nesting;
 use platener_geom::polygon::signed_area;
 use platener_geom::{Polygon, boolean, offset};
 

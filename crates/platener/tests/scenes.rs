@@ -48,7 +48,12 @@ fn stl_files(dir: &Path) -> Vec<PathBuf> {
 }
 
 fn run(method: MethodKind, path: &Path) -> platener::Result<State> {
-    convert(method, Source::File(path.into()), Settings::default(), &Cancel::default())
+    convert(
+        method,
+        Source::File(path.into()),
+        Settings::default(),
+        &Cancel::default(),
+    )
 }
 
 /// One view of a conversion's snapshots, as the library draws it for viewers.

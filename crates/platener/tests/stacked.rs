@@ -11,8 +11,8 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
 
-use platener::glam::{DVec2, DVec3};
 use platener::convert;
+use platener::glam::{DVec2, DVec3};
 use platener::method::MethodKind;
 use platener::pipeline::StepId;
 
@@ -441,12 +441,7 @@ fn organic_corpus_models_convert() {
         // At 100 mm across, as a user would convert it with --scale: converts, and every pair
         // of islands the method could not join is reported.
         let mut probe = platener::State::new(Source::File(file.clone()), Settings::default());
-        platener::pipeline::run(
-            &[StepId::Read],
-            &mut probe,
-            &Cancel::default(),
-        )
-        .expect("reads");
+        platener::pipeline::run(&[StepId::Read], &mut probe, &Cancel::default()).expect("reads");
         let b = probe.read.as_ref().expect("read").bounds;
         let extent = (b.max - b.min).max_element();
         let settings = Settings {

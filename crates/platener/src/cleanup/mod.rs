@@ -11,8 +11,8 @@ use platener_geom::Tolerances;
 use platener_geom::dedup::first_equal;
 use serde::Serialize;
 
-use crate::error::Result;
 use crate::context::{StepContext, WarningKind};
+use crate::error::Result;
 use crate::read::{Model, Triangle};
 
 /// The snapshot of step `cleanup`.

@@ -9,9 +9,9 @@
 //! scores every plan and names the best.
 
 mod panic;
-mod work;
 #[cfg(test)]
 mod tests;
+mod work;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};

@@ -104,7 +104,13 @@ fn the_shared_steps_run_once_and_every_method_starts_from_them() {
         assert!(m.score.is_some());
     }
     // The stacked method welds exact duplicates only: its own weld snapshot.
-    let weld = |k: usize| all.methods[k].state.as_ref().and_then(|s| s.weld.clone()).expect("weld");
+    let weld = |k: usize| {
+        all.methods[k]
+            .state
+            .as_ref()
+            .and_then(|s| s.weld.clone())
+            .expect("weld")
+    };
     assert!(!Arc::ptr_eq(&weld(0), &weld(1)));
     assert_eq!(all.best, Some(MethodKind::Plate));
 }
@@ -141,9 +147,20 @@ fn events_name_every_step_and_method_in_order() {
     assert_eq!(
         seen,
         [
-            "shared:read", "shared:cleanup", "plate:weld", "plate:mesh", "plate:coplanar", "plate:shapes",
-            "plate:plates", "plate:joints", "plate:parts", "plate:kerf", "plate:labels", "plate:sheets",
-            "plate:export", "plate Converted"
+            "shared:read",
+            "shared:cleanup",
+            "plate:weld",
+            "plate:mesh",
+            "plate:coplanar",
+            "plate:shapes",
+            "plate:plates",
+            "plate:joints",
+            "plate:parts",
+            "plate:kerf",
+            "plate:labels",
+            "plate:sheets",
+            "plate:export",
+            "plate Converted"
         ]
     );
 }

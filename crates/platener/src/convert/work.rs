@@ -92,7 +92,8 @@ pub(super) fn run(request: &Request, caller: &Cancel, progress: Arc<dyn Progress
 /// Waits for the cancelled thread to stop, so it does not compete with the caller's next
 /// work for the cores, but never past `until`: a step that checks rarely is left behind.
 fn drain_until(rx: &mpsc::Receiver<Message>, until: Instant) {
-    while let Ok(_) | Err(RecvTimeoutError::Timeout) = rx.recv_timeout(until.saturating_duration_since(Instant::now())) {
+    while let Ok(_) | Err(RecvTimeoutError::Timeout) = rx.recv_timeout(until.saturating_duration_since(Instant::now()))
+    {
         if Instant::now() >= until {
             break;
         }

@@ -156,4 +156,3 @@ pub fn zip_files(files: &BTreeMap<String, Vec<u8>>) -> Result<Vec<u8>, PlanError
     let cursor = zip.finish().map_err(|e| PlanError::write("the ZIP", e))?;
     Ok(cursor.into_inner())
 }
-

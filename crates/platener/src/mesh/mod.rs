@@ -11,8 +11,8 @@ mod topology;
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::cleanup::is_degenerate;
 use crate::cleanup::Cleaned;
+use crate::cleanup::is_degenerate;
 use crate::context::{StepContext, WarningKind};
 use crate::error::{Error, ModelProblem, Result};
 use crate::weld::Welded;

@@ -101,7 +101,9 @@ impl State {
 
     /// The model's name, for messages.
     pub fn model_name(&self) -> String {
-        self.read.as_ref().map_or_else(|| self.source.name(), |m| m.name.clone())
+        self.read
+            .as_ref()
+            .map_or_else(|| self.source.name(), |m| m.name.clone())
     }
 
     /// The cutting plan, once `export` ran.
@@ -174,7 +176,11 @@ pub fn cutting_plan(input: plan::PlanInput, cancel: &Cancel) -> Result<State> {
 
 /// The plates of a model made in code (`name` for messages), for sheets of the given
 /// `thicknesses`: every step up to `plates` with default settings otherwise.
-pub fn plates_of_triangles(name: &str, triangles: Vec<read::Triangle>, thicknesses: &[f64]) -> Result<Arc<plates::Plates>> {
+pub fn plates_of_triangles(
+    name: &str,
+    triangles: Vec<read::Triangle>,
+    thicknesses: &[f64],
+) -> Result<Arc<plates::Plates>> {
     let source = Source::Triangles {
         name: name.into(),
         triangles: Arc::new(triangles),

@@ -7,7 +7,9 @@ use super::{State, need};
 use crate::context::StepContext;
 use crate::error::Result;
 use crate::method::MethodKind;
-use crate::{cleanup, coplanar, export, joints, kerf, labels, mesh, parts, plates, read, shapes, sheets, stacked, weld};
+use crate::{
+    cleanup, coplanar, export, joints, kerf, labels, mesh, parts, plates, read, shapes, sheets, stacked, weld,
+};
 
 /// Every pipeline step, named as in report.json and as the module it lives in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -134,7 +136,10 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
         }
         StepId::Coplanar => state.coplanar = Some(Arc::new(coplanar::run(need(&state.mesh, name, "mesh")?, &s))),
         StepId::Shapes => {
-            let (mesh, groups) = (need(&state.mesh, name, "mesh")?, need(&state.coplanar, name, "coplanar")?);
+            let (mesh, groups) = (
+                need(&state.mesh, name, "mesh")?,
+                need(&state.coplanar, name, "coplanar")?,
+            );
             let cleaned = need(&state.cleanup, name, "cleanup")?;
             state.shapes = Some(Arc::new(shapes::run(mesh, groups, cleaned, &s, cx)?));
         }
@@ -165,7 +170,10 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
         }
         StepId::Export => {
             let (input, cut) = (need(&state.parts, name, "parts")?, need(&state.kerf, name, "kerf")?);
-            let (labels, nesting) = (need(&state.labels, name, "labels")?, need(&state.sheets, name, "sheets")?);
+            let (labels, nesting) = (
+                need(&state.labels, name, "labels")?,
+                need(&state.sheets, name, "sheets")?,
+            );
             state.export = Some(Arc::new(export::run(input, cut, labels, nesting, &state.records)?));
         }
     }

@@ -101,7 +101,12 @@ fn no_step_module_imports_the_pipeline() {
     let mut checked = 0;
     for step in StepId::ALL {
         let dir = src.join(step.name());
-        assert!(dir.is_dir(), "step {} has no module folder {}", step.name(), dir.display());
+        assert!(
+            dir.is_dir(),
+            "step {} has no module folder {}",
+            step.name(),
+            dir.display()
+        );
         for file in rust_files(&dir) {
             let name = file.file_name().and_then(|n| n.to_str()).unwrap_or("");
             if name.ends_with("tests.rs") {

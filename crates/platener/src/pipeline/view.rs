@@ -6,7 +6,10 @@ use crate::scene::{self, Scene, SceneError, View};
 impl State {
     /// `view` of this conversion as glTF binary (the web viewer's scenes, `platener scene`).
     pub fn scene(&self, view: View) -> Result<Scene, SceneError> {
-        let need = |step: &'static str| SceneError::NotReached { view: view.name(), step };
+        let need = |step: &'static str| SceneError::NotReached {
+            view: view.name(),
+            step,
+        };
         match view {
             View::Model => scene::model(self.read.as_ref().ok_or_else(|| need("read"))?),
             View::Wireframe => scene::wireframe(self.mesh.as_ref().ok_or_else(|| need("mesh"))?),

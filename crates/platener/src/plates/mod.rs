@@ -146,7 +146,12 @@ pub(crate) fn map_polygon(p: &Polygon, from: &Frame, to: &Frame) -> Polygon {
 }
 
 /// Finds the plates of a model's shapes; `surface_area` is the model's, for the coverage share.
-pub fn find_plates(shapes: &Shapes, surface_area: f64, center: DVec3, settings: &Settings) -> Result<Plates, GridError> {
+pub fn find_plates(
+    shapes: &Shapes,
+    surface_area: f64,
+    center: DVec3,
+    settings: &Settings,
+) -> Result<Plates, GridError> {
     let ps = &settings.plates;
     let mut found = inherent::find(shapes, center, settings)?;
     if ps.mode == PlateMode::InherentAndExtruded {
@@ -186,5 +191,6 @@ pub fn run(
 ) -> Result<Plates> {
     cx.check_cancel()?;
     let center = (model.bounds.min + model.bounds.max) / 2.0;
-    find_plates(shapes, mesh.surface_area, center, settings).map_err(|e| Error::model(&model.name, ModelProblem::OffGrid(e)))
+    find_plates(shapes, mesh.surface_area, center, settings)
+        .map_err(|e| Error::model(&model.name, ModelProblem::OffGrid(e)))
 }

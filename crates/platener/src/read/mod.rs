@@ -185,7 +185,11 @@ pub fn read_file(path: &Path) -> Result<(Format, RawMesh), ReadError> {
         "stl" => stl::read_path(path).map_err(wrap)?,
         "obj" => (Format::Obj, obj::read_path(path).map_err(wrap)?),
         "3mf" => (Format::ThreeMf, threemf::read_path(path).map_err(wrap)?),
-        extension => return Err(wrap(ReadErrorKind::Unsupported { extension: extension.into() })),
+        extension => {
+            return Err(wrap(ReadErrorKind::Unsupported {
+                extension: extension.into(),
+            }));
+        }
     };
     non_empty(format, mesh).map_err(wrap)
 }
@@ -205,7 +209,11 @@ pub fn read_bytes(name: &str, bytes: &[u8]) -> Result<(Format, RawMesh), ReadErr
         "stl" => stl::parse_bytes(bytes).map_err(wrap)?,
         "obj" => (Format::Obj, obj::parse_bytes(bytes).map_err(wrap)?),
         "3mf" => (Format::ThreeMf, threemf::parse_bytes(bytes).map_err(wrap)?),
-        extension => return Err(wrap(ReadErrorKind::Unsupported { extension: extension.into() })),
+        extension => {
+            return Err(wrap(ReadErrorKind::Unsupported {
+                extension: extension.into(),
+            }));
+        }
     };
     non_empty(format, mesh).map_err(wrap)
 }

@@ -36,11 +36,11 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::assembly::{Inside, Prism};
+use crate::export::Bundle;
 use crate::export::report::Report;
 use crate::mesh::Mesh;
-use crate::export::Bundle;
-use crate::plates::Plates;
 use crate::plan::{Plan, PlanJoint};
+use crate::plates::Plates;
 use sample::Rng;
 
 /// Weight of the assembly inside the shape factor.

@@ -8,15 +8,14 @@
 
 mod loops;
 
-
 use platener_geom::polygon::remove_straight_vertices;
 use platener_geom::{Frame, GridError, Polygon, Ring, boolean};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::coplanar::{PlanarGroup, PlanarGroups};
 use crate::cleanup::Cleaned;
 use crate::context::StepContext;
+use crate::coplanar::{PlanarGroup, PlanarGroups};
 use crate::error::{Error, ModelProblem, Result};
 use crate::mesh::Mesh;
 use crate::settings::Settings;

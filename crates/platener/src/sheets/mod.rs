@@ -14,7 +14,6 @@ mod shape;
 #[cfg(test)]
 mod tests;
 
-
 use glam::DVec2;
 use serde::Serialize;
 

@@ -8,7 +8,6 @@ use std::path::{Path, PathBuf};
 use platener::read::stl::{parse_bytes, read_path};
 use platener::read::{Format, RawMesh, ReadErrorKind};
 
-
 /// `folder/file.stl` → (triangles, "binary" | "ascii" | …, mesh-health text) from SOURCES.md.
 fn stated(sources: &str) -> BTreeMap<String, (usize, String, String)> {
     let mut table = BTreeMap::new();
