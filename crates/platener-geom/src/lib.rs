@@ -13,6 +13,7 @@
 //! | [`slab`] | plates as extruded polygons: where one plate's outline meets another's volume |
 //! | [`boxes`] | which pairs of 3D boxes come near each other (a sweep along x) |
 //! | [`frame`] | rigid 3D ↔ 2D frames of planes |
+//! | [`rng`] | the one seeded random generator (SplitMix64) |
 //! | [`dedup`] | finding equal items among millions (sorted fingerprints) |
 //! | [`weld`] | merging nearby points in 2D or 3D (spatial hash) |
 
@@ -23,6 +24,7 @@ pub mod frame;
 pub mod grid;
 pub mod offset;
 pub mod polygon;
+pub mod rng;
 pub mod slab;
 pub mod tolerance;
 pub mod weld;

@@ -4,6 +4,7 @@ use glam::DVec2;
 use platener_geom::boolean::{difference, intersection, union_all};
 use platener_geom::offset::{closing, offset, opening};
 use platener_geom::polygon::total_area;
+use platener_geom::tolerance::GRID_NOISE_AREA;
 use platener_geom::{GridError, Polygon};
 
 use super::connect::{Region, band};
@@ -90,9 +91,6 @@ fn barb(
 
 /// Gaps narrower than this (mm) between a plate and its joint regions are grid noise.
 pub(super) const HAIRLINE: f64 = 0.01;
-
-/// Pieces smaller than this (mm²) are grid noise, not slivers.
-const NOISE_AREA: f64 = 1e-4;
 
 /// The union of a plate and its joint regions. A region computed through another plate's
 /// frame can miss its plate by a grid step; a closing (with sharp miter corners) fills such
@@ -303,7 +301,7 @@ fn finish(
     let r = 0.499 * min_feature;
     let opened = intersection(&opening(&pieces, r)?, &pieces)?;
     let mut slivers = difference(&pieces, &opened)?;
-    slivers.retain(|p| p.area() > NOISE_AREA);
+    slivers.retain(|p| p.area() > GRID_NOISE_AREA);
     if !slivers.is_empty() {
         // Only where the joints changed the plate: its growth and what its partners took.
         let mut changed = difference(outline, std::slice::from_ref(&plate.polygon))?;
@@ -315,7 +313,7 @@ fn finish(
     // Debris: pieces with nothing a laser could cut (the sliver's rim left by the grid).
     let mut kept = Vec::with_capacity(pieces.len());
     for (n, p) in pieces.into_iter().enumerate() {
-        if n == 0 || total_area(&opening(std::slice::from_ref(&p), r)?) > NOISE_AREA {
+        if n == 0 || total_area(&opening(std::slice::from_ref(&p), r)?) > GRID_NOISE_AREA {
             kept.push(p);
         }
     }
@@ -341,7 +339,7 @@ pub(super) fn of_plate(plate: &Plate, mut pieces: Vec<Polygon>) -> Result<Vec<Po
         pieces = kept
             .into_iter()
             .enumerate()
-            .filter(|(k, (inside, _))| *k == 0 || *inside > NOISE_AREA)
+            .filter(|(k, (inside, _))| *k == 0 || *inside > GRID_NOISE_AREA)
             .map(|(_, (_, p))| p)
             .collect();
     }
@@ -598,12 +596,15 @@ pub(super) fn apply(
         .flat_map(|(r, c, label)| {
             let male = dovetailed(r);
             let notched = if male == r.a { r.b } else { r.a };
-            c.keys.iter().filter(|p| p.area() > NOISE_AREA).map(move |outline| Key {
-                plate: male as u32,
-                notched: notched as u32,
-                outline: outline.clone(),
-                label,
-            })
+            c.keys
+                .iter()
+                .filter(|p| p.area() > GRID_NOISE_AREA)
+                .map(move |outline| Key {
+                    plate: male as u32,
+                    notched: notched as u32,
+                    outline: outline.clone(),
+                    label,
+                })
         })
         .collect();
     Ok(Joints {

@@ -33,16 +33,16 @@ mod tests;
 
 use std::collections::BTreeMap;
 
+use platener_geom::rng::SplitMix64;
 use serde::Serialize;
 
-use crate::assembly::{Inside, Prism};
+use crate::assembly::{Inside, Solid};
 use crate::error::Result;
 use crate::export::report::Report;
 use crate::mesh::Mesh;
 use crate::method::Conversion;
 use crate::pipeline::need;
 use crate::plan::{Plan, PlanJoint};
-use sample::Rng;
 
 /// Weight of the assembly inside the shape factor.
 pub const ASSEMBLY_WEIGHT: f64 = 0.3;
@@ -160,8 +160,8 @@ pub fn score_with(conversion: &Conversion, settings: &ScoreSettings) -> Result<S
 
 /// The score of `plan` as a reproduction of `mesh`; effort figures come from `report`.
 fn evaluate(mesh: &Mesh, plan: &Plan, report: &Report, settings: &ScoreSettings) -> Score {
-    let prisms: Vec<Prism> = plan.parts.iter().map(Prism::from_part).collect();
-    let mut rng = Rng::new(settings.seed);
+    let prisms: Vec<Solid> = plan.parts.iter().map(Solid::from_part).collect();
+    let mut rng = SplitMix64::new(settings.seed);
     let surface_covered = surface_covered(mesh, &prisms, settings, &mut rng);
     let (volume_inside, interference) = volume_shares(mesh, &prisms, settings, &mut rng);
     let shape = surface_covered * volume_inside;
@@ -192,7 +192,7 @@ fn evaluate(mesh: &Mesh, plan: &Plan, report: &Report, settings: &ScoreSettings)
 }
 
 /// Share of area-weighted surface samples within reach of a part.
-fn surface_covered(mesh: &Mesh, prisms: &[Prism], settings: &ScoreSettings, rng: &mut Rng) -> f64 {
+fn surface_covered(mesh: &Mesh, prisms: &[Solid], settings: &ScoreSettings, rng: &mut SplitMix64) -> f64 {
     let picks = sample::stratified(&mesh.areas, settings.surface_samples, rng);
     if picks.is_empty() || prisms.is_empty() {
         return 0.0;
@@ -209,7 +209,7 @@ fn surface_covered(mesh: &Mesh, prisms: &[Prism], settings: &ScoreSettings, rng:
 }
 
 /// Shares of volume-weighted part samples inside the model, and inside another part.
-fn volume_shares(mesh: &Mesh, prisms: &[Prism], settings: &ScoreSettings, rng: &mut Rng) -> (f64, f64) {
+fn volume_shares(mesh: &Mesh, prisms: &[Solid], settings: &ScoreSettings, rng: &mut SplitMix64) -> (f64, f64) {
     let volumes: Vec<f64> = prisms.iter().map(|p| p.volume).collect();
     let picks = sample::stratified(&volumes, settings.volume_samples, rng);
     let inside = Inside::new(&mesh.vertices, &mesh.triangles);
@@ -235,7 +235,7 @@ fn volume_shares(mesh: &Mesh, prisms: &[Prism], settings: &ScoreSettings, rng: &
 
 /// Connectivity through the joints for a model of `solids` separate solids, and the number of
 /// connected groups.
-fn connectivity(prisms: &[Prism], joints: &[PlanJoint], solids: usize) -> (f64, usize) {
+fn connectivity(prisms: &[Solid], joints: &[PlanJoint], solids: usize) -> (f64, usize) {
     let n = prisms.len();
     if n == 0 {
         return (0.0, 0);
