@@ -14,7 +14,7 @@ use super::marks::tag;
 use crate::error::{Error, Result};
 use crate::pipeline::{State, need};
 use crate::plan::{Joint, JointKind, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
-use crate::settings::StackAxis;
+use crate::settings::{Settings, StackAxis};
 
 /// The parts, joints and settings of `stack`, converted from `state`'s model.
 pub fn plan_input(stack: &Stack, state: &State) -> Result<PlanInput> {
@@ -22,6 +22,25 @@ pub fn plan_input(stack: &Stack, state: &State) -> Result<PlanInput> {
         model: state.source.name(),
         message: e.to_string(),
     };
+    let mut parts = layer_parts(stack, &geometry)?;
+    let joints = shaft_parts(stack, &mut parts, &geometry)?;
+    let s = &state.settings;
+    let method_settings = method_settings(stack, s);
+    let model = need(&state.read, "stacked", "read")?;
+    let source = SourceInfo {
+        name: model.name.clone(),
+        triangles: model.triangles.len() as u64,
+        bbox_min: model.bounds.min,
+        bbox_max: model.bounds.max,
+    };
+    let mut input = PlanInput::new(source, Method::Stacked, parts, joints);
+    input.settings = s.cut.clone();
+    input.method_settings = method_settings;
+    Ok(input)
+}
+
+/// Every island as a part of kind `layer`, tagged with its layer's number.
+fn layer_parts(stack: &Stack, geometry: &dyn Fn(platener_geom::GridError) -> Error) -> Result<Vec<Part>> {
     let mut parts = Vec::new();
     for (k, layer) in stack.layers.iter().enumerate() {
         for island in &layer.islands {
@@ -41,6 +60,16 @@ pub fn plan_input(stack: &Stack, state: &State) -> Result<PlanInput> {
             });
         }
     }
+    Ok(parts)
+}
+
+/// Every shaft as a part of kind `shaft` (added to `parts`), tagged with its number and the
+/// layers it spans; returns one joint per slot.
+fn shaft_parts(
+    stack: &Stack,
+    parts: &mut Vec<Part>,
+    geometry: &dyn Fn(platener_geom::GridError) -> Error,
+) -> Result<Vec<Joint>> {
     let mut joints = Vec::new();
     for (j, shaft) in stack.shafts.iter().enumerate() {
         let (lo, hi) = shaft.polygon.bounds();
@@ -76,7 +105,11 @@ pub fn plan_input(stack: &Stack, state: &State) -> Result<PlanInput> {
             });
         }
     }
-    let s = &state.settings;
+    Ok(joints)
+}
+
+/// The stacked method's settings as the plan records them.
+fn method_settings(stack: &Stack, s: &Settings) -> BTreeMap<String, SettingValue> {
     let mut method_settings = BTreeMap::new();
     let axis = match s.stacked.axis {
         StackAxis::Auto => "auto",
@@ -101,15 +134,5 @@ pub fn plan_input(stack: &Stack, state: &State) -> Result<PlanInput> {
         SettingValue::Numbers(vec![s.stacked.shaft_min_width, s.stacked.shaft_max_width]),
     );
     method_settings.insert("weld".to_string(), SettingValue::Number(0.0));
-    let model = need(&state.read, "stacked", "read")?;
-    let source = SourceInfo {
-        name: model.name.clone(),
-        triangles: model.triangles.len() as u64,
-        bbox_min: model.bounds.min,
-        bbox_max: model.bounds.max,
-    };
-    let mut input = PlanInput::new(source, Method::Stacked, parts, joints);
-    input.settings = s.cut.clone();
-    input.method_settings = method_settings;
-    Ok(input)
+    method_settings
 }
