@@ -10,7 +10,7 @@
 //! | [`polygon`] | polygons with holes, areas, orientation |
 //! | [`boolean`] | union / intersection / difference, even-odd hole detection (i_overlay) |
 //! | [`offset`] | outward/inward offsets with miter joins (i_overlay) |
-//! | [`slab`] | plates as extruded polygons: where one plate's outline meets another's volume |
+//! | [`slab`] | plates and parts as extruded polygons: where one meets another's volume, points in or near one |
 //! | [`boxes`] | which pairs of 3D boxes come near each other (a sweep along x) |
 //! | [`frame`] | rigid 3D ↔ 2D frames of planes |
 //! | [`rng`] | the one seeded random generator (SplitMix64) |

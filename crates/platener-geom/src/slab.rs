@@ -35,16 +35,7 @@ pub const FACE_MARGIN: f64 = 1e-6;
 impl Slab {
     /// The model-space box `(min, max)` of the volume.
     pub fn model_bounds(&self) -> (DVec3, DVec3) {
-        let mut lo = DVec3::splat(f64::INFINITY);
-        let mut hi = DVec3::splat(f64::NEG_INFINITY);
-        for p in &self.polygon.outer {
-            for z in [0.0, self.thickness] {
-                let q = self.frame.to_model(DVec3::new(p.x, p.y, z));
-                lo = lo.min(q);
-                hi = hi.max(q);
-            }
-        }
-        (lo, hi)
+        extruded_bounds(&self.frame, &self.polygon.outer, self.thickness)
     }
 
     /// The volume in mm³ (0 for an outline whose holes cover it).
@@ -135,6 +126,21 @@ impl Slab {
         };
         boolean::intersection(std::slice::from_ref(&self.polygon), &[strip])
     }
+}
+
+/// The model-space box `(min, max)` of `ring` (in `frame`'s plane) extruded from local
+/// z = 0 to z = `thickness`.
+pub fn extruded_bounds(frame: &Frame, ring: &[DVec2], thickness: f64) -> (DVec3, DVec3) {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for p in ring {
+        for z in [0.0, thickness] {
+            let q = frame.to_model(DVec3::new(p.x, p.y, z));
+            lo = lo.min(q);
+            hi = hi.max(q);
+        }
+    }
+    (lo, hi)
 }
 
 /// The part of the box `min`–`max` where `lo ≤ n · p ≤ hi`, as a counter-clockwise polygon
