@@ -4,6 +4,7 @@ use std::fmt::Write as _;
 
 use platener::glam::DVec3;
 use platener::inspect::{Inspection, PlatesReport, inspect};
+use platener::plates::Coverage;
 use platener::{Cancel, Source};
 
 use crate::args::InspectArgs;
@@ -93,39 +94,8 @@ pub fn render(r: &Inspection) -> String {
         r.planar_groups,
         r.shapes
     );
-    if !r.largest_shapes.is_empty() {
-        let _ = writeln!(
-            s,
-            "largest shapes:\n  {:>3}  {:>12}  {:<22} {:>5} {:>8}  at",
-            "#", "area mm²", "normal", "holes", "vertices"
-        );
-        for (i, sh) in r.largest_shapes.iter().enumerate() {
-            let _ = writeln!(
-                s,
-                "  {:>3}  {:>12.2}  {:<22} {:>5} {:>8}  {}",
-                i + 1,
-                sh.area,
-                v3(sh.normal),
-                sh.holes,
-                sh.vertices,
-                v3(sh.at)
-            );
-        }
-    }
-    let warnings: Vec<_> = r.warnings().collect();
-    if !warnings.is_empty() {
-        let _ = writeln!(s, "warnings:");
-        for w in warnings {
-            let _ = writeln!(s, "  [{}] {}", w.step, w.message);
-        }
-    }
-    let times: Vec<String> = r
-        .steps
-        .iter()
-        .map(|st| format!("{} {:.1}", st.name, st.millis))
-        .collect();
-    let total: f64 = r.steps.iter().map(|st| st.millis).sum();
-    let _ = writeln!(s, "steps (ms) {} · total {:.1}", times.join(" · "), total);
+    render_largest_shapes(&mut s, r);
+    render_warnings_and_steps(&mut s, r);
     s
 }
 
@@ -162,6 +132,54 @@ pub fn render_plates(r: &PlatesReport, offered: &[f64]) -> String {
             100.0 * t.surface_share
         );
     }
+    render_plate_table(&mut s, r);
+    render_coverage(&mut s, c, offered);
+    s
+}
+
+/// The table of the largest planar shapes, if there are any.
+fn render_largest_shapes(s: &mut String, r: &Inspection) {
+    if !r.largest_shapes.is_empty() {
+        let _ = writeln!(
+            s,
+            "largest shapes:\n  {:>3}  {:>12}  {:<22} {:>5} {:>8}  at",
+            "#", "area mm²", "normal", "holes", "vertices"
+        );
+        for (i, sh) in r.largest_shapes.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "  {:>3}  {:>12.2}  {:<22} {:>5} {:>8}  {}",
+                i + 1,
+                sh.area,
+                v3(sh.normal),
+                sh.holes,
+                sh.vertices,
+                v3(sh.at)
+            );
+        }
+    }
+}
+
+/// The warnings and the time each step took.
+fn render_warnings_and_steps(s: &mut String, r: &Inspection) {
+    let warnings: Vec<_> = r.warnings().collect();
+    if !warnings.is_empty() {
+        let _ = writeln!(s, "warnings:");
+        for w in warnings {
+            let _ = writeln!(s, "  [{}] {}", w.step, w.message);
+        }
+    }
+    let times: Vec<String> = r
+        .steps
+        .iter()
+        .map(|st| format!("{} {:.1}", st.name, st.millis))
+        .collect();
+    let total: f64 = r.steps.iter().map(|st| st.millis).sum();
+    let _ = writeln!(s, "steps (ms) {} · total {:.1}", times.join(" · "), total);
+}
+
+/// One row per plate, if there are any.
+fn render_plate_table(s: &mut String, r: &PlatesReport) {
     if !r.plates.is_empty() {
         let _ = writeln!(
             s,
@@ -184,6 +202,10 @@ pub fn render_plates(r: &PlatesReport, offered: &[f64]) -> String {
             );
         }
     }
+}
+
+/// The coverage of the largest planar shapes: which plate each became, or why none.
+fn render_coverage(s: &mut String, c: &Coverage, offered: &[f64]) {
     let mut order: Vec<_> = c.shapes.iter().collect();
     order.sort_by(|a, b| b.area.total_cmp(&a.area));
     let _ = writeln!(
@@ -217,5 +239,4 @@ pub fn render_plates(r: &PlatesReport, offered: &[f64]) -> String {
             what
         );
     }
-    s
 }

@@ -10,9 +10,10 @@
 //! | [`polygon`] | polygons with holes, areas, orientation |
 //! | [`boolean`] | union / intersection / difference, even-odd hole detection (i_overlay) |
 //! | [`offset`] | outward/inward offsets with miter joins (i_overlay) |
-//! | [`slab`] | plates as extruded polygons: where one plate's outline meets another's volume |
+//! | [`slab`] | plates and parts as extruded polygons: where one meets another's volume, points in or near one |
 //! | [`boxes`] | which pairs of 3D boxes come near each other (a sweep along x) |
 //! | [`frame`] | rigid 3D ↔ 2D frames of planes |
+//! | [`rng`] | the one seeded random generator (SplitMix64) |
 //! | [`triangulate`] | triangles covering a polygon with holes (i_triangle), for 3D scenes |
 //! | [`dedup`] | finding equal items among millions (sorted fingerprints) |
 //! | [`weld`] | merging nearby points in 2D or 3D (spatial hash) |
@@ -24,6 +25,7 @@ pub mod frame;
 pub mod grid;
 pub mod offset;
 pub mod polygon;
+pub mod rng;
 pub mod slab;
 pub mod tolerance;
 pub mod triangulate;

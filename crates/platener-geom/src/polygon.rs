@@ -73,6 +73,35 @@ pub fn ring_contains(ring: &[DVec2], p: DVec2) -> bool {
     inside
 }
 
+/// Axis-aligned bounds `(min, max)` of some points (a ring's, say); `(+∞, −∞)` when there
+/// are none.
+pub fn bounds_of(points: impl IntoIterator<Item = DVec2>) -> (DVec2, DVec2) {
+    points.into_iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p), hi.max(p)),
+    )
+}
+
+/// Squared distance from `p` to the segment `ab` (a point when `a == b`).
+pub fn segment_distance_squared(a: DVec2, b: DVec2, p: DVec2) -> f64 {
+    let d = b - a;
+    let len2 = d.length_squared();
+    let t = if len2 > 0.0 {
+        ((p - a).dot(d) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a + d * t).distance_squared(p)
+}
+
+/// Squared distance from `p` to the edges of the closed `ring` (+∞ for an empty ring).
+pub fn ring_distance_squared(ring: &[DVec2], p: DVec2) -> f64 {
+    let n = ring.len();
+    (0..n)
+        .map(|i| segment_distance_squared(ring[i], ring[(i + 1) % n], p))
+        .fold(f64::INFINITY, f64::min)
+}
+
 impl Polygon {
     /// A polygon without holes.
     pub fn new(outer: Ring) -> Self {
@@ -103,14 +132,15 @@ impl Polygon {
 
     /// Distance from `p` to the nearest point of the polygon's boundary, inside or out.
     pub fn boundary_distance(&self, p: DVec2) -> f64 {
+        self.boundary_distance_squared(p).sqrt()
+    }
+
+    /// Squared distance from `p` to the nearest point of the polygon's boundary (outer ring
+    /// and holes): compare it with a squared length to avoid the square root.
+    pub fn boundary_distance_squared(&self, p: DVec2) -> f64 {
         std::iter::once(&self.outer)
             .chain(&self.holes)
-            .flat_map(|ring| (0..ring.len()).map(move |i| (ring[i], ring[(i + 1) % ring.len()])))
-            .map(|(a, b)| {
-                let d = b - a;
-                let s = ((p - a).dot(d) / d.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
-                p.distance(a + d * s)
-            })
+            .map(|ring| ring_distance_squared(ring, p))
             .fold(f64::INFINITY, f64::min)
     }
 
@@ -121,10 +151,7 @@ impl Polygon {
 
     /// Axis-aligned bounds `(min, max)` of the outer ring.
     pub fn bounds(&self) -> (DVec2, DVec2) {
-        self.outer.iter().fold(
-            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-        )
+        bounds_of(self.outer.iter().copied())
     }
 
     /// Puts the rings in the plan.json orientation: outer counter-clockwise, holes clockwise.

@@ -6,6 +6,9 @@
 //! it. [`Slab::columns_meeting`] answers it: the region of this slab's outline whose columns
 //! (segments through the thickness) meet the other slab's volume. It is exact when the planes
 //! are parallel or perpendicular; at other angles it may include a little more, never less.
+//!
+//! A slab is also a part as a solid (verify and the score rebuild a plan's parts as slabs):
+//! [`Slab::contains`] and [`Slab::within`] answer whether a model point is in it or near it.
 
 use glam::{DVec2, DVec3};
 
@@ -25,7 +28,41 @@ pub struct Slab {
     pub thickness: f64,
 }
 
+/// Points closer than this (mm, 1 nm) to a slab's face count as outside it, so that parts
+/// merely touching face to face do not interfere.
+pub const FACE_MARGIN: f64 = 1e-6;
+
 impl Slab {
+    /// The model-space box `(min, max)` of the volume.
+    pub fn model_bounds(&self) -> (DVec3, DVec3) {
+        extruded_bounds(&self.frame, &self.polygon.outer, self.thickness)
+    }
+
+    /// The volume in mm³ (0 for an outline whose holes cover it).
+    pub fn volume(&self) -> f64 {
+        self.polygon.area().max(0.0) * self.thickness
+    }
+
+    /// Whether the model point `p` is inside the volume; points within [`FACE_MARGIN`] of a
+    /// face count as outside.
+    pub fn contains(&self, p: DVec3) -> bool {
+        let l = self.frame.to_local(p);
+        l.z > FACE_MARGIN && l.z < self.thickness - FACE_MARGIN && self.polygon.contains(DVec2::new(l.x, l.y))
+    }
+
+    /// Whether the model point `p` is within `reach` of the volume (exact for a slab: the
+    /// in-plane distance to the outline and the distance along the normal combine by
+    /// Pythagoras).
+    pub fn within(&self, p: DVec3, reach: f64) -> bool {
+        let l = self.frame.to_local(p);
+        let dz = (-l.z).max(l.z - self.thickness).max(0.0);
+        if dz > reach {
+            return false;
+        }
+        let q = DVec2::new(l.x, l.y);
+        self.polygon.contains(q) || self.polygon.boundary_distance_squared(q) <= reach * reach - dz * dz
+    }
+
     /// The region of `self.polygon` whose columns meet `other`'s volume, shrunk by `clearance`
     /// mm on the slab intervals so that slabs merely touching face to face give nothing.
     pub fn columns_meeting(&self, other: &Slab, clearance: f64) -> Result<Vec<Polygon>, GridError> {
@@ -89,6 +126,21 @@ impl Slab {
         };
         boolean::intersection(std::slice::from_ref(&self.polygon), &[strip])
     }
+}
+
+/// The model-space box `(min, max)` of `ring` (in `frame`'s plane) extruded from local
+/// z = 0 to z = `thickness`.
+pub fn extruded_bounds(frame: &Frame, ring: &[DVec2], thickness: f64) -> (DVec3, DVec3) {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for p in ring {
+        for z in [0.0, thickness] {
+            let q = frame.to_model(DVec3::new(p.x, p.y, z));
+            lo = lo.min(q);
+            hi = hi.max(q);
+        }
+    }
+    (lo, hi)
 }
 
 /// The part of the box `min`–`max` where `lo ≤ n · p ≤ hi`, as a counter-clockwise polygon

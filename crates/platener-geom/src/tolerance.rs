@@ -5,6 +5,22 @@
 
 use serde::Serialize;
 
+/// Pieces of a boolean or offset result smaller than this (mm²) are rounding noise of the
+/// [1 µm grid](crate::grid::STEP), not material: a sliver one grid step wide and 0.1 mm long.
+/// Slivers a laser cannot cut are found by width (an opening), not by this area; this only
+/// tells an empty result from a real one.
+pub const GRID_NOISE_AREA: f64 = 1e-4;
+
+/// Overlaps between two plates' volumes smaller than this (mm²) are grid noise: ten times
+/// [`GRID_NOISE_AREA`], because such an overlap comes from two booleans computed through two
+/// different plates' frames, each rounding by up to a grid step.
+pub const OVERLAP_NOISE_AREA: f64 = 1e-3;
+
+/// Islands of a stacked layer under this area (mm²) are crumbs of the slicing booleans (a
+/// 0.1 × 0.1 mm speck), not material: dropped without a report. Islands above it but too small
+/// to cut are dropped by the minimum area and width settings, and reported.
+pub const CRUMB_AREA: f64 = 0.01;
+
 /// Tolerances of a conversion. Lengths in mm, angles in radians.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Tolerances {

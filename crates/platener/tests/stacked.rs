@@ -148,38 +148,17 @@ fn volume_inside_ball(plan: &Plan, center: DVec3, radius: f64) -> (f64, f64) {
     (inside, total)
 }
 
-/// Distance from `q` to a part's volume.
-fn distance_to_part(p: &PlanPart, q: DVec3) -> f64 {
-    let l = frame(p).to_local(q);
-    let dz = (-l.z).max(l.z - p.thickness).max(0.0);
-    let poly = polygon(p);
-    let flat = l.truncate();
-    let d2 = if poly.contains(flat) {
-        0.0
-    } else {
-        std::iter::once(&poly.outer)
-            .chain(&poly.holes)
-            .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
-            .map(|(a, b)| {
-                let ab = b - a;
-                let t = ((flat - a).dot(ab) / ab.length_squared().max(1e-300)).clamp(0.0, 1.0);
-                (a + ab * t).distance(flat)
-            })
-            .fold(f64::INFINITY, f64::min)
-    };
-    dz.hypot(d2)
-}
-
 /// Share of evenly spread points of the sphere's surface within `reach` of some part.
 fn surface_covered(plan: &Plan, center: DVec3, radius: f64, reach: f64) -> f64 {
     let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let slabs: Vec<Slab> = plan.parts.iter().map(slab).collect();
     let covered = (0..SURFACE_SAMPLES)
         .filter(|&i| {
             let z = 1.0 - 2.0 * (i as f64 + 0.5) / SURFACE_SAMPLES as f64;
             let r = (1.0 - z * z).sqrt();
             let a = golden * i as f64;
             let q = center + radius * DVec3::new(r * a.cos(), r * a.sin(), z);
-            plan.parts.iter().any(|p| distance_to_part(p, q) <= reach)
+            slabs.iter().any(|s| s.within(q, reach))
         })
         .count();
     covered as f64 / SURFACE_SAMPLES as f64

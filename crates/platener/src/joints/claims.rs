@@ -14,14 +14,12 @@ use platener_geom::boxes::{Box3, near_pairs};
 use platener_geom::offset::{offset, opening};
 use platener_geom::polygon::total_area;
 use platener_geom::slab::Slab;
+use platener_geom::tolerance::OVERLAP_NOISE_AREA;
 use platener_geom::{GridError, Polygon, polygon};
 
 use super::connect::Region;
 use super::fingers::{HAIRLINE, of_plate};
 use crate::plates::Plate;
-
-/// Overlaps smaller than this (mm²) are grid noise.
-const NOISE_AREA: f64 = 1e-3;
 
 /// The joint regions between two plates, in each one's plane: what their joints decided.
 pub(super) type Decided = BTreeMap<(usize, usize), [Vec<Polygon>; 2]>;
@@ -105,11 +103,11 @@ fn give_way(
     if let Some(regions) = decided.get(&(i.min(j), i.max(j))) {
         mine = difference(&mine, &regions[usize::from(j > i)])?;
     }
-    if total_area(&mine) < NOISE_AREA {
+    if total_area(&mine) < OVERLAP_NOISE_AREA {
         return Ok(false);
     }
     let cut = columns_meeting(pj, &mine, &plates[i].slab_of(outlines[i].clone()), 1e-3)?;
-    if total_area(&cut) < NOISE_AREA {
+    if total_area(&cut) < OVERLAP_NOISE_AREA {
         return Ok(false);
     }
     let pieces = opening(&difference(std::slice::from_ref(&outlines[j]), &cut)?, HAIRLINE)?;
@@ -123,7 +121,7 @@ fn give_way(
 /// What of `outline` lies outside `plate`'s own outline.
 fn grown_by(plate: &Plate, outline: &Polygon) -> Result<Vec<Polygon>, GridError> {
     let mut g = difference(std::slice::from_ref(outline), std::slice::from_ref(&plate.polygon))?;
-    g.retain(|p| p.area() > NOISE_AREA);
+    g.retain(|p| p.area() > OVERLAP_NOISE_AREA);
     Ok(g)
 }
 

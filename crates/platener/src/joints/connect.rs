@@ -412,142 +412,216 @@ fn close_corners(plates: &[Plate], raw: &mut [Raw]) -> Result<(), GridError> {
 
 /// Every joint region between the plates.
 pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Region>, GridError> {
-    let sin_min = settings.min_angle_deg.to_radians().sin();
-    let t_max = plates.iter().map(|p| p.thickness).fold(0.0, f64::max);
-    // The furthest a plate grows towards a joint (the crossing of two layers, capped).
-    let reach = 2.0 * t_max / cap::CAP_DEG.to_radians().sin();
-    let bounds: Vec<Box3> = plates.iter().map(Plate::bounds).collect();
-    let mut pairs = near_pairs(&bounds, reach);
-    pairs.sort_unstable();
-    // Each plate's outline grown by twice the thinnest sheet's thickness: whatever lies
-    // within reaches a joint region. Plates end at the region's edge or inside it, but plate
-    // finding trims a plate back by up to about a thickness where it overlapped another (a
-    // quarter of it lost two of the four joints of plycutter's PlyTest), and at a filleted
-    // corner both plates end short of it (the smartphone stand's 2 mm fillets: 3.4 mm).
-    let t_min = plates.iter().map(|p| p.thickness).fold(f64::INFINITY, f64::min);
-    let reaching_as = |shape: Vec<Polygon>| -> Result<Reaching, GridError> {
+    let mut finding = Finding::new(plates)?;
+    finding.meet_pairwise(settings)?;
+    finding.drop_bridges()?;
+    finding.reach_through_joints()?;
+    let lines = finding.junction_lines();
+    finding.redo_junctions(&lines)?;
+    finding.raw.sort_by_key(|r| (r.a, r.b));
+    close_corners(plates, &mut finding.raw)?;
+    let mut regions = Vec::with_capacity(finding.raw.len());
+    // The junction line of each region.
+    let mut lines_of = Vec::with_capacity(finding.raw.len());
+    for r in &finding.raw {
+        if let Some(region) = finding.region(r)? {
+            regions.push(region);
+            lines_of.push(r.line);
+        }
+    }
+    on_lines(&mut regions, &lines_of, &lines);
+    Ok(regions)
+}
+
+/// Where plates meet, as found so far: the shared volumes of pairs of plates, from first
+/// finding them pair by pair to the joints on junction lines. Each phase reads what the
+/// earlier ones found, so they share this state.
+struct Finding<'a> {
+    plates: &'a [Plate],
+    /// The thinnest plate's thickness.
+    t_min: f64,
+    /// The thickest plate's thickness.
+    t_max: f64,
+    /// The furthest a plate grows towards a joint (the crossing of two layers, capped).
+    reach: f64,
+    /// How far each plate reaches a joint.
+    reaching: Vec<Reaching>,
+    /// The shared volumes found.
+    raw: Vec<Raw>,
+    /// Pairs of plates near each other that share no volume on the first pass.
+    unreached: Vec<(usize, usize)>,
+    /// How many of `raw` were found pair by pair (the rest through other joints).
+    strict: usize,
+}
+
+impl<'a> Finding<'a> {
+    /// Each plate reaching joints with its own outline.
+    fn new(plates: &'a [Plate]) -> Result<Self, GridError> {
+        let t_max = plates.iter().map(|p| p.thickness).fold(0.0, f64::max);
+        let t_min = plates.iter().map(|p| p.thickness).fold(f64::INFINITY, f64::min);
+        let mut finding = Self {
+            plates,
+            t_min,
+            t_max,
+            reach: 2.0 * t_max / cap::CAP_DEG.to_radians().sin(),
+            reaching: Vec::with_capacity(plates.len()),
+            raw: Vec::new(),
+            unreached: Vec::new(),
+            strict: 0,
+        };
+        for p in plates {
+            let reaching = finding.reaching_as(vec![p.polygon.clone()])?;
+            finding.reaching.push(reaching);
+        }
+        Ok(finding)
+    }
+
+    /// A plate as far as it reaches joints with `shape`: whatever lies within twice the
+    /// thinnest sheet's thickness reaches a joint region. Plates end at the region's edge or
+    /// inside it, but plate finding trims a plate back by up to about a thickness where it
+    /// overlapped another (a quarter of it lost two of the four joints of plycutter's
+    /// PlyTest), and at a filleted corner both plates end short of it (the smartphone
+    /// stand's 2 mm fillets: 3.4 mm).
+    fn reaching_as(&self, shape: Vec<Polygon>) -> Result<Reaching, GridError> {
         Ok(Reaching {
-            near: offset(&shape, 2.0 * t_min)?,
+            near: offset(&shape, 2.0 * self.t_min)?,
             shape,
         })
-    };
-    let mut reaching: Vec<Reaching> = plates
-        .iter()
-        .map(|p| reaching_as(vec![p.polygon.clone()]))
-        .collect::<Result<_, _>>()?;
-    let mut raw = Vec::new();
-    let mut unreached = Vec::new();
-    for (a, b) in pairs {
-        let (pa, pb) = (&plates[a], &plates[b]);
-        if pa.frame.n.cross(pb.frame.n).length() < sin_min {
-            continue;
-        }
-        let found = shared(plates, &reaching, a, b, &[], &[])?;
-        if found.is_empty() {
-            unreached.push((a, b));
-        }
-        raw.extend(found);
     }
-    let bridges = bridge::bridging(plates, &raw, t_min / 2.0)?;
-    raw = raw
-        .into_iter()
-        .zip(bridges)
-        .filter(|(_, b)| !b)
-        .map(|(r, _)| r)
-        .collect();
-    // A plate may reach a joint only through its joints with others: a wall ending against
-    // one side of a V still meets the board the V stands on, on the same line.
-    let mut via: Vec<Vec<Polygon>> = plates.iter().map(|p| vec![p.polygon.clone()]).collect();
-    for r in &raw {
-        via[r.a].push(r.in_a.clone());
-        via[r.b].push(r.in_b.clone());
+
+    /// The shared volumes of every pair of plates near each other and not too close to
+    /// parallel; the pairs that share none are kept for a second look.
+    fn meet_pairwise(&mut self, settings: &JointSettings) -> Result<(), GridError> {
+        let sin_min = settings.min_angle_deg.to_radians().sin();
+        let bounds: Vec<Box3> = self.plates.iter().map(Plate::bounds).collect();
+        let mut pairs = near_pairs(&bounds, self.reach);
+        pairs.sort_unstable();
+        for (a, b) in pairs {
+            let (pa, pb) = (&self.plates[a], &self.plates[b]);
+            if pa.frame.n.cross(pb.frame.n).length() < sin_min {
+                continue;
+            }
+            let found = shared(self.plates, &self.reaching, a, b, &[], &[])?;
+            if found.is_empty() {
+                self.unreached.push((a, b));
+            }
+            self.raw.extend(found);
+        }
+        Ok(())
     }
-    let strict = raw.len();
-    let mut regrown = vec![false; plates.len()];
-    for &(a, b) in &unreached {
-        for p in [a, b] {
-            if !regrown[p] && via[p].len() > 1 {
-                reaching[p] = reaching_as(union_all(&via[p])?)?;
-                regrown[p] = true;
+
+    /// Drops the shared volumes that only bridge a gap (see [`bridge::bridging`]).
+    fn drop_bridges(&mut self) -> Result<(), GridError> {
+        let bridges = bridge::bridging(self.plates, &self.raw, self.t_min / 2.0)?;
+        self.raw = std::mem::take(&mut self.raw)
+            .into_iter()
+            .zip(bridges)
+            .filter(|(_, b)| !b)
+            .map(|(r, _)| r)
+            .collect();
+        Ok(())
+    }
+
+    /// A plate may reach a joint only through its joints with others: a wall ending against
+    /// one side of a V still meets the board the V stands on, on the same line. The pairs
+    /// that shared nothing are tried again with such plates grown by their joints.
+    fn reach_through_joints(&mut self) -> Result<(), GridError> {
+        let plates = self.plates;
+        let mut via: Vec<Vec<Polygon>> = plates.iter().map(|p| vec![p.polygon.clone()]).collect();
+        for r in &self.raw {
+            via[r.a].push(r.in_a.clone());
+            via[r.b].push(r.in_b.clone());
+        }
+        self.strict = self.raw.len();
+        let mut regrown = vec![false; plates.len()];
+        for (a, b) in self.unreached.clone() {
+            for p in [a, b] {
+                if !regrown[p] && via[p].len() > 1 {
+                    self.reaching[p] = self.reaching_as(union_all(&via[p])?)?;
+                    regrown[p] = true;
+                }
+            }
+            if regrown[a] || regrown[b] {
+                let found = shared(plates, &self.reaching, a, b, &[], &[])?;
+                self.raw.extend(found);
             }
         }
-        if regrown[a] || regrown[b] {
-            raw.extend(shared(plates, &reaching, a, b, &[], &[])?);
-        }
+        Ok(())
     }
-    let min_length = t_max / 2.0;
-    // Three or more plates on one line: each reaches past the line only as far as the model
-    // goes, and their connections take turns in one row of fingers.
-    let mut lines = junction::lines(plates, &raw, t_min / 2.0);
-    // …and only on such a line.
-    if raw.len() > strict {
+
+    /// Three or more plates on one line: each reaches past the line only as far as the model
+    /// goes, and their connections take turns in one row of fingers. Joints found through
+    /// other joints are kept only on such a line.
+    fn junction_lines(&mut self) -> Vec<junction::Line> {
+        let lines = junction::lines(self.plates, &self.raw, self.t_min / 2.0);
+        if self.raw.len() <= self.strict {
+            return lines;
+        }
         let on_line: std::collections::BTreeSet<usize> = lines.iter().flat_map(|l| l.members.iter().copied()).collect();
         let mut k = 0;
-        raw.retain(|_| {
+        let strict = self.strict;
+        self.raw.retain(|_| {
             k += 1;
             k <= strict || on_line.contains(&(k - 1))
         });
-        lines = junction::lines(plates, &raw, t_min / 2.0);
+        junction::lines(self.plates, &self.raw, self.t_min / 2.0)
     }
-    let mut redone = Vec::new();
-    for (id, line) in lines.iter().enumerate() {
-        // A plate passing through the line keeps its own outline on both sides.
-        let beyond = |w: usize| -> Vec<Polygon> {
-            if junction::passes(&plates[w], line) {
-                return Vec::new();
+
+    /// The joints of each pair of plates on a junction line, found again with each plate
+    /// kept from reaching beyond the line (unless it passes through it).
+    fn redo_junctions(&mut self, lines: &[junction::Line]) -> Result<(), GridError> {
+        let (plates, reach) = (self.plates, self.reach);
+        let mut redone = Vec::new();
+        for (id, line) in lines.iter().enumerate() {
+            // A plate passing through the line keeps its own outline on both sides.
+            let beyond = |w: usize| -> Vec<Polygon> {
+                if junction::passes(&plates[w], line) {
+                    return Vec::new();
+                }
+                let exit = junction::exit(plates, line, w, reach);
+                vec![junction::beyond(&plates[w], line, exit, reach)]
+            };
+            let mut pairs: Vec<(usize, usize)> = line.members.iter().map(|&i| (self.raw[i].a, self.raw[i].b)).collect();
+            pairs.sort_unstable();
+            pairs.dedup();
+            for (a, b) in pairs {
+                redone.push((a, b, shared(plates, &self.reaching, a, b, &beyond(a), &beyond(b))?, id));
             }
-            let exit = junction::exit(plates, line, w, reach);
-            vec![junction::beyond(&plates[w], line, exit, reach)]
-        };
-        let mut pairs: Vec<(usize, usize)> = line.members.iter().map(|&i| (raw[i].a, raw[i].b)).collect();
-        pairs.sort_unstable();
-        pairs.dedup();
-        for (a, b) in pairs {
-            redone.push((a, b, shared(plates, &reaching, a, b, &beyond(a), &beyond(b))?, id));
         }
+        self.raw
+            .retain(|r| !redone.iter().any(|(a, b, _, _)| (*a, *b) == (r.a, r.b)));
+        for (_, _, stretches, id) in redone {
+            self.raw
+                .extend(stretches.into_iter().map(|r| Raw { line: Some(id), ..r }));
+        }
+        Ok(())
     }
-    raw.retain(|r| !redone.iter().any(|(a, b, _, _)| (*a, *b) == (r.a, r.b)));
-    for (_, _, stretches, id) in redone {
-        raw.extend(stretches.into_iter().map(|r| Raw { line: Some(id), ..r }));
-    }
-    raw.sort_by_key(|r| (r.a, r.b));
-    close_corners(plates, &mut raw)?;
-    let mut regions = Vec::with_capacity(raw.len());
-    // The junction line of each region.
-    let mut lines_of = Vec::with_capacity(raw.len());
-    for r in &raw {
+
+    /// The joint region of the shared volume `r`: trimmed to where both plates run along
+    /// the line, its kind, angle and how far each plate grows into it. `None` when less than
+    /// half the thickest sheet's thickness of it is left.
+    fn region(&self, r: &Raw) -> Result<Option<Region>, GridError> {
+        let (plates, raw) = (self.plates, &self.raw);
         let (pa, pb) = (&plates[r.a], &plates[r.b]);
         // Growing in every direction also lengthened the joint past the plates' ends; along the
         // joint line a plate only reaches as far as it is, or as another connection (a box
         // corner's third plate) takes it.
         let (la, lb) = (
-            reach_along(plates, &raw, r.a, r.b, r.axis),
-            reach_along(plates, &raw, r.b, r.a, r.axis),
+            reach_along(plates, raw, r.a, r.b, r.axis),
+            reach_along(plates, raw, r.b, r.a, r.axis),
         );
         let own = extent(pa, &r.in_a, r.axis);
         let range = (la.0.max(lb.0).max(own.0), la.1.min(lb.1).min(own.1));
-        if range.1 - range.0 < min_length {
-            continue;
+        if range.1 - range.0 < self.t_max / 2.0 {
+            return Ok(None);
         }
         let (Some(ra), Some(rb)) = (
             largest(band(pa, &r.in_a, r.axis, range.0, range.1)?),
             largest(band(pb, &r.in_b, r.axis, range.0, range.1)?),
         ) else {
-            continue;
+            return Ok(None);
         };
-        let passes = |p: &Plate, region: &Polygon| -> Result<bool, GridError> {
-            let outside = total_area(&difference(
-                std::slice::from_ref(region),
-                std::slice::from_ref(&p.polygon),
-            )?);
-            Ok(outside < 1e-6 * region.area().max(1.0))
-        };
-        let (kind, through) = match (passes(pa, &ra)?, passes(pb, &rb)?) {
-            (false, false) => (ConnectionKind::Corner, None),
-            (true, false) => (ConnectionKind::Tee, Some(r.a)),
-            (false, true) => (ConnectionKind::Tee, Some(r.b)),
-            (true, true) => (ConnectionKind::Cross, None),
-        };
+        let (kind, through) = kind_of(r, (pa, &ra), (pb, &rb))?;
         // Towards 180° (and 0°) the layers' crossing is long: fingers reach only as far past
         // the middle line as at 150°, and a shorter variant stands by for plates the full
         // one would cut apart.
@@ -560,14 +634,6 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
             (ra, rb, None)
         };
         let center = centroid(pa, &ra);
-        let angle_deg = match kind {
-            ConnectionKind::Corner => {
-                let (da, db) = (into_plate(pa, r.axis, center), into_plate(pb, r.axis, center));
-                da.dot(db).clamp(-1.0, 1.0).acos().to_degrees()
-            }
-            // The plate ending against a face makes two angles with it; the smaller is named.
-            _ => pa.frame.n.dot(pb.frame.n).abs().clamp(0.0, 1.0).acos().to_degrees(),
-        };
         let reach = |sa: Polygon, sb: Polygon| -> Result<Reach, GridError> {
             Ok(Reach {
                 reach_a: extension(pa, &sa, r.axis, range, growth(pa, pb))?,
@@ -583,7 +649,7 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
             reach_a,
             reach_b,
         } = reach(ra, rb)?;
-        regions.push(Region {
+        Ok(Some(Region {
             a: r.a,
             b: r.b,
             in_a,
@@ -593,15 +659,54 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
             short: short.map(Box::new),
             kind,
             through,
-            angle_deg,
+            angle_deg: angle_of(kind, pa, pb, r.axis, center),
             axis: r.axis,
             range,
             center,
             junction: None,
-        });
-        lines_of.push(r.line);
+        }))
     }
-    // Each junction spans its connections' final extents (the raw ones reach past the plates).
+}
+
+/// Whether `region` (in `p`'s plane) lies within the plate's own outline.
+fn passes(p: &Plate, region: &Polygon) -> Result<bool, GridError> {
+    let outside = total_area(&difference(
+        std::slice::from_ref(region),
+        std::slice::from_ref(&p.polygon),
+    )?);
+    Ok(outside < 1e-6 * region.area().max(1.0))
+}
+
+/// How the plates of `r` meet, from whether each one's region lies within its outline (a
+/// plate passing through) or not (a plate ending there); for a T, the plate passing through.
+fn kind_of(
+    r: &Raw,
+    (pa, ra): (&Plate, &Polygon),
+    (pb, rb): (&Plate, &Polygon),
+) -> Result<(ConnectionKind, Option<usize>), GridError> {
+    Ok(match (passes(pa, ra)?, passes(pb, rb)?) {
+        (false, false) => (ConnectionKind::Corner, None),
+        (true, false) => (ConnectionKind::Tee, Some(r.a)),
+        (false, true) => (ConnectionKind::Tee, Some(r.b)),
+        (true, true) => (ConnectionKind::Cross, None),
+    })
+}
+
+/// The angle (degrees) the plates enclose at a joint of `kind` along `axis` through `center`.
+fn angle_of(kind: ConnectionKind, pa: &Plate, pb: &Plate, axis: DVec3, center: DVec3) -> f64 {
+    match kind {
+        ConnectionKind::Corner => {
+            let (da, db) = (into_plate(pa, axis, center), into_plate(pb, axis, center));
+            da.dot(db).clamp(-1.0, 1.0).acos().to_degrees()
+        }
+        // The plate ending against a face makes two angles with it; the smaller is named.
+        _ => pa.frame.n.dot(pb.frame.n).abs().clamp(0.0, 1.0).acos().to_degrees(),
+    }
+}
+
+/// Each junction spans its connections' final extents (the raw ones reach past the plates):
+/// every region on line `id` (`lines_of`) gets it.
+fn on_lines(regions: &mut [Region], lines_of: &[Option<usize>], lines: &[junction::Line]) {
     for (id, line) in lines.iter().enumerate() {
         let mine: Vec<usize> = (0..regions.len()).filter(|&k| lines_of[k] == Some(id)).collect();
         let range = mine.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |acc, &k| {
@@ -618,5 +723,4 @@ pub(super) fn find(plates: &[Plate], settings: &JointSettings) -> Result<Vec<Reg
             regions[k].junction = Some(junction.clone());
         }
     }
-    Ok(regions)
 }

@@ -4,6 +4,7 @@ use glam::DVec2;
 use platener_geom::boolean::{difference, intersection, union_all};
 use platener_geom::offset::{closing, offset, opening};
 use platener_geom::polygon::total_area;
+use platener_geom::tolerance::GRID_NOISE_AREA;
 use platener_geom::{GridError, Polygon};
 
 use super::connect::{Region, band};
@@ -90,9 +91,6 @@ fn barb(
 
 /// Gaps narrower than this (mm) between a plate and its joint regions are grid noise.
 pub(super) const HAIRLINE: f64 = 0.01;
-
-/// Pieces smaller than this (mm²) are grid noise, not slivers.
-const NOISE_AREA: f64 = 1e-4;
 
 /// The union of a plate and its joint regions. A region computed through another plate's
 /// frame can miss its plate by a grid step; a closing (with sharp miter corners) fills such
@@ -303,7 +301,7 @@ fn finish(
     let r = 0.499 * min_feature;
     let opened = intersection(&opening(&pieces, r)?, &pieces)?;
     let mut slivers = difference(&pieces, &opened)?;
-    slivers.retain(|p| p.area() > NOISE_AREA);
+    slivers.retain(|p| p.area() > GRID_NOISE_AREA);
     if !slivers.is_empty() {
         // Only where the joints changed the plate: its growth and what its partners took.
         let mut changed = difference(outline, std::slice::from_ref(&plate.polygon))?;
@@ -315,7 +313,7 @@ fn finish(
     // Debris: pieces with nothing a laser could cut (the sliver's rim left by the grid).
     let mut kept = Vec::with_capacity(pieces.len());
     for (n, p) in pieces.into_iter().enumerate() {
-        if n == 0 || total_area(&opening(std::slice::from_ref(&p), r)?) > NOISE_AREA {
+        if n == 0 || total_area(&opening(std::slice::from_ref(&p), r)?) > GRID_NOISE_AREA {
             kept.push(p);
         }
     }
@@ -341,7 +339,7 @@ pub(super) fn of_plate(plate: &Plate, mut pieces: Vec<Polygon>) -> Result<Vec<Po
         pieces = kept
             .into_iter()
             .enumerate()
-            .filter(|(k, (inside, _))| *k == 0 || *inside > NOISE_AREA)
+            .filter(|(k, (inside, _))| *k == 0 || *inside > GRID_NOISE_AREA)
             .map(|(_, (_, p))| p)
             .collect();
     }
@@ -391,228 +389,378 @@ fn outline(plate: &Plate, used: &[Region], touching: &[(usize, usize)]) -> Resul
     joined(&grown)
 }
 
+/// Cuts every joint `regions` names into its two plates: fingers, tabs and slots, adapted
+/// where they would cut a plate apart, then the claims settled and the joints labelled.
 pub(super) fn apply(
     plates: &[Plate],
     regions: Vec<Region>,
     settings: &JointSettings,
     style: JointStyle,
 ) -> Result<Joints, GridError> {
-    // Per plate: its connections and its side (0 = a, 1 = b) in each.
-    let mut touching: Vec<Vec<(usize, usize)>> = vec![Vec::new(); plates.len()];
-    for (k, r) in regions.iter().enumerate() {
-        touching[r.a].push((k, 0));
-        touching[r.b].push((k, 1));
+    let mut cutting = Cutting::new(plates, regions, settings, style)?;
+    cutting.shorten_where_split()?;
+    cutting.adapt()?;
+    cutting.into_joints()
+}
+
+/// A jointed edge of a plate (a segment in its frame) and the joint's label.
+type LabelledEdge = (u32, [DVec2; 2]);
+
+/// The joints of all plates being cut: what each connection's plan is so far, and what each
+/// plate looks like under them. Plates and joints depend on each other (a plate's pieces
+/// depend on all its joints, a joint adapts to keep a plate whole), so the phases share this
+/// state instead of passing a dozen vectors around.
+struct Cutting<'a> {
+    plates: &'a [Plate],
+    regions: Vec<Region>,
+    settings: &'a JointSettings,
+    style: JointStyle,
+    /// Per plate: its connections and its side (0 = a, 1 = b) in each.
+    touching: Vec<Vec<(usize, usize)>>,
+    /// Each joint as its current variant (shorter fingers or not).
+    used: Vec<Region>,
+    /// Each plate grown into its joint regions (each joint as its current variant).
+    outlines: Vec<Vec<Polygon>>,
+    /// How each connection is cut now.
+    plans: Vec<Plan>,
+    /// What each connection takes from and adds to its plates under its plan.
+    cuts: Vec<Cut>,
+    /// The plate each connection last adapted for, if it did.
+    adapted_for: Vec<Option<usize>>,
+    /// Each plate's pieces, kept until an adaptation changes one of its connections.
+    finished: Vec<Option<Vec<Polygon>>>,
+}
+
+impl<'a> Cutting<'a> {
+    /// Every plate grown into its joint regions, and every joint cut by its first plan: the
+    /// plates grow first, so that each then gives up the segments its partners own.
+    fn new(
+        plates: &'a [Plate],
+        regions: Vec<Region>,
+        settings: &'a JointSettings,
+        style: JointStyle,
+    ) -> Result<Self, GridError> {
+        let mut touching: Vec<Vec<(usize, usize)>> = vec![Vec::new(); plates.len()];
+        for (k, r) in regions.iter().enumerate() {
+            touching[r.a].push((k, 0));
+            touching[r.b].push((k, 1));
+        }
+        let used: Vec<Region> = regions.clone();
+        let outlines: Vec<Vec<Polygon>> = plates
+            .iter()
+            .zip(&touching)
+            .map(|(p, mine)| outline(p, &used, mine))
+            .collect::<Result<_, _>>()?;
+        let plans: Vec<Plan> = regions.iter().map(|r| first_plan(plates, r, settings, style)).collect();
+        let cuts: Vec<Cut> = regions
+            .iter()
+            .zip(&plans)
+            .map(|(r, &plan)| cut(plates, r, plan, style))
+            .collect::<Result<_, _>>()?;
+        Ok(Self {
+            plates,
+            adapted_for: vec![None; regions.len()],
+            finished: vec![None; plates.len()],
+            regions,
+            settings,
+            style,
+            touching,
+            used,
+            outlines,
+            plans,
+            cuts,
+        })
     }
-    // Every plate grows into its joint regions first (each joint as its current variant)…
-    let mut used: Vec<Region> = regions.clone();
-    let mut outlines: Vec<Vec<Polygon>> = plates
-        .iter()
-        .zip(&touching)
-        .map(|(p, mine)| outline(p, &used, mine))
-        .collect::<Result<_, _>>()?;
-    let feature = |i: usize| min_feature(plates[i].thickness);
-    // …then gives up the segments its partners own. Where that would cut a plate apart, the
-    // joint adapts: shorter fingers, then fewer, wider ones, else the plate keeps the whole
-    // joint region.
-    let mut plans: Vec<Plan> = regions.iter().map(|r| first_plan(plates, r, settings, style)).collect();
-    let mut cuts: Vec<Cut> = regions
-        .iter()
-        .zip(&plans)
-        .map(|(r, &plan)| cut(plates, r, plan, style))
-        .collect::<Result<_, _>>()?;
-    let mut adapted_for: Vec<Option<usize>> = vec![None; regions.len()];
-    let whole = |i: usize, cuts: &[Cut], outlines: &[Vec<Polygon>]| -> Result<Vec<Polygon>, GridError> {
-        let (remove, add) = gathered(cuts, &touching[i]);
-        finish(&plates[i], &outlines[i], &remove, &add, feature(i))
-    };
-    // Each plate's pieces, kept until an adaptation changes one of its connections.
-    let mut finished: Vec<Option<Vec<Polygon>>> = vec![None; plates.len()];
-    // First shorter fingers on every joint of a plate the full ones cut apart, all at once: on
-    // a low-poly model a facet falls apart under several neighbours' fingers together, and
-    // no one joint mends it alone. Shorter fingers can split a neighbour in turn, so again.
-    for _ in 0..3 {
-        let mut shortened = Vec::new();
-        for (i, mine) in touching.iter().enumerate() {
-            let pieces = finished[i].take().map_or_else(|| whole(i, &cuts, &outlines), Ok)?;
+
+    /// Plate `i`'s pieces, largest first, under the joints' current cuts.
+    fn whole(&self, i: usize) -> Result<Vec<Polygon>, GridError> {
+        let (remove, add) = gathered(&self.cuts, &self.touching[i]);
+        finish(
+            &self.plates[i],
+            &self.outlines[i],
+            &remove,
+            &add,
+            min_feature(self.plates[i].thickness),
+        )
+    }
+
+    /// Plate `i`'s pieces: kept from before if nothing changed them since, else anew.
+    fn pieces(&mut self, i: usize) -> Result<Vec<Polygon>, GridError> {
+        self.finished[i].take().map_or_else(|| self.whole(i), Ok)
+    }
+
+    /// Shorter fingers first, on every joint of a plate the full ones cut apart, all at
+    /// once: on a low-poly model a facet falls apart under several neighbours' fingers
+    /// together, and no one joint mends it alone. Shorter fingers can split a neighbour in
+    /// turn, so again (three rounds at most).
+    fn shorten_where_split(&mut self) -> Result<(), GridError> {
+        for _ in 0..3 {
+            let shortened = self.joints_of_split_plates()?;
+            if shortened.is_empty() {
+                break;
+            }
+            self.shorten(&shortened)?;
+        }
+        Ok(())
+    }
+
+    /// The joints (connection, the plate it shortens for) that have shorter fingers not yet
+    /// used and belong to a plate that falls apart; every plate's pieces are kept.
+    fn joints_of_split_plates(&mut self) -> Result<Vec<(usize, usize)>, GridError> {
+        let mut shortened: Vec<(usize, usize)> = Vec::new();
+        for i in 0..self.plates.len() {
+            let pieces = self.pieces(i)?;
             if pieces.len() > 1 {
-                for &(k, _) in mine {
-                    if regions[k].short.is_some() && !plans[k].short && !shortened.iter().any(|&(q, _)| q == k) {
+                for &(k, _) in &self.touching[i] {
+                    if self.regions[k].short.is_some()
+                        && !self.plans[k].short
+                        && !shortened.iter().any(|&(q, _)| q == k)
+                    {
                         shortened.push((k, i));
                     }
                 }
             }
-            finished[i] = Some(pieces);
+            self.finished[i] = Some(pieces);
         }
-        if shortened.is_empty() {
-            break;
-        }
-        for &(k, i) in &shortened {
-            plans[k].short = true;
-            used[k] = variant(&regions[k], plans[k]);
-            cuts[k] = cut(plates, &used[k], plans[k], style)?;
-            adapted_for[k] = Some(i);
-            for p in [regions[k].a, regions[k].b] {
-                finished[p] = None;
-            }
-        }
-        for (p, done) in finished.iter().enumerate() {
-            if done.is_none() {
-                outlines[p] = outline(&plates[p], &used, &touching[p])?;
-            }
-        }
+        Ok(shortened)
     }
-    for (i, mine) in touching.iter().enumerate() {
-        let mut pieces = finished[i].take().map_or_else(|| whole(i, &cuts, &outlines), Ok)?;
-        // Each connection that cuts this plate, in order, until it holds together.
-        for &(k, side) in mine {
-            if pieces.len() <= 1 {
-                break;
+
+    /// Switches the joints `shortened` to their shorter fingers, and regrows the plates they
+    /// touch.
+    fn shorten(&mut self, shortened: &[(usize, usize)]) -> Result<(), GridError> {
+        for &(k, i) in shortened {
+            self.plans[k].short = true;
+            self.used[k] = variant(&self.regions[k], self.plans[k]);
+            self.cuts[k] = cut(self.plates, &self.used[k], self.plans[k], self.style)?;
+            self.adapted_for[k] = Some(i);
+            for p in [self.regions[k].a, self.regions[k].b] {
+                self.finished[p] = None;
             }
-            if cuts[k].remove[side].is_empty() || plans[k].keeper.is_some() {
-                continue;
+        }
+        for p in 0..self.plates.len() {
+            if self.finished[p].is_none() {
+                self.outlines[p] = outline(&self.plates[p], &self.used, &self.touching[p])?;
             }
-            let r = &regions[k];
-            let other = if i == r.a { r.b } else { r.a };
-            let other_loss = loss(&whole(other, &cuts, &outlines)?);
-            // A junction's row of fingers is shared by its connections: it cannot widen for one.
-            let wider = plans[k].segments > 3 && r.kind != ConnectionKind::Cross && r.junction.is_none();
-            let shorter = (r.short.is_some() && !plans[k].short).then_some(Plan {
-                short: true,
-                ..plans[k]
-            });
-            let fewer = wider.then_some(Plan {
-                segments: 3,
-                ..plans[k]
-            });
-            // At a shallow angle a butt joint meets its partner along a line only (two ends cut
-            // square to plates far from square to each other). A lap (one finger each, the
-            // plate keeping either end in turn) interlocks and meets it over the whole
-            // cross-section.
-            let lap = |b_first| {
-                let shallow = r.kind == ConnectionKind::Corner && r.angle_deg > BUTT_MAX_DEG;
-                (shallow && r.junction.is_none() && plans[k].segments > 2).then_some(Plan {
-                    segments: 2,
-                    b_first,
-                    ..plans[k]
-                })
-            };
-            let keep = Some(Plan {
-                keeper: Some(i),
-                ..plans[k]
-            });
-            for tried in [shorter, fewer, lap(false), lap(true), keep] {
-                let Some(mut plan) = tried else { continue };
+        }
+        Ok(())
+    }
+
+    /// Plate by plate, each connection that cuts it, in order, adapts until the plate holds
+    /// together: shorter fingers, then fewer, wider ones, a lap, else the plate keeps the
+    /// whole joint region.
+    fn adapt(&mut self) -> Result<(), GridError> {
+        for i in 0..self.plates.len() {
+            let mut pieces = self.pieces(i)?;
+            for (k, side) in self.touching[i].clone() {
                 if pieces.len() <= 1 {
                     break;
                 }
-                // Wider fingers and keeping the region build on shorter fingers taken before.
-                plan.short |= plans[k].short;
-                let before = (
-                    used[k].clone(),
-                    cuts[k].clone(),
-                    outlines[r.a].clone(),
-                    outlines[r.b].clone(),
-                );
-                used[k] = variant(r, plan);
-                cuts[k] = cut(plates, &used[k], plan, style)?;
-                if plan.short != plans[k].short {
-                    outlines[r.a] = outline(&plates[r.a], &used, &touching[r.a])?;
-                    outlines[r.b] = outline(&plates[r.b], &used, &touching[r.b])?;
+                if self.cuts[k].remove[side].is_empty() || self.plans[k].keeper.is_some() {
+                    continue;
                 }
-                let p = whole(i, &cuts, &outlines)?;
-                // Better for this plate, and not worse for its partner.
-                if loss(&p) < loss(&pieces) && loss(&whole(other, &cuts, &outlines)?) <= other_loss {
-                    plans[k] = plan;
-                    pieces = p;
-                    adapted_for[k] = Some(i);
-                    finished[other] = None;
-                } else {
-                    (used[k], cuts[k], outlines[r.a], outlines[r.b]) = before;
-                }
+                pieces = self.adapt_joint(i, k, pieces)?;
+            }
+            self.finished[i] = Some(pieces);
+        }
+        Ok(())
+    }
+
+    /// What joint `k` may become for plate `i`, in the order tried (all from its plan before
+    /// the first try): shorter fingers, three wider ones, a lap either way round, and plate
+    /// `i` keeping the whole region.
+    fn candidates(&self, i: usize, k: usize) -> [Option<Plan>; 5] {
+        let (r, now) = (&self.regions[k], self.plans[k]);
+        // A junction's row of fingers is shared by its connections: it cannot widen for one.
+        let wider = now.segments > 3 && r.kind != ConnectionKind::Cross && r.junction.is_none();
+        let shorter = (r.short.is_some() && !now.short).then_some(Plan { short: true, ..now });
+        let fewer = wider.then_some(Plan { segments: 3, ..now });
+        // At a shallow angle a butt joint meets its partner along a line only (two ends cut
+        // square to plates far from square to each other). A lap (one finger each, the plate
+        // keeping either end in turn) interlocks and meets it over the whole cross-section.
+        let lap = |b_first| {
+            let shallow = r.kind == ConnectionKind::Corner && r.angle_deg > BUTT_MAX_DEG;
+            (shallow && r.junction.is_none() && now.segments > 2).then_some(Plan {
+                segments: 2,
+                b_first,
+                ..now
+            })
+        };
+        let keep = Some(Plan { keeper: Some(i), ..now });
+        [shorter, fewer, lap(false), lap(true), keep]
+    }
+
+    /// Tries joint `k`'s [candidates](Self::candidates) for plate `i` (now in `pieces`) until
+    /// the plate holds together; returns its pieces then.
+    fn adapt_joint(&mut self, i: usize, k: usize, mut pieces: Vec<Polygon>) -> Result<Vec<Polygon>, GridError> {
+        let r = &self.regions[k];
+        let other = if i == r.a { r.b } else { r.a };
+        let other_loss = loss(&self.whole(other)?);
+        for tried in self.candidates(i, k) {
+            let Some(plan) = tried else { continue };
+            if pieces.len() <= 1 {
+                break;
+            }
+            if let Some(better) = self.try_plan(i, k, plan, (&pieces, other, other_loss))? {
+                pieces = better;
             }
         }
-        finished[i] = Some(pieces);
+        Ok(pieces)
     }
-    let mut outlines_final = Vec::with_capacity(plates.len());
-    let mut split = Vec::new();
-    for (i, done) in finished.into_iter().enumerate() {
-        // A plate whose partner adapted after it was finished is finished again.
-        let pieces = done.map_or_else(|| whole(i, &cuts, &outlines), Ok)?;
-        if pieces.len() > 1 {
-            let dropped: f64 = pieces[1..].iter().map(Polygon::area).sum();
-            let share = 100.0 * dropped / pieces.iter().map(Polygon::area).sum::<f64>();
-            split.push(format!(
-                "plate {} would fall into {} pieces at its joints; the largest is kept ({dropped:.1} mm², {share:.1} % of the plate, dropped)",
-                i + 1,
-                pieces.len()
+
+    /// Cuts joint `k` by `plan` and keeps it if plate `i` loses less than it does now (in
+    /// `pieces`) and its partner `other` no more than `other_loss`: returns `i`'s new pieces.
+    /// Otherwise everything is put back.
+    fn try_plan(
+        &mut self,
+        i: usize,
+        k: usize,
+        mut plan: Plan,
+        (pieces, other, other_loss): (&[Polygon], usize, (usize, i64)),
+    ) -> Result<Option<Vec<Polygon>>, GridError> {
+        // Wider fingers and keeping the region build on shorter fingers taken before.
+        plan.short |= self.plans[k].short;
+        let (a, b) = (self.regions[k].a, self.regions[k].b);
+        let before = (
+            self.used[k].clone(),
+            self.cuts[k].clone(),
+            self.outlines[a].clone(),
+            self.outlines[b].clone(),
+        );
+        self.used[k] = variant(&self.regions[k], plan);
+        self.cuts[k] = cut(self.plates, &self.used[k], plan, self.style)?;
+        if plan.short != self.plans[k].short {
+            self.outlines[a] = outline(&self.plates[a], &self.used, &self.touching[a])?;
+            self.outlines[b] = outline(&self.plates[b], &self.used, &self.touching[b])?;
+        }
+        let p = self.whole(i)?;
+        // Better for this plate, and not worse for its partner.
+        if loss(&p) < loss(pieces) && loss(&self.whole(other)?) <= other_loss {
+            self.plans[k] = plan;
+            self.adapted_for[k] = Some(i);
+            self.finished[other] = None;
+            Ok(Some(p))
+        } else {
+            (self.used[k], self.cuts[k], self.outlines[a], self.outlines[b]) = before;
+            Ok(None)
+        }
+    }
+
+    /// Every plate's final outline (the largest of its pieces), and a warning for each plate
+    /// that falls apart all the same. A plate whose partner adapted after it was finished is
+    /// finished again.
+    fn final_outlines(&mut self) -> Result<(Vec<Polygon>, Vec<String>), GridError> {
+        let mut outlines = Vec::with_capacity(self.plates.len());
+        let mut split = Vec::new();
+        for i in 0..self.plates.len() {
+            let pieces = self.pieces(i)?;
+            if pieces.len() > 1 {
+                let dropped: f64 = pieces[1..].iter().map(Polygon::area).sum();
+                let share = 100.0 * dropped / pieces.iter().map(Polygon::area).sum::<f64>();
+                split.push(format!(
+                    "plate {} would fall into {} pieces at its joints; the largest is kept ({dropped:.1} mm², {share:.1} % of the plate, dropped)",
+                    i + 1,
+                    pieces.len()
+                ));
+            }
+            outlines.push(
+                pieces
+                    .into_iter()
+                    .next()
+                    .unwrap_or_else(|| self.plates[i].polygon.clone()),
+            );
+        }
+        Ok((outlines, split))
+    }
+
+    /// The joints as the plan gets them: claims settled between the final outlines, every
+    /// joint labelled, its connection, edges and keys, and the warnings.
+    fn into_joints(mut self) -> Result<Joints, GridError> {
+        let (mut outlines, split) = self.final_outlines()?;
+        let gave_way = super::claims::settle(self.plates, &mut outlines, &super::claims::decided(&self.used))?;
+        let (labels, unjoined) = super::claims::labels(self.plates, &outlines, &self.used, &gave_way, min_feature)?;
+        let mut warnings = self.warnings(&labels, &unjoined);
+        warnings.extend(split);
+        let (connections, edges) = self.connections(&labels);
+        Ok(Joints {
+            outlines,
+            connections,
+            edges,
+            keys: self.keys(&labels),
+            warnings,
+        })
+    }
+
+    /// Warnings for the places left unjoined and for each labelled joint that adapted.
+    fn warnings(&self, labels: &[Option<u32>], unjoined: &[String]) -> Vec<String> {
+        let mut warnings = Vec::new();
+        if !unjoined.is_empty() {
+            warnings.push(format!(
+                "{} places where two plates meet are not joined: other joints there already hold all of the volume (plates {})",
+                unjoined.len(),
+                unjoined.join(", ")
             ));
         }
-        outlines_final.push(pieces.into_iter().next().unwrap_or_else(|| plates[i].polygon.clone()));
+        for (k, r) in self.regions.iter().enumerate() {
+            let (Some(i), Some(label)) = (self.adapted_for[k], labels[k]) else {
+                continue;
+            };
+            let widened = self.plans[k].segments != first_plan(self.plates, r, self.settings, self.style).segments;
+            warnings.push(adapted(label, r, self.plans[k], widened, i));
+        }
+        warnings
     }
-    let gave_way = super::claims::settle(plates, &mut outlines_final, &super::claims::decided(&used))?;
-    let (labels, unjoined) = super::claims::labels(plates, &outlines_final, &used, &gave_way, min_feature)?;
-    let mut warnings = Vec::new();
-    if !unjoined.is_empty() {
-        warnings.push(format!(
-            "{} places where two plates meet are not joined: other joints there already hold all of the volume (plates {})",
-            unjoined.len(),
-            unjoined.join(", ")
-        ));
-    }
-    for (k, r) in regions.iter().enumerate() {
-        let (Some(i), Some(label)) = (adapted_for[k], labels[k]) else {
-            continue;
-        };
-        let widened = plans[k].segments != first_plan(plates, r, settings, style).segments;
-        warnings.push(adapted(label, r, plans[k], widened, i));
-    }
-    warnings.extend(split);
-    let mut connections = Vec::with_capacity(regions.len());
-    let mut edges: Vec<Vec<(u32, [DVec2; 2])>> = vec![Vec::new(); plates.len()];
-    for ((r, plan), label) in used.iter().zip(&plans).zip(&labels) {
-        let Some(label) = *label else { continue };
-        edges[r.a].push((label, edge_of(&plates[r.a], &r.in_a, r.axis)));
-        edges[r.b].push((label, edge_of(&plates[r.b], &r.in_b, r.axis)));
-        connections.push(Connection {
-            plates: [r.a as u32, r.b as u32],
-            kind: r.kind,
-            style: if r.kind == ConnectionKind::Cross || plan.keeper.is_some() || r.junction.is_some() {
-                JointStyle::Finger
-            } else {
-                style
-            },
-            angle_deg: r.angle_deg,
-            line: [
-                r.center + r.axis * (r.range.0 - r.axis.dot(r.center)),
-                r.center + r.axis * (r.range.1 - r.axis.dot(r.center)),
-            ],
-            segments: if plan.keeper.is_some() { 1 } else { plan.segments },
-            label,
-        });
-    }
-    let keys = used
-        .iter()
-        .zip(&cuts)
-        .zip(&labels)
-        .filter_map(|((r, c), label)| label.map(|label| (r, c, label)))
-        .flat_map(|(r, c, label)| {
-            let male = dovetailed(r);
-            let notched = if male == r.a { r.b } else { r.a };
-            c.keys.iter().filter(|p| p.area() > NOISE_AREA).map(move |outline| Key {
-                plate: male as u32,
-                notched: notched as u32,
-                outline: outline.clone(),
+
+    /// The labelled joints' connections, and per plate its jointed edges with their labels.
+    fn connections(&self, labels: &[Option<u32>]) -> (Vec<Connection>, Vec<Vec<LabelledEdge>>) {
+        let plates = self.plates;
+        let mut connections = Vec::with_capacity(self.regions.len());
+        let mut edges: Vec<Vec<LabelledEdge>> = vec![Vec::new(); plates.len()];
+        for ((r, plan), label) in self.used.iter().zip(&self.plans).zip(labels) {
+            let Some(label) = *label else { continue };
+            edges[r.a].push((label, edge_of(&plates[r.a], &r.in_a, r.axis)));
+            edges[r.b].push((label, edge_of(&plates[r.b], &r.in_b, r.axis)));
+            connections.push(Connection {
+                plates: [r.a as u32, r.b as u32],
+                kind: r.kind,
+                style: if r.kind == ConnectionKind::Cross || plan.keeper.is_some() || r.junction.is_some() {
+                    JointStyle::Finger
+                } else {
+                    self.style
+                },
+                angle_deg: r.angle_deg,
+                line: [
+                    r.center + r.axis * (r.range.0 - r.axis.dot(r.center)),
+                    r.center + r.axis * (r.range.1 - r.axis.dot(r.center)),
+                ],
+                segments: if plan.keeper.is_some() { 1 } else { plan.segments },
                 label,
+            });
+        }
+        (connections, edges)
+    }
+
+    /// The dovetail keys of the labelled joints (extra parts), without grid noise.
+    fn keys(&self, labels: &[Option<u32>]) -> Vec<Key> {
+        self.used
+            .iter()
+            .zip(&self.cuts)
+            .zip(labels)
+            .filter_map(|((r, c), label)| label.map(|label| (r, c, label)))
+            .flat_map(|(r, c, label)| {
+                let male = dovetailed(r);
+                let notched = if male == r.a { r.b } else { r.a };
+                c.keys
+                    .iter()
+                    .filter(|p| p.area() > GRID_NOISE_AREA)
+                    .map(move |outline| Key {
+                        plate: male as u32,
+                        notched: notched as u32,
+                        outline: outline.clone(),
+                        label,
+                    })
             })
-        })
-        .collect();
-    Ok(Joints {
-        outlines: outlines_final,
-        connections,
-        edges,
-        keys,
-        warnings,
-    })
+            .collect()
+    }
 }
 
 /// The warning for a connection whose joint adapted so that plate `i` stays whole.

@@ -38,6 +38,10 @@ const BOWL_P: Stroke = &[
 ];
 
 /// The strokes of one character.
+#[allow(
+    clippy::too_many_lines,
+    reason = "a table: the strokes of every character the font has"
+)]
 fn glyph(c: char) -> &'static [Stroke] {
     match c.to_ascii_uppercase() {
         '0' => &[RING_O, &[(3.5, 5.0), (0.5, 1.0)]],

@@ -7,15 +7,13 @@
 
 use glam::DVec2;
 use platener_geom::polygon::Polygon;
+use platener_geom::tolerance::GRID_NOISE_AREA;
 use platener_geom::{Ring, boolean};
 
 use super::font::text_width;
 
 /// Smallest text size engraved, mm: below this a laser's engraving is hard to read.
 pub const MIN_SIZE: f64 = 1.5;
-/// Area (mm²) of "box minus part" still counted as empty: grid rounding of the boolean, far
-/// below any real crossing (a 1.5 mm label crossing an edge by 0.01 mm leaves 0.015 mm²).
-const OUTSIDE_AREA_TOL: f64 = 1e-4;
 
 /// The clearance a label of size `size` keeps from the part's nominal edges, holes, marks and
 /// other labels, mm: half a millimetre plus a tenth of the size, plus half the `kerf` (hole cut
@@ -101,7 +99,9 @@ impl<'a> Room<'a> {
         // Holes or notches may still reach into the box between its corners: the exact test.
         let ring: Ring = quad.to_vec();
         match boolean::difference(&[Polygon::new(ring)], std::slice::from_ref(self.polygon)) {
-            Ok(outside) => outside.iter().map(Polygon::area).sum::<f64>() <= OUTSIDE_AREA_TOL,
+            // Grid rounding of the boolean is far below any real crossing (a 1.5 mm label
+            // crossing an edge by 0.01 mm leaves 0.015 mm²).
+            Ok(outside) => outside.iter().map(Polygon::area).sum::<f64>() <= GRID_NOISE_AREA,
             Err(_) => false,
         }
     }
@@ -127,7 +127,7 @@ impl<'a> Room<'a> {
             for j in 0..STEPS {
                 let p = lo + size * DVec2::new((i as f64 + 0.5) / STEPS as f64, (j as f64 + 0.5) / STEPS as f64);
                 if self.polygon.contains(p) {
-                    pts.push((p, boundary_distance(self.polygon, p)));
+                    pts.push((p, self.polygon.boundary_distance(p)));
                 }
             }
         }
@@ -153,25 +153,6 @@ impl<'a> Room<'a> {
     pub fn contains(&self, p: DVec2) -> bool {
         self.polygon.contains(p)
     }
-}
-
-/// Distance from `p` to the nearest edge of any ring of `polygon`.
-fn boundary_distance(polygon: &Polygon, p: DVec2) -> f64 {
-    std::iter::once(&polygon.outer)
-        .chain(&polygon.holes)
-        .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
-        .map(|(a, b)| segment_distance(p, a, b))
-        .fold(f64::INFINITY, f64::min)
-}
-
-fn segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let ab = b - a;
-    let t = if ab.length_squared() > 0.0 {
-        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + ab * t)
 }
 
 /// Separating-axis test of two convex quadrilaterals (touching counts as overlap).

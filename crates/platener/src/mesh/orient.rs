@@ -72,53 +72,16 @@ fn label(topology: &Topology, n: usize, cross: impl Fn(u32) -> bool) -> (Vec<u32
     (label, groups)
 }
 
+/// The triangles wound consistently: each edge-connected patch one way, closed bodies
+/// outwards (cavities inwards), open patches the way most of their faces already were.
 pub(super) fn orient(vertices: &[DVec3], triangles: &[[u32; 3]], topology: &Topology) -> Oriented {
     let n = triangles.len();
     let (component, bodies) = label(topology, n, |e| topology.edge_valence(e) >= 2);
-    // Spread winding over two-face edges.
-    let mut flip = vec![false; n];
-    let mut seen = vec![false; n];
-    let mut queue = VecDeque::new();
-    let mut patches: Vec<Vec<u32>> = Vec::new();
-    let mut non_orientable_edges = 0;
-    for start in 0..n {
-        if seen[start] {
-            continue;
-        }
-        seen[start] = true;
-        let mut members = vec![start as u32];
-        queue.push_back(start);
-        while let Some(f) = queue.pop_front() {
-            for c in 0..3 {
-                let e = topology.face_edges[f][c];
-                let corners = topology.edge_corners(e);
-                if corners.len() != 2 {
-                    continue;
-                }
-                let other = if corners[0] / 3 == f as u32 && corners[0] % 3 == c as u32 {
-                    corners[1]
-                } else {
-                    corners[0]
-                };
-                let (g, cg) = ((other / 3) as usize, (other % 3) as usize);
-                if g == f {
-                    continue;
-                }
-                let dir_f = forward(&triangles[f], c) ^ flip[f];
-                if seen[g] {
-                    if forward(&triangles[g], cg) ^ flip[g] == dir_f && f < g {
-                        non_orientable_edges += 1;
-                    }
-                    continue;
-                }
-                flip[g] = forward(&triangles[g], cg) ^ !dir_f;
-                seen[g] = true;
-                members.push(g as u32);
-                queue.push_back(g);
-            }
-        }
-        patches.push(members);
-    }
+    let Winding {
+        mut flip,
+        patches,
+        non_orientable_edges,
+    } = spread_winding(triangles, topology);
     let mut out: Vec<[u32; 3]> = triangles
         .iter()
         .zip(&flip)
@@ -127,18 +90,7 @@ pub(super) fn orient(vertices: &[DVec3], triangles: &[[u32; 3]], topology: &Topo
     // Decide each patch's overall direction. A closed body is turned so its volume is
     // positive, unless it lies inside an odd number of other closed bodies: then it is a
     // cavity and its normals must point into the void (negative volume).
-    let body_closed: Vec<bool> = bodies
-        .iter()
-        .zip(&patches_per_body(&component, &patches, bodies.len()))
-        .map(|(faces, &np)| {
-            np == 1
-                && faces.iter().all(|&f| {
-                    topology.face_edges[f as usize]
-                        .iter()
-                        .all(|&e| topology.edge_valence(e) == 2)
-                })
-        })
-        .collect();
+    let body_closed = closed_bodies(topology, &component, &bodies, &patches);
     let depth = nesting_depth(vertices, &out, &bodies, &body_closed);
     for members in &patches {
         let body = component[members[0] as usize] as usize;
@@ -233,4 +185,84 @@ fn ray_hits(origin: DVec3, dir: DVec3, [a, b, c]: [DVec3; 3]) -> bool {
         return false;
     }
     e2.dot(q) * inv > 0.0
+}
+
+/// Faces wound consistently within each patch of faces joined over two-face edges.
+struct Winding {
+    /// Per face: whether it is turned against its input winding.
+    flip: Vec<bool>,
+    /// The patches' faces.
+    patches: Vec<Vec<u32>>,
+    /// Edges whose two faces could not be wound consistently (a Möbius strip).
+    non_orientable_edges: usize,
+}
+
+/// Spreads winding over two-face edges, breadth first from each face not yet reached: a
+/// neighbour is turned so that it runs the shared edge the other way.
+fn spread_winding(triangles: &[[u32; 3]], topology: &Topology) -> Winding {
+    let n = triangles.len();
+    let mut flip = vec![false; n];
+    let mut seen = vec![false; n];
+    let mut queue = VecDeque::new();
+    let mut patches: Vec<Vec<u32>> = Vec::new();
+    let mut non_orientable_edges = 0;
+    for start in 0..n {
+        if seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        let mut members = vec![start as u32];
+        queue.push_back(start);
+        while let Some(f) = queue.pop_front() {
+            for c in 0..3 {
+                let e = topology.face_edges[f][c];
+                let corners = topology.edge_corners(e);
+                if corners.len() != 2 {
+                    continue;
+                }
+                let other = if corners[0] / 3 == f as u32 && corners[0] % 3 == c as u32 {
+                    corners[1]
+                } else {
+                    corners[0]
+                };
+                let (g, cg) = ((other / 3) as usize, (other % 3) as usize);
+                if g == f {
+                    continue;
+                }
+                let dir_f = forward(&triangles[f], c) ^ flip[f];
+                if seen[g] {
+                    if forward(&triangles[g], cg) ^ flip[g] == dir_f && f < g {
+                        non_orientable_edges += 1;
+                    }
+                    continue;
+                }
+                flip[g] = forward(&triangles[g], cg) ^ !dir_f;
+                seen[g] = true;
+                members.push(g as u32);
+                queue.push_back(g);
+            }
+        }
+        patches.push(members);
+    }
+    Winding {
+        flip,
+        patches,
+        non_orientable_edges,
+    }
+}
+
+/// Per body: whether it is closed (one patch, every edge between exactly two faces).
+fn closed_bodies(topology: &Topology, component: &[u32], bodies: &[Vec<u32>], patches: &[Vec<u32>]) -> Vec<bool> {
+    bodies
+        .iter()
+        .zip(&patches_per_body(component, patches, bodies.len()))
+        .map(|(faces, &np)| {
+            np == 1
+                && faces.iter().all(|&f| {
+                    topology.face_edges[f as usize]
+                        .iter()
+                        .all(|&e| topology.edge_valence(e) == 2)
+                })
+        })
+        .collect()
 }

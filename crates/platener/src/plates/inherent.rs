@@ -13,7 +13,7 @@ use platener_geom::{GridError, Polygon, polygon::total_area};
 use super::pairs::{Pair, opposite_pairs};
 use super::{Plate, PlateKind, Rejection, cuttable, map_polygon};
 use crate::settings::Settings;
-use crate::shapes::Shapes;
+use crate::shapes::{Shape, Shapes};
 
 /// The nearest opposite faces each shape has (that overlap it in projection).
 #[derive(Debug, Clone, Copy, Default)]
@@ -48,6 +48,8 @@ pub(super) fn matching_thickness(distance: f64, settings: &Settings) -> Option<f
         .min_by(|a, b| (a - distance).abs().total_cmp(&(b - distance).abs()))
 }
 
+/// The inherent plates of `shapes`: pairs of facing shapes on parallel planes a sheet's
+/// thickness apart, thinnest gap first, each taking the parts of both shapes not yet taken.
 pub(super) fn find(shapes: &Shapes, center: DVec3, settings: &Settings) -> Result<Detection, GridError> {
     let list = &shapes.shapes;
     let ps = &settings.plates;
@@ -56,11 +58,18 @@ pub(super) fn find(shapes: &Shapes, center: DVec3, settings: &Settings) -> Resul
     let search = (ps.max_factor * t_max).max(4.0 * t_max);
     let pairs = opposite_pairs(list, ps.parallel_angle_deg.to_radians(), search, center);
     let mut detail = vec![Nearest::default(); list.len()];
-    let mut candidates: Vec<(Pair, f64, f64)> = Vec::new();
-    // Shapes on parallel planes overlap in projection only if their boxes, grown by the
-    // distance between the planes, overlap: a cheap test before any boolean.
-    let boxes: Vec<(DVec3, DVec3)> = list
-        .iter()
+    let candidates = candidates(list, pairs, settings, &mut detail)?;
+    let (plates, remaining) = take_plates(list, candidates, settings, &mut detail)?;
+    Ok(Detection {
+        plates,
+        remaining,
+        detail,
+    })
+}
+
+/// The model-space box of each shape's outline.
+fn model_boxes(list: &[Shape]) -> Vec<(DVec3, DVec3)> {
+    list.iter()
         .map(|s| {
             s.polygon.outer.iter().fold(
                 (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
@@ -70,7 +79,22 @@ pub(super) fn find(shapes: &Shapes, center: DVec3, settings: &Settings) -> Resul
                 },
             )
         })
-        .collect();
+        .collect()
+}
+
+/// The pairs whose shapes overlap seen along their normal and lie a sheet's thickness apart,
+/// with that thickness and the overlap's area: thinnest gap first, then the larger overlap.
+/// Every overlapping pair's distance goes into `detail` for the report.
+fn candidates(
+    list: &[Shape],
+    pairs: Vec<Pair>,
+    settings: &Settings,
+    detail: &mut [Nearest],
+) -> Result<Vec<(Pair, f64, f64)>, GridError> {
+    let mut candidates: Vec<(Pair, f64, f64)> = Vec::new();
+    // Shapes on parallel planes overlap in projection only if their boxes, grown by the
+    // distance between the planes, overlap: a cheap test before any boolean.
+    let boxes = model_boxes(list);
     for pair in pairs {
         let (ba, bb) = (boxes[pair.a as usize], boxes[pair.b as usize]);
         let grow = DVec3::splat(pair.distance + 1e-6);
@@ -106,6 +130,18 @@ pub(super) fn find(shapes: &Shapes, center: DVec3, settings: &Settings) -> Resul
             .then(y.2.total_cmp(&x.2))
             .then((x.0.a, x.0.b).cmp(&(y.0.a, y.0.b)))
     });
+    Ok(candidates)
+}
+
+/// The plates of the `candidates`, in order: each takes what both its shapes still have in
+/// common, where that can be cut; returns the plates and what remains of each shape.
+fn take_plates(
+    list: &[Shape],
+    candidates: Vec<(Pair, f64, f64)>,
+    settings: &Settings,
+    detail: &mut [Nearest],
+) -> Result<(Vec<Plate>, Vec<Vec<Polygon>>), GridError> {
+    let ps = &settings.plates;
     let mut remaining: Vec<Vec<Polygon>> = list.iter().map(|s| vec![s.polygon.clone()]).collect();
     let mut plates = Vec::new();
     for (pair, t, _) in candidates {
@@ -142,11 +178,7 @@ pub(super) fn find(shapes: &Shapes, center: DVec3, settings: &Settings) -> Resul
             remaining[ib] = difference(&remaining[ib], &used_in_b)?;
         }
     }
-    Ok(Detection {
-        plates,
-        remaining,
-        detail,
-    })
+    Ok((plates, remaining))
 }
 
 /// Extrudes what is left of every shape inwards (along its inverse normal) by the extrusion

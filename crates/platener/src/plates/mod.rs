@@ -84,16 +84,7 @@ impl Plate {
     /// The model-space box of another outline in the plate's plane (its part with joints),
     /// as a slab of its thickness.
     pub fn bounds_of(&self, outline: &Polygon) -> (DVec3, DVec3) {
-        let mut lo = DVec3::splat(f64::INFINITY);
-        let mut hi = DVec3::splat(f64::NEG_INFINITY);
-        for p in &outline.outer {
-            for z in [0.0, self.thickness] {
-                let q = self.frame.to_model(DVec3::new(p.x, p.y, z));
-                lo = lo.min(q);
-                hi = hi.max(q);
-            }
-        }
-        (lo, hi)
+        platener_geom::slab::extruded_bounds(&self.frame, &outline.outer, self.thickness)
     }
 
     /// The plate's volume in mm³.

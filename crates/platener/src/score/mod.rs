@@ -33,15 +33,15 @@ mod tests;
 
 use std::collections::BTreeMap;
 
+use platener_geom::rng::SplitMix64;
 use serde::Serialize;
 
-use crate::assembly::{Inside, Prism};
+use crate::assembly::{Inside, Solid};
 use crate::export::Bundle;
 use crate::export::report::Report;
 use crate::mesh::Mesh;
 use crate::plan::{Plan, PlanJoint};
 use crate::plates::Plates;
-use sample::Rng;
 
 /// Weight of the assembly inside the shape factor.
 pub const ASSEMBLY_WEIGHT: f64 = 0.3;
@@ -157,8 +157,8 @@ pub fn score_with(mesh: &Mesh, bundle: &Bundle, plates: Option<&Plates>, setting
 
 /// The score of `plan` as a reproduction of `mesh`; effort figures come from `report`.
 fn evaluate(mesh: &Mesh, plan: &Plan, report: &Report, settings: &ScoreSettings) -> Score {
-    let prisms: Vec<Prism> = plan.parts.iter().map(Prism::from_part).collect();
-    let mut rng = Rng::new(settings.seed);
+    let prisms: Vec<Solid> = plan.parts.iter().map(Solid::from_part).collect();
+    let mut rng = SplitMix64::new(settings.seed);
     let surface_covered = surface_covered(mesh, &prisms, settings, &mut rng);
     let (volume_inside, interference) = volume_shares(mesh, &prisms, settings, &mut rng);
     let shape = surface_covered * volume_inside;
@@ -189,7 +189,7 @@ fn evaluate(mesh: &Mesh, plan: &Plan, report: &Report, settings: &ScoreSettings)
 }
 
 /// Share of area-weighted surface samples within reach of a part.
-fn surface_covered(mesh: &Mesh, prisms: &[Prism], settings: &ScoreSettings, rng: &mut Rng) -> f64 {
+fn surface_covered(mesh: &Mesh, prisms: &[Solid], settings: &ScoreSettings, rng: &mut SplitMix64) -> f64 {
     let picks = sample::stratified(&mesh.areas, settings.surface_samples, rng);
     if picks.is_empty() || prisms.is_empty() {
         return 0.0;
@@ -206,7 +206,7 @@ fn surface_covered(mesh: &Mesh, prisms: &[Prism], settings: &ScoreSettings, rng:
 }
 
 /// Shares of volume-weighted part samples inside the model, and inside another part.
-fn volume_shares(mesh: &Mesh, prisms: &[Prism], settings: &ScoreSettings, rng: &mut Rng) -> (f64, f64) {
+fn volume_shares(mesh: &Mesh, prisms: &[Solid], settings: &ScoreSettings, rng: &mut SplitMix64) -> (f64, f64) {
     let volumes: Vec<f64> = prisms.iter().map(|p| p.volume).collect();
     let picks = sample::stratified(&volumes, settings.volume_samples, rng);
     let inside = Inside::new(&mesh.vertices, &mesh.triangles);
@@ -232,7 +232,7 @@ fn volume_shares(mesh: &Mesh, prisms: &[Prism], settings: &ScoreSettings, rng: &
 
 /// Connectivity through the joints for a model of `solids` separate solids, and the number of
 /// connected groups.
-fn connectivity(prisms: &[Prism], joints: &[PlanJoint], solids: usize) -> (f64, usize) {
+fn connectivity(prisms: &[Solid], joints: &[PlanJoint], solids: usize) -> (f64, usize) {
     let n = prisms.len();
     if n == 0 {
         return (0.0, 0);

@@ -143,7 +143,7 @@ fn ray_parity_knows_the_inside_of_a_hollow_box() {
 
 #[test]
 fn stratified_picks_follow_the_weights() {
-    let mut rng = sample::Rng::new(7);
+    let mut rng = SplitMix64::new(7);
     let picks = sample::stratified(&[1.0, 0.0, 3.0], 400, &mut rng);
     let count = |k| picks.iter().filter(|&&i| i == k).count();
     assert_eq!(count(1), 0);

@@ -20,6 +20,7 @@ use jagua_rs::geometry::fail_fast::SPSurrogateConfig;
 use jagua_rs::geometry::geo_enums::GeoPosition;
 use jagua_rs::geometry::geo_traits::TransformableFrom;
 use jagua_rs::geometry::primitives::{Rect, SPolygon};
+use platener_geom::polygon::bounds_of;
 
 use super::shape::{NestShape, Template, to_spolygon};
 
@@ -91,10 +92,7 @@ impl Bin {
     /// A bin whose free region is the polygon `ring` (counter-clockwise, mm).
     pub fn new(ring: &[DVec2]) -> Option<Self> {
         let outer = to_spolygon(ring)?;
-        let (lo, hi) = ring.iter().fold(
-            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-        );
+        let (lo, hi) = bounds_of(ring.iter().copied());
         let pad = ((hi - lo).max_element() * 0.01).max(1.0);
         let bbox = Rect::try_new(
             (lo.x - pad) as f32,

@@ -66,14 +66,15 @@ pub fn nest(
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Result<(Nesting, Vec<Warning>), PlanError> {
     settings.validate()?;
-    let spacing = settings.spacing;
     let shapes: Vec<NestShape> = parts
         .iter()
         .zip(&cut.parts)
         .map(|(part, c)| {
-            nest_shape(&c.cut, part.polygon.area(), spacing, settings.fine_rotations).ok_or_else(|| PlanError::Part {
-                part: part.id,
-                message: "its cut path cannot be nested (no area after growing by the spacing)".into(),
+            nest_shape(&c.cut, part.polygon.area(), settings.spacing, settings.fine_rotations).ok_or_else(|| {
+                PlanError::Part {
+                    part: part.id,
+                    message: "its cut path cannot be nested (no area after growing by the spacing)".into(),
+                }
             })
         })
         .collect::<Result<_, _>>()?;
@@ -93,33 +94,55 @@ pub fn nest(
         ],
     };
     let mut warnings = Vec::new();
-    // Placement of each shape: (sheet slot in this group, angle, translation).
     for thickness in thicknesses {
-        let group: Vec<usize> = (0..parts.len()).filter(|&i| parts[i].thickness == thickness).collect();
-        let by_area = search::order(&shapes, &group, 0, 0);
+        let group = Group {
+            parts,
+            shapes: &shapes,
+            settings,
+            cancelled,
+            thickness,
+            members: (0..parts.len()).filter(|&i| parts[i].thickness == thickness).collect(),
+        };
+        group.nest(&mut nesting, &mut warnings)?;
+    }
+    finish_sheets(&mut nesting, parts, &shapes, settings);
+    Ok((nesting, warnings))
+}
+
+/// A shape's placement: (sheet index, angle, translation).
+type Placement = (usize, f64, DVec2);
+
+/// The parts of one thickness, nested together: what every phase of it reads.
+struct Group<'a> {
+    parts: &'a [Part],
+    shapes: &'a [NestShape],
+    settings: &'a CutSettings,
+    cancelled: &'a (dyn Fn() -> bool + Sync),
+    thickness: f64,
+    /// The parts of this thickness (indices into `parts`), in order.
+    members: Vec<usize>,
+}
+
+impl Group<'_> {
+    /// Nests the group onto new sheets of `nesting`: small parts into the holes of larger
+    /// ones, the rest onto sheets of the set size, parts too large for it onto sheets of
+    /// their own.
+    fn nest(&self, nesting: &mut Nesting, warnings: &mut Vec<Warning>) -> Result<(), PlanError> {
+        let (shapes, settings, spacing) = (self.shapes, self.settings, self.settings.spacing);
+        let by_area = search::order(shapes, &self.members, 0, 0);
         let hosted = if settings.fill_holes {
-            holes::fill_holes(&shapes, &by_area, spacing, cancelled)
+            holes::fill_holes(shapes, &by_area, spacing, self.cancelled)
         } else {
             vec![None; shapes.len()]
         };
-        let top: Vec<usize> = group.iter().copied().filter(|&i| hosted[i].is_none()).collect();
-        let (width, height) = match settings.sheet {
-            SheetSize::Fixed { width, height } => (width, height),
-            SheetSize::Fit => {
-                let h = round_up(fit_height(&shapes, &top, settings.margin, spacing, cancelled));
-                let long: f64 = top
-                    .iter()
-                    .map(|&i| shapes[i].templates[0].size.max_element())
-                    .sum::<f64>()
-                    + 2.0 * settings.margin;
-                (long, h)
-            }
-        };
+        let top: Vec<usize> = self.members.iter().copied().filter(|&i| hosted[i].is_none()).collect();
+        let (width, height) = self.sheet_size(&top);
         let region = sheet_region(width, height, settings.margin, spacing);
         let (fitting, oversize): (Vec<usize>, Vec<usize>) =
             top.iter().partition(|&&i| fits_empty(&shapes[i], region.1 - region.0));
+        let cancelled = self.cancelled;
         let layout =
-            best_layout(&shapes, &fitting, region, settings.nest_tries, settings.seed, cancelled).ok_or_else(|| {
+            best_layout(shapes, &fitting, region, settings.nest_tries, settings.seed, cancelled).ok_or_else(|| {
                 if cancelled() {
                     PlanError::Cancelled { step: "sheets" }
                 } else {
@@ -129,43 +152,87 @@ pub fn nest(
                     }
                 }
             })?;
-        let mut placed: Vec<Option<(usize, f64, DVec2)>> = vec![None; shapes.len()];
+        let mut placed: Vec<Option<Placement>> = vec![None; shapes.len()];
         let first_sheet = nesting.sheets.len();
         for (s, sheet) in layout.sheets.iter().enumerate() {
             for p in sheet {
                 let (angle, t) = shapes[p.key].templates[p.template].placement(p.pos);
                 placed[p.key] = Some((first_sheet + s, angle, t));
             }
-            nesting.sheets.push(empty_sheet(thickness, width, height, false));
+            nesting.sheets.push(empty_sheet(self.thickness, width, height, false));
         }
         for &i in &oversize {
-            let t = shapes[i]
-                .templates
-                .iter()
-                .min_by(|a, b| (a.size.x * a.size.y).total_cmp(&(b.size.x * b.size.y)))
-                .ok_or_else(|| PlanError::Part {
-                    part: parts[i].id,
-                    message: "has no orientation to nest; please report this".into(),
-                })?;
-            let frame = 2.0 * settings.margin - spacing;
-            let (w, h) = (round_up(t.size.x + frame), round_up(t.size.y + frame));
-            let (angle, tr) = t.placement(DVec2::splat(settings.margin - spacing / 2.0));
-            placed[i] = Some((nesting.sheets.len(), angle, tr));
-            warnings.push(Warning {
-                step: "sheets",
-                kind: WarningKind::CuttingPlan,
-                part: Some(parts[i].id),
-                message: format!(
-                    "part {} does not fit a {width:.0} × {height:.0} mm sheet; it gets a sheet of its own, {w:.1} × {h:.1} mm",
-                    parts[i].id
-                ),
-            });
-            nesting.sheets.push(empty_sheet(thickness, w, h, true));
+            let (placement, warning) = self.own_sheet(nesting, i, (width, height))?;
+            placed[i] = Some(placement);
+            warnings.push(warning);
         }
-        resolve_children(&mut placed, &hosted, &group);
-        for &i in &group {
-            let (sheet, angle, t) = placed[i].ok_or_else(|| PlanError::Part {
+        resolve_children(&mut placed, &hosted, &self.members);
+        self.record(nesting, &placed)
+    }
+
+    /// The sheet size for the parts `top` (those not nested into holes): the set one, or
+    /// one just large enough.
+    fn sheet_size(&self, top: &[usize]) -> (f64, f64) {
+        let (shapes, settings) = (self.shapes, self.settings);
+        match settings.sheet {
+            SheetSize::Fixed { width, height } => (width, height),
+            SheetSize::Fit => {
+                let h = round_up(fit_height(
+                    shapes,
+                    top,
+                    settings.margin,
+                    settings.spacing,
+                    self.cancelled,
+                ));
+                let long: f64 = top
+                    .iter()
+                    .map(|&i| shapes[i].templates[0].size.max_element())
+                    .sum::<f64>()
+                    + 2.0 * settings.margin;
+                (long, h)
+            }
+        }
+    }
+
+    /// Part `i`, too large for a `width` × `height` sheet, on a sheet of its own (in its
+    /// smallest orientation), with a warning.
+    fn own_sheet(
+        &self,
+        nesting: &mut Nesting,
+        i: usize,
+        (width, height): (f64, f64),
+    ) -> Result<(Placement, Warning), PlanError> {
+        let (parts, settings, spacing) = (self.parts, self.settings, self.settings.spacing);
+        let t = self.shapes[i]
+            .templates
+            .iter()
+            .min_by(|a, b| (a.size.x * a.size.y).total_cmp(&(b.size.x * b.size.y)))
+            .ok_or_else(|| PlanError::Part {
                 part: parts[i].id,
+                message: "has no orientation to nest; please report this".into(),
+            })?;
+        let frame = 2.0 * settings.margin - spacing;
+        let (w, h) = (round_up(t.size.x + frame), round_up(t.size.y + frame));
+        let (angle, tr) = t.placement(DVec2::splat(settings.margin - spacing / 2.0));
+        let placement = (nesting.sheets.len(), angle, tr);
+        let warning = Warning {
+            step: "sheets",
+            kind: WarningKind::CuttingPlan,
+            part: Some(parts[i].id),
+            message: format!(
+                "part {} does not fit a {width:.0} × {height:.0} mm sheet; it gets a sheet of its own, {w:.1} × {h:.1} mm",
+                parts[i].id
+            ),
+        };
+        nesting.sheets.push(empty_sheet(self.thickness, w, h, true));
+        Ok((placement, warning))
+    }
+
+    /// Records every member's placement in `nesting`.
+    fn record(&self, nesting: &mut Nesting, placed: &[Option<Placement>]) -> Result<(), PlanError> {
+        for &i in &self.members {
+            let (sheet, angle, t) = placed[i].ok_or_else(|| PlanError::Part {
+                part: self.parts[i].id,
                 message: "was not placed; please report this".into(),
             })?;
             nesting.placements[i] = SheetPlacement {
@@ -175,9 +242,8 @@ pub fn nest(
                 rotation: normalized_degrees(angle),
             };
         }
+        Ok(())
     }
-    finish_sheets(&mut nesting, parts, &shapes, settings);
-    Ok((nesting, warnings))
 }
 
 fn empty_sheet(thickness: f64, width: f64, height: f64, oversize: bool) -> Sheet {

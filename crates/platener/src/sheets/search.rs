@@ -8,6 +8,7 @@
 //! depends only on the seed and the number of tries, never on thread timing.
 
 use glam::DVec2;
+use platener_geom::rng::SplitMix64;
 use rayon::prelude::*;
 
 use super::blf::{Bin, GAP, Placed};
@@ -76,21 +77,6 @@ pub(crate) fn first_fit(
     })
 }
 
-/// splitmix64: a tiny, well-mixed, seedable generator (Steele et al. 2014), enough to jitter
-/// part orders reproducibly without a dependency.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// The part order of try `t` (see the module docs).
 pub(crate) fn order(shapes: &[NestShape], items: &[usize], t: u32, seed: u64) -> Vec<usize> {
     let longest = |i: usize| shapes[i].templates.first().map_or(0.0, |t| t.size.max_element());
@@ -98,10 +84,10 @@ pub(crate) fn order(shapes: &[NestShape], items: &[usize], t: u32, seed: u64) ->
         0 => items.iter().map(|&i| (shapes[i].area, i)).collect(),
         1 => items.iter().map(|&i| (longest(i), i)).collect(),
         _ => {
-            let mut rng = SplitMix(seed ^ u64::from(t).wrapping_mul(0xA076_1D64_78BD_642F));
+            let mut rng = SplitMix64::new(seed ^ u64::from(t).wrapping_mul(0xA076_1D64_78BD_642F));
             items
                 .iter()
-                .map(|&i| (shapes[i].area * (0.7 + 0.6 * rng.next_unit()), i))
+                .map(|&i| (shapes[i].area * (0.7 + 0.6 * rng.unit()), i))
                 .collect()
         }
     };

@@ -10,7 +10,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use glam::DVec2;
 use jagua_rs::geometry::primitives::{Point, SPolygon};
-use platener_geom::polygon::remove_straight_vertices;
+use platener_geom::polygon::{bounds_of, remove_straight_vertices};
 use platener_geom::{Polygon, Ring, offset};
 
 /// Rotations closer than this (radians, 0.5°) to a multiple of 90° count as that multiple.
@@ -94,20 +94,13 @@ pub(crate) fn min_area_angle(ring: &[DVec2]) -> f64 {
             continue;
         }
         let angle = (-e.y.atan2(e.x)).rem_euclid(FRAC_PI_2);
-        let (lo, hi) = bounds(hull.iter().map(|p| rotate(*p, angle)));
+        let (lo, hi) = bounds_of(hull.iter().map(|p| rotate(*p, angle)));
         let area = (hi - lo).x * (hi - lo).y;
         if area < best.0 - 1e-9 * area.abs() {
             best = (area, angle);
         }
     }
     best.1
-}
-
-fn bounds(points: impl Iterator<Item = DVec2>) -> (DVec2, DVec2) {
-    points.fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(p), hi.max(p)),
-    )
 }
 
 /// Edges shorter than this (mm) do not make a pocket: finger notches are too small to hold a
@@ -132,7 +125,7 @@ fn pockets(ring: &[DVec2]) -> Vec<DVec2> {
 pub(crate) fn to_spolygon(ring: &[DVec2]) -> Option<SPolygon> {
     let points: Vec<Point> = ring.iter().map(|p| Point(p.x as f32, p.y as f32)).collect();
     SPolygon::new(points).ok().or_else(|| {
-        let (lo, hi) = bounds(ring.iter().copied());
+        let (lo, hi) = bounds_of(ring.iter().copied());
         let rect = [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
         SPolygon::new(rect.iter().map(|p| Point(p.x as f32, p.y as f32)).collect()).ok()
     })
@@ -172,7 +165,7 @@ pub(crate) fn nest_shape(cut: &Polygon, area: f64, spacing: f64, fine: bool) -> 
         .into_iter()
         .filter_map(|angle| {
             let rotated: Vec<DVec2> = ring.iter().map(|p| rotate(*p, angle)).collect();
-            let (lo, hi) = bounds(rotated.iter().copied());
+            let (lo, hi) = bounds_of(rotated.iter().copied());
             let shifted: Vec<DVec2> = rotated.iter().map(|p| *p - lo).collect();
             Some(Template {
                 angle,
@@ -249,7 +242,7 @@ mod tests {
                 .iter()
                 .map(|p| rotate(*p, t.angle) + t.shift)
                 .collect();
-            let (lo, hi) = bounds(pts.into_iter());
+            let (lo, hi) = bounds_of(pts);
             assert!(lo.length() < 1e-9 && (hi - t.size).length() < 1e-9);
         }
     }

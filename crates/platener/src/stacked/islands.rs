@@ -10,16 +10,13 @@
 //! width, are too small to cut: they are dropped and reported.
 
 use platener_geom::polygon::{signed_area, total_area};
+use platener_geom::tolerance::CRUMB_AREA;
 use platener_geom::{GridError, Polygon, Ring, boolean, offset};
 use rayon::prelude::*;
 use serde::Serialize;
 
 use super::slice::{SliceLoop, Sliced};
 use crate::settings::StackedSettings;
-
-/// Islands under this area (mm²) are rounding crumbs of the boolean, not material: dropped
-/// without a report.
-const NOISE_AREA: f64 = 0.01;
 
 /// An island too small to cut.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -122,7 +119,7 @@ fn keep_cuttable(polygons: Vec<Polygon>, s: &StackedSettings) -> Result<(Vec<Pol
             s.min_width <= 0.0 || !offset::offset(std::slice::from_ref(&p), -s.min_width / 2.0)?.is_empty();
         if area >= s.min_area && area > 0.0 && wide_enough {
             kept.push(p);
-        } else if area >= NOISE_AREA {
+        } else if area >= CRUMB_AREA {
             dropped.push(area);
         }
     }

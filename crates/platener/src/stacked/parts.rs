@@ -12,13 +12,24 @@ use glam::DVec2;
 use super::Stack;
 use super::marks::tag;
 use crate::error::{Error, ModelProblem, Result};
-use crate::plan::{Joint, JointKind, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
 use crate::read::Model;
+use crate::plan::{Joint, JointKind, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
 use crate::settings::{Settings, StackAxis};
 
 /// The parts, joints and settings of `stack`, converted from `model`.
 pub fn plan_input(stack: &Stack, model: &Model, settings: &Settings) -> Result<PlanInput> {
     let geometry = |e: platener_geom::GridError| Error::model(&model.name, ModelProblem::OffGrid(e));
+    let mut parts = layer_parts(stack, &geometry)?;
+    let joints = shaft_parts(stack, &mut parts, &geometry)?;
+    let method_settings = method_settings(stack, settings);
+    let mut input = PlanInput::new(SourceInfo::from(model), Method::Stacked, parts, joints);
+    input.settings = settings.cut.clone();
+    input.method_settings = method_settings;
+    Ok(input)
+}
+
+/// Every island as a part of kind `layer`, tagged with its layer's number.
+fn layer_parts(stack: &Stack, geometry: &dyn Fn(platener_geom::GridError) -> Error) -> Result<Vec<Part>> {
     let mut parts = Vec::new();
     for (k, layer) in stack.layers.iter().enumerate() {
         for island in &layer.islands {
@@ -38,6 +49,16 @@ pub fn plan_input(stack: &Stack, model: &Model, settings: &Settings) -> Result<P
             });
         }
     }
+    Ok(parts)
+}
+
+/// Every shaft as a part of kind `shaft` (added to `parts`), tagged with its number and the
+/// layers it spans; returns one joint per slot.
+fn shaft_parts(
+    stack: &Stack,
+    parts: &mut Vec<Part>,
+    geometry: &dyn Fn(platener_geom::GridError) -> Error,
+) -> Result<Vec<Joint>> {
     let mut joints = Vec::new();
     for (j, shaft) in stack.shafts.iter().enumerate() {
         let (lo, hi) = shaft.polygon.bounds();
@@ -73,7 +94,11 @@ pub fn plan_input(stack: &Stack, model: &Model, settings: &Settings) -> Result<P
             });
         }
     }
-    let s = settings;
+    Ok(joints)
+}
+
+/// The stacked method's settings as the plan records them.
+fn method_settings(stack: &Stack, s: &Settings) -> BTreeMap<String, SettingValue> {
     let mut method_settings = BTreeMap::new();
     let axis = match s.stacked.axis {
         StackAxis::Auto => "auto",
@@ -98,8 +123,5 @@ pub fn plan_input(stack: &Stack, model: &Model, settings: &Settings) -> Result<P
         SettingValue::Numbers(vec![s.stacked.shaft_min_width, s.stacked.shaft_max_width]),
     );
     method_settings.insert("weld".to_string(), SettingValue::Number(0.0));
-    let mut input = PlanInput::new(SourceInfo::from(model), Method::Stacked, parts, joints);
-    input.settings = s.cut.clone();
-    input.method_settings = method_settings;
-    Ok(input)
+    method_settings
 }

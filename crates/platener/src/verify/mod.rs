@@ -18,7 +18,7 @@ mod tests;
 
 use serde::Serialize;
 
-use crate::assembly::Prism;
+use crate::assembly::Solid;
 
 use crate::mesh::Mesh;
 use crate::plan::Plan;
@@ -103,7 +103,7 @@ pub fn plan_from_zip(bytes: &[u8]) -> Result<Plan, PlanFileError> {
 
 /// Verifies a plan, optionally against the model it was made from.
 pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
-    let solids: Vec<Prism> = plan.parts.iter().map(Prism::from_part).collect();
+    let solids: Vec<Solid> = plan.parts.iter().map(Solid::from_part).collect();
     let step = sample::step_for(&solids);
     let parts_volume: f64 = solids.iter().map(|s| s.volume).sum();
     let mut interference = sample::interference(&solids, step);

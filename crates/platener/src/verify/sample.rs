@@ -6,26 +6,30 @@
 use glam::{DVec2, DVec3};
 
 use super::Interference;
-use crate::assembly::{Inside, Prism};
+use crate::assembly::{Inside, Solid};
 use crate::mesh::Mesh;
 
 /// Fraction of a step the sampling grid is shifted by (1/√2 − 0.5).
 const SHIFT: f64 = 0.207_106_781_186_547_5;
 
 /// The sampling step: a third of the thinnest part, at most 1 mm.
-pub(super) fn step_for(solids: &[Prism]) -> f64 {
-    solids.iter().map(|s| s.thickness / 3.0).fold(1.0, f64::min).max(0.05)
+pub(super) fn step_for(solids: &[Solid]) -> f64 {
+    solids
+        .iter()
+        .map(|s| s.slab.thickness / 3.0)
+        .fold(1.0, f64::min)
+        .max(0.05)
 }
 
-fn overlap(a: &Prism, b: &Prism, grow: f64) -> bool {
+fn overlap(a: &Solid, b: &Solid, grow: f64) -> bool {
     (a.lo - DVec3::splat(grow)).cmple(b.hi).all() && (b.lo - DVec3::splat(grow)).cmple(a.hi).all()
 }
 
 /// Cell centres of a part's volume (in the model), with the volume each stands for.
-fn cells(s: &Prism, step: f64) -> (Vec<DVec3>, f64) {
-    let (lo, hi) = s.outline_bounds();
-    let layers = ((s.thickness / step).ceil() as usize).max(1);
-    let dz = s.thickness / layers as f64;
+fn cells(s: &Solid, step: f64) -> (Vec<DVec3>, f64) {
+    let (lo, hi) = s.slab.polygon.bounds();
+    let layers = ((s.slab.thickness / step).ceil() as usize).max(1);
+    let dz = s.slab.thickness / layers as f64;
     let (nx, ny) = (
         ((hi.x - lo.x) / step).ceil() as usize,
         ((hi.y - lo.y) / step).ceil() as usize,
@@ -39,11 +43,11 @@ fn cells(s: &Prism, step: f64) -> (Vec<DVec3>, f64) {
                 lo.x + (i as f64 + 0.5 + SHIFT) * step,
                 lo.y + (j as f64 + 0.5 - SHIFT) * step,
             );
-            if !s.contains_2d(q) {
+            if !s.slab.polygon.contains(q) {
                 continue;
             }
             for k in 0..layers {
-                out.push(s.frame.to_model(DVec3::new(q.x, q.y, (k as f64 + 0.5) * dz)));
+                out.push(s.slab.frame.to_model(DVec3::new(q.x, q.y, (k as f64 + 0.5) * dz)));
             }
         }
     }
@@ -51,10 +55,10 @@ fn cells(s: &Prism, step: f64) -> (Vec<DVec3>, f64) {
 }
 
 /// Every pair of parts that shares volume, with the volume.
-pub(super) fn interference(solids: &[Prism], step: f64) -> Vec<Interference> {
+pub(super) fn interference(solids: &[Solid], step: f64) -> Vec<Interference> {
     let mut found = Vec::new();
     for (i, a) in solids.iter().enumerate() {
-        let near: Vec<&Prism> = solids[i + 1..].iter().filter(|b| overlap(a, b, 0.0)).collect();
+        let near: Vec<&Solid> = solids[i + 1..].iter().filter(|b| overlap(a, b, 0.0)).collect();
         if near.is_empty() {
             continue;
         }
@@ -74,7 +78,7 @@ pub(super) fn interference(solids: &[Prism], step: f64) -> Vec<Interference> {
 
 /// Whether two parts touch or overlap (closer than a tenth of a step anywhere on a's surface
 /// grid).
-pub(super) fn meet(a: &Prism, b: &Prism, step: f64) -> bool {
+pub(super) fn meet(a: &Solid, b: &Solid, step: f64) -> bool {
     if !overlap(a, b, step) {
         return false;
     }
@@ -84,7 +88,7 @@ pub(super) fn meet(a: &Prism, b: &Prism, step: f64) -> bool {
 }
 
 /// Share of the model's surface area within `distance` of some part.
-pub(super) fn surface_covered(mesh: &Mesh, solids: &[Prism], distance: f64) -> f64 {
+pub(super) fn surface_covered(mesh: &Mesh, solids: &[Solid], distance: f64) -> f64 {
     let (mut covered, mut total) = (0.0, 0.0);
     for f in 0..mesh.triangles.len() {
         let [a, b, c] = mesh.corners(f);
@@ -113,7 +117,7 @@ pub(super) fn surface_covered(mesh: &Mesh, solids: &[Prism], distance: f64) -> f
 }
 
 /// Share of the parts' volume inside the model ([`Inside`]: ray parity voted over three axes).
-pub(super) fn volume_inside(mesh: &Mesh, solids: &[Prism], step: f64) -> f64 {
+pub(super) fn volume_inside(mesh: &Mesh, solids: &[Solid], step: f64) -> f64 {
     let inside = Inside::new(&mesh.vertices, &mesh.triangles);
     let (mut hits, mut total) = (0usize, 0usize);
     for s in solids {
