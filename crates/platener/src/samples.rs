@@ -483,6 +483,30 @@ pub fn star(arms: usize, arm_len: f64, t: f64, depth: f64) -> Vec<Triangle> {
     along_z(&star_profile(arms, arm_len, t), depth)
 }
 
+/// The variable that makes a missing corpus a failure instead of a skip (CI sets it).
+pub const REQUIRE_CORPUS: &str = "PLATENER_REQUIRE_CORPUS";
+
+/// The shared corpus of real models by other people (`../shared/corpus` beside the
+/// repository, or the folder `PLATENER_CORPUS` names), for tests and benchmarks.
+///
+/// `Err` holds the message a test prints when it skips because the corpus is absent; with
+/// `PLATENER_REQUIRE_CORPUS=1` (set by `.ci/run`) this panics instead, so CI never passes
+/// without having run the corpus tests.
+pub fn shared_corpus() -> Result<std::path::PathBuf, String> {
+    let dir = std::env::var_os("PLATENER_CORPUS").map_or_else(
+        || std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus"),
+        std::path::PathBuf::from,
+    );
+    if dir.is_dir() {
+        return Ok(dir.canonicalize().unwrap_or(dir));
+    }
+    let message = format!("skipping: the shared corpus is not at {}", dir.display());
+    if std::env::var_os(REQUIRE_CORPUS).is_some_and(|v| v == "1") {
+        panic!("{message}, and {REQUIRE_CORPUS}=1 requires it");
+    }
+    Err(message)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -526,28 +550,4 @@ mod tests {
         let volume = (85.0 * 3.0 + 3.0 * 9.0 + 90.0 * 3.0) * 70.0;
         assert!((m.health.volume.expect("closed") - volume).abs() < 1e-6);
     }
-}
-
-/// The variable that makes a missing corpus a failure instead of a skip (CI sets it).
-pub const REQUIRE_CORPUS: &str = "PLATENER_REQUIRE_CORPUS";
-
-/// The shared corpus of real models by other people (`../shared/corpus` beside the
-/// repository, or the folder `PLATENER_CORPUS` names), for tests and benchmarks.
-///
-/// `Err` holds the message a test prints when it skips because the corpus is absent; with
-/// `PLATENER_REQUIRE_CORPUS=1` (set by `.ci/run`) this panics instead, so CI never passes
-/// without having run the corpus tests.
-pub fn shared_corpus() -> Result<std::path::PathBuf, String> {
-    let dir = std::env::var_os("PLATENER_CORPUS").map_or_else(
-        || std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus"),
-        std::path::PathBuf::from,
-    );
-    if dir.is_dir() {
-        return Ok(dir.canonicalize().unwrap_or(dir));
-    }
-    let message = format!("skipping: the shared corpus is not at {}", dir.display());
-    if std::env::var_os(REQUIRE_CORPUS).is_some_and(|v| v == "1") {
-        panic!("{message}, and {REQUIRE_CORPUS}=1 requires it");
-    }
-    Err(message)
 }

@@ -149,8 +149,8 @@ fn work(request: &Request, cancel: &Cancel, progress: &dyn Progress, tx: &Sender
     };
     let shared = catch(|| shared_steps(request, cancel, progress));
     let base = match shared {
-        Ok(Ok(state)) => state,
-        Ok(Err((error, state))) => {
+        Ok((state, Ok(()))) => state,
+        Ok((state, Err(error))) => {
             for (k, &method) in request.methods.iter().enumerate() {
                 send(k, failed(method, error.clone(), Some(state.clone()), 0.0));
             }
@@ -174,14 +174,13 @@ fn work(request: &Request, cancel: &Cancel, progress: &dyn Progress, tx: &Sender
         let span = tracing::info_span!("method", name = method.name());
         let _entered = span.enter();
         let outcome = catch(|| {
-            run_method(method, &base, &mut foundations, request, cancel, progress).map(|state| {
-                let score = score_of(&state);
-                (state, score)
-            })
+            let (state, ran) = run_method(method, &base, &mut foundations, request, cancel, progress);
+            let score = ran.is_ok().then(|| score_of(&state)).flatten();
+            (state, score, ran)
         });
         let seconds = start.elapsed().as_secs_f64();
         let result = match outcome {
-            Ok(Ok((state, score))) => MethodResult {
+            Ok((state, score, Ok(()))) => MethodResult {
                 method,
                 status: Status::Converted,
                 seconds,
@@ -189,7 +188,7 @@ fn work(request: &Request, cancel: &Cancel, progress: &dyn Progress, tx: &Sender
                 score,
                 error: None,
             },
-            Ok(Err((error, state))) => failed(method, error, Some(state), seconds),
+            Ok((state, _, Err(error))) => failed(method, error, Some(state), seconds),
             Err(panic) => failed(
                 method,
                 Error::Internal {
@@ -206,19 +205,18 @@ fn work(request: &Request, cancel: &Cancel, progress: &dyn Progress, tx: &Sender
     }
 }
 
-type Outcome = Result<State, (Error, State)>;
+/// The state a run reached, and whether it finished.
+type Outcome = (State, Result<(), Error>);
 
 /// The steps every method shares, run once.
 fn shared_steps(request: &Request, cancel: &Cancel, progress: &dyn Progress) -> Outcome {
     let mut state = State::new(request.source.clone(), request.settings.clone());
     if let Err(e) = request.settings.validate() {
-        return Err((e, state));
+        return (state, Err(e));
     }
     let observe = |event: StepEvent<'_>| progress.event(Event::Step { method: None, event });
-    match pipeline::run_observed(&SHARED, &mut state, cancel, &observe) {
-        Ok(()) => Ok(state),
-        Err(e) => Err((e, state)),
-    }
+    let ran = pipeline::run_observed(&SHARED, &mut state, cancel, &observe);
+    (state, ran)
 }
 
 /// One method from the shared state: the foundation (reused when an earlier method ran it with
@@ -240,7 +238,7 @@ fn run_method(
         },
     };
     if let Err(e) = inject(method, &request.faults, cancel) {
-        return Err((e, state));
+        return (state, Err(e));
     }
     let observe = |event: StepEvent<'_>| {
         progress.event(Event::Step {
@@ -261,10 +259,7 @@ fn run_method(
             pipeline::run_observed(&rest, &mut state, cancel, &observe)
         })
         .and_then(|()| has_parts(method, &state));
-    match ran {
-        Ok(()) => Ok(state),
-        Err(e) => Err((e, state)),
-    }
+    (state, ran)
 }
 
 /// An empty plan is nothing to cut: a failure, whose step warnings say why.
@@ -288,7 +283,7 @@ fn score_of(state: &State) -> Option<Score> {
 
 /// Fails, panics or hangs as a caller's test asked for `method`.
 fn inject(method: MethodKind, faults: &[Fault], cancel: &Cancel) -> Result<(), Error> {
-    for fault in faults.iter().filter(|f| f.method == method) {
+    if let Some(fault) = faults.iter().find(|f| f.method == method) {
         match fault.kind {
             FaultKind::Error => {
                 return Err(Error::Internal {

@@ -64,9 +64,9 @@ fn table_top_on_two_legs_is_tee_from_below() {
     let model = samples::table(w, d, h, inset, t);
     let plates = plates_with(model.clone(), t);
     assert_eq!(plates.len(), 3, "top and two legs");
-    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    let (joints, warnings) = compute(&plates, &JointSettings::default()).expect("grid");
     assert_eq!(joints.connections.len(), 2, "{:?}", joints.connections);
-    assert!(joints.warnings.is_empty(), "{:?}", joints.warnings);
+    assert!(warnings.is_empty(), "{:?}", warnings);
     let top = plates
         .iter()
         .position(|p| p.frame.n.z.abs() > 0.99)
@@ -132,7 +132,7 @@ fn corners_at_60_90_120_150_degrees_have_no_gap_wider_than_0_2_mm() {
         let model = samples::roof(50.0, (180.0 - enclosed) / 2.0, 40.0, t);
         let plates = plates_with(model.clone(), t);
         assert_eq!(plates.len(), 2, "{enclosed}°");
-        let joints = compute(&plates, &JointSettings::default()).expect("grid");
+        let (joints, _) = compute(&plates, &JointSettings::default()).expect("grid");
         assert_eq!(joints.connections.len(), 1, "{enclosed}°: {:?}", joints.connections);
         let c = &joints.connections[0];
         assert_eq!(c.kind, ConnectionKind::Corner, "{enclosed}°");
@@ -231,14 +231,14 @@ fn three_and_four_plates_on_one_line_share_no_volume() {
         assert!((model_volume(&model) - expected).abs() < 1e-6 * expected);
         let plates = plates_with(model.clone(), t);
         assert_eq!(plates.len(), plates_found, "{arms} arms");
-        let joints = compute(&plates, &JointSettings::default()).expect("grid");
+        let (joints, warnings) = compute(&plates, &JointSettings::default()).expect("grid");
         assert_eq!(joints.connections.len(), plates_found * (plates_found - 1) / 2);
         assert!(
             joints.connections.iter().all(|c| c.kind == kind),
             "{:?}",
             joints.connections
         );
-        assert!(joints.warnings.is_empty(), "{:?}", joints.warnings);
+        assert!(warnings.is_empty(), "{:?}", warnings);
         let parts = parts(&plates, &joints);
         let total = volume(&parts);
         for ((i, j), shared) in shared_volumes(&parts) {
@@ -294,9 +294,9 @@ mod uneven_y {
             let model = samples::fan(&angles, 30.0, t, depth);
             let plates = plates_with(model.clone(), t);
             prop_assert_eq!(plates.len(), 3);
-            let joints = compute(&plates, &JointSettings::default()).expect("grid");
+            let (joints, warnings) = compute(&plates, &JointSettings::default()).expect("grid");
             prop_assert_eq!(joints.connections.len(), 3, "{:?}", joints.connections);
-            prop_assert!(joints.warnings.is_empty(), "{:?}", joints.warnings);
+            prop_assert!(warnings.is_empty(), "{:?}", warnings);
             let parts = parts(&plates, &joints);
             let mesh = mesh_of(&model);
             let inside = Inside::new(&mesh.vertices, &mesh.triangles);
@@ -331,8 +331,8 @@ fn v_standing_on_a_board_takes_turns_on_the_line() {
         let plates = plates_with(model.clone(), t);
         assert_eq!(plates.len(), 3, "{walls:?}: the board and two walls");
         let board = plates.iter().position(|p| p.frame.n.y.abs() > 0.999).expect("a board");
-        let joints = compute(&plates, &JointSettings::default()).expect("grid");
-        assert!(joints.warnings.is_empty(), "{:?}", joints.warnings);
+        let (joints, warnings) = compute(&plates, &JointSettings::default()).expect("grid");
+        assert!(warnings.is_empty(), "{:?}", warnings);
         let mut kinds: Vec<_> = joints.connections.iter().map(|c| c.kind).collect();
         kinds.sort_by_key(|k| *k != ConnectionKind::Corner);
         assert_eq!(
@@ -375,7 +375,7 @@ fn shallow_corners_keep_the_150_degree_finger_length() {
         let model = samples::roof(50.0, (180.0 - enclosed) / 2.0, 40.0, t);
         let plates = plates_with(model.clone(), t);
         assert_eq!(plates.len(), 2, "{enclosed}°");
-        let joints = compute(&plates, &JointSettings::default()).expect("grid");
+        let (joints, _) = compute(&plates, &JointSettings::default()).expect("grid");
         assert_eq!(joints.connections.len(), 1, "{enclosed}°");
         let c = &joints.connections[0];
         assert_eq!(c.kind, ConnectionKind::Corner, "{enclosed}°");
@@ -420,12 +420,8 @@ fn low_poly_ball_keeps_every_facet_whole() {
     let t = 3.0;
     let model = samples::sphere(DVec3::ZERO, 40.0, 12, 8);
     let plates = plates_with(model.clone(), t);
-    let joints = compute(&plates, &JointSettings::default()).expect("grid");
-    assert!(
-        !joints.warnings.iter().any(|w| w.contains("pieces")),
-        "{:?}",
-        joints.warnings
-    );
+    let (joints, warnings) = compute(&plates, &JointSettings::default()).expect("grid");
+    assert!(!warnings.iter().any(|w| w.contains("pieces")), "{:?}", warnings);
     // Each facet has at most its own edges' neighbours (4 on a quad, fewer where plate finding
     // trimmed the poles).
     let mut per_plate = vec![0; plates.len()];

@@ -396,7 +396,7 @@ pub(super) fn apply(
     regions: Vec<Region>,
     settings: &JointSettings,
     style: JointStyle,
-) -> Result<Joints, GridError> {
+) -> Result<(Joints, Vec<String>), GridError> {
     let mut cutting = Cutting::new(plates, regions, settings, style)?;
     cutting.shorten_where_split()?;
     cutting.adapt()?;
@@ -674,20 +674,20 @@ impl<'a> Cutting<'a> {
 
     /// The joints as the plan gets them: claims settled between the final outlines, every
     /// joint labelled, its connection, edges and keys, and the warnings.
-    fn into_joints(mut self) -> Result<Joints, GridError> {
+    fn into_joints(mut self) -> Result<(Joints, Vec<String>), GridError> {
         let (mut outlines, split) = self.final_outlines()?;
         let gave_way = super::claims::settle(self.plates, &mut outlines, &super::claims::decided(&self.used))?;
         let (labels, unjoined) = super::claims::labels(self.plates, &outlines, &self.used, &gave_way, min_feature)?;
         let mut warnings = self.warnings(&labels, &unjoined);
         warnings.extend(split);
         let (connections, edges) = self.connections(&labels);
-        Ok(Joints {
+        let joints = Joints {
             outlines,
             connections,
             edges,
             keys: self.keys(&labels),
-            warnings,
-        })
+        };
+        Ok((joints, warnings))
     }
 
     /// Warnings for the places left unjoined and for each labelled joint that adapted.

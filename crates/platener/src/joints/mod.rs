@@ -131,8 +131,6 @@ pub struct Joints {
     pub edges: Vec<Vec<(u32, [DVec2; 2])>>,
     /// Extra parts: the keys of dovetail joints.
     pub keys: Vec<Key>,
-    /// Things to know (a plate that would fall apart, …).
-    pub warnings: Vec<String>,
 }
 
 /// A key of a dovetail joint: a small part cut from the dovetailed plate's sheet that fills
@@ -162,8 +160,9 @@ impl Joints {
     }
 }
 
-/// Computes the joints of `plates` (straight fingers where the settings name no style).
-pub fn compute(plates: &[Plate], settings: &JointSettings) -> Result<Joints, GridError> {
+/// Computes the joints of `plates` (straight fingers where the settings name no style), with
+/// what the user should know (a joint that had to adapt, a plate that would fall apart…).
+pub fn compute(plates: &[Plate], settings: &JointSettings) -> Result<(Joints, Vec<String>), GridError> {
     let regions = connect::find(plates, settings)?;
     fingers::apply(plates, regions, settings, settings.style.unwrap_or(JointStyle::Finger))
 }
@@ -177,9 +176,9 @@ pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Re
         style: Some(chosen.style.unwrap_or(JointStyle::for_material(settings.cut.material))),
         ..chosen.clone()
     };
-    let mut joints =
+    let (joints, warnings) =
         compute(&plates.plates, &joint_settings).map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?;
-    for w in std::mem::take(&mut joints.warnings) {
+    for w in warnings {
         cx.warn(WarningKind::Joints, w);
     }
     Ok(joints)

@@ -114,14 +114,14 @@ pub(super) fn volume(parts: &[Slab]) -> f64 {
 #[test]
 fn box_corners_become_twelve_finger_joints_that_rebuild_the_box() {
     let plates = plates_of(samples::closed_box(100.0, 80.0, 60.0, 3.0));
-    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    let (joints, warnings) = compute(&plates, &JointSettings::default()).expect("grid");
     assert_eq!(joints.connections.len(), 12);
     for c in &joints.connections {
         assert_eq!(c.kind, ConnectionKind::Corner);
         assert!((c.angle_deg - 90.0).abs() < 1e-6, "{}", c.angle_deg);
         assert!(c.segments % 2 == 1 && c.segments >= 3, "{}", c.segments);
     }
-    assert!(joints.warnings.is_empty(), "{:?}", joints.warnings);
+    assert!(warnings.is_empty(), "{:?}", warnings);
     let parts = parts(&plates, &joints);
     // Fingers are exact complements: no two parts share volume…
     assert!(worst_overlap(&parts) < 1e-6, "{}", worst_overlap(&parts));
@@ -133,7 +133,7 @@ fn box_corners_become_twelve_finger_joints_that_rebuild_the_box() {
 #[test]
 fn shelf_board_gets_tabs_and_the_sides_get_slots() {
     let plates = plates_of(samples::shelf(80.0, 120.0, 50.0, 60.0, 3.0));
-    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    let (joints, _) = compute(&plates, &JointSettings::default()).expect("grid");
     let tees: Vec<_> = joints
         .connections
         .iter()
@@ -156,7 +156,7 @@ fn shelf_board_gets_tabs_and_the_sides_get_slots() {
 #[test]
 fn crossing_plates_get_a_halved_joint() {
     let plates = plates_of(samples::crossing_plates(100.0, 3.0));
-    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    let (joints, _) = compute(&plates, &JointSettings::default()).expect("grid");
     assert_eq!(joints.connections.len(), 1);
     assert_eq!(joints.connections[0].kind, ConnectionKind::Cross);
     assert_eq!(joints.connections[0].segments, 2);
@@ -171,7 +171,7 @@ fn crossing_plates_get_a_halved_joint() {
 #[test]
 fn roof_ridge_is_a_finger_joint_at_the_enclosed_angle() {
     let plates = plates_of(samples::roof(50.0, 40.0, 80.0, 3.0));
-    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    let (joints, _) = compute(&plates, &JointSettings::default()).expect("grid");
     assert_eq!(joints.connections.len(), 1);
     let c = &joints.connections[0];
     assert_eq!(c.kind, ConnectionKind::Corner);
@@ -205,7 +205,7 @@ fn plates_meeting_at_30_to_150_degrees_fill_the_corner_without_overlap() {
         let model = samples::roof(50.0, pitch, 80.0, 3.0);
         let plates = plates_of(model.clone());
         assert_eq!(plates.len(), 2, "{enclosed}°");
-        let joints = compute(&plates, &JointSettings::default()).expect("grid");
+        let (joints, _) = compute(&plates, &JointSettings::default()).expect("grid");
         assert_eq!(joints.connections.len(), 1, "{enclosed}°");
         let c = &joints.connections[0];
         assert!((c.angle_deg - enclosed).abs() < 1e-6, "{enclosed}°: {}", c.angle_deg);
@@ -237,7 +237,7 @@ mod properties {
             let model = samples::closed_box(w, d, h, t);
             let plates = plates_with(model.clone(), t);
             prop_assert_eq!(plates.len(), 6);
-            let joints = compute(&plates, &JointSettings::default()).expect("grid");
+            let (joints, _) = compute(&plates, &JointSettings::default()).expect("grid");
             prop_assert_eq!(joints.connections.len(), 12);
             let parts = parts(&plates, &joints);
             prop_assert!(worst_overlap(&parts) < 1e-6);
@@ -253,7 +253,7 @@ mod properties {
             let model = samples::roof(run, (180.0 - enclosed) / 2.0, 60.0, 3.0);
             let plates = plates_of(model.clone());
             prop_assert_eq!(plates.len(), 2);
-            let joints = compute(&plates, &JointSettings::default()).expect("grid");
+            let (joints, _) = compute(&plates, &JointSettings::default()).expect("grid");
             prop_assert_eq!(joints.connections.len(), 1);
             prop_assert!((joints.connections[0].angle_deg - enclosed).abs() < 1e-6);
             let parts = parts(&plates, &joints);
@@ -267,8 +267,8 @@ mod properties {
 #[test]
 fn jim_joints_widen_towards_the_tip_and_are_chosen_for_card() {
     let plates = plates_of(samples::closed_box(100.0, 80.0, 60.0, 3.0));
-    let straight = compute(&plates, &JointSettings::default()).expect("grid");
-    let jim = compute(
+    let (straight, _) = compute(&plates, &JointSettings::default()).expect("grid");
+    let (jim, _) = compute(
         &plates,
         &JointSettings {
             style: Some(JointStyle::Jim),
@@ -304,17 +304,9 @@ fn joints_adapt_instead_of_cutting_a_plate_apart() {
     let model = samples::closed_box(100.0, 80.0, 7.0, 3.0);
     let plates = plates_of(model);
     assert_eq!(plates.len(), 6);
-    let joints = compute(&plates, &JointSettings::default()).expect("grid");
-    assert!(
-        joints.warnings.iter().all(|w| !w.contains("pieces")),
-        "{:?}",
-        joints.warnings
-    );
-    assert!(
-        joints.warnings.iter().any(|w| w.contains("stays whole")),
-        "{:?}",
-        joints.warnings
-    );
+    let (joints, warnings) = compute(&plates, &JointSettings::default()).expect("grid");
+    assert!(warnings.iter().all(|w| !w.contains("pieces")), "{:?}", warnings);
+    assert!(warnings.iter().any(|w| w.contains("stays whole")), "{:?}", warnings);
     let parts = parts(&plates, &joints);
     assert!(worst_overlap(&parts) < 1e-6);
     // Nothing is lost: the parts fill the walls to within the slivers a laser cannot cut.
@@ -332,7 +324,7 @@ fn joints_adapt_instead_of_cutting_a_plate_apart() {
 #[test]
 fn dovetails_with_their_keys_rebuild_the_box_exactly() {
     let plates = plates_of(samples::closed_box(100.0, 80.0, 60.0, 3.0));
-    let joints = compute(
+    let (joints, warnings) = compute(
         &plates,
         &JointSettings {
             style: Some(JointStyle::Dovetail),
@@ -340,7 +332,7 @@ fn dovetails_with_their_keys_rebuild_the_box_exactly() {
         },
     )
     .expect("grid");
-    assert!(joints.warnings.is_empty(), "{:?}", joints.warnings);
+    assert!(warnings.is_empty(), "{:?}", warnings);
     assert_eq!(joints.connections.len(), 12);
     assert!(joints.connections.iter().all(|c| c.style == JointStyle::Dovetail));
     let dovetails: usize = joints.connections.iter().map(|c| c.segments / 2).sum();
@@ -422,7 +414,7 @@ fn l_profile(corner: Corner) -> Vec<glam::DVec2> {
 fn plates_ending_short_of_a_rounded_corner_are_joined_across_it() {
     let plates = plates_of(samples::prism(&l_profile(Corner::Fillet), 30.0));
     assert_eq!(plates.len(), 2, "floor and wall");
-    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    let (joints, _) = compute(&plates, &JointSettings::default()).expect("grid");
     assert_eq!(joints.connections.len(), 1);
     let c = &joints.connections[0];
     assert_eq!(c.kind, ConnectionKind::Corner);
@@ -453,7 +445,7 @@ fn plates_on_either_side_of_a_chamfer_are_joined_to_it_not_across_it() {
         .iter()
         .position(|p| (p.frame.n.x.abs() - p.frame.n.z.abs()).abs() < 1e-6)
         .expect("the chamfer is a plate") as u32;
-    let joints = compute(&plates, &JointSettings::default()).expect("grid");
+    let (joints, _) = compute(&plates, &JointSettings::default()).expect("grid");
     assert_eq!(joints.connections.len(), 2, "{:?}", joints.connections);
     for c in &joints.connections {
         assert!(c.plates.contains(&chamfer), "{:?} bridges the chamfer", c.plates);

@@ -12,8 +12,8 @@ use glam::DVec2;
 use super::Stack;
 use super::marks::tag;
 use crate::error::{Error, ModelProblem, Result};
-use crate::read::Model;
 use crate::plan::{Joint, JointKind, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
+use crate::read::Model;
 use crate::settings::{Settings, StackAxis};
 
 /// The parts, joints and settings of `stack`, converted from `model`.
