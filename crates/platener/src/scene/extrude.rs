@@ -15,7 +15,10 @@ use super::glb::MeshData;
 /// The solid of `polygon` (outer ring and holes in the local xy plane) between z = 0 and
 /// z = `thickness`: positions and counter-clockwise-from-outside triangles.
 pub(crate) fn extrude(polygon: &Polygon, thickness: f64) -> Result<(Vec<DVec3>, Vec<[u32; 3]>), SceneError> {
-    let t = triangulate(polygon).map_err(|e| SceneError::Geometry(e.to_string()))?;
+    let t = triangulate(polygon).map_err(|error| SceneError::Geometry {
+        what: "an outline".into(),
+        error,
+    })?;
     let n = u32::try_from(t.points.len()).map_err(|_| SceneError::TooLarge { what: "a part".into() })?;
     let positions: Vec<DVec3> = [0.0, thickness]
         .iter()

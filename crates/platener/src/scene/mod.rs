@@ -125,8 +125,13 @@ pub enum SceneError {
     #[error("unknown view '{0}': expected one of model, wireframe, coplanar, plates, bent, final")]
     UnknownView(String),
     /// Geometry that cannot be drawn: non-finite or huge coordinates (input's fault).
-    #[error("cannot draw {0}")]
-    Geometry(String),
+    #[error("cannot draw {what}: {error}")]
+    Geometry {
+        /// What was drawn (a plate, a part).
+        what: String,
+        /// Why its outline is off the grid.
+        error: platener_geom::GridError,
+    },
     /// More than a GLB holds (4 GiB, 2^32 vertices): the input is too large.
     #[error("{what} is too large for a GLB file")]
     TooLarge {
@@ -151,7 +156,10 @@ impl SceneError {
     /// The error with what it is about (a plate, a part) in front.
     fn about(self, name: &str) -> Self {
         match self {
-            SceneError::Geometry(m) => SceneError::Geometry(format!("{name}: {m}")),
+            SceneError::Geometry { error, .. } => SceneError::Geometry {
+                what: name.to_string(),
+                error,
+            },
             e => e,
         }
     }
