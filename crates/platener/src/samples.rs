@@ -507,6 +507,23 @@ pub fn shared_corpus() -> Result<std::path::PathBuf, String> {
     Err(message)
 }
 
+/// Every `.stl` file under `dir` (recursively), sorted, so corpus tests walk models in one
+/// order on every machine.
+pub fn stl_files(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut files: Vec<std::path::PathBuf> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .flat_map(|e| {
+            let p = e.path();
+            if p.is_dir() { stl_files(&p) } else { vec![p] }
+        })
+        .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("stl")))
+        .collect();
+    files.sort();
+    files
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -15,19 +15,6 @@ fn corpus() -> Option<PathBuf> {
     platener::samples::shared_corpus().map_err(|m| eprintln!("{m}")).ok()
 }
 
-fn stl_files(dir: &Path) -> Vec<PathBuf> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .expect("corpus folder readable")
-        .flat_map(|e| {
-            let p = e.expect("entry").path();
-            if p.is_dir() { stl_files(&p) } else { vec![p] }
-        })
-        .filter(|p| p.extension().is_some_and(|e| e == "stl"))
-        .collect();
-    files.sort();
-    files
-}
-
 /// Files that must fail, with a piece of the message they must give.
 const FAILS: &[(&str, &str)] = &[
     ("openscad_invalid_vertex.stl", "line 89"),
@@ -63,7 +50,7 @@ const WARNS: &[(&str, WarningKind)] = &[
 #[test]
 fn every_corpus_file_converts_or_fails_with_its_message() {
     let Some(dir) = corpus() else { return };
-    let files = stl_files(&dir);
+    let files = platener::samples::stl_files(&dir);
     assert!(files.len() >= 50, "expected the 53-file corpus, found {}", files.len());
     let mut converted = 0;
     for path in &files {
@@ -111,7 +98,7 @@ fn shapes_cover_the_surface_of_closed_models() {
         ..Settings::default()
     };
     let (mut checked, mut open) = (0, 0);
-    for path in stl_files(&dir) {
+    for path in platener::samples::stl_files(&dir) {
         let name = path.file_name().and_then(|n| n.to_str()).expect("utf-8 name");
         let source = Source::File(path.clone());
         let state = match platener::inspect::run_foundation(source, settings.clone(), &Cancel::default()) {
