@@ -55,38 +55,35 @@ pub const FOUNDATION: [StepId; 6] = [
 ];
 
 /// The foundation steps, then plate finding and joints.
-pub const PLATE: [StepId; 8] = [
-    StepId::Read,
-    StepId::Cleanup,
-    StepId::Weld,
-    StepId::Mesh,
-    StepId::Coplanar,
-    StepId::Shapes,
-    StepId::Plates,
-    StepId::Joints,
-];
+pub const PLATE: [StepId; 8] = {
+    let f = FOUNDATION;
+    [f[0], f[1], f[2], f[3], f[4], f[5], StepId::Plates, StepId::Joints]
+};
 
 /// The cutting-plan steps: they start from the `parts` snapshot, whichever method made it.
 pub const CUTTING_PLAN: [StepId; 4] = [StepId::Kerf, StepId::Labels, StepId::Sheets, StepId::Export];
 
 impl StepId {
     /// Every step, in pipeline order.
-    pub const ALL: [StepId; 14] = [
-        StepId::Read,
-        StepId::Cleanup,
-        StepId::Weld,
-        StepId::Mesh,
-        StepId::Coplanar,
-        StepId::Shapes,
-        StepId::Plates,
-        StepId::Joints,
-        StepId::Parts,
-        StepId::Stacked,
-        StepId::Kerf,
-        StepId::Labels,
-        StepId::Sheets,
-        StepId::Export,
-    ];
+    pub const ALL: [StepId; 14] = {
+        let (p, c) = (PLATE, CUTTING_PLAN);
+        [
+            p[0],
+            p[1],
+            p[2],
+            p[3],
+            p[4],
+            p[5],
+            p[6],
+            p[7],
+            StepId::Parts,
+            StepId::Stacked,
+            c[0],
+            c[1],
+            c[2],
+            c[3],
+        ]
+    };
 
     /// The step's name, as in report.json and the module it lives in.
     pub fn name(self) -> &'static str {

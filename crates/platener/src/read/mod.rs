@@ -177,44 +177,36 @@ impl Source {
 
 /// Reads any supported model file, choosing the reader by extension (case-insensitive).
 pub fn read_file(path: &Path) -> Result<(Format, RawMesh), ReadError> {
-    let wrap = |kind| ReadError {
-        path: path.to_path_buf(),
-        kind,
-    };
-    let (format, mesh) = match extension_of(path).as_str() {
-        "stl" => stl::read_path(path).map_err(wrap)?,
-        "obj" => (Format::Obj, obj::read_path(path).map_err(wrap)?),
-        "3mf" => (Format::ThreeMf, threemf::read_path(path).map_err(wrap)?),
-        extension => {
-            return Err(wrap(ReadErrorKind::Unsupported {
-                extension: extension.into(),
-            }));
-        }
-    };
-    non_empty(format, mesh).map_err(wrap)
+    read_any(path, None)
 }
 
 /// Reads a model file held in memory; `name` is its file name (the extension picks the
 /// reader, errors name it).
 pub fn read_bytes(name: &str, bytes: &[u8]) -> Result<(Format, RawMesh), ReadError> {
-    let path = Path::new(name);
+    read_any(Path::new(name), Some(bytes))
+}
+
+/// The reader for `path`'s extension, on `bytes` when given (an upload), else on the file.
+fn read_any(path: &Path, bytes: Option<&[u8]>) -> Result<(Format, RawMesh), ReadError> {
     let wrap = |kind| ReadError {
         path: path.to_path_buf(),
         kind,
     };
-    if bytes.is_empty() {
+    if bytes.is_some_and(<[u8]>::is_empty) {
         return Err(wrap(ReadErrorKind::Empty));
     }
-    let (format, mesh) = match extension_of(path).as_str() {
-        "stl" => stl::parse_bytes(bytes).map_err(wrap)?,
-        "obj" => (Format::Obj, obj::parse_bytes(bytes).map_err(wrap)?),
-        "3mf" => (Format::ThreeMf, threemf::parse_bytes(bytes).map_err(wrap)?),
-        extension => {
-            return Err(wrap(ReadErrorKind::Unsupported {
-                extension: extension.into(),
-            }));
-        }
+    let read = match (extension_of(path).as_str(), bytes) {
+        ("stl", None) => stl::read_path(path),
+        ("stl", Some(b)) => stl::parse_bytes(b),
+        ("obj", None) => obj::read_path(path).map(|m| (Format::Obj, m)),
+        ("obj", Some(b)) => obj::parse_bytes(b).map(|m| (Format::Obj, m)),
+        ("3mf", None) => threemf::read_path(path).map(|m| (Format::ThreeMf, m)),
+        ("3mf", Some(b)) => threemf::parse_bytes(b).map(|m| (Format::ThreeMf, m)),
+        (extension, _) => Err(ReadErrorKind::Unsupported {
+            extension: extension.into(),
+        }),
     };
+    let (format, mesh) = read.map_err(wrap)?;
     non_empty(format, mesh).map_err(wrap)
 }
 
