@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 
 use anyhow::Context;
-use platener::verify::{Verification, plan_from_zip, verify};
+use platener::verify::{Verification, plan_from_zip, source_mismatch, verify};
 use platener::{Cancel, Source, Weld};
 
 use crate::args::VerifyArgs;
@@ -25,7 +25,10 @@ pub fn run(args: &VerifyArgs) -> anyhow::Result<u8> {
         }
         None => None,
     };
-    let v = verify(&plan, state.as_ref().and_then(|s| s.mesh.as_deref()));
+    let mut v = verify(&plan, state.as_ref().and_then(|s| s.mesh.as_deref()));
+    if let Some(model) = state.as_ref().and_then(|s| s.read.as_deref()) {
+        v.warnings.extend(source_mismatch(&plan, model));
+    }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
@@ -68,6 +71,9 @@ fn render(v: &Verification) -> String {
             100.0 * c,
             100.0 * i
         );
+    }
+    for w in &v.warnings {
+        let _ = writeln!(s, "WARNING: {w}");
     }
     if v.passed() {
         let _ = writeln!(s, "passed");

@@ -91,3 +91,38 @@ fn dovetail_joints_come_with_keys_and_verify() {
     assert!(v["interference_share"].as_f64().expect("share") < 0.001, "{v}");
     assert!(v["surface_covered"].as_f64().expect("covered") >= 0.98, "{v}");
 }
+
+#[test]
+fn a_model_that_is_not_the_plans_source_is_named_and_the_plan_records_units_and_scale() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let zip = convert_box(dir.path(), &["--units", "cm", "--scale", "0.1"]);
+    let plan = platener::verify::plan_from_zip(&std::fs::read(&zip).expect("zip")).expect("plan");
+    assert_eq!((plan.source.units, plan.source.scale), (platener::Units::Cm, 0.1));
+    // The same model read the same way matches (1 cm × 0.1 = 1 mm per unit).
+    let same = verified_against(&zip, &["--units", "cm", "--scale", "0.1"]);
+    assert_eq!(same["warnings"], serde_json::json!([]));
+    // Read in cm without the scale it is ten times larger: a warning names both sizes and
+    // the units and scale the plan was made with.
+    let other = verified_against(&zip, &["--units", "cm"]);
+    let warning = other["warnings"][0].as_str().expect("a warning");
+    assert!(
+        warning.contains("1000.0 × 800.0 × 600.0 mm") && warning.contains("100.0 × 80.0 × 60.0 mm"),
+        "{warning}"
+    );
+    assert!(warning.contains("units cm, scale 0.1"), "{warning}");
+}
+
+/// `platener verify ZIP --model box-3mm.stl --json` with extra model flags: its JSON report,
+/// whether or not it passed.
+fn verified_against(zip: &Path, extra: &[&str]) -> serde_json::Value {
+    let o = platener()
+        .arg("verify")
+        .arg(zip)
+        .arg("--model")
+        .arg(example("box-3mm.stl"))
+        .args(extra)
+        .arg("--json")
+        .output()
+        .expect("runs");
+    serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", String::from_utf8_lossy(&o.stderr)))
+}

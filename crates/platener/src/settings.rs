@@ -7,7 +7,7 @@ use serde::Serialize;
 use crate::error::{Error, Result};
 
 /// The unit a model file's numbers are in. STL has no unit; we take millimetres.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum Units {
     /// Millimetres (the default).
@@ -65,7 +65,7 @@ pub struct PlateSettings {
     pub max_factor: f64,
     /// Faces whose normals are within this many degrees of opposite are parallel.
     pub parallel_angle_deg: f64,
-    /// Thickness of extruded plates; `None` takes the first offered thickness.
+    /// Thickness of extruded plates; `None` takes the thinnest offered sheet.
     pub extrusion_thickness: Option<f64>,
     /// Plates (and leftover faces) under this area in mm² are too small to cut.
     pub min_area: f64,
@@ -123,7 +123,7 @@ impl std::str::FromStr for StackAxis {
 pub struct StackedSettings {
     /// The slicing direction.
     pub axis: StackAxis,
-    /// Layer (sheet) thickness in mm; `None` takes the first offered thickness.
+    /// Layer (sheet) thickness in mm; `None` takes the thinnest offered sheet.
     pub layer_thickness: Option<f64>,
     /// Shaft thickness in mm; `None` takes the layer thickness (one kind of sheet).
     pub shaft_thickness: Option<f64>,
@@ -302,9 +302,23 @@ impl Settings {
         Ok(())
     }
 
-    /// The thickness of the stacked method's layers.
+    /// The sheet thicknesses offered, thinnest first, each once: the order the user named
+    /// them in never changes a result.
+    pub fn offered_thicknesses(&self) -> Vec<f64> {
+        let mut t = self.thicknesses.clone();
+        t.sort_by(f64::total_cmp);
+        t.dedup();
+        t
+    }
+
+    /// The thinnest sheet offered (finer layers, lighter hulls; docs/decisions.md).
+    pub fn thinnest(&self) -> f64 {
+        self.thicknesses.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+
+    /// The thickness of the stacked method's layers: the thinnest sheet unless set.
     pub fn layer_thickness(&self) -> f64 {
-        self.stacked.layer_thickness.unwrap_or(self.thicknesses[0])
+        self.stacked.layer_thickness.unwrap_or_else(|| self.thinnest())
     }
 
     /// The thickness of the stacked method's shafts.
@@ -312,9 +326,9 @@ impl Settings {
         self.stacked.shaft_thickness.unwrap_or_else(|| self.layer_thickness())
     }
 
-    /// The thickness extruded plates get.
+    /// The thickness extruded plates get: the thinnest sheet unless set.
     pub fn extrusion_thickness(&self) -> f64 {
-        self.plates.extrusion_thickness.unwrap_or(self.thicknesses[0])
+        self.plates.extrusion_thickness.unwrap_or_else(|| self.thinnest())
     }
 
     /// The factor from file units to mm.

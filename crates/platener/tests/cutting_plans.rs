@@ -37,6 +37,8 @@ fn input(parts: Vec<Part>, settings: CutSettings) -> PlanInput {
         triangles: 12,
         bbox_min: DVec3::ZERO,
         bbox_max: DVec3::splat(100.0),
+        units: platener::Units::Mm,
+        scale: 1.0,
     };
     let mut input = PlanInput::new(source, Method::Plate, parts, joints);
     input.settings = settings;

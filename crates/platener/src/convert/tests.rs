@@ -223,3 +223,47 @@ fn an_unreadable_upload_fails_every_method_naming_the_file() {
         assert!(text.contains("broken.stl") && text.contains("line"), "{text}");
     }
 }
+
+/// The order the sheets are offered in never changes a plan: a solid block (all extruded
+/// plates, whose thickness used to be the first offered) and the stacked method's layers.
+#[test]
+fn the_order_of_the_offered_sheets_changes_nothing() {
+    let block = samples::cuboid(glam::DVec3::ZERO, glam::DVec3::new(80.0, 60.0, 40.0));
+    let zips = |thicknesses: Vec<f64>| {
+        let source = Source::Triangles {
+            name: "block".into(),
+            triangles: Arc::new(block.clone()),
+        };
+        let settings = Settings {
+            thicknesses,
+            ..Settings::default()
+        };
+        let all = convert_all(Request::new(source, settings), &Cancel::default(), no_progress());
+        all.methods
+            .iter()
+            .map(|m| m.bundle().expect("converted").zip.clone())
+            .collect::<Vec<_>>()
+    };
+    let (a, b) = (zips(vec![3.0, 6.0]), zips(vec![6.0, 3.0, 6.0]));
+    assert_eq!(a.len(), 2);
+    assert_eq!(a, b);
+    // The thinnest sheet is the one used.
+    let source = Source::Triangles {
+        name: "block".into(),
+        triangles: Arc::new(block.clone()),
+    };
+    let settings = Settings {
+        thicknesses: vec![6.0, 3.0],
+        ..Settings::default()
+    };
+    let state = convert(MethodKind::Plate, source, settings, &Cancel::default()).expect("converts");
+    assert!(
+        state
+            .bundle()
+            .expect("plan")
+            .plan
+            .parts
+            .iter()
+            .all(|p| p.thickness == 3.0)
+    );
+}

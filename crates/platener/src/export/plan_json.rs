@@ -119,6 +119,8 @@ pub fn build_plan(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting: &
             triangles: src.triangles,
             bbox_min: src.bbox_min.to_array(),
             bbox_max: src.bbox_max.to_array(),
+            units: src.units,
+            scale: src.scale,
         },
         method: input.method,
         settings: plan_settings(input),

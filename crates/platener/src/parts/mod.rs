@@ -23,7 +23,7 @@ pub fn run(model: &Model, plates: &Plates, joints: Option<&Joints>, welded: &Wel
     let mut method_settings = BTreeMap::new();
     method_settings.insert(
         "offered_thicknesses".to_string(),
-        SettingValue::Numbers(settings.thicknesses.clone()),
+        SettingValue::Numbers(settings.offered_thicknesses()),
     );
     method_settings.insert("weld".to_string(), SettingValue::Number(welded.distance));
     method_settings.insert(

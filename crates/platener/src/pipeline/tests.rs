@@ -143,3 +143,22 @@ fn rust_files(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
     out.sort();
     out
 }
+
+#[test]
+fn models_too_small_for_mm_or_for_the_sheets_get_the_units_hint() {
+    let units_hint = |size: f64, thickness: f64| {
+        let settings = Settings {
+            thicknesses: vec![thickness],
+            ..Settings::default()
+        };
+        let mut state = State::new(source(size), settings);
+        run(&[StepId::Read], &mut state, &Cancel::default()).expect("reads");
+        state.records[0].warnings.iter().any(|w| w.kind == WarningKind::Units)
+    };
+    // A 4-unit Benchy, a 20-unit part: probably cm or inches.
+    assert!(units_hint(4.0, 3.0));
+    assert!(units_hint(20.0, 3.0));
+    assert!(!units_hint(50.0, 3.0));
+    // 50 mm is 5 sheets of 10 mm: no room for a joint between two walls.
+    assert!(units_hint(50.0, 10.0));
+}

@@ -61,6 +61,17 @@ pub struct PlanSource {
     pub bbox_min: [f64; 3],
     /// Largest corner of its bounding box, mm.
     pub bbox_max: [f64; 3],
+    /// The unit the file's numbers were taken in (`mm`, `cm`, `in`); plans older than this
+    /// field were made in mm.
+    #[serde(default)]
+    pub units: crate::settings::Units,
+    /// The extra scale applied to the file's numbers (1 in plans older than this field).
+    #[serde(default = "one")]
+    pub scale: f64,
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 /// `settings`: the sheet thicknesses, the cutting-plan settings (kerf resolved to a number)

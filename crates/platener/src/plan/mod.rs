@@ -31,6 +31,10 @@ pub struct SourceInfo {
     pub bbox_min: DVec3,
     /// Largest corner of its bounding box, mm.
     pub bbox_max: DVec3,
+    /// The unit the file's numbers were taken in.
+    pub units: crate::settings::Units,
+    /// The extra scale applied to them.
+    pub scale: f64,
 }
 
 impl From<&crate::read::Model> for SourceInfo {
@@ -41,6 +45,8 @@ impl From<&crate::read::Model> for SourceInfo {
             triangles: model.triangles.len() as u64,
             bbox_min: model.bounds.min,
             bbox_max: model.bounds.max,
+            units: model.units,
+            scale: model.scale,
         }
     }
 }

@@ -45,7 +45,13 @@ pub(super) fn matching_thickness(distance: f64, settings: &Settings) -> Option<f
         .iter()
         .copied()
         .filter(|t| p.min_factor * t < distance && distance < p.max_factor * t)
-        .min_by(|a, b| (a - distance).abs().total_cmp(&(b - distance).abs()))
+        // Equally near: the thinner, whatever order the sheets were offered in.
+        .min_by(|a, b| {
+            (a - distance)
+                .abs()
+                .total_cmp(&(b - distance).abs())
+                .then(a.total_cmp(b))
+        })
 }
 
 /// The inherent plates of `shapes`: pairs of facing shapes on parallel planes a sheet's

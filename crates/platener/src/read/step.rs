@@ -8,10 +8,14 @@ use serde::Serialize;
 use super::{Format, Source, Triangle, read_bytes, read_file};
 use crate::context::{StepContext, WarningKind};
 use crate::error::{Error, ModelProblem, Result};
-use crate::settings::Settings;
+use crate::settings::{Settings, Units};
 
-/// Models smaller than this (largest extent, mm) are probably in cm, inches or metres.
-pub const SUSPICIOUSLY_SMALL: f64 = 1.0;
+/// Models smaller than this (largest extent, mm) are probably in cm, inches or metres: a
+/// 4-unit Benchy, a 5-unit part.
+pub const SUSPICIOUSLY_SMALL: f64 = 30.0;
+/// Models fewer than this many sheet thicknesses across leave no room for a joint between
+/// two walls; probably the wrong unit too.
+pub const SHEETS_ACROSS: f64 = 8.0;
 /// Models larger than this (largest extent, mm) are probably in microns or tenths of mm.
 pub const SUSPICIOUSLY_LARGE: f64 = 5000.0;
 
@@ -67,6 +71,10 @@ pub struct Model {
     pub normals_against_winding: usize,
     /// The factor applied to the file's numbers.
     pub unit_factor: f64,
+    /// The unit the file's numbers were taken in.
+    pub units: Units,
+    /// The extra scale applied.
+    pub scale: f64,
 }
 
 /// Step `read`: the model's triangles in mm, with its bounds and what the reader noticed.
@@ -88,7 +96,7 @@ pub fn run(source: &Source, settings: &Settings, cx: &mut StepContext<'_>) -> Re
             } else {
                 Arc::new(scale(triangles.to_vec()))
             };
-            return model(name, None, 1, 0, triangles, factor, cx);
+            return model(name, None, (1, 0), triangles, settings, cx);
         }
     };
     for note in &raw.notes {
@@ -102,22 +110,21 @@ pub fn run(source: &Source, settings: &Settings, cx: &mut StepContext<'_>) -> Re
         );
     }
     let triangles = Arc::new(scale(raw.triangles));
-    model(name, Some(format), raw.solids, against, triangles, factor, cx)
+    model(name, Some(format), (raw.solids, against), triangles, settings, cx)
 }
 
 /// The snapshot, once the triangles are in mm: checked finite, bounded, sized.
 fn model(
     name: String,
     format: Option<Format>,
-    solids: usize,
-    against: usize,
+    (solids, against): (usize, usize),
     triangles: Arc<Vec<Triangle>>,
-    factor: f64,
+    settings: &Settings,
     cx: &mut StepContext<'_>,
 ) -> Result<Model> {
     validate_finite(&name, &triangles)?;
     let bounds = Bounds::of(&triangles).ok_or_else(|| Error::model(&name, ModelProblem::NoTriangles))?;
-    warn_units(bounds.largest_extent(), cx);
+    warn_units(bounds.largest_extent(), settings.thinnest(), cx);
     Ok(Model {
         name,
         format,
@@ -125,16 +132,23 @@ fn model(
         solids,
         bounds,
         normals_against_winding: against,
-        unit_factor: factor,
+        unit_factor: settings.unit_factor(),
+        units: settings.units,
+        scale: settings.scale,
     })
 }
 
-/// A model far too small or too large for millimetres is probably in other units.
-fn warn_units(extent: f64, cx: &mut StepContext<'_>) {
-    if extent < SUSPICIOUSLY_SMALL {
+/// A model far too small (for millimetres, or for the sheets offered) or too large is
+/// probably in other units.
+fn warn_units(extent: f64, thinnest: f64, cx: &mut StepContext<'_>) {
+    if extent < SUSPICIOUSLY_SMALL.max(SHEETS_ACROSS * thinnest) {
         cx.warn(
             WarningKind::Units,
-            format!("the model is only {extent:.4} mm across: if its unit is not mm, use --units cm|in or --scale F"),
+            format!(
+                "the model is only {extent:.4} mm across ({:.1} sheets of {thinnest} mm): if its numbers are not mm, \
+                 use --units cm|in or --scale F",
+                extent / thinnest
+            ),
         );
     } else if extent > SUSPICIOUSLY_LARGE {
         cx.warn(

@@ -111,6 +111,8 @@ fn grid_model(n: usize) -> read::Model {
         solids: 1,
         normals_against_winding: 0,
         unit_factor: 1.0,
+        units: crate::Units::Mm,
+        scale: 1.0,
     }
 }
 

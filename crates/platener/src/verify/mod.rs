@@ -62,6 +62,9 @@ pub struct Verification {
     pub step: f64,
     /// Why verification failed (empty when it passed).
     pub problems: Vec<String>,
+    /// What the user should know but does not fail the plan (a model that does not look like
+    /// the plan's source).
+    pub warnings: Vec<String>,
 }
 
 impl Verification {
@@ -178,5 +181,32 @@ pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
         joints_not_meeting,
         step,
         problems,
+        warnings: Vec::new(),
     }
+}
+
+/// Why `model` does not look like the model `plan` was made from (its bounding box differs by
+/// more than 1 % of the plan's, or 0.01 mm), naming the units and scale the plan was made
+/// with; `None` when it matches.
+pub fn source_mismatch(plan: &Plan, model: &crate::read::Model) -> Option<String> {
+    let (lo, hi) = (
+        glam::DVec3::from(plan.source.bbox_min),
+        glam::DVec3::from(plan.source.bbox_max),
+    );
+    let tolerance = 0.01 * (hi - lo).length() + 0.01;
+    let off = (model.bounds.min - lo)
+        .abs()
+        .max_element()
+        .max((model.bounds.max - hi).abs().max_element());
+    (off > tolerance).then(|| {
+        let size = |d: glam::DVec3| format!("{:.1} × {:.1} × {:.1} mm", d.x, d.y, d.z);
+        format!(
+            "the model is {} but the plan was made from one of {} (units {}, scale {}): \
+             is it the same model, read with the same --units and --scale?",
+            size(model.bounds.size()),
+            size(hi - lo),
+            format!("{:?}", plan.source.units).to_lowercase(),
+            plan.source.scale
+        )
+    })
 }
