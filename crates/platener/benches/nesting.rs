@@ -54,7 +54,7 @@ fn part_sets() -> Vec<(&'static str, Vec<Part>)> {
 fn run(parts: &[Part], settings: &CutSettings) -> (Nesting, f64) {
     let start = std::time::Instant::now();
     let (cut, _) = cut_paths(parts, settings.kerf()).expect("cut paths");
-    let (nesting, _) = nest(parts, &cut, settings, &|| false).expect("nests");
+    let nesting = nest(parts, &cut, settings, &|| false).expect("nests");
     (nesting, start.elapsed().as_secs_f64() * 1e3)
 }
 

@@ -214,20 +214,22 @@ fn many_parts_fill_several_sheets_of_two_thicknesses() {
 
 #[test]
 fn fitted_sheets_and_oversized_parts_keep_the_rules() {
-    let (input, plan) = run(
+    let (fitted, plan) = run(
         mixed_parts(),
         CutSettings {
             sheet: SheetSize::Fit,
             ..CutSettings::default()
         },
     );
-    check(&input, &plan);
+    check(&fitted, &plan);
     assert_eq!(plan.nesting.sheets.len(), 1);
+    // A part longer than the 600 mm sheet: the plan stops with an error that names it.
     let mut parts = mixed_parts();
     parts.push(rectangle(10, 650.0, 100.0));
-    let (input, plan) = run(parts, CutSettings::default());
-    check(&input, &plan);
-    assert!(plan.state.warnings().any(|w| w.step == "sheets" && w.part == Some(10)));
+    let err = pipeline::cutting_plan(input(parts, CutSettings::default()), &Cancel::default())
+        .expect_err("part 10 does not fit");
+    let text = err.to_string();
+    assert!(text.contains("part 10 is 65") && text.contains("--sheet fit"), "{text}");
 }
 
 #[test]
@@ -275,7 +277,14 @@ fn plan_json_has_every_field_of_the_spec() {
     assert_eq!(v["format"], "platener-plan");
     assert_eq!(v["version"], 1);
     assert_eq!(v["method"], "plate");
-    assert_eq!(keys(&v["source"]), ["bbox_max", "bbox_min", "name", "triangles"]);
+    assert_eq!(
+        keys(&v["source"]),
+        ["bbox_max", "bbox_min", "name", "scale", "triangles", "units"]
+    );
+    assert_eq!(
+        (&v["source"]["units"], &v["source"]["scale"]),
+        (&"mm".into(), &1.0.into())
+    );
     let part = &v["parts"][0];
     assert_eq!(
         keys(part),

@@ -17,7 +17,7 @@ mod tests;
 use glam::DVec2;
 use serde::Serialize;
 
-use crate::context::{StepContext, Warning, WarningKind};
+use crate::context::StepContext;
 use crate::kerf::CutPaths;
 use crate::plan::{CutSettings, Part, PlanError, PlanInput, SheetPlacement, SheetSize};
 use holes::Child;
@@ -44,8 +44,6 @@ pub struct Sheet {
     pub used_area: f64,
     /// `parts_area / used_area`.
     pub density: f64,
-    /// Made for a part larger than the sheet size asked for.
-    pub oversize: bool,
 }
 
 /// The snapshot of step `sheets`.
@@ -57,14 +55,14 @@ pub struct Nesting {
     pub placements: Vec<SheetPlacement>,
 }
 
-/// Nests `parts` (with cut paths `cut`, same order) onto sheets, with a warning for each part
-/// larger than the sheet. `cancelled` is polled between parts.
+/// Nests `parts` (with cut paths `cut`, same order) onto sheets; a part that fits no sheet of
+/// the size asked for is an error naming it. `cancelled` is polled between parts.
 pub fn nest(
     parts: &[Part],
     cut: &CutPaths,
     settings: &CutSettings,
     cancelled: &(dyn Fn() -> bool + Sync),
-) -> Result<(Nesting, Vec<Warning>), PlanError> {
+) -> Result<Nesting, PlanError> {
     settings.validate()?;
     let shapes: Vec<NestShape> = parts
         .iter()
@@ -93,7 +91,6 @@ pub fn nest(
             parts.len()
         ],
     };
-    let mut warnings = Vec::new();
     for thickness in thicknesses {
         let group = Group {
             parts,
@@ -103,10 +100,10 @@ pub fn nest(
             thickness,
             members: (0..parts.len()).filter(|&i| parts[i].thickness == thickness).collect(),
         };
-        group.nest(&mut nesting, &mut warnings)?;
+        group.nest(&mut nesting)?;
     }
     finish_sheets(&mut nesting, parts, &shapes, settings);
-    Ok((nesting, warnings))
+    Ok(nesting)
 }
 
 /// A shape's placement: (sheet index, angle, translation).
@@ -127,7 +124,7 @@ impl Group<'_> {
     /// Nests the group onto new sheets of `nesting`: small parts into the holes of larger
     /// ones, the rest onto sheets of the set size, parts too large for it onto sheets of
     /// their own.
-    fn nest(&self, nesting: &mut Nesting, warnings: &mut Vec<Warning>) -> Result<(), PlanError> {
+    fn nest(&self, nesting: &mut Nesting) -> Result<(), PlanError> {
         let (shapes, settings, spacing) = (self.shapes, self.settings, self.settings.spacing);
         let by_area = search::order(shapes, &self.members, 0, 0);
         let hosted = if settings.fill_holes {
@@ -140,6 +137,9 @@ impl Group<'_> {
         let region = sheet_region(width, height, settings.margin, spacing);
         let (fitting, oversize): (Vec<usize>, Vec<usize>) =
             top.iter().partition(|&&i| fits_empty(&shapes[i], region.1 - region.0));
+        if let Some(&i) = oversize.first() {
+            return Err(self.too_large(i, (width, height)));
+        }
         let cancelled = self.cancelled;
         let layout =
             best_layout(shapes, &fitting, region, settings.nest_tries, settings.seed, cancelled).ok_or_else(|| {
@@ -159,12 +159,7 @@ impl Group<'_> {
                 let (angle, t) = shapes[p.key].templates[p.template].placement(p.pos);
                 placed[p.key] = Some((first_sheet + s, angle, t));
             }
-            nesting.sheets.push(empty_sheet(self.thickness, width, height, false));
-        }
-        for &i in &oversize {
-            let (placement, warning) = self.own_sheet(nesting, i, (width, height))?;
-            placed[i] = Some(placement);
-            warnings.push(warning);
+            nesting.sheets.push(empty_sheet(self.thickness, width, height));
         }
         resolve_children(&mut placed, &hosted, &self.members);
         self.record(nesting, &placed)
@@ -194,38 +189,24 @@ impl Group<'_> {
         }
     }
 
-    /// Part `i`, too large for a `width` × `height` sheet, on a sheet of its own (in its
-    /// smallest orientation), with a warning.
-    fn own_sheet(
-        &self,
-        nesting: &mut Nesting,
-        i: usize,
-        (width, height): (f64, f64),
-    ) -> Result<(Placement, Warning), PlanError> {
-        let (parts, settings, spacing) = (self.parts, self.settings, self.settings.spacing);
-        let t = self.shapes[i]
+    /// Part `i` does not fit a `width` × `height` sheet in any orientation: the sheet is too
+    /// small for this model (a part on a sheet of its own would be cut from a sheet the user
+    /// does not have), so the plan stops here, naming the part, its size and what to do.
+    fn too_large(&self, i: usize, (width, height): (f64, f64)) -> PlanError {
+        let smallest = self.shapes[i]
             .templates
             .iter()
-            .min_by(|a, b| (a.size.x * a.size.y).total_cmp(&(b.size.x * b.size.y)))
-            .ok_or_else(|| PlanError::Part {
-                part: parts[i].id,
-                message: "has no orientation to nest; please report this".into(),
-            })?;
-        let frame = 2.0 * settings.margin - spacing;
-        let (w, h) = (round_up(t.size.x + frame), round_up(t.size.y + frame));
-        let (angle, tr) = t.placement(DVec2::splat(settings.margin - spacing / 2.0));
-        let placement = (nesting.sheets.len(), angle, tr);
-        let warning = Warning {
-            step: "sheets",
-            kind: WarningKind::CuttingPlan,
-            part: Some(parts[i].id),
+            .map(|t| t.size)
+            .min_by(|a, b| (a.x * a.y).total_cmp(&(b.x * b.y)))
+            .unwrap_or_default();
+        PlanError::Setting {
+            name: "sheet",
             message: format!(
-                "part {} does not fit a {width:.0} × {height:.0} mm sheet; it gets a sheet of its own, {w:.1} × {h:.1} mm",
-                parts[i].id
+                "part {} is {:.1} × {:.1} mm (cut path and spacing) and does not fit a {width:.0} × {height:.0} mm \
+                 sheet within its {} mm margins: use --sheet fit, a larger --sheet, or scale the model down (--scale)",
+                self.parts[i].id, smallest.x, smallest.y, self.settings.margin
             ),
-        };
-        nesting.sheets.push(empty_sheet(self.thickness, w, h, true));
-        Ok((placement, warning))
+        }
     }
 
     /// Records every member's placement in `nesting`.
@@ -246,7 +227,7 @@ impl Group<'_> {
     }
 }
 
-fn empty_sheet(thickness: f64, width: f64, height: f64, oversize: bool) -> Sheet {
+fn empty_sheet(thickness: f64, width: f64, height: f64) -> Sheet {
     Sheet {
         index: 0,
         thickness,
@@ -256,7 +237,6 @@ fn empty_sheet(thickness: f64, width: f64, height: f64, oversize: bool) -> Sheet
         parts_area: 0.0,
         used_area: 0.0,
         density: 0.0,
-        oversize,
     }
 }
 
@@ -316,7 +296,7 @@ fn finish_sheets(nesting: &mut Nesting, parts: &[Part], shapes: &[NestShape], se
         sheet.index = k as u32;
         sheet.parts.sort_unstable();
         let used = (right[k] + settings.margin).min(sheet.width);
-        if settings.sheet == SheetSize::Fit && !sheet.oversize {
+        if settings.sheet == SheetSize::Fit {
             sheet.width = round_up(used);
         }
         sheet.used_area = used * sheet.height;
@@ -329,11 +309,6 @@ fn finish_sheets(nesting: &mut Nesting, parts: &[Part], shapes: &[NestShape], se
 }
 
 /// Step `sheets`: every part placed on a sheet of its thickness.
-pub fn run(input: &PlanInput, cut: &CutPaths, cx: &mut StepContext<'_>) -> Result<Nesting, PlanError> {
-    let (nesting, warnings) = {
-        let cx: &StepContext<'_> = cx;
-        nest(&input.parts, cut, &input.settings, &|| cx.is_cancelled())?
-    };
-    cx.extend(warnings);
-    Ok(nesting)
+pub fn run(input: &PlanInput, cut: &CutPaths, cx: &StepContext<'_>) -> Result<Nesting, PlanError> {
+    nest(&input.parts, cut, &input.settings, &|| cx.is_cancelled())
 }

@@ -9,12 +9,12 @@ use platener_geom::polygon::rect;
 use crate::plan::samples::flat_part as part;
 
 fn nest_all(parts: &[Part], settings: &CutSettings) -> Nesting {
-    nest_warned(parts, settings).0
+    nested(parts, settings).expect("nests")
 }
 
-fn nest_warned(parts: &[Part], settings: &CutSettings) -> (Nesting, Vec<crate::context::Warning>) {
+fn nested(parts: &[Part], settings: &CutSettings) -> Result<Nesting, PlanError> {
     let (cut, _) = cut_paths(parts, settings.kerf()).expect("cut");
-    nest(parts, &cut, settings, &|| false).expect("nests")
+    nest(parts, &cut, settings, &|| false)
 }
 
 #[test]
@@ -61,17 +61,29 @@ fn a_small_part_goes_into_a_hole() {
 }
 
 #[test]
-fn an_oversized_part_gets_its_own_sheet_and_a_warning() {
+fn an_oversized_part_is_an_error_naming_it_its_size_and_what_to_do() {
     let parts = [
         part(1, Polygon::new(rect(0.0, 0.0, 700.0, 100.0))),
         part(2, Polygon::new(rect(0.0, 0.0, 50.0, 50.0))),
     ];
-    let (n, warnings) = nest_warned(&parts, &CutSettings::default());
-    assert_eq!(n.sheets.len(), 2);
-    assert_eq!(warnings.len(), 1);
-    assert_eq!(warnings[0].part, Some(1));
-    let big = &n.sheets[n.placements[0].index as usize];
-    assert!(big.oversize && (big.width - 710.2).abs() < 1e-6 && (big.height - 110.2).abs() < 1e-6);
+    let err = nested(&parts, &CutSettings::default()).expect_err("too large for 600 × 400");
+    let PlanError::Setting { name: "sheet", message } = err else {
+        panic!("{err}")
+    };
+    // 700 × 100 grown by half the kerf on each side and the spacing.
+    assert!(message.starts_with("part 1 is 70"), "{message}");
+    assert!(
+        message.contains("600 × 400 mm") && message.contains("--sheet fit"),
+        "{message}"
+    );
+    // With --sheet fit the same parts nest on one sheet wide enough for the long part.
+    let fit = CutSettings {
+        sheet: SheetSize::Fit,
+        ..CutSettings::default()
+    };
+    let n = nest_all(&parts, &fit);
+    assert_eq!(n.sheets.len(), 1);
+    assert!(n.sheets[0].width > 700.0);
 }
 
 #[test]

@@ -132,7 +132,7 @@ proptest! {
         let parts: Vec<Part> = specs.iter().enumerate().map(|(i, (k, w, h))| random_part(i as u32 + 1, *k, *w, *h)).collect();
         let settings = CutSettings { sheet: SheetSize::Fixed { width: 300.0, height: 200.0 }, nest_tries: 2, ..CutSettings::default() };
         let (cut, _) = cut_paths(&parts, settings.kerf()).expect("cut");
-        let (n, _) = nest(&parts, &cut, &settings, &|| false).expect("nests");
+        let n = nest(&parts, &cut, &settings, &|| false).expect("nests");
         let mut by_sheet: Vec<Vec<Polygon>> = vec![Vec::new(); n.sheets.len()];
         for (i, p) in n.placements.iter().enumerate() {
             let c = &cut.parts[i].cut;
