@@ -57,6 +57,8 @@ pub enum WarningKind {
     FlippedFaces,
     /// Stored normals disagree with the winding (we use the winding).
     StoredNormals,
+    /// Plate finding found nothing (the message says why for each kind of face).
+    Plates,
     /// A joint could not be made as planned (a plate would fall apart…).
     Joints,
     /// Something the cutting-plan steps had to adapt (a label skipped, a part larger than the

@@ -57,6 +57,48 @@ impl Rejection {
     }
 }
 
+/// Why no plate was found, for people: how many faces were rejected for each reason, the
+/// largest area first. `None` when some shape became a plate.
+pub fn why_no_plates(coverage: &Coverage, min_area: f64, offered: &[f64]) -> Option<String> {
+    if coverage.shapes.iter().any(|s| !s.plates.is_empty()) {
+        return None;
+    }
+    if coverage.shapes.is_empty() {
+        return Some("no plate found: the model has no planar faces (try the stacked method)".into());
+    }
+    let list = offered.iter().map(|t| format!("{t}")).collect::<Vec<_>>().join("/");
+    let mut by_reason: Vec<(&str, usize, f64)> = Vec::new();
+    for s in &coverage.shapes {
+        let reason = match s.rejected {
+            Some(Rejection::NoOppositeFace) => "have no opposite face within a few sheets behind them",
+            Some(Rejection::ThicknessMismatch { .. }) => "have their opposite face at a distance no offered sheet fits",
+            Some(Rejection::FacingEachOther { .. }) => "face another face across a gap",
+            Some(Rejection::TooSmall { .. }) => "are under the minimum plate area",
+            Some(Rejection::Sliver { .. }) => "are slivers thinner than the sheet",
+            Some(Rejection::Contained) | None => "lay inside other plates",
+        };
+        match by_reason.iter_mut().find(|(r, ..)| *r == reason) {
+            Some((_, n, area)) => {
+                *n += 1;
+                *area += s.area;
+            }
+            None => by_reason.push((reason, 1, s.area)),
+        }
+    }
+    by_reason.sort_by(|a, b| b.2.total_cmp(&a.2).then(a.0.cmp(b.0)));
+    let parts: Vec<String> = by_reason
+        .iter()
+        .map(|(reason, n, area)| format!("{n} ({area:.0} mm²) {reason}"))
+        .collect();
+    Some(format!(
+        "no plate found for sheets of {list} mm among {} planar faces: {}; plates need two opposite faces a \
+         sheet's thickness apart (or a face of at least {min_area} mm² to extrude): try other -t values, \
+         check the units, or the stacked method",
+        coverage.shapes.len(),
+        parts.join(", ")
+    ))
+}
+
 /// How one shape was used.
 #[derive(Debug, Clone, Serialize)]
 pub struct ShapeUse {

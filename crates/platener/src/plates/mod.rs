@@ -24,7 +24,7 @@ use platener_geom::slab::Slab;
 use platener_geom::{Frame, GridError, Polygon, polygon};
 use serde::Serialize;
 
-use crate::context::StepContext;
+use crate::context::{StepContext, WarningKind};
 use crate::error::{Error, ModelProblem, Result};
 use crate::mesh::Mesh;
 use crate::read::Model;
@@ -182,6 +182,11 @@ pub fn run(
 ) -> Result<Plates> {
     cx.check_cancel()?;
     let center = (model.bounds.min + model.bounds.max) / 2.0;
-    find_plates(shapes, mesh.surface_area, center, settings)
-        .map_err(|e| Error::model(&model.name, ModelProblem::OffGrid(e)))
+    let plates = find_plates(shapes, mesh.surface_area, center, settings)
+        .map_err(|e| Error::model(&model.name, ModelProblem::OffGrid(e)))?;
+    let offered = settings.offered_thicknesses();
+    if let Some(why) = coverage::why_no_plates(&plates.coverage, settings.plates.min_area, &offered) {
+        cx.warn(WarningKind::Plates, why);
+    }
+    Ok(plates)
 }

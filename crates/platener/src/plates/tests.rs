@@ -215,3 +215,45 @@ fn the_phone_stand_file_gives_three_plates_and_a_whole_base() {
     // The base, 82 × 70 (the lip takes the first 3 mm), in one piece.
     assert!((areas[1] - 82.0 * 70.0).abs() < 1.0, "{areas:?}");
 }
+
+#[test]
+fn a_model_without_plates_gets_a_warning_that_says_why() {
+    // A solid 50 mm block offered 3 mm sheets, inherent plates only: every face has its
+    // opposite 50 mm away.
+    let settings = Settings {
+        plates: crate::settings::PlateSettings {
+            mode: PlateMode::InherentOnly,
+            ..Default::default()
+        },
+        ..Settings::default()
+    };
+    let source = Source::Triangles {
+        name: "block".into(),
+        triangles: Arc::new(samples::cuboid(DVec3::ZERO, DVec3::splat(50.0))),
+    };
+    let mut state = State::new(source, settings);
+    pipeline::run(&pipeline::PLATE, &mut state, &Cancel::default()).expect("converts");
+    assert!(state.plates.as_ref().expect("plates").plates.is_empty());
+    let plates_step = state.records.iter().find(|r| r.name == "plates").expect("record");
+    let why = &plates_step.warnings[0].message;
+    assert!(
+        why.contains("6 (15000 mm²) have no opposite face within a few sheets behind them"),
+        "{why}"
+    );
+    assert!(why.contains("sheets of 3 mm"), "{why}");
+    // A model with plates gets no such warning.
+    let mut boxed = State::new(
+        Source::Triangles {
+            name: "box".into(),
+            triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
+        },
+        Settings::default(),
+    );
+    pipeline::run(&pipeline::PLATE, &mut boxed, &Cancel::default()).expect("converts");
+    assert!(
+        boxed
+            .records
+            .iter()
+            .all(|r| r.name != "plates" || r.warnings.is_empty())
+    );
+}
