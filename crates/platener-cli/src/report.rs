@@ -336,12 +336,14 @@ pub fn render_model(m: &ModelReport, verbose: bool) -> String {
                 );
             }
         }
-        if !r.warnings.is_empty() && !verbose {
+        // A method that failed lists its warnings: they say why (no plates found, …).
+        let listed = verbose || r.status != Status::Converted;
+        if !r.warnings.is_empty() && !listed {
             let n = r.warnings.len();
             let _ = write!(line, "  [{n} warning{}; -v lists them]", if n == 1 { "" } else { "s" });
         }
         let _ = writeln!(s, "{line}");
-        if verbose {
+        if listed {
             for w in &r.warnings {
                 let _ = writeln!(s, "                 warning {w}");
             }
