@@ -106,6 +106,10 @@ pub struct VerifyArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    /// With --model: the share of the model's surface (percent) the parts must come within
+    /// half a sheet plus 0.5 mm of.
+    #[arg(long, value_name = "PERCENT", default_value_t = 80.0, value_parser = parse_percent)]
+    pub min_coverage: f64,
     /// Options for reading the model.
     #[command(flatten)]
     pub model_args: ModelArgs,
@@ -293,6 +297,13 @@ impl LabelsArg {
 
 fn parse_sheet(s: &str) -> Result<SheetSize, String> {
     s.parse::<SheetSize>().map_err(|e| e.to_string())
+}
+
+fn parse_percent(s: &str) -> Result<f64, String> {
+    match s.trim().trim_end_matches('%').parse::<f64>() {
+        Ok(p) if (0.0..=100.0).contains(&p) => Ok(p),
+        _ => Err(format!("{s:?} is not a percentage from 0 to 100")),
+    }
 }
 
 fn parse_jobs(s: &str) -> Result<usize, String> {

@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 
 use anyhow::Context;
-use platener::verify::{Verification, plan_from_zip, source_mismatch, verify};
+use platener::verify::{Verification, plan_from_zip, source_mismatch, verify_with};
 use platener::{Cancel, Source, Weld};
 
 use crate::args::VerifyArgs;
@@ -25,7 +25,8 @@ pub fn run(args: &VerifyArgs) -> anyhow::Result<u8> {
         }
         None => None,
     };
-    let mut v = verify(&plan, state.as_ref().and_then(|s| s.mesh.as_deref()));
+    let mesh = state.as_ref().and_then(|s| s.mesh.as_deref());
+    let mut v = verify_with(&plan, mesh, args.min_coverage / 100.0);
     if let Some(model) = state.as_ref().and_then(|s| s.read.as_deref()) {
         v.warnings.extend(source_mismatch(&plan, model));
     }
@@ -67,8 +68,9 @@ fn render(v: &Verification) -> String {
     if let (Some(c), Some(i)) = (v.surface_covered, v.volume_inside) {
         let _ = writeln!(
             s,
-            "model      {:.1} % of its surface within 2 mm of a part; {:.1} % of the parts' volume inside it",
+            "model      {:.1} % of its surface within {:.1} mm of a part; {:.1} % of the parts' volume inside it",
             100.0 * c,
+            v.cover_distance,
             100.0 * i
         );
     }

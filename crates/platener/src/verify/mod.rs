@@ -3,14 +3,16 @@
 //! Each part is its outline extruded by its thickness and moved by its transform. Measured by
 //! deterministic sampling (see [`sample`]; the accuracy follows the sampling step):
 //! - pairwise interference volume (plates must not intersect; fingers must be exact complements),
-//! - with the model: share of the model's surface within 2 mm of a part, share of the parts'
+//! - with the model: share of the model's surface within half a sheet plus 0.5 mm of a part
+//!   ([`cover_distance`]), share of the parts'
 //!   volume inside the model,
 //! - groups of parts the joints hold together, against the model's separate solids,
 //! - joints whose two parts do not actually meet.
 //!
 //! It fails when interference (other than the intended overlap of JimJoints' barbs) exceeds
-//! 0.5 % of the parts' volume, when the parts fall apart
-//! into more groups than the model has solids, or when a joint's parts do not meet.
+//! 0.5 % of the parts' volume, when the parts fall apart into more groups than the model has
+//! solids, when a joint's parts do not meet, or (with the model) when the parts cover less
+//! than [`MIN_COVERAGE`] of the model's surface.
 
 mod sample;
 #[cfg(test)]
@@ -25,8 +27,18 @@ use crate::plan::Plan;
 
 /// Interference above this share of the parts' volume fails verification.
 pub const MAX_INTERFERENCE: f64 = 0.005;
-/// Model surface within this distance (mm) of a part counts as covered.
-pub const COVER_DISTANCE: f64 = 2.0;
+/// Model surface within half the thickest part's thickness plus this (mm) of a part counts as
+/// covered: a wall cut from a sheet sits at most half a sheet from the face it stands for, and
+/// the weld and the kerf move faces by less than half a millimetre.
+pub const COVER_SLACK: f64 = 0.5;
+/// A plan whose parts cover less than this share of the model's surface fails: it does not
+/// reproduce the model (`--min-coverage`).
+pub const MIN_COVERAGE: f64 = 0.8;
+
+/// The distance within which a part covers the model's surface for `plan`.
+pub fn cover_distance(plan: &Plan) -> f64 {
+    plan.parts.iter().map(|p| p.thickness).fold(0.0, f64::max) / 2.0 + COVER_SLACK
+}
 
 /// Two parts that share volume.
 #[derive(Debug, Clone, Serialize)]
@@ -52,7 +64,9 @@ pub struct Verification {
     pub groups: usize,
     /// The model's separate solids, when the model was given.
     pub model_solids: Option<usize>,
-    /// Share of the model's surface within 2 mm of a part, when the model was given.
+    /// The distance within which a part covers the model's surface, mm.
+    pub cover_distance: f64,
+    /// Share of the model's surface within `cover_distance` of a part, when the model was given.
     pub surface_covered: Option<f64>,
     /// Share of the parts' volume inside the model, when the model was given.
     pub volume_inside: Option<f64>,
@@ -104,8 +118,15 @@ pub fn plan_from_zip(bytes: &[u8]) -> Result<Plan, PlanFileError> {
     serde_json::from_str(&text).map_err(|e| PlanFileError::NotAPlan(e.to_string()))
 }
 
-/// Verifies a plan, optionally against the model it was made from.
+/// Verifies a plan, optionally against the model it was made from, with the default
+/// [`MIN_COVERAGE`].
 pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
+    verify_with(plan, model, MIN_COVERAGE)
+}
+
+/// Verifies a plan; against a model, it fails when the parts cover less than `min_coverage`
+/// of the model's surface.
+pub fn verify_with(plan: &Plan, model: Option<&Mesh>, min_coverage: f64) -> Verification {
     let solids: Vec<Solid> = plan.parts.iter().map(Solid::from_part).collect();
     let step = sample::step_for(&solids);
     let parts_volume: f64 = solids.iter().map(|s| s.volume).sum();
@@ -127,27 +148,11 @@ pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
     } else {
         0.0
     };
-    let index = |id: u32| solids.iter().position(|s| s.id == id);
-    let mut group = crate::assembly::UnionFind::new(solids.len());
-    let mut joints_not_meeting = Vec::new();
-    for j in &plan.joints {
-        let (Some(a), Some(b)) = (index(j.parts[0]), index(j.parts[1])) else {
-            joints_not_meeting.push(j.label);
-            continue;
-        };
-        // Sampled inside each part in turn: a slot opening onto one part's edge may only be
-        // seen from the other.
-        if sample::meet(&solids[a], &solids[b], step) || sample::meet(&solids[b], &solids[a], step) {
-            group.join(a, b);
-        } else {
-            joints_not_meeting.push(j.label);
-        }
-    }
-    let groups = group.count();
+    let (groups, joints_not_meeting) = held_together(plan, &solids, step);
     let (model_solids, surface_covered, volume_inside) = match model {
         Some(m) => (
             Some(m.health.solids.max(1)),
-            Some(sample::surface_covered(m, &solids, COVER_DISTANCE)),
+            Some(sample::surface_covered(m, &solids, cover_distance(plan))),
             Some(sample::volume_inside(m, &solids, step.max(0.5))),
         ),
         None => (None, None, None),
@@ -166,6 +171,15 @@ pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
             "the parts fall apart into {groups} groups; the model has {allowed}"
         ));
     }
+    if let Some(covered) = surface_covered.filter(|c| *c < min_coverage) {
+        problems.push(format!(
+            "the parts reproduce only {:.1} % of the model's surface (within {:.1} mm of a part); \
+             at least {:.0} % is required (--min-coverage)",
+            100.0 * covered,
+            cover_distance(plan),
+            100.0 * min_coverage
+        ));
+    }
     if !joints_not_meeting.is_empty() {
         problems.push(format!("joints whose parts do not meet: {joints_not_meeting:?}"));
     }
@@ -180,9 +194,31 @@ pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
         volume_inside,
         joints_not_meeting,
         step,
+        cover_distance: cover_distance(plan),
         problems,
         warnings: Vec::new(),
     }
+}
+
+/// The groups of parts the joints hold together, and the joints whose parts do not meet.
+fn held_together(plan: &Plan, solids: &[Solid], step: f64) -> (usize, Vec<u32>) {
+    let index = |id: u32| solids.iter().position(|s| s.id == id);
+    let mut group = crate::assembly::UnionFind::new(solids.len());
+    let mut joints_not_meeting = Vec::new();
+    for j in &plan.joints {
+        let (Some(a), Some(b)) = (index(j.parts[0]), index(j.parts[1])) else {
+            joints_not_meeting.push(j.label);
+            continue;
+        };
+        // Sampled inside each part in turn: a slot opening onto one part's edge may only be
+        // seen from the other.
+        if sample::meet(&solids[a], &solids[b], step) || sample::meet(&solids[b], &solids[a], step) {
+            group.join(a, b);
+        } else {
+            joints_not_meeting.push(j.label);
+        }
+    }
+    (group.count(), joints_not_meeting)
 }
 
 /// Why `model` does not look like the model `plan` was made from (its bounding box differs by

@@ -95,3 +95,38 @@ fn coarse_ball_joints_all_meet() {
     assert_eq!(v.groups, 1);
     assert!(v.interference_share < 0.001, "{}", v.interference_share);
 }
+
+/// A plan that leaves walls out fails against its model: it does not reproduce it, even when
+/// what is there holds together and nothing intersects.
+#[test]
+fn a_plan_that_covers_too_little_of_the_model_fails() {
+    let source = Source::Triangles {
+        name: "box".into(),
+        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
+    };
+    let c = convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts");
+    let mut plan = c.bundle().expect("plan").plan.clone();
+    // The two largest walls (100 × 80 mm: 2 × 8000 of the box's 2 × 21 600 mm² outside, and
+    // their inside faces) gone: about 37 % of the surface left uncovered.
+    plan.parts.retain(|p| p.id > 2);
+    plan.joints.retain(|j| j.parts.iter().all(|&id| id > 2));
+    let mesh = c.mesh.as_deref();
+    let v = verify(&plan, mesh);
+    let covered = v.surface_covered.expect("model given");
+    assert!(covered < 0.8, "{covered}");
+    assert!(
+        v.problems
+            .iter()
+            .any(|p| p.contains("reproduce only") && p.contains("at least 80 %")),
+        "{:?}",
+        v.problems
+    );
+    assert_eq!(v.cover_distance, 2.0);
+    // A lower threshold passes the coverage check (the rest still holds).
+    let lenient = verify_with(&plan, mesh, 0.5);
+    assert!(
+        lenient.problems.iter().all(|p| !p.contains("reproduce only")),
+        "{:?}",
+        lenient.problems
+    );
+}
