@@ -15,6 +15,18 @@ fn platener() -> Command {
     c
 }
 
+/// `platener scene examples/box-3mm.stl ARGS -o OUT`.
+fn scene_of_box(args: &[&str], out: &Path) -> std::process::Output {
+    platener()
+        .arg("scene")
+        .arg(example("box-3mm.stl"))
+        .args(args)
+        .arg("-o")
+        .arg(out)
+        .output()
+        .expect("runs")
+}
+
 /// The JSON chunk of a GLB (after the 12-byte header and the chunk's 8-byte header).
 fn glb_json(glb: &[u8]) -> serde_json::Value {
     assert_eq!(&glb[..4], b"glTF", "GLB magic");
@@ -32,17 +44,7 @@ fn glb_json(glb: &[u8]) -> serde_json::Value {
 fn the_final_view_is_the_assembly_in_the_plan_zip() {
     let dir = tempfile::tempdir().expect("temp dir");
     let glb = dir.path().join("box.glb");
-    let out = platener()
-        .args([
-            "scene",
-            example("box-3mm.stl").to_str().expect("utf-8"),
-            "--method",
-            "plate",
-            "-o",
-        ])
-        .arg(&glb)
-        .output()
-        .expect("runs");
+    let out = scene_of_box(&["--method", "plate"], &glb);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let convert = platener()
         .args([
@@ -71,17 +73,7 @@ fn the_final_view_is_the_assembly_in_the_plan_zip() {
 fn the_plates_view_has_one_node_per_plate_under_the_scaled_root() {
     let dir = tempfile::tempdir().expect("temp dir");
     let glb = dir.path().join("plates.glb");
-    let out = platener()
-        .args([
-            "scene",
-            example("box-3mm.stl").to_str().expect("utf-8"),
-            "--view",
-            "plates",
-            "-o",
-        ])
-        .arg(&glb)
-        .output()
-        .expect("runs");
+    let out = scene_of_box(&["--view", "plates"], &glb);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let json = glb_json(&std::fs::read(&glb).expect("written"));
     let nodes = json["nodes"].as_array().expect("nodes");
@@ -107,23 +99,12 @@ fn the_plates_view_has_one_node_per_plate_under_the_scaled_root() {
 fn a_view_the_method_has_not_or_an_unknown_view_is_an_error() {
     let dir = tempfile::tempdir().expect("temp dir");
     let glb = dir.path().join("x.glb");
-    let model = example("box-3mm.stl");
-    let run = |args: &[&str]| {
-        platener()
-            .arg("scene")
-            .arg(&model)
-            .args(args)
-            .arg("-o")
-            .arg(&glb)
-            .output()
-            .expect("runs")
-    };
-    let out = run(&["--view", "plates", "--method", "stacked"]);
+    let out = scene_of_box(&["--view", "plates", "--method", "stacked"], &glb);
     assert_eq!(out.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("needs step plates"), "{stderr}");
     assert!(!glb.exists());
-    let out = run(&["--view", "assembly"]);
+    let out = scene_of_box(&["--view", "assembly"], &glb);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("unknown view"));
 }

@@ -4,8 +4,6 @@
 //!
 //! Run: `cargo bench -p platener --bench joints`. Figures go in docs/performance.md.
 
-use std::sync::Arc;
-
 use criterion::{Criterion, criterion_group, criterion_main};
 use platener::joints::{JointSettings, JointStyle, compute};
 use platener::{Cancel, Settings, Source, samples};
@@ -14,10 +12,7 @@ fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("joints");
     group.sample_size(10);
     for n in [1usize, 10] {
-        let source = Source::Triangles {
-            name: "box grid".into(),
-            triangles: Arc::new(samples::box_grid(n, n, 40.0, 3.0, 10.0)),
-        };
+        let source = Source::triangles("box grid", samples::box_grid(n, n, 40.0, 3.0, 10.0));
         let mut state = platener::State::new(source, Settings::default());
         platener::pipeline::run(&platener::pipeline::PLATE, &mut state, &Cancel::default()).expect("runs");
         let plates = state.plates.clone().expect("plates");
@@ -32,10 +27,7 @@ fn bench(c: &mut Criterion) {
             });
         }
     }
-    let source = Source::Triangles {
-        name: "Y".into(),
-        triangles: Arc::new(samples::star(3, 40.0, 3.0, 50.0)),
-    };
+    let source = Source::triangles("Y", samples::star(3, 40.0, 3.0, 50.0));
     let mut state = platener::State::new(source, Settings::default());
     platener::pipeline::run(&platener::pipeline::PLATE, &mut state, &Cancel::default()).expect("runs");
     let plates = state.plates.clone().expect("plates");
@@ -44,10 +36,7 @@ fn bench(c: &mut Criterion) {
         b.iter(|| compute(&plates.plates, &JointSettings::default()).expect("grid"));
     });
     // A low-poly ball: 72 facets at 147°–163°, shorter fingers and growth cut back at vertices.
-    let source = Source::Triangles {
-        name: "ball".into(),
-        triangles: Arc::new(samples::sphere(glam::DVec3::ZERO, 40.0, 12, 8)),
-    };
+    let source = Source::triangles("ball", samples::sphere(glam::DVec3::ZERO, 40.0, 12, 8));
     let mut state = platener::State::new(source, Settings::default());
     platener::pipeline::run(&platener::pipeline::PLATE, &mut state, &Cancel::default()).expect("runs");
     let plates = state.plates.clone().expect("plates");

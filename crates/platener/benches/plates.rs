@@ -2,8 +2,6 @@
 //!
 //! Run: `cargo bench -p platener --bench plates`. Figures go in docs/performance.md.
 
-use std::sync::Arc;
-
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use platener::inspect::run_foundation;
 use platener::plates::find_plates;
@@ -13,10 +11,7 @@ fn bench(c: &mut Criterion) {
     // 29 × 29 boxes × 120 triangles = 100 920 triangles.
     let triangles = samples::box_grid(29, 29, 40.0, 3.0, 10.0);
     let n = triangles.len();
-    let source = Source::Triangles {
-        name: "box grid".into(),
-        triangles: Arc::new(triangles),
-    };
+    let source = Source::triangles("box grid", triangles);
     let settings = Settings::default();
     let (state, _) = run_foundation(source.clone(), settings.clone(), &Cancel::default()).expect("converts");
     let shapes = state.shapes.clone().expect("shapes");

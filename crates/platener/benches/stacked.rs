@@ -6,8 +6,6 @@
 //! in triangles + layers; hence the runs at 100k and 1M triangles and 10, 100 and 1000 layers.
 //! Run: `cargo bench -p platener --bench stacked`. Figures go in docs/stacked.md.
 
-use std::sync::Arc;
-
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use platener::glam::DVec3;
 use platener::mesh::Mesh;
@@ -61,10 +59,7 @@ fn whole_step(c: &mut Criterion) {
     let count = tris.len();
     let mut settings = Settings::default();
     settings.stacked.axis = StackAxis::Auto;
-    let source = Source::Triangles {
-        name: "sphere".into(),
-        triangles: Arc::new(tris),
-    };
+    let source = Source::triangles("sphere", tris);
     let mut state = State::new(source, platener::method::MethodKind::Stacked.adjust(settings));
     pipeline::run(&FOUNDATION, &mut state, &Cancel::default()).expect("foundation");
     group.bench_function(BenchmarkId::new("sphere-100mm", count), |b| {

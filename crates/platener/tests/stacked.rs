@@ -9,7 +9,7 @@
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
-use std::sync::{Arc, OnceLock};
+use std::sync::OnceLock;
 
 use platener::convert;
 use platener::glam::{DVec2, DVec3};
@@ -43,10 +43,7 @@ fn quick(axis: StackAxis) -> Settings {
 }
 
 fn run(name: &str, triangles: Vec<[DVec3; 3]>, settings: Settings) -> Conversion {
-    let source = Source::Triangles {
-        name: name.into(),
-        triangles: Arc::new(triangles),
-    };
+    let source = Source::triangles(name, triangles);
     convert(MethodKind::Stacked, source, settings, &Cancel::default()).expect("converts")
 }
 

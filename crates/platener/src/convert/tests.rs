@@ -7,10 +7,7 @@ use crate::verify::plan_from_zip;
 
 #[test]
 fn the_box_becomes_a_zip_with_six_parts_on_sheets() {
-    let source = Source::Triangles {
-        name: "box".into(),
-        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
-    };
+    let source = Source::triangles("box", samples::closed_box(100.0, 80.0, 60.0, 3.0));
     let c = convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts");
     let bundle = c.export.as_ref().expect("exported");
     assert_eq!(bundle.plan.parts.len(), 6);
@@ -43,10 +40,7 @@ fn the_box_becomes_a_zip_with_six_parts_on_sheets() {
 
 #[test]
 fn plan_json_reads_back_as_a_plan() {
-    let source = Source::Triangles {
-        name: "box".into(),
-        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
-    };
+    let source = Source::triangles("box", samples::closed_box(100.0, 80.0, 60.0, 3.0));
     let c = convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts");
     let bundle = c.export.as_ref().expect("exported");
     // No key twice (a flattened settings object could repeat one), and every field parses back.
@@ -76,10 +70,7 @@ fn plan_json_reads_back_as_a_plan() {
 }
 
 fn box_request(methods: Vec<MethodKind>) -> Request {
-    let source = Source::Triangles {
-        name: "box".into(),
-        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
-    };
+    let source = Source::triangles("box", samples::closed_box(100.0, 80.0, 60.0, 3.0));
     Request {
         methods,
         ..Request::new(source, Settings::default())
@@ -230,10 +221,7 @@ fn an_unreadable_upload_fails_every_method_naming_the_file() {
 fn the_order_of_the_offered_sheets_changes_nothing() {
     let block = samples::cuboid(glam::DVec3::ZERO, glam::DVec3::new(80.0, 60.0, 40.0));
     let zips = |thicknesses: Vec<f64>| {
-        let source = Source::Triangles {
-            name: "block".into(),
-            triangles: Arc::new(block.clone()),
-        };
+        let source = Source::triangles("block", block.clone());
         let settings = Settings {
             thicknesses,
             ..Settings::default()
@@ -248,10 +236,7 @@ fn the_order_of_the_offered_sheets_changes_nothing() {
     assert_eq!(a.len(), 2);
     assert_eq!(a, b);
     // The thinnest sheet is the one used.
-    let source = Source::Triangles {
-        name: "block".into(),
-        triangles: Arc::new(block.clone()),
-    };
+    let source = Source::triangles("block", block.clone());
     let settings = Settings {
         thicknesses: vec![6.0, 3.0],
         ..Settings::default()

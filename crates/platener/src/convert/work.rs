@@ -159,7 +159,7 @@ fn work(request: &Request, cancel: &Cancel, progress: &dyn Progress, tx: &Sender
         Err(panic) => {
             for (k, &method) in request.methods.iter().enumerate() {
                 let error = Error::Internal {
-                    step: "read",
+                    step: "convert",
                     problem: panic.clone(),
                 };
                 send(k, failed(method, error, None, 0.0));

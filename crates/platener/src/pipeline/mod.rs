@@ -181,10 +181,7 @@ pub fn plates_of_triangles(
     triangles: Vec<read::Triangle>,
     thicknesses: &[f64],
 ) -> Result<Arc<plates::Plates>> {
-    let source = Source::Triangles {
-        name: name.into(),
-        triangles: Arc::new(triangles),
-    };
+    let source = Source::triangles(name, triangles);
     let settings = Settings {
         thicknesses: thicknesses.to_vec(),
         ..Settings::default()

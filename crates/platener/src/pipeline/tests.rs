@@ -6,10 +6,7 @@ use super::*;
 use crate::samples::cuboid;
 
 fn source(size: f64) -> Source {
-    Source::Triangles {
-        name: "cube".into(),
-        triangles: Arc::new(cuboid(DVec3::ZERO, DVec3::splat(size))),
-    }
+    Source::triangles("cube", cuboid(DVec3::ZERO, DVec3::splat(size)))
 }
 
 #[test]
@@ -161,4 +158,14 @@ fn models_too_small_for_mm_or_for_the_sheets_get_the_units_hint() {
     assert!(!units_hint(50.0, 3.0));
     // 50 mm is 5 sheets of 10 mm: no room for a joint between two walls.
     assert!(units_hint(50.0, 10.0));
+}
+
+#[test]
+fn report_json_lists_the_warnings_of_exactly_the_cutting_plan_steps_before_export() {
+    let names: Vec<&str> = CUTTING_PLAN
+        .iter()
+        .map(|s| s.name())
+        .filter(|n| *n != "export")
+        .collect();
+    assert_eq!(names, crate::export::CUTTING_PLAN_STEPS);
 }

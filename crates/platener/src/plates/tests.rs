@@ -10,10 +10,7 @@ use crate::samples;
 use crate::settings::{PlateMode, Settings};
 
 fn plates_of(triangles: Vec<Triangle>, settings: Settings) -> Arc<Plates> {
-    let source = Source::Triangles {
-        name: "test".into(),
-        triangles: Arc::new(triangles),
-    };
+    let source = Source::triangles("test", triangles);
     let mut state = State::new(source, settings);
     pipeline::run(&pipeline::PLATE, &mut state, &Cancel::default()).expect("converts");
     state.plates.expect("plates step ran")
@@ -227,10 +224,7 @@ fn a_model_without_plates_gets_a_warning_that_says_why() {
         },
         ..Settings::default()
     };
-    let source = Source::Triangles {
-        name: "block".into(),
-        triangles: Arc::new(samples::cuboid(DVec3::ZERO, DVec3::splat(50.0))),
-    };
+    let source = Source::triangles("block", samples::cuboid(DVec3::ZERO, DVec3::splat(50.0)));
     let mut state = State::new(source, settings);
     pipeline::run(&pipeline::PLATE, &mut state, &Cancel::default()).expect("converts");
     assert!(state.plates.as_ref().expect("plates").plates.is_empty());
@@ -243,10 +237,7 @@ fn a_model_without_plates_gets_a_warning_that_says_why() {
     assert!(why.contains("sheets of 3 mm"), "{why}");
     // A model with plates gets no such warning.
     let mut boxed = State::new(
-        Source::Triangles {
-            name: "box".into(),
-            triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
-        },
+        Source::triangles("box", samples::closed_box(100.0, 80.0, 60.0, 3.0)),
         Settings::default(),
     );
     pipeline::run(&pipeline::PLATE, &mut boxed, &Cancel::default()).expect("converts");

@@ -161,6 +161,14 @@ pub enum Source {
 }
 
 impl Source {
+    /// Triangles made in code, named `name` for reports.
+    pub fn triangles(name: impl Into<String>, triangles: Vec<Triangle>) -> Self {
+        Source::Triangles {
+            name: name.into(),
+            triangles: Arc::new(triangles),
+        }
+    }
+
     /// The model's name for messages: the file stem, or the given name.
     pub fn name(&self) -> String {
         let stem = |p: &Path| {

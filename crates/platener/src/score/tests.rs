@@ -1,5 +1,3 @@
-use std::sync::Arc;
-
 use glam::DVec3;
 
 use super::*;
@@ -20,10 +18,7 @@ fn score_of(c: &State) -> Score {
 }
 
 fn box_conversion() -> State {
-    let source = Source::Triangles {
-        name: "box".into(),
-        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
-    };
+    let source = Source::triangles("box", samples::closed_box(100.0, 80.0, 60.0, 3.0));
     convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts")
 }
 

@@ -15,10 +15,7 @@ use platener_geom::polygon::perimeter;
 use super::Shapes;
 
 fn shapes_of(triangles: Vec<Triangle>) -> Arc<Shapes> {
-    let source = Source::Triangles {
-        name: "test".into(),
-        triangles: Arc::new(triangles),
-    };
+    let source = Source::triangles("test", triangles);
     let (state, _) = run_foundation(source, Settings::default(), &Cancel::default()).expect("converts");
     state.shapes.expect("shapes step ran")
 }
@@ -137,10 +134,7 @@ fn welding_removes_chamfers_so_faces_meet_again() {
     ];
     let model = crate::samples::prism(&profile, s);
     let unwelded = {
-        let source = Source::Triangles {
-            name: "chamfered".into(),
-            triangles: Arc::new(model.clone()),
-        };
+        let source = Source::triangles("chamfered", model.clone());
         let settings = Settings {
             weld: crate::Weld::Off,
             ..Settings::default()

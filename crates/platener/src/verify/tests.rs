@@ -1,5 +1,3 @@
-use std::sync::Arc;
-
 use super::*;
 use crate::convert::convert;
 use crate::method::MethodKind;
@@ -8,10 +6,7 @@ use crate::samples;
 use crate::settings::Settings;
 
 fn check(model: Vec<crate::read::Triangle>) -> Verification {
-    let source = Source::Triangles {
-        name: "m".into(),
-        triangles: Arc::new(model),
-    };
+    let source = Source::triangles("m", model);
     let c = convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts");
     let bundle = c.bundle().expect("plan");
     verify(&bundle.plan, c.mesh.as_deref())
@@ -48,10 +43,7 @@ fn shelf_crossing_and_roof_assemble_without_interference() {
 
 #[test]
 fn overlapping_parts_are_caught() {
-    let source = Source::Triangles {
-        name: "m".into(),
-        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
-    };
+    let source = Source::triangles("m", samples::closed_box(100.0, 80.0, 60.0, 3.0));
     let c = convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts");
     let mut plan = c.bundle().expect("plan").plan.clone();
     // Move part 2 by 1.5 mm into the box: it now cuts into its neighbours.
@@ -67,10 +59,7 @@ fn overlapping_parts_are_caught() {
 
 #[test]
 fn a_cardboard_box_snaps_together_with_jim_joints() {
-    let source = Source::Triangles {
-        name: "m".into(),
-        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
-    };
+    let source = Source::triangles("m", samples::closed_box(100.0, 80.0, 60.0, 3.0));
     let mut settings = Settings::default();
     settings.cut.material = crate::plan::Material::Cardboard;
     let c = convert(MethodKind::Plate, source, settings, &Cancel::default()).expect("converts");
@@ -100,10 +89,7 @@ fn coarse_ball_joints_all_meet() {
 /// what is there holds together and nothing intersects.
 #[test]
 fn a_plan_that_covers_too_little_of_the_model_fails() {
-    let source = Source::Triangles {
-        name: "box".into(),
-        triangles: Arc::new(samples::closed_box(100.0, 80.0, 60.0, 3.0)),
-    };
+    let source = Source::triangles("box", samples::closed_box(100.0, 80.0, 60.0, 3.0));
     let c = convert(MethodKind::Plate, source, Settings::default(), &Cancel::default()).expect("converts");
     let mut plan = c.bundle().expect("plan").plan.clone();
     // The two largest walls (100 × 80 mm: 2 × 8000 of the box's 2 × 21 600 mm² outside, and
