@@ -17,6 +17,7 @@
 //! | [`triangulate`] | triangles covering a polygon with holes (i_triangle), for 3D scenes |
 //! | [`dedup`] | finding equal items among millions (sorted fingerprints) |
 //! | [`weld`] | merging nearby points in 2D or 3D (spatial hash) |
+//! | [`plane_fit`] | planes fitted to triangles, points fitted to planes (QEF) |
 
 pub mod boolean;
 pub mod boxes;
@@ -24,6 +25,7 @@ pub mod dedup;
 pub mod frame;
 pub mod grid;
 pub mod offset;
+pub mod plane_fit;
 pub mod polygon;
 pub mod rng;
 pub mod slab;
