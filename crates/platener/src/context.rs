@@ -49,6 +49,9 @@ pub enum WarningKind {
     /// Welding at the distance asked would have closed holes or fused parts; a smaller one
     /// was used.
     WeldReduced,
+    /// The weld distance was cut back below the model's thinnest wall, or a weld distance set
+    /// by the user reaches it (both figures in the message).
+    WeldThinWall,
     /// Edges used by one triangle only (holes in the surface).
     OpenEdges,
     /// Edges shared by more than two triangles.

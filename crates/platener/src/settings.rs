@@ -245,6 +245,10 @@ impl StackedSettings {
 pub const AUTO_WELD_MIN_EXTENT: f64 = 20.0;
 /// The automatic weld distance never exceeds this (mm): bevels editors add are ≤ 2 mm.
 pub const AUTO_WELD_MAX: f64 = 2.0;
+/// The automatic weld distance stays at or below this share of the model's thinnest wall
+/// (measured by `weld`): under half, so a wall's two faces are never merged, with 10 % to
+/// spare for the averaging that moves welded vertices (see docs/decisions.md).
+pub const AUTO_WELD_WALL_SHARE: f64 = 0.45;
 
 impl Settings {
     /// Checks ranges; the error names the setting and what is allowed.
@@ -341,6 +345,7 @@ impl Settings {
     /// Automatic rule: none below [`AUTO_WELD_MIN_EXTENT`]; otherwise `extent / 50`, at most
     /// [`AUTO_WELD_MAX`] and at most 0.6 × the thinnest sheet, so the two faces of a plate we
     /// are looking for are never welded together. A 100 mm model with 3 mm sheets gets 1.8 mm.
+    /// Step `weld` lowers this further to [`AUTO_WELD_WALL_SHARE`] × the model's thinnest wall.
     pub fn weld_distance(&self, extent: f64) -> f64 {
         match self.weld {
             Weld::Off => 0.0,

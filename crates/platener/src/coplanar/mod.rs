@@ -4,11 +4,21 @@
 //! face not yet grouped. A face joins when its normal is within the coplanar angle of the
 //! *seed's* normal (not its neighbour's): comparing with the neighbour would let a finely
 //! faceted cylinder drift all the way round into one "plane".
+//!
+//! Welding decides which faces belong together; it does not decide where the plane is. A
+//! group's normal and offset are fitted to the faces' *original* (unwelded) triangles
+//! ([`PlaneFit`]: exact when they are coplanar, an area-weighted least-squares plane
+//! otherwise), leaving out originals turned away from the group (what is left of a welded
+//! bevel). Then each welded vertex is put back where the planes of the groups around it meet
+//! ([`refit`]), so a bevelled box's corner returns to the exact corner of its three faces.
+
+mod refit;
 
 use std::collections::VecDeque;
 
 use glam::DVec3;
 use rayon::slice::ParallelSliceMut;
+use platener_geom::plane_fit::PlaneFit;
 use serde::Serialize;
 
 use crate::mesh::Mesh;
@@ -20,9 +30,9 @@ pub struct PlanarGroup {
     /// The faces (mesh triangle indices), in the order they were reached.
     #[serde(skip)]
     pub faces: Vec<u32>,
-    /// Area-weighted mean unit normal (pointing out of the solid).
+    /// Unit normal (pointing out of the solid), fitted to the faces' original triangles.
     pub normal: DVec3,
-    /// Plane offset: `normal · x` for points x on the plane (area-weighted mean).
+    /// Plane offset: `normal · x` for points x on the plane (fitted like the normal).
     pub offset: f64,
     /// Total area in mm².
     pub area: f64,
@@ -36,6 +46,10 @@ pub struct PlanarGroups {
     /// The group of each mesh triangle.
     #[serde(skip)]
     pub face_group: Vec<u32>,
+    /// Each mesh vertex moved onto the planes of the groups around it (see [`refit`]);
+    /// outlines are drawn through these.
+    #[serde(skip)]
+    pub vertices: Vec<DVec3>,
     /// The angle used, in degrees.
     pub angle_deg: f64,
 }
@@ -74,7 +88,7 @@ pub fn group_faces(mesh: &Mesh, angle: f64) -> PlanarGroups {
                 }
             }
         }
-        groups.push(summarise(mesh, faces));
+        groups.push(summarise(mesh, faces, cos_max));
     }
     // Largest first; ties by smallest face index, so the order is deterministic.
     let mut ranked: Vec<usize> = (0..groups.len()).collect();
@@ -91,29 +105,42 @@ pub fn group_faces(mesh: &Mesh, angle: f64) -> PlanarGroups {
     }
     face_group.iter_mut().for_each(|g| *g = rank_of[*g as usize]);
     let mut slots: Vec<Option<PlanarGroup>> = groups.into_iter().map(Some).collect();
-    let groups = ranked.iter().filter_map(|&g| slots[g].take()).collect();
+    let groups: Vec<PlanarGroup> = ranked.iter().filter_map(|&g| slots[g].take()).collect();
     PlanarGroups {
+        vertices: refit::refit_vertices(mesh, &groups, &face_group),
         groups,
         face_group,
         angle_deg: angle.to_degrees(),
     }
 }
 
-fn summarise(mesh: &Mesh, faces: Vec<u32>) -> PlanarGroup {
-    let (mut weighted, mut area) = (DVec3::ZERO, 0.0);
+/// A group's area (of its welded faces) and plane (of its original faces). Originals whose
+/// normal is more than twice the coplanar angle (`cos_max` its cosine) from the welded faces'
+/// mean normal (at least 0.5°) are left out of the fit: welding joined them to the group, but their plane is
+/// another one (a collapsed bevel's remnant).
+fn summarise(mesh: &Mesh, faces: Vec<u32>, cos_max: f64) -> PlanarGroup {
+    let (mut welded, mut area) = (PlaneFit::default(), 0.0);
     for &f in &faces {
-        weighted += mesh.normals[f as usize] * mesh.areas[f as usize];
+        welded.add(mesh.corners(f as usize));
         area += mesh.areas[f as usize];
     }
-    let normal = weighted.try_normalize().unwrap_or(mesh.normals[faces[0] as usize]);
-    let offset = faces
-        .iter()
-        .map(|&f| {
-            let [a, b, c] = mesh.corners(f as usize);
-            normal.dot((a + b + c) / 3.0) * mesh.areas[f as usize]
-        })
-        .sum::<f64>()
-        / area;
+    let fallback = mesh.normals[faces[0] as usize];
+    let welded_plane = welded.plane();
+    let mean = welded_plane.map_or(fallback, |(n, _)| n);
+    let cos_keep = (2.0 * cos_max.clamp(-1.0, 1.0).acos()).max(0.5f64.to_radians()).cos();
+    let mut original = PlaneFit::default();
+    for &f in &faces {
+        let o = mesh.original[f as usize];
+        let n = (o[1] - o[0]).cross(o[2] - o[0]).normalize_or_zero();
+        if n.dot(mean) >= cos_keep {
+            original.add(o);
+        }
+    }
+    let corners = mesh.corners(faces[0] as usize);
+    let (normal, offset) = original
+        .plane()
+        .or(welded_plane)
+        .unwrap_or((fallback, fallback.dot(corners[0])));
     PlanarGroup {
         faces,
         normal,

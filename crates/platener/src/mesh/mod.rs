@@ -51,6 +51,11 @@ pub struct Mesh {
     /// Triangles, wound consistently (normals out where the surface allows).
     #[serde(skip)]
     pub triangles: Vec<[u32; 3]>,
+    /// Each triangle as the model drew it before welding (the cleaned triangle it came from),
+    /// wound like the triangle here. Welding moves vertices; these do not move, so planes are
+    /// taken from them (`coplanar`).
+    #[serde(skip)]
+    pub original: Vec<[DVec3; 3]>,
     /// Unit normal of each triangle, from its winding.
     #[serde(skip)]
     pub normals: Vec<DVec3>,
@@ -70,22 +75,42 @@ pub struct Mesh {
 }
 
 impl Mesh {
-    /// Builds the mesh from an indexed triangle list: removes zero-area triangles, builds the
-    /// topology, orients, and reports health.
+    /// Builds the mesh from an indexed triangle list that was not welded (each triangle is
+    /// its own original); see [`Mesh::build_with_originals`].
     pub fn build(vertices: Vec<DVec3>, triangles: &[[u32; 3]], min_height: f64) -> Self {
+        let original = triangles.iter().map(|t| t.map(|i| vertices[i as usize])).collect();
+        Self::build_with_originals(vertices, triangles, original, min_height)
+    }
+
+    /// Builds the mesh from an indexed triangle list and each triangle's original corners
+    /// (same winding): removes zero-area triangles, builds the topology, orients (turning the
+    /// originals with their triangles), and reports health.
+    pub fn build_with_originals(
+        vertices: Vec<DVec3>,
+        triangles: &[[u32; 3]],
+        originals: Vec<[DVec3; 3]>,
+        min_height: f64,
+    ) -> Self {
         let mut kept: Vec<[u32; 3]> = Vec::with_capacity(triangles.len());
+        let mut original: Vec<[DVec3; 3]> = Vec::with_capacity(triangles.len());
         let mut degenerate = 0;
-        for t in triangles {
+        for (t, o) in triangles.iter().zip(originals) {
             let corners = t.map(|i| vertices[i as usize]);
             if is_degenerate(&corners, min_height) {
                 degenerate += 1;
             } else {
                 kept.push(*t);
+                original.push(o);
             }
         }
         let mut topology = Topology::build(&kept);
         let oriented = orient::orient(&vertices, &kept, &topology);
         topology.reverse_faces(&oriented.reversed);
+        for (o, &turned) in original.iter_mut().zip(&oriented.reversed) {
+            if turned {
+                o.swap(1, 2);
+            }
+        }
         let (normals, areas): (Vec<DVec3>, Vec<f64>) = oriented
             .triangles
             .iter()
@@ -114,6 +139,7 @@ impl Mesh {
             surface_area: areas.iter().sum(),
             vertices,
             triangles: oriented.triangles,
+            original,
             normals,
             areas,
             topology,
@@ -131,9 +157,11 @@ impl Mesh {
 /// Step `mesh`: the welded triangles as an indexed mesh with topology, consistent winding and
 /// a health report.
 pub fn run(welded: &Welded, cleaned: &Cleaned, cx: &mut StepContext<'_>) -> Result<Mesh> {
-    let mesh = Mesh::build(
+    let originals = welded.source.iter().map(|&s| cleaned.triangles[s as usize]).collect();
+    let mesh = Mesh::build_with_originals(
         welded.vertices.clone(),
         &welded.triangles,
+        originals,
         cleaned.tolerances.degenerate_height,
     );
     if mesh.triangles.is_empty() {

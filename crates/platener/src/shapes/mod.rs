@@ -68,7 +68,8 @@ fn shapes_of_group(mesh: &Mesh, groups: &PlanarGroups, gid: usize, tolerance: f6
     let mut removed = 0;
     let mut rings: Vec<Ring> = Vec::with_capacity(loops.len());
     for lp in loops {
-        let ring: Ring = lp.iter().map(|&v| frame.to_2d(mesh.vertices[v as usize])).collect();
+        // Through the vertices refitted to the model's planes, not the welded ones.
+        let ring: Ring = lp.iter().map(|&v| frame.to_2d(groups.vertices[v as usize])).collect();
         let simple = remove_straight_vertices(&ring, tolerance);
         removed += ring.len() - simple.len();
         if simple.len() < 3 {

@@ -10,8 +10,15 @@
 //! characteristic V − E + F; closing a hole or fusing bodies changes it. So when it changes,
 //! the distance is halved and welding retried (with a warning), down to exact duplicates. If
 //! welding would leave nothing, the unwelded mesh is used and a warning says so.
+//!
+//! Welding must not eat a wall either: the automatic distance stays at or below
+//! [`AUTO_WELD_WALL_SHARE`] × the model's thinnest wall ([`walls::thinnest_wall`]), with a
+//! warning when that cuts it back; a distance the user set is kept but warned about when it
+//! reaches the thinnest wall. Each welded triangle remembers the cleaned triangle it came
+//! from, so later steps take planes from the model's own faces, not the welded ones.
 
 mod topology;
+pub mod walls;
 
 use glam::DVec3;
 use platener_geom::dedup::first_equal;
@@ -22,7 +29,7 @@ use crate::cleanup::Cleaned;
 use crate::context::{StepContext, WarningKind};
 use crate::error::{Error, ModelProblem, Result};
 use crate::read::Model;
-use crate::settings::Settings;
+use crate::settings::{AUTO_WELD_WALL_SHARE, Settings, Weld};
 
 pub use topology::{EdgeCounts, edge_counts};
 
@@ -42,6 +49,12 @@ pub struct Welded {
     /// Triangles as vertex indices, winding as in the file.
     #[serde(skip)]
     pub triangles: Vec<[u32; 3]>,
+    /// For each triangle, the index of the cleaned triangle it came from (same winding).
+    #[serde(skip)]
+    pub source: Vec<u32>,
+    /// The model's thinnest wall before welding (mm): `None` when it has no two opposite
+    /// faces, or when no weld was asked for (then it is not measured).
+    pub thinnest_wall: Option<f64>,
     /// The distance used (0 = exact duplicates only).
     pub distance: f64,
     /// The distance asked for (automatic or set), before any halving.
@@ -126,11 +139,13 @@ impl ExactSoup {
         };
         let mut collapsed = 0;
         let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(id.len() / 3);
-        for c in id.chunks_exact(3) {
+        let mut source: Vec<u32> = Vec::with_capacity(id.len() / 3);
+        for (i, c) in id.chunks_exact(3).enumerate() {
             if c[0] == c[1] || c[1] == c[2] || c[0] == c[2] {
                 collapsed += 1;
             } else {
                 triangles.push([c[0], c[1], c[2]]);
+                source.push(i as u32);
             }
         }
         // Cleanup removed exact duplicates already; welding can make new ones.
@@ -146,18 +161,17 @@ impl ExactSoup {
                 .collect();
             let first = first_equal(&keys);
             let before = triangles.len();
-            triangles = triangles
-                .into_iter()
-                .enumerate()
-                .filter(|&(i, _)| first[i] as usize == i)
-                .map(|(_, t)| t)
-                .collect();
+            let keep = |i: usize| first[i] as usize == i;
+            triangles = triangles.into_iter().enumerate().filter(|&(i, _)| keep(i)).map(|(_, t)| t).collect();
+            source = source.into_iter().enumerate().filter(|&(i, _)| keep(i)).map(|(_, s)| s).collect();
             merged = before - triangles.len();
         }
         Welded {
             vertices_merged: self.points.len() - vertices.len(),
             vertices,
             triangles,
+            source,
+            thinnest_wall: None,
             distance,
             distance_asked: distance,
             vertices_before: self.points.len(),
@@ -210,7 +224,11 @@ pub fn weld_soup(soup: &[[DVec3; 3]], distance: f64) -> Welded {
 /// Step `weld`: the cleaned triangles with nearby vertices merged, at the distance the
 /// settings ask for, reduced where welding would change the model's topology.
 pub fn run(model: &Model, cleaned: &Cleaned, settings: &Settings, cx: &mut StepContext<'_>) -> Result<Welded> {
-    let distance = settings.weld_distance(model.bounds.largest_extent());
+    let asked = settings.weld_distance(model.bounds.largest_extent());
+    // Without welding no wall is at risk; the measure is skipped (the stacked method).
+    let wall = (asked > 0.0).then(|| walls::thinnest_wall(&cleaned.triangles)).flatten();
+    cx.check_cancel()?;
+    let distance = distance_for_walls(settings, asked, wall, cx);
     let exact = ExactSoup::new(&cleaned.triangles);
     cx.check_cancel()?;
     let (mut welded, refused) = exact.weld_keeping_topology(distance);
@@ -238,11 +256,43 @@ pub fn run(model: &Model, cleaned: &Cleaned, settings: &Settings, cx: &mut StepC
         };
     }
     cx.check_cancel()?;
+    welded.thinnest_wall = wall;
     warn_edges(&welded, cx);
     if welded.triangles.is_empty() {
         return Err(Error::model(&model.name, ModelProblem::EmptyAfterCleanup));
     }
     Ok(welded)
+}
+
+/// The weld distance `asked` by the settings, kept below the model's thinnest wall `wall`: the
+/// automatic distance is cut to [`AUTO_WELD_WALL_SHARE`] × `wall`; a distance the user set is
+/// kept. Either way a warning gives both figures.
+fn distance_for_walls(settings: &Settings, asked: f64, wall: Option<f64>, cx: &mut StepContext<'_>) -> f64 {
+    let Some(wall) = wall else {
+        return asked;
+    };
+    let cap = AUTO_WELD_WALL_SHARE * wall;
+    match settings.weld {
+        Weld::Auto if asked > cap => {
+            cx.warn(
+                WarningKind::WeldThinWall,
+                format!(
+                    "the thinnest wall of the model is {wall:.3} mm: welding at {asked:.3} mm would eat it; welded at {cap:.3} mm ({AUTO_WELD_WALL_SHARE} × the wall) instead"
+                ),
+            );
+            cap
+        }
+        Weld::Distance(d) if d >= wall => {
+            cx.warn(
+                WarningKind::WeldThinWall,
+                format!(
+                    "--weld {d:.3} mm reaches the thinnest wall of the model ({wall:.3} mm): that wall may be welded away (the automatic weld would use at most {cap:.3} mm)"
+                ),
+            );
+            asked
+        }
+        _ => asked,
+    }
 }
 
 /// Open and non-manifold edges of the model as given.
