@@ -48,21 +48,17 @@ fn rotate(a: &mut [[f64; 3]; 3], v: &mut [[f64; 3]; 3], p: usize, q: usize) {
     let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
     let c = 1.0 / (t * t + 1.0).sqrt();
     let s = t * c;
-    for k in 0..3 {
-        let (akp, akq) = (a[k][p], a[k][q]);
-        a[k][p] = c * akp - s * akq;
-        a[k][q] = s * akp + c * akq;
+    for row in a.iter_mut() {
+        let (akp, akq) = (row[p], row[q]);
+        row[p] = c * akp - s * akq;
+        row[q] = s * akp + c * akq;
     }
-    for k in 0..3 {
-        let (apk, aqk) = (a[p][k], a[q][k]);
-        a[p][k] = c * apk - s * aqk;
-        a[q][k] = s * apk + c * aqk;
-    }
-    for k in 0..3 {
-        let (vkp, vkq) = (v[p][k], v[q][k]);
-        v[p][k] = c * vkp - s * vkq;
-        v[q][k] = s * vkp + c * vkq;
-    }
+    let (rp, rq) = (a[p], a[q]);
+    a[p] = std::array::from_fn(|k| c * rp[k] - s * rq[k]);
+    a[q] = std::array::from_fn(|k| s * rp[k] + c * rq[k]);
+    let (vp, vq) = (v[p], v[q]);
+    v[p] = std::array::from_fn(|k| c * vp[k] - s * vq[k]);
+    v[q] = std::array::from_fn(|k| s * vp[k] + c * vq[k]);
 }
 
 /// The plane of a set of triangles, accumulated one triangle at a time.
@@ -82,7 +78,7 @@ impl PlaneFit {
     pub fn add(&mut self, t: [DVec3; 3]) {
         let cross = (t[1] - t[0]).cross(t[2] - t[0]);
         let area = 0.5 * cross.length();
-        if !(area > 0.0) {
+        if area.is_nan() || area <= 0.0 {
             return;
         }
         let sum = t[0] + t[1] + t[2];
@@ -105,7 +101,7 @@ impl PlaneFit {
     /// triangles' points about their centroid; when that direction is ambiguous (all points
     /// near one line) the area-weighted mean normal is used instead.
     pub fn plane(&self) -> Option<(DVec3, f64)> {
-        if !(self.area > 0.0) {
+        if self.area.is_nan() || self.area <= 0.0 {
             return None;
         }
         let mean_normal = self.normal_sum.try_normalize()?;
@@ -184,7 +180,7 @@ impl Qef {
     pub fn solve(&self, near: DVec3) -> DVec3 {
         let (values, vectors) = symmetric_eigen(self.ata);
         let largest = values[2];
-        if !(largest > 0.0) {
+        if largest.is_nan() || largest <= 0.0 {
             return near;
         }
         let residual = self.atb - self.ata * near;

@@ -91,7 +91,10 @@ fn parts_tray_dividers_stay_3mm() {
         let (lo, hi) = p.bounds();
         let n = p.frame.n;
         let across = (hi - lo).dot(n.abs());
-        assert!((across - 3.0).abs() <= 0.01, "plate {n} spans {across} mm across its faces");
+        assert!(
+            (across - 3.0).abs() <= 0.01,
+            "plate {n} spans {across} mm across its faces"
+        );
     }
 }
 
@@ -114,17 +117,26 @@ fn a_thin_board_is_not_welded_away() {
         .warnings()
         .find(|w| w.kind == WarningKind::WeldThinWall)
         .expect("a warning says the weld was cut back");
-    assert!(warning.message.contains("1.600") && warning.message.contains("0.720"), "{}", warning.message);
+    assert!(
+        warning.message.contains("1.600") && warning.message.contains("0.720"),
+        "{}",
+        warning.message
+    );
+    // Offered a 1.6 mm sheet, the board is one plate of its own thickness.
     let inspection = platener::inspect::inspect(
         Source::triangles("board", board(120.0, 80.0, 1.6)),
-        Settings::default(),
+        Settings {
+            thicknesses: vec![1.6],
+            ..Settings::default()
+        },
         &Cancel::default(),
         true,
     )
     .expect("inspects");
     let plates = inspection.plates.expect("plates").plates;
     assert_eq!(plates.len(), 1);
-    assert!((plates[0].thickness - 1.6).abs() < 1e-9, "{}", plates[0].thickness);
+    assert!((plates[0].thickness - 1.6).abs() < 1e-6, "{}", plates[0].thickness);
+    assert!(inspection.weld_distance < 0.8, "welded at {}", inspection.weld_distance);
 }
 
 #[test]
@@ -134,10 +146,22 @@ fn a_weld_the_user_sets_is_kept_but_warned_about() {
         ..Settings::default()
     };
     let mut state = State::new(Source::triangles("board", board(120.0, 80.0, 1.6)), settings);
-    pipeline::run(&[StepId::Read, StepId::Cleanup, StepId::Weld], &mut state, &Cancel::default()).expect("welds");
+    pipeline::run(
+        &[StepId::Read, StepId::Cleanup, StepId::Weld],
+        &mut state,
+        &Cancel::default(),
+    )
+    .expect("welds");
     assert_eq!(state.weld.as_deref().expect("weld").distance_asked, 2.0);
-    let warning = state.warnings().find(|w| w.kind == WarningKind::WeldThinWall).expect("warned");
-    assert!(warning.message.contains("2.000") && warning.message.contains("1.600"), "{}", warning.message);
+    let warning = state
+        .warnings()
+        .find(|w| w.kind == WarningKind::WeldThinWall)
+        .expect("warned");
+    assert!(
+        warning.message.contains("2.000") && warning.message.contains("1.600"),
+        "{}",
+        warning.message
+    );
 }
 
 /// The 24 corners of a box of size `size` centred at the origin with every edge chamfered by

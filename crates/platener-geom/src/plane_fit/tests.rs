@@ -74,13 +74,25 @@ fn near_parallel_planes_do_not_blow_up() {
 #[test]
 fn coplanar_triangles_give_their_exact_plane() {
     let mut fit = PlaneFit::default();
-    fit.add([DVec3::new(0.0, 0.0, 3.0), DVec3::new(10.0, 0.0, 3.0), DVec3::new(0.0, 5.0, 3.0)]);
-    fit.add([DVec3::new(10.0, 0.0, 3.0), DVec3::new(10.0, 5.0, 3.0), DVec3::new(0.0, 5.0, 3.0)]);
+    fit.add([
+        DVec3::new(0.0, 0.0, 3.0),
+        DVec3::new(10.0, 0.0, 3.0),
+        DVec3::new(0.0, 5.0, 3.0),
+    ]);
+    fit.add([
+        DVec3::new(10.0, 0.0, 3.0),
+        DVec3::new(10.0, 5.0, 3.0),
+        DVec3::new(0.0, 5.0, 3.0),
+    ]);
     assert_eq!(fit.plane(), Some((DVec3::Z, 3.0)));
     assert_eq!(fit.area(), 50.0);
     // Wound the other way: the plane faces the other side.
     let mut down = PlaneFit::default();
-    down.add([DVec3::new(0.0, 0.0, 3.0), DVec3::new(0.0, 5.0, 3.0), DVec3::new(10.0, 0.0, 3.0)]);
+    down.add([
+        DVec3::new(0.0, 0.0, 3.0),
+        DVec3::new(0.0, 5.0, 3.0),
+        DVec3::new(10.0, 0.0, 3.0),
+    ]);
     assert_eq!(down.plane(), Some((-DVec3::Z, -3.0)));
     // No area: no plane.
     let mut none = PlaneFit::default();
@@ -107,6 +119,6 @@ fn a_bent_pair_fits_the_least_squares_plane() {
             fit.add([u[0], u[2], u[1]]);
         }
     }
-    let (n, _) = fit.plane().unwrap();
+    let (n, _) = fit.plane().expect("a plane");
     assert!(n.angle_between(DVec3::Z) < 1e-9, "{n}");
 }

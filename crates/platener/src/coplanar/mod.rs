@@ -17,8 +17,8 @@ mod refit;
 use std::collections::VecDeque;
 
 use glam::DVec3;
-use rayon::slice::ParallelSliceMut;
 use platener_geom::plane_fit::PlaneFit;
+use rayon::slice::ParallelSliceMut;
 use serde::Serialize;
 
 use crate::mesh::Mesh;

@@ -22,9 +22,9 @@ pub(super) fn refit_vertices(mesh: &Mesh, groups: &[PlanarGroup], face_group: &[
     // each vertex's groups are then one run, deduplicated in order (deterministic).
     let mut incident: Vec<(u32, u32, f64)> = Vec::with_capacity(3 * mesh.triangles.len());
     for (f, t) in mesh.triangles.iter().enumerate() {
-        for k in 0..3 {
-            let moved = (mesh.vertices[t[k] as usize] - mesh.original[f][k]).length();
-            incident.push((t[k], face_group[f], moved));
+        for (k, &v) in t.iter().enumerate() {
+            let moved = (mesh.vertices[v as usize] - mesh.original[f][k]).length();
+            incident.push((v, face_group[f], moved));
         }
     }
     incident.sort_unstable_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)).then(a.2.total_cmp(&b.2)));

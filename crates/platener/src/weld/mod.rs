@@ -149,23 +149,11 @@ impl ExactSoup {
             }
         }
         // Cleanup removed exact duplicates already; welding can make new ones.
-        let mut merged = 0;
-        if clustered.is_some() {
-            let keys: Vec<[u32; 3]> = triangles
-                .iter()
-                .map(|t| {
-                    let mut k = *t;
-                    k.sort_unstable();
-                    k
-                })
-                .collect();
-            let first = first_equal(&keys);
-            let before = triangles.len();
-            let keep = |i: usize| first[i] as usize == i;
-            triangles = triangles.into_iter().enumerate().filter(|&(i, _)| keep(i)).map(|(_, t)| t).collect();
-            source = source.into_iter().enumerate().filter(|&(i, _)| keep(i)).map(|(_, s)| s).collect();
-            merged = before - triangles.len();
-        }
+        let merged = if clustered.is_some() {
+            merge_equal(&mut triangles, &mut source)
+        } else {
+            0
+        };
         Welded {
             vertices_merged: self.points.len() - vertices.len(),
             vertices,
@@ -215,6 +203,32 @@ impl ExactSoup {
     }
 }
 
+/// Removes triangles equal (as vertex sets) to an earlier one, with their sources; returns how
+/// many were removed.
+fn merge_equal(triangles: &mut Vec<[u32; 3]>, source: &mut Vec<u32>) -> usize {
+    let keys: Vec<[u32; 3]> = triangles
+        .iter()
+        .map(|t| {
+            let mut k = *t;
+            k.sort_unstable();
+            k
+        })
+        .collect();
+    let first = first_equal(&keys);
+    let before = triangles.len();
+    let mut i = 0;
+    triangles.retain(|_| {
+        i += 1;
+        first[i - 1] as usize == i - 1
+    });
+    let mut j = 0;
+    source.retain(|_| {
+        j += 1;
+        first[j - 1] as usize == j - 1
+    });
+    before - triangles.len()
+}
+
 /// Welds a triangle soup at `distance` (0 merges exact duplicates only), without the
 /// topology guard.
 pub fn weld_soup(soup: &[[DVec3; 3]], distance: f64) -> Welded {
@@ -226,7 +240,9 @@ pub fn weld_soup(soup: &[[DVec3; 3]], distance: f64) -> Welded {
 pub fn run(model: &Model, cleaned: &Cleaned, settings: &Settings, cx: &mut StepContext<'_>) -> Result<Welded> {
     let asked = settings.weld_distance(model.bounds.largest_extent());
     // Without welding no wall is at risk; the measure is skipped (the stacked method).
-    let wall = (asked > 0.0).then(|| walls::thinnest_wall(&cleaned.triangles)).flatten();
+    let wall = (asked > 0.0)
+        .then(|| walls::thinnest_wall(&cleaned.triangles))
+        .flatten();
     cx.check_cancel()?;
     let distance = distance_for_walls(settings, asked, wall, cx);
     let exact = ExactSoup::new(&cleaned.triangles);

@@ -83,16 +83,13 @@ fn planes(triangles: &[[DVec3; 3]]) -> Vec<Plane> {
         let at = (n * f64::from(side)).dot((t[0] + t[1] + t[2]) / 3.0);
         keyed.push((line, side, (at / OFFSET_STEP).round() as i64, at, i));
     }
-    keyed.sort_unstable_by(|a, b| (a.0, a.2, a.1, a.4).cmp(&(b.0, b.2, b.1, b.4)));
+    keyed.sort_unstable_by_key(|a| (a.0, a.2, a.1, a.4));
     let mut planes: Vec<Plane> = Vec::new();
     for run in keyed.chunk_by(|a, b| (a.0, a.1, a.2) == (b.0, b.1, b.2)) {
         let line = run[0].0;
         let dir = DVec3::from_array(line.map(|c| c as f64)).normalize();
         let frame = Frame::on_plane(DVec3::ZERO, dir);
-        let tris: Vec<[DVec2; 3]> = run
-            .iter()
-            .map(|k| triangles[k.4].map(|p| frame.to_2d(p)))
-            .collect();
+        let tris: Vec<[DVec2; 3]> = run.iter().map(|k| triangles[k.4].map(|p| frame.to_2d(p))).collect();
         let (lo, hi) = bounds(tris.iter().flatten());
         planes.push(Plane {
             line,
@@ -107,9 +104,10 @@ fn planes(triangles: &[[DVec3; 3]]) -> Vec<Plane> {
 }
 
 fn bounds<'a>(points: impl Iterator<Item = &'a DVec2>) -> (DVec2, DVec2) {
-    points.fold((DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)), |(lo, hi), p| {
-        (lo.min(*p), hi.max(*p))
-    })
+    points.fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    )
 }
 
 fn boxes_overlap(a: (DVec2, DVec2), b: (DVec2, DVec2)) -> bool {
@@ -128,8 +126,10 @@ fn overlap(a: &Plane, b: &Plane) -> bool {
             .collect()
     };
     let (ta, tb) = (near(&a.tris, b), near(&b.tris, a));
-    ta.iter()
-        .any(|(s, sb)| tb.iter().any(|(t, tbx)| boxes_overlap(*sb, *tbx) && triangles_overlap(s, t)))
+    ta.iter().any(|(s, sb)| {
+        tb.iter()
+            .any(|(t, tbx)| boxes_overlap(*sb, *tbx) && triangles_overlap(s, t))
+    })
 }
 
 /// Separating-axis test of two triangles' interiors (overlap deeper than [`OVERLAP`]).
