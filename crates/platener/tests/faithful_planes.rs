@@ -100,7 +100,7 @@ fn parts_tray_dividers_stay_3mm() {
 
 /// A closed board `w` × `d` × `t` (mm), triangles wound outwards.
 fn board(w: f64, d: f64, t: f64) -> Vec<[DVec3; 3]> {
-    polytope(&box_points(DVec3::new(w, d, t), 0.0))
+    polytope(&box_points(DVec3::new(w, d, t), DVec3::ZERO), DVec3::ONE)
 }
 
 #[test]
@@ -164,9 +164,10 @@ fn a_weld_the_user_sets_is_kept_but_warned_about() {
     );
 }
 
-/// The 24 corners of a box of size `size` centred at the origin with every edge chamfered by
-/// `bevel` mm (`bevel` 0: the 8 corners of the plain box, each repeated).
-fn box_points(size: DVec3, bevel: f64) -> Vec<DVec3> {
+/// The 24 corners of a box of size `size` centred at the origin whose faces are pulled back
+/// from each edge by `bevel` (mm, per axis): chamfers of different widths, so welding them
+/// away averages corners off every face. `bevel` 0: the 8 corners of the plain box.
+fn box_points(size: DVec3, bevel: DVec3) -> Vec<DVec3> {
     let h = size / 2.0;
     let mut points = Vec::new();
     for sx in [-1.0, 1.0] {
@@ -186,14 +187,15 @@ fn box_points(size: DVec3, bevel: f64) -> Vec<DVec3> {
     points
 }
 
-/// The faces of the convex hull of `points` whose outward normals are the 26 directions of
-/// a chamfered box (faces, edges, corners), each fanned into triangles wound outwards.
-fn polytope(points: &[DVec3]) -> Vec<[DVec3; 3]> {
+/// The faces of the convex hull of `points` (a box chamfered by `bevel`, see [`box_points`])
+/// whose outward normals are (x/bevel.x, y/bevel.y, z/bevel.z) for x, y, z in {−1, 0, 1}
+/// (faces, edge chamfers, corner triangles), each fanned into triangles wound outwards.
+fn polytope(points: &[DVec3], bevel: DVec3) -> Vec<[DVec3; 3]> {
     let mut tris = Vec::new();
     for x in -1i32..=1 {
         for y in -1i32..=1 {
             for z in -1i32..=1 {
-                let Some(n) = DVec3::new(x.into(), y.into(), z.into()).try_normalize() else {
+                let Some(n) = (DVec3::new(x.into(), y.into(), z.into()) / bevel).try_normalize() else {
                     continue;
                 };
                 let top = points.iter().map(|p| n.dot(*p)).fold(f64::NEG_INFINITY, f64::max);
@@ -217,9 +219,12 @@ fn polytope(points: &[DVec3]) -> Vec<[DVec3; 3]> {
     tris
 }
 
-/// A CAD-like box 100 × 80 × 60 mm with 1 mm chamfers on every edge.
+/// A CAD-like box 100 × 80 × 60 mm with chamfers of 0.6 to 1.5 mm on every edge.
 fn bevelled_box() -> Vec<[DVec3; 3]> {
-    polytope(&box_points(DVec3::new(100.0, 80.0, 60.0), 1.0))
+    let bevel = DVec3::new(0.6, 1.2, 0.9);
+    let tris = polytope(&box_points(DVec3::new(100.0, 80.0, 60.0), bevel), bevel);
+    assert_eq!(tris.len(), 6 * 2 + 12 * 2 + 8, "6 faces, 12 chamfers, 8 corners");
+    tris
 }
 
 /// Plate normals (up to sign), plate areas and joint angles of the plate method's run.

@@ -290,13 +290,20 @@ fn distance_for_walls(settings: &Settings, asked: f64, wall: Option<f64>, cx: &m
     let cap = AUTO_WELD_WALL_SHARE * wall;
     match settings.weld {
         Weld::Auto if asked > cap => {
+            // Halved like a refused distance, until at most the cap: the distances tried stay
+            // the ones the topology guard tries (the cap itself can pinch a hole the next
+            // rung down does not; `tray_bottom_14in` did at 0.714 mm, not at 0.9).
+            let mut d = asked;
+            while d > cap {
+                d /= 2.0;
+            }
             cx.warn(
                 WarningKind::WeldThinWall,
                 format!(
-                    "the thinnest wall of the model is {wall:.3} mm: welding at {asked:.3} mm would eat it; welded at {cap:.3} mm ({AUTO_WELD_WALL_SHARE} × the wall) instead"
+                    "the thinnest wall of the model is {wall:.3} mm: welding at {asked:.3} mm would eat it; welded at {d:.3} mm instead (at most {cap:.3} mm, {AUTO_WELD_WALL_SHARE} × the wall)"
                 ),
             );
-            cap
+            d
         }
         Weld::Distance(d) if d >= wall => {
             cx.warn(

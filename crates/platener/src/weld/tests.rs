@@ -59,3 +59,25 @@ fn euler_characteristic_of_simple_solids() {
     let hollow = crate::samples::closed_box(10.0, 10.0, 10.0, 2.0);
     assert_eq!(ExactSoup::new(&hollow).counts.euler, 4, "two closed shells");
 }
+
+#[test]
+fn thinnest_wall_is_measured_between_opposite_faces() {
+    use crate::samples::{closed_box, cuboid, open_box, rounded_box};
+    let wall = |tris: &[[DVec3; 3]]| walls::thinnest_wall(tris).map(|w| (w * 1e6).round() / 1e6);
+    // A board: its thickness.
+    assert_eq!(wall(&cuboid(DVec3::ZERO, DVec3::new(120.0, 80.0, 1.6))), Some(1.6));
+    // A tray with 2.5 mm walls and floor; a closed box with 4 mm walls (the cavity's faces
+    // look inwards, so the walls, not the cavity, are measured).
+    assert_eq!(wall(&open_box(100.0, 80.0, 50.0, 2.5)), Some(2.5));
+    assert_eq!(wall(&closed_box(100.0, 80.0, 60.0, 4.0)), Some(4.0));
+    // Rounded edges do not fool it: a 60 × 40 × 30 solid with 3 mm rounds is 30 mm thick.
+    let rounded = rounded_box(DVec3::new(60.0, 40.0, 30.0), 3.0, 4);
+    assert_eq!(wall(&rounded), Some(30.0));
+    // Two boards side by side, not over each other: their faces do not overlap across the
+    // 1 mm gap (a gap is not a wall), so each board's own 5 mm is the thinnest.
+    let mut two = cuboid(DVec3::ZERO, DVec3::new(20.0, 20.0, 5.0));
+    two.extend(cuboid(DVec3::new(21.0, 0.0, 0.0), DVec3::new(41.0, 20.0, 5.0)));
+    assert_eq!(wall(&two), Some(5.0));
+    // A single triangle has no wall.
+    assert_eq!(wall(&[[DVec3::ZERO, DVec3::X, DVec3::Y]]), None);
+}
