@@ -345,7 +345,8 @@ impl Settings {
     /// Automatic rule: none below [`AUTO_WELD_MIN_EXTENT`]; otherwise `extent / 50`, at most
     /// [`AUTO_WELD_MAX`] and at most 0.6 × the thinnest sheet, so the two faces of a plate we
     /// are looking for are never welded together. A 100 mm model with 3 mm sheets gets 1.8 mm.
-    /// Step `weld` lowers this further to [`AUTO_WELD_WALL_SHARE`] × the model's thinnest wall.
+    /// Step `weld` halves it further until it is at most [`AUTO_WELD_WALL_SHARE`] × the
+    /// model's thinnest wall.
     pub fn weld_distance(&self, extent: f64) -> f64 {
         match self.weld {
             Weld::Off => 0.0,

@@ -11,7 +11,7 @@
 //! the distance is halved and welding retried (with a warning), down to exact duplicates. If
 //! welding would leave nothing, the unwelded mesh is used and a warning says so.
 //!
-//! Welding must not eat a wall either: the automatic distance stays at or below
+//! Welding must not eat a wall either: the automatic distance is halved until at most
 //! [`AUTO_WELD_WALL_SHARE`] × the model's thinnest wall ([`walls::thinnest_wall`]), with a
 //! warning when that cuts it back; a distance the user set is kept but warned about when it
 //! reaches the thinnest wall. Each welded triangle remembers the cleaned triangle it came
