@@ -101,6 +101,19 @@ def main():
           f"verify passes {passed('verify_before')} before, {passed('verify_after')} after")
     print(f"best plans that verify fails: {best_fail('before', 'verify_before')} before, "
           f"{best_fail('after', 'verify_after')} after  (* = named best)")
+
+    def overruled(s, v):
+        # Models whose best plan fails verify while another of their plans passes.
+        models = {t["model"] for t in table}
+        count = 0
+        for m in models:
+            mine = [t for t in table if t["model"] == m]
+            best = [t for t in mine if t[s].get("best")]
+            if best and best[0][v] and not best[0][v]["passed"] and any(t[v] and t[v]["passed"] for t in mine):
+                count += 1
+        return count
+    print(f"models whose best plan fails verify while another plan passes: "
+          f"{overruled('before', 'verify_before')} before, {overruled('after', 'verify_after')} after")
     with open(os.path.join(a.after, "table.json"), "w") as f:
         json.dump(table, f, indent=1)
 

@@ -137,7 +137,7 @@ fn altered(zip: &Path, name: &str, change: impl FnOnce(&mut platener::plan::Plan
         let mut entry = archive.by_index(i).expect("entry");
         let mut data = Vec::new();
         entry.read_to_end(&mut data).expect("read");
-        files.insert(entry.name().to_string(), data);
+        files.insert(entry.name().expect("entry name").to_string(), data);
     }
     let mut plan: platener::plan::Plan = serde_json::from_slice(&files["plan.json"]).expect("plan");
     change(&mut plan);

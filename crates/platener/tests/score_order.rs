@@ -4,7 +4,7 @@
 //!
 //! Corpus models are skipped with a message when the shared corpus is absent (CI requires it).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use platener::convert::{Request, Status, convert_all, no_progress};
 use platener::method::MethodKind;
@@ -23,14 +23,14 @@ fn corpus_model(relative: &str) -> Option<PathBuf> {
 }
 
 /// The plate method's conversion of `path` with `weld`.
-fn plate(path: &PathBuf, weld: Weld) -> State {
+fn plate(path: &Path, weld: Weld) -> State {
     let settings = Settings {
         weld,
         ..Settings::default()
     };
     convert(
         MethodKind::Plate,
-        Source::File(path.clone()),
+        Source::File(path.to_path_buf()),
         settings,
         &Cancel::default(),
     )

@@ -263,7 +263,8 @@ fn best_of(methods: &[MethodResult]) -> Option<MethodKind> {
     for m in methods.iter().filter(|m| m.status == Status::Converted) {
         let passed = m.verification.as_ref().is_some_and(|v| v.passed());
         let key = (passed, m.score.as_ref().map_or(0.0, |s| s.total));
-        if best.is_none_or(|(_, b)| key.0 > b.0 || (key.0 == b.0 && key.1 > b.1)) {
+        // A pass beats a failure; between equals, the higher score (the first on a tie).
+        if best.is_none_or(|(_, b)| (key.0 && !b.0) || (key.0 == b.0 && key.1 > b.1)) {
             best = Some((m.method, key));
         }
     }
