@@ -51,8 +51,9 @@ pub enum Command {
     )]
     TestStrip(TestStripArgs),
     /// Rebuilds the assembly from a cutting plan and checks it: parts that intersect, parts
-    /// that fall apart, joints whose parts do not meet, and (with the model) how much of the
-    /// model the parts reproduce. Exits 1 when a check fails.
+    /// that fall apart, joints whose parts do not meet, invalid outlines, parts outside or
+    /// larger than their sheet, and (with the model) how much of the model the parts
+    /// reproduce. Prints each failure with its part ids; exits 1 when a check fails.
     #[command(
         after_help = "Examples:\n  platener verify out/box-3mm-plate.zip\n  platener verify out/box-3mm-plate.zip --model examples/box-3mm.stl --json"
     )]

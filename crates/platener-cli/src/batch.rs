@@ -16,7 +16,7 @@ use tracing_indicatif::span_ext::IndicatifSpanExt as _;
 
 use crate::args::JointArg;
 use crate::inputs::ModelFile;
-use crate::report::{MethodReport, ModelReport};
+use crate::report::{MethodReport, ModelReport, VerifySummary};
 
 /// What every model of the batch is converted with.
 #[derive(Debug, Clone)]
@@ -117,6 +117,10 @@ fn finish(result: &MethodResult, model: &ModelFile, config: &BatchConfig) -> Met
         zip: None,
         report: None,
         score: result.score.clone(),
+        verify: result.verification.as_ref().map(|v| VerifySummary {
+            passed: v.passed(),
+            problems: v.problems.clone(),
+        }),
         parts: bundle.map(|b| b.plan.parts.len()),
         sheets: bundle.map(|b| b.plan.sheets.len()),
         warnings: result

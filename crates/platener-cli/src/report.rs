@@ -27,6 +27,10 @@ pub struct MethodReport {
     /// The score and its components, when converted.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub score: Option<Score>,
+    /// `verify`'s verdict on the plan (against the method's mesh), when converted: from the
+    /// same analysis of the assembly as the score.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub verify: Option<VerifySummary>,
     /// Number of parts, when converted.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub parts: Option<usize>,
@@ -40,6 +44,15 @@ pub struct MethodReport {
     pub error: Option<String>,
     /// Wall time, seconds (not for timed-out methods).
     pub seconds: f64,
+}
+
+/// `verify`'s verdict on a converted plan, in the batch report.
+#[derive(Debug, Clone, Serialize)]
+pub struct VerifySummary {
+    /// Whether every check passed.
+    pub passed: bool,
+    /// Why it failed, naming the parts.
+    pub problems: Vec<String>,
 }
 
 /// How a model did over all methods run.
@@ -320,6 +333,10 @@ pub fn render_model(m: &ModelReport, verbose: bool) -> String {
                     r.sheets.unwrap_or(0),
                     plural(r.sheets)
                 );
+                if let Some(v) = r.verify.as_ref().filter(|v| !v.passed) {
+                    let n = v.problems.len();
+                    let _ = write!(line, "  verify FAILED ({n} problem{})", if n == 1 { "" } else { "s" });
+                }
                 if let Some(zip) = &r.zip {
                     let _ = write!(line, "  → {zip}");
                 }
@@ -347,6 +364,10 @@ pub fn render_model(m: &ModelReport, verbose: bool) -> String {
             for w in &r.warnings {
                 let _ = writeln!(s, "                 warning {w}");
             }
+        }
+        // Why verify fails the plan: always, a plan that does not assemble is what matters.
+        for p in r.verify.iter().flat_map(|v| &v.problems) {
+            let _ = writeln!(s, "                 verify  {p}");
         }
     }
     s

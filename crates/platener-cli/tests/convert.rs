@@ -196,8 +196,8 @@ fn the_json_report_has_scores_and_a_summary() {
     let total = score["total"].as_f64().expect("total");
     assert!((0.0..=1.0).contains(&total), "{score}");
     for component in [
-        &score["shape"]["surface_covered"],
-        &score["shape"]["volume_inside"],
+        &score["surface"]["value"],
+        &score["quality"]["value"],
         &score["assembly"]["connectivity"],
         &score["assembly"]["interference"],
         &score["effort"]["value"],
@@ -205,10 +205,8 @@ fn the_json_report_has_scores_and_a_summary() {
         let x = component.as_f64().expect("a number");
         assert!((0.0..=1.0).contains(&x), "{score}");
     }
-    assert!(
-        score["shape"]["surface_covered"].as_f64().expect("share") > 0.95,
-        "{score}"
-    );
+    assert!(score["surface"]["value"].as_f64().expect("share") > 0.95, "{score}");
+    assert_eq!(method["verify"]["passed"], true, "{method}");
     let s = &v["summary"];
     assert_eq!((s["models"].as_u64(), s["converted"].as_u64()), (Some(1), Some(1)));
     assert_eq!(s["methods"]["plate"]["converted"], 1);

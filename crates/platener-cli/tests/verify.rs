@@ -126,3 +126,60 @@ fn verified_against(zip: &Path, extra: &[&str]) -> serde_json::Value {
         .expect("runs");
     serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", String::from_utf8_lossy(&o.stderr)))
 }
+
+/// The ZIP at `zip` with its plan.json changed by `change`, written beside it as `name`.
+fn altered(zip: &Path, name: &str, change: impl FnOnce(&mut platener::plan::Plan)) -> PathBuf {
+    use std::io::Read;
+    let bytes = std::fs::read(zip).expect("zip");
+    let mut archive = zip::ZipArchive::new(std::io::Cursor::new(bytes)).expect("a ZIP");
+    let mut files = std::collections::BTreeMap::new();
+    for i in 0..archive.len() {
+        let mut entry = archive.by_index(i).expect("entry");
+        let mut data = Vec::new();
+        entry.read_to_end(&mut data).expect("read");
+        files.insert(entry.name().expect("entry name").to_string(), data);
+    }
+    let mut plan: platener::plan::Plan = serde_json::from_slice(&files["plan.json"]).expect("plan");
+    change(&mut plan);
+    files.insert("plan.json".into(), serde_json::to_vec_pretty(&plan).expect("json"));
+    let path = zip.with_file_name(name);
+    std::fs::write(&path, platener::export::zip_files(&files).expect("zipped")).expect("write");
+    path
+}
+
+/// A plan with a loose part and a part pushed into its neighbours fails, and every failure
+/// line names the parts.
+#[test]
+fn verify_fails_a_loose_part_and_overlapping_parts_naming_them() {
+    let out = tempfile::tempdir().expect("tempdir");
+    let zip = convert_box(out.path(), &[]);
+    let broken = altered(&zip, "broken.zip", |plan| {
+        plan.joints.retain(|j| !j.parts.contains(&3));
+        let part = &mut plan.parts[1];
+        for row in 0..3 {
+            part.transform[row][3] -= part.transform[row][2] * 1.5;
+        }
+    });
+    let o = platener()
+        .arg("verify")
+        .arg(&broken)
+        .arg("--model")
+        .arg(example("box-3mm.stl"))
+        .output()
+        .expect("runs");
+    assert_eq!(o.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&o.stdout);
+    let failed: Vec<&str> = text.lines().filter(|l| l.starts_with("FAILED")).collect();
+    assert!(
+        failed
+            .iter()
+            .any(|l| l.contains("no joint holds parts [3] to the rest")),
+        "{text}"
+    );
+    assert!(
+        failed
+            .iter()
+            .any(|l| l.contains("parts intersect") && (l.contains("parts 2 and") || l.contains("and 2 ("))),
+        "{text}"
+    );
+}

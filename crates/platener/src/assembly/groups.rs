@@ -24,8 +24,4 @@ impl UnionFind {
             self.0[ra.max(rb)] = ra.min(rb);
         }
     }
-    /// The number of groups.
-    pub(crate) fn count(&mut self) -> usize {
-        (0..self.0.len()).filter(|&i| self.root(i) == i).count()
-    }
 }

@@ -6,7 +6,7 @@
 //! weld setting (the stacked method keeps every surface detail, so it welds exact duplicates
 //! only and cannot share the plate method's welded mesh), forking the state for each method.
 //! It applies the time limit to the model as a whole, catches errors and panics per method,
-//! scores every plan and names the best.
+//! scores and verifies every plan (one analysis of its assembly for both) and names the best.
 
 mod panic;
 #[cfg(test)]
@@ -26,6 +26,7 @@ use crate::method::MethodKind;
 use crate::pipeline::{Source, State, StepEvent};
 use crate::score::Score;
 use crate::settings::Settings;
+use crate::verify::Verification;
 
 pub use panic::PanicHook;
 
@@ -121,6 +122,9 @@ pub struct MethodResult {
     pub state: Option<State>,
     /// The score of its plan, when converted.
     pub score: Option<Score>,
+    /// `verify`'s verdict on its plan against the method's mesh, when converted (from the same
+    /// analysis of the assembly as the score).
+    pub verification: Option<Verification>,
     /// Why it did not convert.
     pub error: Option<Error>,
 }
@@ -151,7 +155,8 @@ pub struct Conversions {
     pub shared: Option<State>,
     /// Per method asked for, in order.
     pub methods: Vec<MethodResult>,
-    /// The converted method with the highest score (the first on a tie).
+    /// The best converted method: the highest score among the plans `verify` passes, or, when
+    /// it passes none, among all (the first on a tie).
     pub best: Option<MethodKind>,
     /// Wall time, seconds.
     pub seconds: f64,
@@ -250,13 +255,17 @@ pub fn convert(method: MethodKind, source: Source, settings: Settings, cancel: &
     }
 }
 
-/// The converted method with the highest score, the first on a tie.
+/// The converted method with the highest score among those whose plan `verify` passes (a
+/// plan that does not assemble into the model is never named best over one that does), the
+/// first on a tie.
 fn best_of(methods: &[MethodResult]) -> Option<MethodKind> {
-    let mut best: Option<(MethodKind, f64)> = None;
+    let mut best: Option<(MethodKind, (bool, f64))> = None;
     for m in methods.iter().filter(|m| m.status == Status::Converted) {
-        let total = m.score.as_ref().map_or(0.0, |s| s.total);
-        if best.is_none_or(|(_, b)| total > b) {
-            best = Some((m.method, total));
+        let passed = m.verification.as_ref().is_some_and(|v| v.passed());
+        let key = (passed, m.score.as_ref().map_or(0.0, |s| s.total));
+        // A pass beats a failure; between equals, the higher score (the first on a tie).
+        if best.is_none_or(|(_, b)| (key.0 && !b.0) || (key.0 == b.0 && key.1 > b.1)) {
+            best = Some((m.method, key));
         }
     }
     best.map(|(m, _)| m)

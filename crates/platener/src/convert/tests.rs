@@ -252,3 +252,27 @@ fn the_order_of_the_offered_sheets_changes_nothing() {
             .all(|p| p.thickness == 3.0)
     );
 }
+
+/// A plan `verify` fails is never named best over one it passes, whatever their scores.
+#[test]
+fn a_plan_verify_fails_is_not_named_best_over_one_it_passes() {
+    let all = convert_all(box_request(MethodKind::ALL.to_vec()), &Cancel::default(), no_progress());
+    let mut methods = all.methods.clone();
+    let verdict = |m: &MethodResult| m.verification.as_ref().expect("verified").clone();
+    let (plate, stacked) = (&methods[0], &methods[1]);
+    assert_eq!((plate.method, stacked.method), (MethodKind::Plate, MethodKind::Stacked));
+    // The jointed plates pass; the box's stacked rings have no shaft and fall apart.
+    assert!(verdict(plate).passed(), "{:?}", verdict(plate).problems);
+    assert!(!verdict(stacked).passed());
+    assert_eq!(all.best, Some(MethodKind::Plate));
+    // Even with a perfect score the stacked plan is not named best over the plates.
+    methods[1].score.as_mut().expect("score").total = 1.0;
+    assert_eq!(best_of(&methods), Some(MethodKind::Plate));
+    // When neither passes (the plates without their joints), the score decides again.
+    let mut plan = methods[0].bundle().expect("plan").plan.clone();
+    plan.joints.clear();
+    let analysis = crate::assembly::analyse(&plan, methods[0].state.as_ref().and_then(|s| s.mesh.as_deref()));
+    methods[0].verification = Some(crate::verify::check(&plan, &analysis, crate::verify::MIN_COVERAGE));
+    assert!(!verdict(&methods[0]).passed());
+    assert_eq!(best_of(&methods), Some(MethodKind::Stacked));
+}

@@ -7,11 +7,13 @@ use std::time::{Duration, Instant};
 
 use super::panic::catch;
 use super::{Event, Fault, FaultKind, MethodResult, Progress, Request, Status};
+use crate::assembly::analyse;
 use crate::context::Cancel;
 use crate::error::{Error, Internal, ModelProblem};
 use crate::method::MethodKind;
 use crate::pipeline::{self, FOUNDATION, State, StepEvent, StepId};
 use crate::score::{self, Score};
+use crate::verify::{self, Verification};
 
 /// How long a cancelled conversion thread is waited for before it is left behind.
 const CANCEL_GRACE: Duration = Duration::from_secs(2);
@@ -137,6 +139,7 @@ fn failed(method: MethodKind, error: Error, state: Option<State>, seconds: f64) 
         seconds,
         state,
         score: None,
+        verification: None,
         error: Some(error),
     }
 }
@@ -175,19 +178,23 @@ fn work(request: &Request, cancel: &Cancel, progress: &dyn Progress, tx: &Sender
         let _entered = span.enter();
         let outcome = catch(|| {
             let (state, ran) = run_method(method, &base, &mut foundations, request, cancel, progress);
-            let score = ran.is_ok().then(|| score_of(&state)).flatten();
-            (state, score, ran)
+            let judged = ran.is_ok().then(|| judge(&state)).flatten();
+            (state, judged, ran)
         });
         let seconds = start.elapsed().as_secs_f64();
         let result = match outcome {
-            Ok((state, score, Ok(()))) => MethodResult {
-                method,
-                status: Status::Converted,
-                seconds,
-                state: Some(state),
-                score,
-                error: None,
-            },
+            Ok((state, judged, Ok(()))) => {
+                let (score, verification) = judged.map_or((None, None), |(s, v)| (Some(s), Some(v)));
+                MethodResult {
+                    method,
+                    status: Status::Converted,
+                    seconds,
+                    state: Some(state),
+                    score,
+                    verification,
+                    error: None,
+                }
+            }
             Ok((state, _, Err(error))) => failed(method, error, Some(state), seconds),
             Err(panic) => failed(
                 method,
@@ -273,12 +280,14 @@ fn has_parts(method: MethodKind, state: &State) -> Result<(), Error> {
     }
 }
 
-/// The score of a converted method's plan.
-fn score_of(state: &State) -> Option<Score> {
-    match (&state.mesh, &state.export) {
-        (Some(mesh), Some(bundle)) => Some(score::score(mesh, bundle, state.plates.as_deref())),
-        _ => None,
-    }
+/// The score and `verify`'s verdict of a converted method's plan, both from one analysis of
+/// its assembly against the method's mesh, so they cannot disagree.
+fn judge(state: &State) -> Option<(Score, Verification)> {
+    let (mesh, bundle) = (state.mesh.as_deref()?, state.export.as_deref()?);
+    let analysis = analyse(&bundle.plan, Some(mesh));
+    let score = score::score_analysed(mesh, bundle, state.plates.as_deref(), &analysis);
+    let verification = verify::check(&bundle.plan, &analysis, verify::MIN_COVERAGE);
+    Some((score, verification))
 }
 
 /// Fails, panics or hangs as a caller's test asked for `method`.

@@ -1,52 +1,66 @@
 //! `platener verify`: rebuilds the assembly from plan.json and checks it before anyone cuts.
 //!
-//! Each part is its outline extruded by its thickness and moved by its transform. Measured by
-//! deterministic sampling (see [`sample`]; the accuracy follows the sampling step):
-//! - pairwise interference volume (plates must not intersect; fingers must be exact complements),
-//! - with the model: share of the model's surface within half a sheet plus 0.5 mm of a part
-//!   ([`cover_distance`]), share of the parts'
-//!   volume inside the model,
-//! - groups of parts the joints hold together, against the model's separate solids,
-//! - joints whose two parts do not actually meet.
+//! Each part is its outline extruded by its thickness and moved by its transform. The
+//! measuring is the one [`analyse`] of the assembly that `convert` and the score read too
+//! (deterministic sampling; the accuracy follows the sampling step). A plan fails
+//! ([`Check`]) when
+//! - parts share more than [`MAX_INTERFERENCE`] of their volume (JimJoints' barbs, which
+//!   overlap on purpose, left out),
+//! - the joints that meet leave more groups than the model has solids,
+//! - a joint's parts do not meet,
+//! - (with the model) the parts cover less than [`MIN_COVERAGE`] of the model's surface,
+//! - an outline is invalid ([`outline_findings`]),
+//! - a part lies outside its sheet or is larger than it.
 //!
-//! It fails when interference (other than the intended overlap of JimJoints' barbs) exceeds
-//! 0.5 % of the parts' volume, when the parts fall apart into more groups than the model has
-//! solids, when a joint's parts do not meet, or (with the model) when the parts cover less
-//! than [`MIN_COVERAGE`] of the model's surface.
+//! Each failure names the parts it concerns. [`check`] turns an analysis already made (as
+//! `convert` makes it for every plan) into a verdict without measuring again.
 
-mod sample;
+mod outline;
+mod sheet;
 #[cfg(test)]
 mod tests;
 
 use serde::Serialize;
 
-use crate::assembly::Solid;
-
+use crate::assembly::{Analysis, Solid, analyse};
+pub use crate::assembly::{COVER_SLACK, Interference, cover_distance};
 use crate::mesh::Mesh;
 use crate::plan::Plan;
+pub use outline::outline_findings;
 
 /// Interference above this share of the parts' volume fails verification.
 pub const MAX_INTERFERENCE: f64 = 0.005;
-/// Model surface within half the thickest part's thickness plus this (mm) of a part counts as
-/// covered: a wall cut from a sheet sits at most half a sheet from the face it stands for, and
-/// the weld and the kerf move faces by less than half a millimetre.
-pub const COVER_SLACK: f64 = 0.5;
 /// A plan whose parts cover less than this share of the model's surface fails: it does not
 /// reproduce the model (`--min-coverage`).
 pub const MIN_COVERAGE: f64 = 0.8;
 
-/// The distance within which a part covers the model's surface for `plan`.
-pub fn cover_distance(plan: &Plan) -> f64 {
-    plan.parts.iter().map(|p| p.thickness).fold(0.0, f64::max) / 2.0 + COVER_SLACK
+/// Which check a plan failed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Check {
+    /// Parts share volume.
+    Interference,
+    /// More groups of parts than the model has solids.
+    Groups,
+    /// A joint whose parts do not meet.
+    JointsNotMeeting,
+    /// Too little of the model's surface reproduced.
+    Coverage,
+    /// An outline that cannot be cut as drawn.
+    Outline,
+    /// A part outside its sheet or larger than it.
+    Sheet,
 }
 
-/// Two parts that share volume.
-#[derive(Debug, Clone, Serialize)]
-pub struct Interference {
-    /// The parts' ids.
-    pub parts: [u32; 2],
-    /// Shared volume, mm³.
-    pub volume: f64,
+/// One reason a plan fails, with the parts it concerns.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Failure {
+    /// The check.
+    pub check: Check,
+    /// The parts concerned, ascending (empty for the surface coverage).
+    pub parts: Vec<u32>,
+    /// What is wrong, for people, naming the parts.
+    pub message: String,
 }
 
 /// What `platener verify` reports.
@@ -58,23 +72,28 @@ pub struct Verification {
     pub parts_volume: f64,
     /// Pairs of parts that share volume, largest first.
     pub interference: Vec<Interference>,
-    /// Total shared volume over the parts' volume.
+    /// Total shared volume over the parts' volume (JimJoints' barbs left out).
     pub interference_share: f64,
     /// Groups of parts held together by joints.
     pub groups: usize,
+    /// The groups' part ids.
+    pub group_parts: Vec<Vec<u32>>,
     /// The model's separate solids, when the model was given.
     pub model_solids: Option<usize>,
     /// The distance within which a part covers the model's surface, mm.
     pub cover_distance: f64,
     /// Share of the model's surface within `cover_distance` of a part, when the model was given.
     pub surface_covered: Option<f64>,
-    /// Share of the parts' volume inside the model, when the model was given.
+    /// Share of the parts' volume inside the model, when the model was given to `verify`
+    /// (not measured by [`check`]).
     pub volume_inside: Option<f64>,
     /// Labels of joints whose parts do not meet.
     pub joints_not_meeting: Vec<u32>,
     /// The sampling step used, mm.
     pub step: f64,
-    /// Why verification failed (empty when it passed).
+    /// Why verification failed, with the parts (empty when it passed).
+    pub failures: Vec<Failure>,
+    /// The failures' messages (empty when it passed).
     pub problems: Vec<String>,
     /// What the user should know but does not fail the plan (a model that does not look like
     /// the plan's source).
@@ -84,7 +103,7 @@ pub struct Verification {
 impl Verification {
     /// Whether every check passed.
     pub fn passed(&self) -> bool {
-        self.problems.is_empty()
+        self.failures.is_empty()
     }
 }
 
@@ -125,100 +144,144 @@ pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
 }
 
 /// Verifies a plan; against a model, it fails when the parts cover less than `min_coverage`
-/// of the model's surface.
+/// of the model's surface, and measures the share of the parts' volume inside the model.
 pub fn verify_with(plan: &Plan, model: Option<&Mesh>, min_coverage: f64) -> Verification {
-    let solids: Vec<Solid> = plan.parts.iter().map(Solid::from_part).collect();
-    let step = sample::step_for(&solids);
-    let parts_volume: f64 = solids.iter().map(|s| s.volume).sum();
-    let mut interference = sample::interference(&solids, step);
-    interference.sort_by(|a, b| b.volume.total_cmp(&a.volume));
-    // JimJoints overlap on purpose: their barbs squeeze through and snap behind the partner.
-    let snapping = |pair: &[u32; 2]| {
-        plan.joints
-            .iter()
-            .any(|j| j.kind == crate::plan::JointKind::Jim && (j.parts == *pair || j.parts == [pair[1], pair[0]]))
-    };
-    let shared: f64 = interference
-        .iter()
-        .filter(|i| !snapping(&i.parts))
-        .map(|i| i.volume)
-        .sum();
-    let interference_share = if parts_volume > 0.0 {
-        (shared / parts_volume).max(0.0) + 0.0 /* −0 → +0 */
-    } else {
-        0.0
-    };
-    let (groups, joints_not_meeting) = held_together(plan, &solids, step);
-    let (model_solids, surface_covered, volume_inside) = match model {
-        Some(m) => (
-            Some(m.health.solids.max(1)),
-            Some(sample::surface_covered(m, &solids, cover_distance(plan))),
-            Some(sample::volume_inside(m, &solids, step.max(0.5))),
-        ),
-        None => (None, None, None),
-    };
-    let mut problems = Vec::new();
-    if interference_share > MAX_INTERFERENCE {
-        problems.push(format!(
-            "parts intersect: {:.2} % of their volume is claimed twice (at most {:.1} %)",
-            100.0 * interference_share,
-            100.0 * MAX_INTERFERENCE
-        ));
+    let analysis = analyse(plan, model);
+    let mut v = check(plan, &analysis, min_coverage);
+    v.volume_inside = model.map(|m| {
+        let solids: Vec<Solid> = plan.parts.iter().map(Solid::from_part).collect();
+        crate::assembly::sample::volume_inside(m, &solids, analysis.step.max(0.5))
+    });
+    v
+}
+
+/// The verdict on `plan` from its `analysis` (made by [`analyse`], with the model when the
+/// coverage is to be checked), without measuring the assembly again.
+pub fn check(plan: &Plan, analysis: &Analysis, min_coverage: f64) -> Verification {
+    let mut failures = Vec::new();
+    failures.extend(interference_failure(analysis));
+    failures.extend(groups_failure(analysis));
+    failures.extend(joints_failure(plan, analysis));
+    if let Some(covered) = analysis.surface_covered.filter(|c| *c < min_coverage) {
+        failures.push(Failure {
+            check: Check::Coverage,
+            parts: Vec::new(),
+            message: format!(
+                "the parts reproduce only {:.1} % of the model's surface (within {:.1} mm of a part); \
+                 at least {:.0} % is required (--min-coverage)",
+                100.0 * covered,
+                analysis.cover_distance,
+                100.0 * min_coverage
+            ),
+        });
     }
-    let allowed = model_solids.unwrap_or(1);
-    if groups > allowed {
-        problems.push(format!(
-            "the parts fall apart into {groups} groups; the model has {allowed}"
-        ));
+    for part in &plan.parts {
+        for finding in outline_findings(part) {
+            failures.push(Failure {
+                check: Check::Outline,
+                parts: vec![part.id],
+                message: format!("part {}: invalid outline: {finding}", part.id),
+            });
+        }
     }
-    if let Some(covered) = surface_covered.filter(|c| *c < min_coverage) {
-        problems.push(format!(
-            "the parts reproduce only {:.1} % of the model's surface (within {:.1} mm of a part); \
-             at least {:.0} % is required (--min-coverage)",
-            100.0 * covered,
-            cover_distance(plan),
-            100.0 * min_coverage
-        ));
-    }
-    if !joints_not_meeting.is_empty() {
-        problems.push(format!("joints whose parts do not meet: {joints_not_meeting:?}"));
-    }
+    failures.extend(sheet::findings(plan));
     Verification {
-        parts: solids.len(),
-        parts_volume,
-        interference,
-        interference_share,
-        groups,
-        model_solids,
-        surface_covered,
-        volume_inside,
-        joints_not_meeting,
-        step,
-        cover_distance: cover_distance(plan),
-        problems,
+        parts: analysis.parts,
+        parts_volume: analysis.parts_volume,
+        interference: analysis.interference.clone(),
+        interference_share: analysis.interference_share,
+        groups: analysis.group_count(),
+        group_parts: analysis.groups.clone(),
+        model_solids: analysis.model_solids,
+        cover_distance: analysis.cover_distance,
+        surface_covered: analysis.surface_covered,
+        volume_inside: None,
+        joints_not_meeting: analysis.joints_not_meeting.clone(),
+        step: analysis.step,
+        problems: failures.iter().map(|f| f.message.clone()).collect(),
+        failures,
         warnings: Vec::new(),
     }
 }
 
-/// The groups of parts the joints hold together, and the joints whose parts do not meet.
-fn held_together(plan: &Plan, solids: &[Solid], step: f64) -> (usize, Vec<u32>) {
-    let index = |id: u32| solids.iter().position(|s| s.id == id);
-    let mut group = crate::assembly::UnionFind::new(solids.len());
-    let mut joints_not_meeting = Vec::new();
-    for j in &plan.joints {
-        let (Some(a), Some(b)) = (index(j.parts[0]), index(j.parts[1])) else {
-            joints_not_meeting.push(j.label);
-            continue;
-        };
-        // Sampled inside each part in turn: a slot opening onto one part's edge may only be
-        // seen from the other.
-        if sample::meet(&solids[a], &solids[b], step) || sample::meet(&solids[b], &solids[a], step) {
-            group.join(a, b);
-        } else {
-            joints_not_meeting.push(j.label);
-        }
+/// Pairs named in a failure message, at most.
+const NAMED_PAIRS: usize = 8;
+
+/// Parts that share more than [`MAX_INTERFERENCE`] of their volume, naming the pairs.
+fn interference_failure(analysis: &Analysis) -> Option<Failure> {
+    if analysis.interference_share <= MAX_INTERFERENCE {
+        return None;
     }
-    (group.count(), joints_not_meeting)
+    let pairs: Vec<&Interference> = analysis.interference.iter().filter(|i| !i.intended).collect();
+    let mut parts: Vec<u32> = pairs.iter().flat_map(|i| i.parts).collect();
+    parts.sort_unstable();
+    parts.dedup();
+    let named: Vec<String> = pairs
+        .iter()
+        .take(NAMED_PAIRS)
+        .map(|i| format!("parts {} and {} ({:.1} mm³)", i.parts[0], i.parts[1], i.volume))
+        .collect();
+    let more = pairs.len().saturating_sub(NAMED_PAIRS);
+    Some(Failure {
+        check: Check::Interference,
+        parts,
+        message: format!(
+            "parts intersect: {:.2} % of their volume is claimed twice (at most {:.1} %): {}{}",
+            100.0 * analysis.interference_share,
+            100.0 * MAX_INTERFERENCE,
+            named.join(", "),
+            if more > 0 {
+                format!(" and {more} more pairs")
+            } else {
+                String::new()
+            }
+        ),
+    })
+}
+
+/// More groups than the model has solids, naming the parts of the groups beyond them.
+fn groups_failure(analysis: &Analysis) -> Option<Failure> {
+    let extra = analysis.extra_groups();
+    if extra.is_empty() {
+        return None;
+    }
+    let mut parts: Vec<u32> = extra.iter().flat_map(|g| g.iter().copied()).collect();
+    parts.sort_unstable();
+    let named: Vec<String> = extra.iter().map(|g| format!("{g:?}")).collect();
+    Some(Failure {
+        check: Check::Groups,
+        parts,
+        message: format!(
+            "the parts fall apart into {} groups; the model has {}: no joint holds parts {} to the rest",
+            analysis.group_count(),
+            analysis.allowed_groups(),
+            named.join(", ")
+        ),
+    })
+}
+
+/// Joints whose parts do not meet, naming the joints and their parts.
+fn joints_failure(plan: &Plan, analysis: &Analysis) -> Option<Failure> {
+    if analysis.joints_not_meeting.is_empty() {
+        return None;
+    }
+    let joints: Vec<_> = plan
+        .joints
+        .iter()
+        .filter(|j| analysis.joints_not_meeting.contains(&j.label))
+        .collect();
+    let mut parts: Vec<u32> = joints.iter().flat_map(|j| j.parts).collect();
+    parts.sort_unstable();
+    parts.dedup();
+    let named: Vec<String> = joints
+        .iter()
+        .map(|j| format!("{} (parts {} and {})", j.label, j.parts[0], j.parts[1]))
+        .collect();
+    Some(Failure {
+        check: Check::JointsNotMeeting,
+        parts,
+        message: format!("joints whose parts do not meet: {}", named.join(", ")),
+    })
 }
 
 /// Why `model` does not look like the model `plan` was made from (its bounding box differs by

@@ -1,12 +1,11 @@
-//! Deterministic sampling behind `verify`: regular grids, no randomness, so the same plan
-//! always gives the same figures. Volumes are counted on cell centres, which never fall on a
-//! part's face when faces lie on the grid, and are accurate to about one step times the
-//! contact area.
+//! Deterministic sampling behind the assembly analysis: regular grids, no randomness, so the
+//! same plan always gives the same figures. Volumes are counted on cell centres, which never
+//! fall on a part's face when faces lie on the grid, and are accurate to about one step times
+//! the contact area.
 
 use glam::{DVec2, DVec3};
 
-use super::Interference;
-use crate::assembly::{Inside, Solid};
+use super::{Inside, Interference, Solid};
 use crate::mesh::Mesh;
 
 /// Fraction of a step the sampling grid is shifted by (1/√2 − 0.5).
@@ -21,12 +20,13 @@ pub(super) fn step_for(solids: &[Solid]) -> f64 {
         .max(0.05)
 }
 
-fn overlap(a: &Solid, b: &Solid, grow: f64) -> bool {
+/// Whether the boxes of `a` and `b`, `a`'s grown by `grow`, overlap.
+pub(super) fn overlap(a: &Solid, b: &Solid, grow: f64) -> bool {
     (a.lo - DVec3::splat(grow)).cmple(b.hi).all() && (b.lo - DVec3::splat(grow)).cmple(a.hi).all()
 }
 
 /// Cell centres of a part's volume (in the model), with the volume each stands for.
-fn cells(s: &Solid, step: f64) -> (Vec<DVec3>, f64) {
+pub(crate) fn cells(s: &Solid, step: f64) -> (Vec<DVec3>, f64) {
     let (lo, hi) = s.slab.polygon.bounds();
     let layers = ((s.slab.thickness / step).ceil() as usize).max(1);
     let dz = s.slab.thickness / layers as f64;
@@ -54,21 +54,22 @@ fn cells(s: &Solid, step: f64) -> (Vec<DVec3>, f64) {
     (out, step * step * dz)
 }
 
-/// Every pair of parts that shares volume, with the volume.
-pub(super) fn interference(solids: &[Solid], step: f64) -> Vec<Interference> {
+/// Every pair of parts that shares volume, with the volume; `cells[i]` are part i's cell
+/// centres and the volume each stands for.
+pub(super) fn interference(solids: &[Solid], cells: &[(Vec<DVec3>, f64)]) -> Vec<Interference> {
     let mut found = Vec::new();
     for (i, a) in solids.iter().enumerate() {
-        let near: Vec<&Solid> = solids[i + 1..].iter().filter(|b| overlap(a, b, 0.0)).collect();
-        if near.is_empty() {
-            continue;
-        }
-        let (points, cell) = cells(a, step);
-        for b in near {
-            let inside = points.iter().filter(|p| b.contains(**p)).count();
+        let (points, cell) = &cells[i];
+        for b in solids[i + 1..].iter().filter(|b| overlap(a, b, 0.0)) {
+            let inside = points
+                .iter()
+                .filter(|p| b.near_box(**p, 0.0) && b.contains(**p))
+                .count();
             if inside > 0 {
                 found.push(Interference {
                     parts: [a.id, b.id],
                     volume: inside as f64 * cell,
+                    intended: false,
                 });
             }
         }
@@ -76,25 +77,20 @@ pub(super) fn interference(solids: &[Solid], step: f64) -> Vec<Interference> {
     found
 }
 
-/// Whether two parts touch or overlap (closer than a tenth of a step anywhere on a's surface
-/// grid).
-pub(super) fn meet(a: &Solid, b: &Solid, step: f64) -> bool {
-    if !overlap(a, b, step) {
-        return false;
-    }
-    let (points, _) = cells(a, step);
-    // Cell centres lie half a step inside a's faces.
-    points.iter().any(|p| b.within(*p, step * 0.6))
+/// Whether part `a` (whose cell centres are `points`) touches or overlaps `b`: some centre
+/// within 0.6 step of `b` (centres lie half a step inside a's faces).
+pub(super) fn meet(a: &Solid, points: &[DVec3], b: &Solid, step: f64) -> bool {
+    overlap(a, b, step) && points.iter().any(|p| b.within(*p, step * 0.6))
 }
 
-/// Share of the model's surface area within `distance` of some part.
-pub(super) fn surface_covered(mesh: &Mesh, solids: &[Solid], distance: f64) -> f64 {
-    let (mut covered, mut total) = (0.0, 0.0);
+/// Calls `visit(point, weight, triangle)` for a regular triangular grid of samples over every
+/// triangle of the model, spaced about `spacing` apart, each weighted by the area it stands for.
+pub(crate) fn surface_samples(mesh: &Mesh, spacing: f64, mut visit: impl FnMut(DVec3, f64, usize)) {
     for f in 0..mesh.triangles.len() {
         let [a, b, c] = mesh.corners(f);
         let area = mesh.areas[f];
         // A regular triangular grid of n² samples, each standing for area / n².
-        let n = ((area.sqrt() / distance).ceil() as usize).clamp(1, 64);
+        let n = ((area.sqrt() / spacing).ceil() as usize).clamp(1, 64);
         let w = area / (n * n) as f64;
         for i in 0..n {
             for j in 0..n - i {
@@ -103,21 +99,27 @@ pub(super) fn surface_covered(mesh: &Mesh, solids: &[Solid], distance: f64) -> f
                         continue;
                     }
                     let (s, t) = ((i as f64 + di) / n as f64, (j as f64 + dj) / n as f64);
-                    let p = a + (b - a) * s + (c - a) * t;
-                    total += w;
-                    let near = solids.iter().any(|x| x.within(p, distance));
-                    if near {
-                        covered += w;
-                    }
+                    visit(a + (b - a) * s + (c - a) * t, w, f);
                 }
             }
         }
     }
+}
+
+/// Share of the model's surface area within `distance` of some part.
+pub(super) fn surface_covered(mesh: &Mesh, solids: &[Solid], distance: f64) -> f64 {
+    let (mut covered, mut total) = (0.0, 0.0);
+    surface_samples(mesh, distance, |p, w, _| {
+        total += w;
+        if solids.iter().any(|x| x.within(p, distance)) {
+            covered += w;
+        }
+    });
     if total > 0.0 { covered / total } else { 0.0 }
 }
 
 /// Share of the parts' volume inside the model ([`Inside`]: ray parity voted over three axes).
-pub(super) fn volume_inside(mesh: &Mesh, solids: &[Solid], step: f64) -> f64 {
+pub(crate) fn volume_inside(mesh: &Mesh, solids: &[Solid], step: f64) -> f64 {
     let inside = Inside::new(&mesh.vertices, &mesh.triangles);
     let (mut hits, mut total) = (0usize, 0usize);
     for s in solids {
