@@ -2,15 +2,13 @@
 //! nothing overlaps, no loose fragments. Asserted on the assembled geometry: part counts,
 //! rebuilt volumes against the model's, interference between the parts.
 
-use platener::glam::DVec3;
+use platener::glam::{DVec2, DVec3};
 use platener::joints::ConnectionKind;
 use platener::method::MethodKind;
 use platener::plan::Material;
 use platener::read::Triangle;
 use platener::verify::verify;
 use platener::{Cancel, Settings, Source, State, convert, samples};
-use platener_geom::Polygon;
-use platener_geom::offset::offset;
 use proptest::prelude::*;
 
 /// The plate method's conversion of `model` with sheets of `t` mm (wood unless `card`).
@@ -190,12 +188,6 @@ fn corpus_plates(file: &str) -> Option<State> {
     Some(convert(MethodKind::Plate, Source::File(path), settings, &Cancel::default()).expect("converts"))
 }
 
-/// How many pieces a part's outline falls into when every point within `t` of its edge is
-/// taken away: more than one where it has a neck narrower than 2·t.
-fn pieces_after_inset(outline: &Polygon, t: f64) -> usize {
-    offset(std::slice::from_ref(outline), -t).expect("grid").len()
-}
-
 #[test]
 fn arduino_enclosure_is_one_group_with_its_corners_joined() {
     let Some(state) = corpus_plates("arduino_uno_enclosure.stl") else {
@@ -235,4 +227,39 @@ fn arduino_enclosure_is_one_group_with_its_corners_joined() {
             part.id
         );
     }
+}
+
+/// A floor and a wall, 3 mm thick, meeting in a corner rounded outside with a 10 mm radius
+/// (8 facets), 60 mm deep: the flat faces end 10 mm from the corner, so each plate ends 7 mm
+/// short of the other, beyond the joint step's reach. Both grow to the other's near face and
+/// meet in one corner joint, and the parts share no volume.
+#[test]
+fn a_rounded_corner_is_closed_and_joined() {
+    let (t, r, depth) = (3.0, 10.0, 60.0);
+    let mut profile = vec![DVec2::new(r, 0.0), DVec2::new(80.0, 0.0), DVec2::new(80.0, t)];
+    profile.extend([DVec2::new(t, t), DVec2::new(t, 50.0), DVec2::new(0.0, 50.0)]);
+    let arc = (0..=8).map(|k| {
+        let a = std::f64::consts::PI * (1.0 + k as f64 / 16.0);
+        DVec2::new(r + r * a.cos(), r + r * a.sin())
+    });
+    profile.extend(arc.take(8));
+    let state = convert_plates(samples::prism(&profile, depth), t, false);
+    let plates = state.plates.as_ref().expect("plates");
+    assert_eq!(plates.plates.len(), 2);
+    assert_eq!(plates.corners_closed, 2);
+    // The floor now reaches the wall's inner face (x = 3), the wall the floor's top (z = 3).
+    let reach = |p: &platener::plates::Plate, axis: DVec3| {
+        let ring = &p.polygon.outer;
+        ring.iter()
+            .map(|q| p.frame.to_model_2d(*q).dot(axis))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let floor = plates.plates.iter().find(|p| p.frame.n.z.abs() > 0.99).expect("floor");
+    let wall = plates.plates.iter().find(|p| p.frame.n.x.abs() > 0.99).expect("wall");
+    assert!((reach(floor, DVec3::X) - t).abs() < 1e-3, "{}", reach(floor, DVec3::X));
+    assert!((reach(wall, DVec3::Z) - t).abs() < 1e-3, "{}", reach(wall, DVec3::Z));
+    let a = assemble(&state);
+    assert_eq!((a.parts, a.groups), (2, 1), "{a:?}");
+    assert_eq!(a.kinds, vec![ConnectionKind::Corner]);
+    assert!(a.interference < 1e-6 * a.volume, "{a:?}");
 }

@@ -15,9 +15,12 @@ use platener_geom::{GridError, Polygon};
 use super::Plate;
 use crate::assembly::Inside;
 
-/// Plates closer to parallel than this (degrees) are not corners to close: facets of a
-/// faceted curve meet at shallow angles and already touch.
-const MIN_ANGLE_DEG: f64 = 30.0;
+/// Plates closer to parallel than this (degrees between their normals) are not corners to
+/// close: facets of a faceted curve meet at shallow angles and already touch, and near a
+/// low-poly ball's poles a facet would grow towards one it meets only at a vertex.
+const MIN_ANGLE_DEG: f64 = 60.0;
+/// The shortest stretch along the corner line worth closing, in sheet thicknesses.
+const MIN_STRETCH: f64 = 2.0;
 /// The longest gap closed, in sheet thicknesses (the thicker of the two plates).
 const MAX_GAP: f64 = 4.0;
 /// Gaps shorter than this (mm) are left to the joint step, which reaches across them.
@@ -97,7 +100,7 @@ fn growth(a: &Plate, b: &Plate, inside: &Inside) -> Option<Vec<Polygon>> {
         .collect();
     let (b0, b1) = span(b_in_a.iter().map(|q| q.dot(along)));
     let (s0, s1) = (a0.max(b0), a1.min(b1));
-    if s1 - s0 < a.thickness || !comes_up_to(a, b, gap) {
+    if s1 - s0 < MIN_STRETCH * a.thickness || !comes_up_to(a, b, gap) {
         return None;
     }
     // Position along `dir` where a level is reached: level = c + slope·w (w along dir).
@@ -117,7 +120,7 @@ fn growth(a: &Plate, b: &Plate, inside: &Inside) -> Option<Vec<Polygon>> {
 }
 
 /// The stretches of `s` (along the corner line) over which the model is solid across the
-/// whole gap at a's mid-plane, tested in bands half a sheet long: a rounded corner is solid, a
+/// whole gap somewhere through a's thickness, tested in bands half a sheet long: a rounded corner is solid, a
 /// connector opening beside the corner is not, and the plate grows only beside it.
 fn solid_runs(
     a: &Plate,
@@ -133,7 +136,11 @@ fn solid_runs(
             (0..5).all(|j| {
                 let s = s0 + len * (k as f64 + 0.25 + 0.5 * i as f64);
                 let q = corner(s, w0 + (w1 - w0) * (0.1 + 0.2 * j as f64));
-                inside.contains(a.frame.to_model(DVec3::new(q.x, q.y, a.thickness / 2.0)))
+                // Through the sheet, not only at its mid-plane: a corner rounded by more
+                // than the sheet is thick leaves the outer face's corner outside the model.
+                [0.05, 0.5, 0.95]
+                    .iter()
+                    .any(|f| inside.contains(a.frame.to_model(DVec3::new(q.x, q.y, a.thickness * f))))
             })
         })
     };
