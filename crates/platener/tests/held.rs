@@ -9,6 +9,8 @@ use platener::plan::Material;
 use platener::read::Triangle;
 use platener::verify::verify;
 use platener::{Cancel, Settings, Source, State, convert, samples};
+use platener_geom::Polygon;
+use platener_geom::offset::offset;
 use proptest::prelude::*;
 
 /// The plate method's conversion of `model` with sheets of `t` mm (wood unless `card`).
@@ -262,4 +264,38 @@ fn a_rounded_corner_is_closed_and_joined() {
     assert_eq!((a.parts, a.groups), (2, 1), "{a:?}");
     assert_eq!(a.kinds, vec![ConnectionKind::Corner]);
     assert!(a.interference < 1e-6 * a.volume, "{a:?}");
+}
+
+/// How many pieces of at least t² a part's outline leaves when every point within `t` of its
+/// edge is taken away: more than one where a neck narrower than 2·t joins two pieces (the
+/// crumbs of fingers are smaller).
+fn pieces_after_inset(part: &platener::plan::PlanPart) -> usize {
+    let outline = Polygon {
+        outer: part.outline.clone(),
+        holes: part.holes.clone(),
+    };
+    let t = part.thickness;
+    let inset = offset(std::slice::from_ref(&outline), -t).expect("grid");
+    inset.iter().filter(|p| p.area() >= t * t).count()
+}
+
+/// The iPad cabinet's base had a slit along the diagonal wall standing on it, leaving a
+/// neck under 1 mm: no part may have a neck narrower than twice its thickness, and the
+/// plan holds together without shared volume.
+#[test]
+fn ipad_cabinet_parts_have_no_neck_narrower_than_two_thicknesses() {
+    let Some(state) = corpus_plates("ipad_mini_arcade_cabinet_half.stl") else {
+        return;
+    };
+    let bundle = state.bundle().expect("plan");
+    let pieces: Vec<(u32, usize)> = bundle
+        .plan
+        .parts
+        .iter()
+        .map(|p| (p.id, pieces_after_inset(p)))
+        .collect();
+    assert!(pieces.iter().all(|(_, n)| *n == 1), "{pieces:?}");
+    let v = verify(&bundle.plan, state.mesh.as_deref());
+    assert_eq!(v.groups, 1, "{:?}", v.problems);
+    assert!(v.interference_share < 1e-3, "{}", v.interference_share);
 }
