@@ -2,10 +2,14 @@
 //!
 //! Each plate is one part, numbered from 1 in plate order, with the outline the `joints` step
 //! gave it (fingers, tabs, slots) and its connections as plan.json joints; dovetail keys follow
-//! as parts of their own.
+//! as parts of their own. Plates no joint holds are named in warnings, and small ones left out
+//! ([`loose`]).
+
+mod loose;
 
 use std::collections::BTreeMap;
 
+use crate::context::StepContext;
 use crate::joints::{Connection, ConnectionKind, JointStyle, Joints};
 use crate::plan::{EdgeLabel, Joint, JointKind, Method, Part, PlanInput, SettingValue, SourceInfo};
 use crate::plates::Plates;
@@ -14,11 +18,20 @@ use crate::settings::Settings;
 use crate::weld::Welded;
 
 /// Step `parts` of the plate method: the plates with their joints as parts to cut.
-pub fn run(model: &Model, plates: &Plates, joints: Option<&Joints>, welded: &Welded, settings: &Settings) -> PlanInput {
-    let mut parts = plate_parts(plates, joints);
-    let mut connections: Vec<Joint> = joints.map_or(Vec::new(), |j| j.connections.iter().map(joint).collect());
+pub fn run(
+    model: &Model,
+    plates: &Plates,
+    joints: Option<&Joints>,
+    welded: &Welded,
+    settings: &Settings,
+    cx: &mut StepContext<'_>,
+) -> PlanInput {
+    let ids = loose::part_ids(plates, joints, cx);
+    let mut parts = plate_parts(plates, joints, &ids);
+    let mut connections: Vec<Joint> =
+        joints.map_or(Vec::new(), |j| j.connections.iter().map(|c| joint(c, &ids)).collect());
     if let Some(j) = joints {
-        add_keys(plates, j, &mut parts, &mut connections);
+        add_keys(plates, j, &ids, &mut parts, &mut connections);
     }
     let mut method_settings = BTreeMap::new();
     method_settings.insert(
@@ -44,16 +57,17 @@ pub fn run(model: &Model, plates: &Plates, joints: Option<&Joints>, welded: &Wel
     input
 }
 
-/// One part per plate, numbered from 1 in plate order, with its jointed outline and the
-/// connection numbers of its edges.
-fn plate_parts(plates: &Plates, joints: Option<&Joints>) -> Vec<Part> {
+/// One part per plate kept, numbered by `ids`, with its jointed outline and the connection
+/// numbers of its edges.
+fn plate_parts(plates: &Plates, joints: Option<&Joints>, ids: &[Option<u32>]) -> Vec<Part> {
     plates
         .plates
         .iter()
         .enumerate()
-        .map(|(i, p)| {
+        .filter_map(|(i, p)| Some((i, p, ids[i]?)))
+        .map(|(i, p, id)| {
             let outline = joints.map_or(&p.polygon, |j| &j.outlines[i]);
-            let mut part = Part::plate(i as u32 + 1, p.thickness, outline.clone(), p.frame);
+            let mut part = Part::plate(id, p.thickness, outline.clone(), p.frame);
             if let Some(j) = joints {
                 part.edge_labels = j.edges[i]
                     .iter()
@@ -65,10 +79,15 @@ fn plate_parts(plates: &Plates, joints: Option<&Joints>) -> Vec<Part> {
         .collect()
 }
 
+/// The part id of plate `p`: a joint's plates are never left out.
+fn id_of(ids: &[Option<u32>], p: u32) -> u32 {
+    ids[p as usize].expect("a plate with a joint is kept")
+}
+
 /// A connection as plan.json's joint.
-fn joint(c: &Connection) -> Joint {
+fn joint(c: &Connection, ids: &[Option<u32>]) -> Joint {
     Joint {
-        parts: [c.plates[0] + 1, c.plates[1] + 1],
+        parts: [id_of(ids, c.plates[0]), id_of(ids, c.plates[1])],
         kind: match c.kind {
             _ if c.style == JointStyle::Jim => JointKind::Jim,
             _ if c.style == JointStyle::Dovetail => JointKind::Dovetail,
@@ -83,7 +102,13 @@ fn joint(c: &Connection) -> Joint {
 
 /// Dovetail keys are parts of their own, numbered after the plates; each is a joint partner
 /// of the plate whose notch it fills (so the assembly check sees it held).
-fn add_keys(plates: &Plates, joints: &Joints, parts: &mut Vec<Part>, connections: &mut Vec<Joint>) {
+fn add_keys(
+    plates: &Plates,
+    joints: &Joints,
+    ids: &[Option<u32>],
+    parts: &mut Vec<Part>,
+    connections: &mut Vec<Joint>,
+) {
     for key in &joints.keys {
         let id = parts.len() as u32 + 1;
         let plate = &plates.plates[key.plate as usize];
@@ -93,7 +118,7 @@ fn add_keys(plates: &Plates, joints: &Joints, parts: &mut Vec<Part>, connections
             .get(key.label as usize - 1)
             .map_or(90.0, |c| c.angle_deg);
         connections.push(Joint {
-            parts: [key.notched + 1, id],
+            parts: [id_of(ids, key.notched), id],
             kind: JointKind::Dovetail,
             angle_deg,
             label: key.label,

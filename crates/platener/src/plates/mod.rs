@@ -9,8 +9,11 @@
 //! 3. [`overlap`]: plates inside another plate's volume are removed, overlapping ones trimmed so
 //!    no volume is claimed twice; [`rejoin`]: coplanar pieces split by a plate passing through
 //!    them become one plate again.
-//! 4. [`coverage`]: per shape, which plates use it or why none does.
+//! 4. [`corners`]: plates that end short of a wall they meet through a rounded or chamfered
+//!    corner grow up to it.
+//! 5. [`coverage`]: per shape, which plates use it or why none does.
 
+mod corners;
 mod coverage;
 mod inherent;
 mod overlap;
@@ -106,6 +109,8 @@ pub struct Plates {
     pub trimmed: usize,
     /// Plates made whole again after a plate passing through had split them.
     pub rejoined: usize,
+    /// Plates grown across a rounded or chamfered corner to the plate they meet there.
+    pub corners_closed: usize,
 }
 
 /// Whether a laser can sensibly cut this outline at this thickness: big enough, and on
@@ -169,6 +174,7 @@ pub fn find_plates(
         contained_removed: contained,
         trimmed,
         rejoined,
+        corners_closed: 0,
     })
 }
 
@@ -182,8 +188,10 @@ pub fn run(
 ) -> Result<Plates> {
     cx.check_cancel()?;
     let center = (model.bounds.min + model.bounds.max) / 2.0;
-    let plates = find_plates(shapes, mesh.surface_area, center, settings)
-        .map_err(|e| Error::model(&model.name, ModelProblem::OffGrid(e)))?;
+    let off_grid = |e| Error::model(&model.name, ModelProblem::OffGrid(e));
+    let mut plates = find_plates(shapes, mesh.surface_area, center, settings).map_err(off_grid)?;
+    let inside = crate::assembly::Inside::new(&mesh.vertices, &mesh.triangles);
+    plates.corners_closed = corners::close(&mut plates.plates, &inside, 1e-3).map_err(off_grid)?;
     let offered = settings.offered_thicknesses();
     if let Some(why) = coverage::why_no_plates(&plates.coverage, settings.plates.min_area, &offered) {
         cx.warn(WarningKind::Plates, why);

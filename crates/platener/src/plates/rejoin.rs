@@ -7,7 +7,7 @@
 //! ends against their plane (within their convex hull) joins them into one piece, they become
 //! one plate; the joint step later joins the third plate to it with a cross or T joint.
 
-use platener_geom::boolean::{intersection, union_all};
+use platener_geom::boolean::{difference, intersection, union_all};
 use platener_geom::boxes::{Box3, near, near_pairs};
 use platener_geom::offset::{closing, offset};
 use platener_geom::polygon::convex_hull;
@@ -88,6 +88,70 @@ fn joined(a: &Plate, b_in_a: &Polygon, band: &[Polygon], hull: &Polygon) -> Resu
 /// Gaps (mm) between a piece and a bridging band that are grid noise.
 const HAIRLINE: f64 = 0.01;
 
+/// How many pieces of at least t² across a plate's outline holds when every point within `t`
+/// of its edge is taken away: more than one where it has a neck narrower than 2·t.
+fn pieces(outline: &[Polygon], t: f64) -> Result<usize, GridError> {
+    Ok(offset(outline, -t)?.iter().filter(|p| p.area() >= t * t).count())
+}
+
+/// A plate that another plate stands on or passes through may have been found with a slit
+/// where that plate's foot interrupts its face (an iPad cabinet's base under a diagonal
+/// wall: one piece joined by a neck under 1 mm). Where filling the slits (what closing the
+/// outline over twice its thickness adds) within half a thickness of the other plate's band
+/// (as in [`bridge`]) removes a neck
+/// narrower than two thicknesses, the plate is made whole; the joint step then joins the
+/// other plate to it with a T. Returns how many plates were mended.
+fn fill_slits(plates: &mut [Plate], cos_max: f64, clearance: f64) -> Result<usize, GridError> {
+    let mut mended = 0;
+    for i in 0..plates.len() {
+        let t = plates[i].thickness;
+        let before = pieces(std::slice::from_ref(&plates[i].polygon), t)?;
+        if before < 2 {
+            continue;
+        }
+        let closed = closing(std::slice::from_ref(&plates[i].polygon), 2.0 * t)?;
+        // The slits: what closing over 2·t adds (the other plate's foot may be thinner than
+        // the slit its wall left, a 3 mm plate in a 4 mm wall).
+        let slits = difference(&closed, std::slice::from_ref(&plates[i].polygon))?;
+        let mut filled = vec![plates[i].polygon.clone()];
+        for k in 0..plates.len() {
+            if k == i || plates[k].frame.n.dot(plates[i].frame.n).abs() >= cos_max {
+                continue;
+            }
+            let band = foot(&plates[i], &closed, &plates[k], clearance)?;
+            if band.is_empty() {
+                continue;
+            }
+            let mut parts = filled.clone();
+            parts.extend(intersection(&offset(&band, t / 2.0)?, &slits)?);
+            let joined = union_all(&parts)?;
+            if joined.len() == 1 && pieces(&joined, t)? < pieces(&filled, t)? {
+                filled = joined;
+            }
+        }
+        if filled.len() == 1 && pieces(&filled, t)? < before {
+            let p = filled.pop().expect("one piece");
+            plates[i].area = p.area();
+            plates[i].polygon = p;
+            mended += 1;
+        }
+    }
+    Ok(mended)
+}
+
+/// Where `third`, grown in its plane by the plate's thickness, meets the columns of the
+/// plate's `closed` outline: the foot of a plate standing on it or passing through.
+fn foot(plate: &Plate, closed: &[Polygon], third: &Plate, clearance: f64) -> Result<Vec<Polygon>, GridError> {
+    let mut band = Vec::new();
+    for polygon in offset(std::slice::from_ref(&third.polygon), plate.thickness)? {
+        let grown = third.slab_of(polygon);
+        for piece in closed {
+            band.extend(plate.slab_of(piece.clone()).columns_meeting(&grown, clearance)?);
+        }
+    }
+    Ok(band)
+}
+
 /// Returns the plates with split pairs rejoined, and how many joins were made.
 pub(super) fn rejoin(mut plates: Vec<Plate>, angle: f64, clearance: f64) -> Result<(Vec<Plate>, usize), GridError> {
     let cos_max = angle.cos();
@@ -129,6 +193,7 @@ pub(super) fn rejoin(mut plates: Vec<Plate>, angle: f64, clearance: f64) -> Resu
         }
         break;
     }
+    joins += fill_slits(&mut plates, cos_max, clearance)?;
     Ok((plates, joins))
 }
 
