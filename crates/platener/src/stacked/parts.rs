@@ -9,35 +9,46 @@ use std::collections::BTreeMap;
 
 use glam::DVec2;
 
+use platener_geom::{Polygon, boolean};
+
 use super::Stack;
 use super::marks::tag;
+use super::tabs::{number_fits, with_tab};
 use crate::error::{Error, ModelProblem, Result};
-use crate::plan::{Joint, JointKind, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
+use crate::plan::{CutSettings, Joint, JointKind, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
 use crate::read::Model;
 use crate::settings::{Settings, StackAxis};
 
-/// The parts, joints and settings of `stack`, converted from `model`.
-pub fn plan_input(stack: &Stack, model: &Model, settings: &Settings) -> Result<PlanInput> {
+/// The parts, joints and settings of `stack`, converted from `model`, and the ids of the
+/// layers that carry their number on a tab (`tabs.rs`).
+pub fn plan_input(stack: &Stack, model: &Model, settings: &Settings) -> Result<(PlanInput, Vec<u32>)> {
     let geometry = |e: platener_geom::GridError| Error::model(&model.name, ModelProblem::OffGrid(e));
-    let mut parts = layer_parts(stack, &geometry)?;
-    let joints = shaft_parts(stack, &mut parts, &geometry)?;
+    let (mut parts, tabbed) = layer_parts(stack, &settings.cut, &geometry)?;
+    let joints = shaft_parts(stack, &mut parts, &settings.cut, &geometry)?;
     let method_settings = method_settings(stack, settings);
     let mut input = PlanInput::new(SourceInfo::from(model), Method::Stacked, parts, joints);
     input.settings = settings.cut.clone();
     input.method_settings = method_settings;
-    Ok(input)
+    input.glued = super::glued::glued(stack).0;
+    Ok((input, tabbed))
 }
 
-/// Every island as a part of kind `layer`, tagged with its layer's number.
-fn layer_parts(stack: &Stack, geometry: &dyn Fn(platener_geom::GridError) -> Error) -> Result<Vec<Part>> {
+/// Every island as a part of kind `layer`, tagged with its layer's number and numbered (on a
+/// tab when it is too thin); returns the parts and the ids of those with a tab.
+fn layer_parts(
+    stack: &Stack,
+    cut: &CutSettings,
+    geometry: &dyn Fn(platener_geom::GridError) -> Error,
+) -> Result<(Vec<Part>, Vec<u32>)> {
     let mut parts = Vec::new();
+    let mut tabbed = Vec::new();
     for (k, layer) in stack.layers.iter().enumerate() {
         for island in &layer.islands {
             let text = format!("L{}", layer.number);
             let marks = tag(&island.polygon, &text, &[DVec2::X], DVec2::X, DVec2::ZERO)
                 .map_err(geometry)?
                 .unwrap_or_default();
-            parts.push(Part {
+            let mut part = Part {
                 id: island.part,
                 kind: PartKind::Layer,
                 thickness: stack.layer_thickness(),
@@ -46,10 +57,50 @@ fn layer_parts(stack: &Stack, geometry: &dyn Fn(platener_geom::GridError) -> Err
                 marks,
                 edge_labels: Vec::new(),
                 merged: Vec::new(),
-            });
+            };
+            if !make_room_for_number(&mut part, cut) {
+                let slots = boolean::difference(
+                    std::slice::from_ref(&island.outline),
+                    std::slice::from_ref(&island.polygon),
+                )
+                .map_err(geometry)?;
+                let others: Vec<&Polygon> = layer
+                    .islands
+                    .iter()
+                    .filter(|o| o.part != island.part)
+                    .map(|o| &o.outline)
+                    .collect();
+                if let Some(p) =
+                    with_tab(&island.polygon, &slots, &others, island.part, cut.kerf()).map_err(geometry)?
+                {
+                    let marks = std::mem::take(&mut part.marks);
+                    part.polygon = p;
+                    part.marks = marks;
+                    make_room_for_number(&mut part, cut);
+                    tabbed.push(part.id);
+                }
+            }
+            parts.push(part);
         }
     }
-    Ok(parts)
+    Ok((parts, tabbed))
+}
+
+/// Whether `part`'s number fits, dropping its tag (the number matters more) when only that
+/// makes it fit.
+fn make_room_for_number(part: &mut Part, cut: &CutSettings) -> bool {
+    if number_fits(part, cut) {
+        return true;
+    }
+    if part.marks.is_empty() {
+        return false;
+    }
+    let marks = std::mem::take(&mut part.marks);
+    if number_fits(part, cut) {
+        return true;
+    }
+    part.marks = marks;
+    false
 }
 
 /// Every shaft as a part of kind `shaft` (added to `parts`), tagged with its number and the
@@ -57,6 +108,7 @@ fn layer_parts(stack: &Stack, geometry: &dyn Fn(platener_geom::GridError) -> Err
 fn shaft_parts(
     stack: &Stack,
     parts: &mut Vec<Part>,
+    cut: &CutSettings,
     geometry: &dyn Fn(platener_geom::GridError) -> Error,
 ) -> Result<Vec<Joint>> {
     let mut joints = Vec::new();
@@ -73,7 +125,7 @@ fn shaft_parts(
                 break;
             }
         }
-        parts.push(Part {
+        let mut part = Part {
             id: shaft.part,
             kind: PartKind::Shaft,
             thickness: stack.shaft_thickness,
@@ -82,7 +134,9 @@ fn shaft_parts(
             marks: marks.unwrap_or_default(),
             edge_labels: Vec::new(),
             merged: Vec::new(),
-        });
+        };
+        make_room_for_number(&mut part, cut);
+        parts.push(part);
         for b in &shaft.bands {
             joints.push(Joint {
                 // Shaft first: a sampled check (`platener verify`) starting from the shaft's
