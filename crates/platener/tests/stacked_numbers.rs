@@ -10,7 +10,7 @@ use std::path::PathBuf;
 
 use platener::convert;
 use platener::method::MethodKind;
-use platener::plan::{PartKind, Plan};
+use platener::plan::{MarkKind, PartKind, Plan};
 use platener::stacked::{Stack, glued_groups};
 use platener::{Cancel, Settings, Source, State, samples};
 use platener_geom::polygon::total_area;
@@ -45,20 +45,40 @@ fn stack(c: &State) -> &Stack {
     c.stacked.as_ref().expect("stack")
 }
 
+/// Where a layer part's number went when it has no room for it: `[part, carrier]` pairs of
+/// report.json's `method_report.numbers.on_neighbour`.
+fn numbered_on_neighbour(c: &State) -> Vec<[u32; 2]> {
+    let report = c
+        .parts
+        .as_ref()
+        .expect("parts")
+        .method_report
+        .clone()
+        .expect("a report");
+    serde_json::from_value(report["numbers"]["on_neighbour"].clone()).expect("pairs")
+}
+
 /// Every part's number is placed, inside its outline (not across a cut), and written to
-/// plan.json; returns the number of parts whose number is on a tab (a box beyond the island).
-fn assert_every_part_numbered(name: &str, c: &State) -> usize {
+/// plan.json, or (a rib with no room even for a tab) engraved on a part of an adjacent layer it
+/// rests on. Returns (numbers on a tab, numbers on a neighbour).
+fn assert_every_part_numbered(name: &str, c: &State) -> (usize, usize) {
     let input = c.parts.as_ref().expect("parts");
     let labels = c.labels.as_ref().expect("labels");
     let plan = plan(c);
+    let on_neighbour = numbered_on_neighbour(c);
     let mut on_tabs = 0;
     for (i, part) in input.parts.iter().enumerate() {
         let placed = &labels.parts[i];
         assert_eq!(placed.id, part.id);
-        let number = placed
-            .boxes
-            .first()
-            .unwrap_or_else(|| panic!("{name}: part {} has no number", part.id));
+        let Some(number) = placed.boxes.first() else {
+            let [_, on] = on_neighbour
+                .iter()
+                .find(|r| r[0] == part.id)
+                .copied()
+                .unwrap_or_else(|| panic!("{name}: part {} has no number", part.id));
+            assert_neighbour_reference(name, c, part.id, on);
+            continue;
+        };
         assert_eq!(number.text, part.id.to_string(), "{name}: part {}", part.id);
         let quad = Polygon::new(number.corners(0.0).to_vec());
         let out = boolean::difference(std::slice::from_ref(&quad), std::slice::from_ref(&part.polygon)).expect("grid");
@@ -74,20 +94,61 @@ fn assert_every_part_numbered(name: &str, c: &State) -> usize {
             part.id
         );
         if part.kind == PartKind::Layer {
-            let island = stack(c)
-                .layers
-                .iter()
-                .flat_map(|l| &l.islands)
-                .find(|isl| isl.part == part.id)
-                .expect("an island");
-            let beyond =
-                boolean::difference(std::slice::from_ref(&quad), std::slice::from_ref(&island.polygon)).expect("grid");
+            let island = island(c, part.id);
+            let beyond = boolean::difference(std::slice::from_ref(&quad), std::slice::from_ref(&island.1.polygon))
+                .expect("grid");
             if total_area(&beyond) > OUTSIDE {
                 on_tabs += 1;
             }
         }
     }
-    on_tabs
+    (on_tabs, on_neighbour.len())
+}
+
+/// The layer index and island of part `id`.
+fn island(c: &State, id: u32) -> (usize, &platener::stacked::Island) {
+    stack(c)
+        .layers
+        .iter()
+        .enumerate()
+        .find_map(|(k, l)| l.islands.iter().find(|i| i.part == id).map(|i| (k, i)))
+        .expect("an island")
+}
+
+/// Part `on` lies in a layer next to part `id`'s, overlaps it, and carries its footprint.
+fn assert_neighbour_reference(name: &str, c: &State, id: u32, on: u32) {
+    let ((k, a), (n, b)) = (island(c, id), island(c, on));
+    assert_eq!(
+        k.abs_diff(n),
+        1,
+        "{name}: part {id}'s number is on part {on}, not a neighbour"
+    );
+    assert!(
+        touches(&a.outline, &b.outline),
+        "{name}: part {id} does not rest on part {on}"
+    );
+    let carrier = c
+        .parts
+        .as_ref()
+        .expect("parts")
+        .parts
+        .iter()
+        .find(|p| p.id == on)
+        .expect("part");
+    let footprint_marks = carrier
+        .marks
+        .iter()
+        .filter(|m| {
+            m.kind == MarkKind::Engrave
+                && m.path
+                    .iter()
+                    .all(|p| a.outline.contains(*p) || a.outline.boundary_distance(*p) < 1e-3)
+        })
+        .count();
+    assert!(
+        footprint_marks >= 1,
+        "{name}: part {on} does not show where part {id} goes"
+    );
 }
 
 fn touches(a: &Polygon, b: &Polygon) -> bool {
@@ -127,19 +188,24 @@ fn every_part_of_every_stacked_corpus_plan_carries_its_number() {
         let Ok(c) = stacked(path) else { continue };
         converted += 1;
         parts += plan(&c).parts.len();
-        let t = assert_every_part_numbered(&name, &c);
-        eprintln!("{name}: {} parts, {t} numbered on a tab", plan(&c).parts.len());
+        let (t, n) = assert_every_part_numbered(&name, &c);
+        eprintln!(
+            "{name}: {} parts, {t} numbered on a tab, {n} on a neighbour",
+            plan(&c).parts.len()
+        );
         tabs += t;
     }
     eprintln!("{converted} stacked plans, {parts} parts, {tabs} numbers on tabs");
-    assert!(converted >= 40, "only {converted} corpus models converted");
+    // 32 of the 53 files make a stacked plan with default settings (the others are broken or a
+    // few mm across: they fail with their message); fewer means models stopped converting.
+    assert!(converted >= 32, "only {converted} corpus models converted");
 }
 
 #[test]
 fn the_bird_feeder_cups_thin_rings_carry_their_numbers_on_tabs() {
     let Some(dir) = corpus() else { return };
     let c = stacked(dir.join("other/bird_water_feeder_cup.stl")).expect("converts");
-    let tabs = assert_every_part_numbered("bird_water_feeder_cup", &c);
+    let (tabs, _) = assert_every_part_numbered("bird_water_feeder_cup", &c);
     assert_eq!(plan(&c).parts.len(), 32);
     // Before: 31 of the 32 rings had no number; each now has it on a tab of the size the step
     // makes (its length out of the outline, plus under ATTACH into it, times its width).

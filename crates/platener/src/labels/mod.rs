@@ -218,6 +218,31 @@ fn place_number(room: &Room<'_>, polygon: &platener_geom::Polygon, id: u32) -> O
     })
 }
 
+/// `text` placed on `part` as near `target` as fits (3 mm down to [`MIN_SIZE`]), clear of the
+/// part's marks: a reference to another part engraved where it belongs (a stacked layer's
+/// number on the layer it rests on).
+pub fn place_near(part: &Part, text: &str, target: DVec2, kerf: f64) -> Option<TextBox> {
+    let mut polygon = part.polygon.clone();
+    polygon.normalize_orientation();
+    let mark_paths: Vec<Vec<DVec2>> = part.marks.iter().map(|m| m.path.clone()).collect();
+    let room = Room::new(&polygon, &mark_paths, kerf);
+    [3.0, 2.5, 2.0, MIN_SIZE].into_iter().find_map(|size| {
+        let mut centers = room.inner_points(size / 2.0 + room.clearance(size));
+        centers.sort_by(|a, b| {
+            a.distance_squared(target)
+                .total_cmp(&b.distance_squared(target))
+                .then(a.x.total_cmp(&b.x))
+                .then(a.y.total_cmp(&b.y))
+        });
+        centers.into_iter().take(64).find_map(|c| {
+            [DVec2::X, DVec2::new(0.0, -1.0)]
+                .into_iter()
+                .map(|d| TextBox::centered(text, size, c, d))
+                .find(|b| room.fits(b))
+        })
+    })
+}
+
 /// A connection number next to `edge`, inside the part, as large and as close as fits.
 fn place_edge(room: &Room<'_>, edge: &EdgeLabel, thickness: f64) -> Option<TextBox> {
     let [a, b] = edge.segment;

@@ -55,7 +55,7 @@ pub use glued::glued_groups;
 pub use islands::{DroppedIsland, LayerIslands, islands_of};
 pub use loops::LoopStats;
 pub use orient::{AxisChoice, SlicePlan, choose_up};
-pub use parts::plan_input;
+pub use parts::{Numbers, plan_input};
 pub use slice::{SliceLoop, Sliced, slice};
 pub use support::KeptIsland;
 pub use tabs::{TAB_SIZE, tab_size};
@@ -206,18 +206,29 @@ pub fn run(
     for w in warnings(&stack) {
         cx.warn(WarningKind::CuttingPlan, w);
     }
-    let (input, tabbed) = plan_input(&stack, model, settings)?;
-    if !tabbed.is_empty() {
-        cx.warn(
-            WarningKind::CuttingPlan,
-            format!(
-                "{} layer part(s) ({}) are too thin for their numbers: each carries its number on a tab on its outline",
-                tabbed.len(),
-                crate::labels::id_ranges(&tabbed)
-            ),
-        );
+    let (input, numbers) = plan_input(&stack, model, settings)?;
+    for w in number_warnings(&numbers) {
+        cx.warn(WarningKind::CuttingPlan, w);
     }
     Ok((stack, input))
+}
+
+/// Where the numbers of layers too thin for them went.
+fn number_warnings(n: &Numbers) -> Vec<String> {
+    let mut out = Vec::new();
+    if !n.on_tab.is_empty() {
+        out.push(format!(
+            "{} layer part(s) ({}) are too thin for their numbers: each carries its number on a tab on its outline",
+            n.on_tab.len(),
+            crate::labels::id_ranges(&n.on_tab)
+        ));
+    }
+    for [part, on] in &n.on_neighbour {
+        out.push(format!(
+            "part {part} has room neither for its number nor for a tab: its outline and number are engraved on part {on}, where it rests"
+        ));
+    }
+    out
 }
 
 /// What the user should know about a stack: dropped islands, unjoined layers, repaired loops.

@@ -11,6 +11,10 @@
 //! the model by its length, a few millimetres at the layer's edge: that is the price of a
 //! number on a part with no room for one.
 //!
+//! When there is no room for a tab either (a rib hemmed in by its neighbours), the part's
+//! footprint and number are engraved on the part of an adjacent layer it overlaps most: the
+//! layer's neighbour reference, which also shows where to glue it.
+//!
 //! Before a tab, a tag (`L9`, `S2 L1-4`) that takes the room of the number gives way: the part
 //! number is what assembly needs, the tag a convenience. A shaft never gets a tab (it would
 //! reach into the layers beside its slots).
@@ -20,7 +24,7 @@ use platener_geom::{GridError, Polygon, boolean};
 
 use super::shafts::boxes_meet;
 use crate::labels::{self, clearance, font};
-use crate::plan::{CutSettings, LabelMode, Part};
+use crate::plan::{CutSettings, LabelMode, Mark, MarkKind, Part};
 
 /// Cap height of the number on a tab, mm: readable, and small enough for a neat tab.
 pub const TAB_SIZE: f64 = 3.0;
@@ -91,6 +95,42 @@ fn anchors(polygon: &Polygon) -> Vec<(DVec2, DVec2)> {
         .flat_map(|t| axes.iter().map(move |d| (*d, d.rotate(*t))))
         .filter_map(|(d, a)| extreme(a).map(|tip| (d, tip)))
         .collect()
+}
+
+/// Marks for `on` (a part of an adjacent layer) showing where the part `id` with outline
+/// `footprint` rests on it and its number beside that: the last resort when the part has room
+/// neither for its number nor for a tab. `None` when they do not overlap or nothing fits.
+pub(crate) fn reference_marks(
+    footprint: &Polygon,
+    id: u32,
+    on: &Part,
+    kerf: f64,
+) -> Result<Option<Vec<Mark>>, GridError> {
+    let overlap = boolean::intersection(std::slice::from_ref(footprint), std::slice::from_ref(&on.polygon))?;
+    let Some(largest) = overlap.iter().max_by(|a, b| a.area().total_cmp(&b.area())) else {
+        return Ok(None);
+    };
+    let closed = |r: &[DVec2]| r.iter().chain(r.first()).copied().collect::<Vec<_>>();
+    let outline: Vec<Mark> = overlap
+        .iter()
+        .map(|p| Mark {
+            kind: MarkKind::Engrave,
+            path: closed(&p.outer),
+        })
+        .collect();
+    let mut with = on.clone();
+    with.marks.extend(outline.iter().cloned());
+    let (lo, hi) = largest.bounds();
+    let Some(b) = labels::place_near(&with, &id.to_string(), (lo + hi) / 2.0, kerf) else {
+        return Ok(None);
+    };
+    let text = font::place_text(&b.text, b.size, b.origin, b.direction)
+        .into_iter()
+        .map(|path| Mark {
+            kind: MarkKind::Label,
+            path,
+        });
+    Ok(Some(outline.into_iter().chain(text).collect()))
 }
 
 /// Whether `tab` comes within [`GAP`] of `other` (bounds first, then exactly).
