@@ -263,12 +263,12 @@ mod tests {
         let (kept, chosen) = keep_supporting(&mut layers, &smalls, &s).expect("grid");
         assert_eq!(chosen, vec![true, true]);
         assert_eq!(kept.len(), 2);
-        for k in 1..=2 {
-            assert_eq!(layers[k].len(), 1);
-            let cuttable = offset::offset(&layers[k], -s.min_width / 2.0).expect("grid");
+        for (k, layer) in layers.iter().enumerate().skip(1).take(2) {
+            assert_eq!(layer.len(), 1);
+            let cuttable = offset::offset(layer, -s.min_width / 2.0).expect("grid");
             assert!(!cuttable.is_empty(), "layer {k} is now wide enough to cut");
             // Grown by half the minimum width on every side: 41.5 × 2.5 mm with round corners.
-            let (lo, hi) = layers[k][0].bounds();
+            let (lo, hi) = layer[0].bounds();
             assert!(((hi - lo) - DVec2::new(41.5, 2.5)).length() < 1e-2, "{:?}", hi - lo);
         }
     }
