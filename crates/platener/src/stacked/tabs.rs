@@ -268,7 +268,11 @@ mod tests {
         // Beside the notch (it reaches past it on one side only) or elsewhere: never closing it
         // into a hole.
         let t = t.expect("room for a tab");
-        assert_eq!(t.holes.len(), notched.holes.len(), "the notch stays open to the outside");
+        assert_eq!(
+            t.holes.len(),
+            notched.holes.len(),
+            "the notch stays open to the outside"
+        );
         assert!(t.area() > notched.area() + 10.0, "a tab was added");
         let filled = boolean::intersection(std::slice::from_ref(&t), &[slot]).expect("grid");
         assert!(total_area(&filled) < 1e-6, "the slot stays open");
