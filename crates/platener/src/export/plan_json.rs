@@ -127,6 +127,7 @@ pub fn build_plan(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting: &
         parts,
         joints,
         sheets,
+        glued: input.glued.clone(),
     }
 }
 

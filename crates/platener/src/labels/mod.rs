@@ -99,8 +99,8 @@ pub fn label_parts(parts: &[Part], mode: LabelMode, kerf: f64) -> (Labels, Vec<W
 
 const NO_ROOM_FOR_NUMBER: &str = " has no room for its number; it is not engraved";
 
-/// Ids as compact ranges: `3, 5–9, 12`.
-fn id_ranges(ids: &[u32]) -> String {
+/// Ids (ascending) as compact ranges: `3, 5–9, 12`.
+pub fn id_ranges(ids: &[u32]) -> String {
     let mut out: Vec<String> = Vec::new();
     let mut i = 0;
     while i < ids.len() {
@@ -197,19 +197,50 @@ fn place_number(room: &Room<'_>, polygon: &platener_geom::Polygon, id: u32) -> O
             .map_or(DVec2::X, readable)
     };
     let directions = [DVec2::X, DVec2::new(0.0, -1.0), longest];
+    let fits = |size: f64, center: DVec2| {
+        directions
+            .iter()
+            .map(|d| TextBox::centered(&text, size, center, *d))
+            .find(|b| room.fits(b))
+    };
     let deep = room.deep_points(8);
     let depth = deep.first().map_or(0.0, |d| d.1);
-    for size in PART_SIZES.into_iter().filter(|s| *s <= 2.0 * depth) {
-        for (center, _) in &deep {
-            for d in directions {
-                let b = TextBox::centered(&text, size, *center, d);
-                if room.fits(&b) {
-                    return Some(b);
-                }
-            }
-        }
-    }
-    None
+    PART_SIZES.into_iter().find_map(|size| {
+        let at_deep = || deep.iter().find_map(|(center, _)| fits(size, *center));
+        // The coarse grid can step over narrow room (a tab on a thin ring): then look where a
+        // label of this size could be centred, exactly.
+        let inner = || {
+            room.inner_points(size / 2.0 + room.clearance(size))
+                .into_iter()
+                .find_map(|center| fits(size, center))
+        };
+        (size <= 2.0 * depth).then(at_deep).flatten().or_else(inner)
+    })
+}
+
+/// `text` placed on `part` as near `target` as fits (3 mm down to [`MIN_SIZE`]), clear of the
+/// part's marks: a reference to another part engraved where it belongs (a stacked layer's
+/// number on the layer it rests on).
+pub fn place_near(part: &Part, text: &str, target: DVec2, kerf: f64) -> Option<TextBox> {
+    let mut polygon = part.polygon.clone();
+    polygon.normalize_orientation();
+    let mark_paths: Vec<Vec<DVec2>> = part.marks.iter().map(|m| m.path.clone()).collect();
+    let room = Room::new(&polygon, &mark_paths, kerf);
+    [3.0, 2.5, 2.0, MIN_SIZE].into_iter().find_map(|size| {
+        let mut centers = room.inner_points(size / 2.0 + room.clearance(size));
+        centers.sort_by(|a, b| {
+            a.distance_squared(target)
+                .total_cmp(&b.distance_squared(target))
+                .then(a.x.total_cmp(&b.x))
+                .then(a.y.total_cmp(&b.y))
+        });
+        centers.into_iter().take(64).find_map(|c| {
+            [DVec2::X, DVec2::new(0.0, -1.0)]
+                .into_iter()
+                .map(|d| TextBox::centered(text, size, c, d))
+                .find(|b| room.fits(b))
+        })
+    })
 }
 
 /// A connection number next to `edge`, inside the part, as large and as close as fits.

@@ -8,9 +8,12 @@
 use glam::DVec2;
 use platener_geom::polygon::Polygon;
 use platener_geom::tolerance::GRID_NOISE_AREA;
-use platener_geom::{Ring, boolean};
+use platener_geom::{Ring, boolean, offset};
 
 use super::font::text_width;
+
+/// Most points [`Room::inner_points`] samples per piece of the inset part.
+const INNER_POINTS: usize = 256;
 
 /// Smallest text size engraved, mm: below this a laser's engraving is hard to read.
 pub const MIN_SIZE: f64 = 1.5;
@@ -143,6 +146,33 @@ impl<'a> Room<'a> {
                 out.push((p, d));
                 if out.len() == n {
                     break;
+                }
+            }
+        }
+        out
+    }
+
+    /// Points of a grid (0.5 mm, coarser on large parts: at most about [`INNER_POINTS`]) that lie
+    /// at least `inset` inside the part: where a label `2·inset` tall may be centred. Finds room
+    /// the coarse [`Room::deep_points`] grid steps over (a tab a few millimetres wide).
+    pub fn inner_points(&self, inset: f64) -> Vec<DVec2> {
+        let Ok(inner) = offset::offset(std::slice::from_ref(self.polygon), -inset) else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for piece in &inner {
+            let (lo, hi) = piece.bounds();
+            let size = hi - lo;
+            let step = (size.x * size.y / INNER_POINTS as f64).sqrt().max(0.5);
+            let (nx, ny) = ((size.x / step) as usize, (size.y / step) as usize);
+            for i in 0..=nx {
+                for j in 0..=ny {
+                    let p = lo
+                        + DVec2::new(i as f64, j as f64) * step
+                        + (size - DVec2::new(nx as f64, ny as f64) * step) / 2.0;
+                    if piece.contains(p) {
+                        out.push(p);
+                    }
                 }
             }
         }

@@ -48,6 +48,20 @@ pub struct Plan {
     pub joints: Vec<PlanJoint>,
     /// Every sheet, by index.
     pub sheets: Vec<PlanSheet>,
+    /// Parts that rest on each other in the model but that no joint holds: only glue does
+    /// (stacked layers no shaft joins). Not joints: the groups they connect are separate
+    /// groups of the assembly. Omitted when empty (docs/decisions.md, "Stacked layers").
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub glued: Vec<Glue>,
+}
+
+/// One entry of `glued`: two parts touching face to face over `area` mm², to be glued.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Glue {
+    /// The two parts' ids, lower layer first.
+    pub parts: [u32; 2],
+    /// The area over which they touch, mm².
+    pub area: f64,
 }
 
 /// `source`: the model as converted (after units and scale).

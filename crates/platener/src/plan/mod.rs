@@ -16,7 +16,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 pub use error::PlanError;
-pub use format::{Method, Plan, PlanJoint, PlanPart, PlanSettings, PlanSheet, PlanSource, SheetPlacement};
+pub use format::{Glue, Method, Plan, PlanJoint, PlanPart, PlanSettings, PlanSheet, PlanSource, SheetPlacement};
 pub use part::{EdgeLabel, Joint, JointKind, Mark, MarkKind, Part, PartKind};
 pub use settings::{CutSettings, LabelMode, MAX_KERF, Material, SettingValue, SheetSize};
 
@@ -69,6 +69,8 @@ pub struct PlanInput {
     /// What the method reports about itself (the plate method: its coverage report), copied
     /// into report.json as `method_report`.
     pub method_report: Option<serde_json::Value>,
+    /// Parts only glue holds together (plan.json's `glued`).
+    pub glued: Vec<Glue>,
 }
 
 impl PlanInput {
@@ -82,6 +84,7 @@ impl PlanInput {
             settings: CutSettings::default(),
             method_settings: BTreeMap::new(),
             method_report: None,
+            glued: Vec::new(),
         }
     }
 

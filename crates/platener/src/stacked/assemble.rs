@@ -78,6 +78,7 @@ pub(crate) fn assemble(
         layers,
         shafts,
         dropped: islands.dropped,
+        kept_small: islands.kept_small,
         unjoined: placed.unjoined,
         shafts_removed: placed.removed,
         loops,

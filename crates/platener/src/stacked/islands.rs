@@ -7,7 +7,8 @@
 //! are united, so two shells that overlap (common in printable models made of several parts)
 //! give their union instead of a hole where they cross; a clockwise body lying inside the others
 //! is a cavity and is cut out. Islands below the minimum area, or nowhere as wide as the minimum
-//! width, are too small to cut: they are dropped and reported.
+//! width, are too small to cut: they are dropped and reported, unless they hold other layers
+//! together (`support.rs`: then they are kept, enlarged until cuttable).
 
 use platener_geom::polygon::{signed_area, total_area};
 use platener_geom::tolerance::CRUMB_AREA;
@@ -16,6 +17,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::slice::{SliceLoop, Sliced};
+use super::support::{KeptIsland, Small, keep_supporting};
 use crate::settings::StackedSettings;
 
 /// An island too small to cut.
@@ -35,11 +37,14 @@ pub struct LayerIslands {
     pub islands: Vec<Vec<Polygon>>,
     /// Islands dropped as too small.
     pub dropped: Vec<DroppedIsland>,
+    /// Islands too small to cut that were kept (enlarged) because they hold other layers
+    /// together (`support.rs`); they are among `islands`.
+    pub kept_small: Vec<KeptIsland>,
 }
 
 /// The islands of every layer of `sliced`.
 pub fn islands_of(sliced: &Sliced, settings: &StackedSettings) -> Result<LayerIslands, GridError> {
-    let per_layer: Vec<(Vec<Polygon>, Vec<f64>)> = sliced
+    let per_layer: Vec<(Vec<Polygon>, Vec<Polygon>)> = sliced
         .loops
         .par_iter()
         .map(|loops| {
@@ -47,16 +52,27 @@ pub fn islands_of(sliced: &Sliced, settings: &StackedSettings) -> Result<LayerIs
             keep_cuttable(filled, settings)
         })
         .collect::<Result<_, GridError>>()?;
-    let mut out = LayerIslands {
-        islands: Vec::with_capacity(per_layer.len()),
-        dropped: Vec::new(),
-    };
+    let mut islands = Vec::with_capacity(per_layer.len());
+    let mut small = Vec::new();
     for (layer, (kept, dropped)) in per_layer.into_iter().enumerate() {
-        out.islands.push(kept);
-        out.dropped
-            .extend(dropped.into_iter().map(|area| DroppedIsland { layer, area }));
+        islands.push(kept);
+        small.extend(dropped.into_iter().map(|polygon| Small { layer, polygon }));
     }
-    Ok(out)
+    let (kept_small, chosen) = keep_supporting(&mut islands, &small, settings)?;
+    let dropped = small
+        .iter()
+        .zip(chosen)
+        .filter(|(_, kept)| !kept)
+        .map(|(s, _)| DroppedIsland {
+            layer: s.layer,
+            area: s.polygon.area(),
+        })
+        .collect();
+    Ok(LayerIslands {
+        islands,
+        dropped,
+        kept_small,
+    })
 }
 
 /// The material a layer's loops enclose.
@@ -107,9 +123,9 @@ fn fill(loops: &[SliceLoop]) -> Result<Vec<Polygon>, GridError> {
     }
 }
 
-/// Splits polygons into those large enough to cut (normalised, ordered) and the areas of those
-/// that are not.
-fn keep_cuttable(polygons: Vec<Polygon>, s: &StackedSettings) -> Result<(Vec<Polygon>, Vec<f64>), GridError> {
+/// Splits polygons into those large enough to cut and those that are not (both normalised,
+/// the first ordered); grid crumbs are neither.
+fn keep_cuttable(polygons: Vec<Polygon>, s: &StackedSettings) -> Result<(Vec<Polygon>, Vec<Polygon>), GridError> {
     let mut kept = Vec::new();
     let mut dropped = Vec::new();
     for mut p in polygons {
@@ -120,7 +136,7 @@ fn keep_cuttable(polygons: Vec<Polygon>, s: &StackedSettings) -> Result<(Vec<Pol
         if area >= s.min_area && area > 0.0 && wide_enough {
             kept.push(p);
         } else if area >= CRUMB_AREA {
-            dropped.push(area);
+            dropped.push(p);
         }
     }
     kept.sort_by(|a, b| {

@@ -12,11 +12,14 @@
 //! | `slice` | triangles bucketed by their height range, one segment per triangle and plane |
 //! | `loops` | segments chained into closed loops through shared mesh edges |
 //! | `islands` | loops → polygons with holes (even-odd), too small islands dropped |
+//! | `support` | too small islands that hold other layers together kept, enlarged |
 //! | `fit` | the longest slot that fits a region |
 //! | `shafts` | the three phases of shaft placement |
 //! | `extend` | phase 2: a shaft extended flush into a layer left unjoined |
 //! | `assemble` | slots cut into the layers, shaft outlines, frames |
+//! | `glued` | groups of parts no shaft holds together, only glue |
 //! | `marks` | layer and shaft numbers with alignment arrows |
+//! | `tabs` | a tab for the number of a layer too thin for its digits |
 //! | `parts` | the [`Stack`] as parts and joints for the cutting plan |
 //!
 //! The decisions (orientation rule, shaft phases, margins) are in docs/stacked.md.
@@ -24,6 +27,7 @@
 mod assemble;
 mod extend;
 mod fit;
+mod glued;
 mod islands;
 mod loops;
 mod marks;
@@ -31,6 +35,8 @@ mod orient;
 mod parts;
 mod shafts;
 mod slice;
+mod support;
+mod tabs;
 
 use glam::{DVec2, DVec3};
 use platener_geom::{Frame, Polygon};
@@ -45,11 +51,14 @@ use crate::plan::PlanInput;
 use crate::read::Model;
 use crate::settings::Settings;
 
+pub use glued::glued_groups;
 pub use islands::{DroppedIsland, LayerIslands, islands_of};
 pub use loops::LoopStats;
 pub use orient::{AxisChoice, SlicePlan, choose_up};
-pub use parts::plan_input;
+pub use parts::{Numbers, plan_input};
 pub use slice::{SliceLoop, Sliced, slice};
+pub use support::KeptIsland;
+pub use tabs::{TAB_SIZE, tab_size};
 
 /// One island of a layer: a connected piece of the cross-section, cut as one part.
 #[derive(Debug, Clone, Serialize)]
@@ -134,6 +143,8 @@ pub struct Stack {
     pub shafts: Vec<Shaft>,
     /// Islands too small to cut.
     pub dropped: Vec<DroppedIsland>,
+    /// Islands too small to cut on their own, kept (enlarged) because other layers rest on them.
+    pub kept_small: Vec<KeptIsland>,
     /// Overlapping islands left without a shaft.
     pub unjoined: Vec<Unjoined>,
     /// Shafts removed in phase 3 because they joined fewer than two layers.
@@ -195,8 +206,29 @@ pub fn run(
     for w in warnings(&stack) {
         cx.warn(WarningKind::CuttingPlan, w);
     }
-    let input = plan_input(&stack, model, settings)?;
+    let (input, numbers) = plan_input(&stack, model, settings)?;
+    for w in number_warnings(&numbers) {
+        cx.warn(WarningKind::CuttingPlan, w);
+    }
     Ok((stack, input))
+}
+
+/// Where the numbers of layers too thin for them went.
+fn number_warnings(n: &Numbers) -> Vec<String> {
+    let mut out = Vec::new();
+    if !n.on_tab.is_empty() {
+        out.push(format!(
+            "{} layer part(s) ({}) are too thin for their numbers: each carries its number on a tab on its outline",
+            n.on_tab.len(),
+            crate::labels::id_ranges(&n.on_tab)
+        ));
+    }
+    for [part, on] in &n.on_neighbour {
+        out.push(format!(
+            "part {part} has room neither for its number nor for a tab: its outline and number are engraved on part {on}, where it rests"
+        ));
+    }
+    out
 }
 
 /// What the user should know about a stack: dropped islands, unjoined layers, repaired loops.
@@ -207,6 +239,14 @@ pub fn warnings(stack: &Stack) -> Vec<String> {
             "layer {}: an island of {:.1} mm² is too small or thin to cut and was dropped",
             d.layer + 1,
             d.area
+        ));
+    }
+    for k in &stack.kept_small {
+        out.push(format!(
+            "layer {}: an island of {:.1} mm² is too small or thin to cut, but it holds the layers above and below together; kept, enlarged to {:.1} mm²",
+            k.layer + 1,
+            k.area,
+            k.enlarged
         ));
     }
     for u in &stack.unjoined {
@@ -220,6 +260,7 @@ pub fn warnings(stack: &Stack) -> Vec<String> {
             u.overlap
         ));
     }
+    out.extend(glued::glued(stack).1);
     let l = &stack.loops;
     if l.bridged > 0 {
         out.push(format!(

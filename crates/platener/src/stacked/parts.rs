@@ -9,35 +9,61 @@ use std::collections::BTreeMap;
 
 use glam::DVec2;
 
+use platener_geom::{Polygon, boolean};
+
 use super::Stack;
 use super::marks::tag;
+use super::tabs::{number_fits, reference_marks, with_tab};
 use crate::error::{Error, ModelProblem, Result};
-use crate::plan::{Joint, JointKind, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
+use crate::plan::{CutSettings, Joint, JointKind, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
 use crate::read::Model;
 use crate::settings::{Settings, StackAxis};
 
-/// The parts, joints and settings of `stack`, converted from `model`.
-pub fn plan_input(stack: &Stack, model: &Model, settings: &Settings) -> Result<PlanInput> {
+/// The parts, joints and settings of `stack`, converted from `model`, and where the numbers
+/// of layers too thin for them went (`tabs.rs`).
+pub fn plan_input(stack: &Stack, model: &Model, settings: &Settings) -> Result<(PlanInput, Numbers)> {
     let geometry = |e: platener_geom::GridError| Error::model(&model.name, ModelProblem::OffGrid(e));
-    let mut parts = layer_parts(stack, &geometry)?;
-    let joints = shaft_parts(stack, &mut parts, &geometry)?;
+    let (mut parts, numbers) = layer_parts(stack, &settings.cut, &geometry)?;
+    let joints = shaft_parts(stack, &mut parts, &settings.cut, &geometry)?;
     let method_settings = method_settings(stack, settings);
     let mut input = PlanInput::new(SourceInfo::from(model), Method::Stacked, parts, joints);
     input.settings = settings.cut.clone();
     input.method_settings = method_settings;
-    Ok(input)
+    input.glued = super::glued::glued(stack).0;
+    input.method_report = Some(serde_json::json!({ "numbers": &numbers }));
+    Ok((input, numbers))
 }
 
-/// Every island as a part of kind `layer`, tagged with its layer's number.
-fn layer_parts(stack: &Stack, geometry: &dyn Fn(platener_geom::GridError) -> Error) -> Result<Vec<Part>> {
+/// Where the layers too thin for their numbers carry them (report.json's `method_report`).
+#[derive(Debug, Clone, Default, serde::Serialize)]
+pub struct Numbers {
+    /// Parts numbered on a tab of their outline.
+    pub on_tab: Vec<u32>,
+    /// Parts whose footprint and number are engraved on a part of an adjacent layer:
+    /// `[part, the part carrying it]`.
+    pub on_neighbour: Vec<[u32; 2]>,
+    /// Parts left without a number.
+    pub none: Vec<u32>,
+}
+
+/// Every island as a part of kind `layer`, tagged with its layer's number and numbered (on a
+/// tab, or on its neighbour, when it is too thin); returns the parts and where the numbers of
+/// thin ones went.
+fn layer_parts(
+    stack: &Stack,
+    cut: &CutSettings,
+    geometry: &dyn Fn(platener_geom::GridError) -> Error,
+) -> Result<(Vec<Part>, Numbers)> {
     let mut parts = Vec::new();
+    let mut numbers = Numbers::default();
+    let mut unnumbered = Vec::new();
     for (k, layer) in stack.layers.iter().enumerate() {
-        for island in &layer.islands {
+        for (i, island) in layer.islands.iter().enumerate() {
             let text = format!("L{}", layer.number);
             let marks = tag(&island.polygon, &text, &[DVec2::X], DVec2::X, DVec2::ZERO)
                 .map_err(geometry)?
                 .unwrap_or_default();
-            parts.push(Part {
+            let mut part = Part {
                 id: island.part,
                 kind: PartKind::Layer,
                 thickness: stack.layer_thickness(),
@@ -46,10 +72,99 @@ fn layer_parts(stack: &Stack, geometry: &dyn Fn(platener_geom::GridError) -> Err
                 marks,
                 edge_labels: Vec::new(),
                 merged: Vec::new(),
-            });
+            };
+            if !make_room_for_number(&mut part, cut) {
+                let slots = boolean::difference(
+                    std::slice::from_ref(&island.outline),
+                    std::slice::from_ref(&island.polygon),
+                )
+                .map_err(geometry)?;
+                let others: Vec<&Polygon> = layer
+                    .islands
+                    .iter()
+                    .filter(|o| o.part != island.part)
+                    .map(|o| &o.outline)
+                    .collect();
+                let tab = with_tab(&island.polygon, &slots, &others, island.part, cut.kerf()).map_err(geometry)?;
+                let numbered = tab.is_some_and(|p| {
+                    part.polygon = p;
+                    make_room_for_number(&mut part, cut)
+                });
+                if numbered {
+                    numbers.on_tab.push(part.id);
+                } else {
+                    part.polygon = island.polygon.clone();
+                    unnumbered.push((k, i));
+                }
+            }
+            parts.push(part);
         }
     }
-    Ok(parts)
+    for (k, i) in unnumbered {
+        match on_neighbour(stack, k, i, &mut parts, cut).map_err(geometry)? {
+            Some(on) => numbers.on_neighbour.push([stack.layers[k].islands[i].part, on]),
+            None => numbers.none.push(stack.layers[k].islands[i].part),
+        }
+    }
+    Ok((parts, numbers))
+}
+
+/// Engraves the footprint and number of island `i` of layer `k` on the part of an adjacent
+/// layer it overlaps most whose own number still fits; returns that part's id.
+fn on_neighbour(
+    stack: &Stack,
+    k: usize,
+    i: usize,
+    parts: &mut [Part],
+    cut: &CutSettings,
+) -> std::result::Result<Option<u32>, platener_geom::GridError> {
+    let island = &stack.layers[k].islands[i];
+    let mut candidates = Vec::new();
+    for n in [k.checked_sub(1), Some(k + 1)].into_iter().flatten() {
+        for other in stack.layers.get(n).map_or(&[][..], |l| &l.islands[..]) {
+            let o = boolean::intersection(
+                std::slice::from_ref(&island.outline),
+                std::slice::from_ref(&other.polygon),
+            )?;
+            let area = platener_geom::polygon::total_area(&o);
+            if area > 0.0 {
+                candidates.push((area, other.part));
+            }
+        }
+    }
+    candidates.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    for (_, on) in candidates {
+        let Some(at) = parts.iter().position(|p| p.id == on) else {
+            continue;
+        };
+        let Some(marks) = reference_marks(&island.outline, island.part, &parts[at], cut.kerf())? else {
+            continue;
+        };
+        let before = parts[at].marks.len();
+        parts[at].marks.extend(marks);
+        if number_fits(&parts[at], cut) {
+            return Ok(Some(on));
+        }
+        parts[at].marks.truncate(before);
+    }
+    Ok(None)
+}
+
+/// Whether `part`'s number fits, dropping its tag (the number matters more) when only that
+/// makes it fit.
+fn make_room_for_number(part: &mut Part, cut: &CutSettings) -> bool {
+    if number_fits(part, cut) {
+        return true;
+    }
+    if part.marks.is_empty() {
+        return false;
+    }
+    let marks = std::mem::take(&mut part.marks);
+    if number_fits(part, cut) {
+        return true;
+    }
+    part.marks = marks;
+    false
 }
 
 /// Every shaft as a part of kind `shaft` (added to `parts`), tagged with its number and the
@@ -57,6 +172,7 @@ fn layer_parts(stack: &Stack, geometry: &dyn Fn(platener_geom::GridError) -> Err
 fn shaft_parts(
     stack: &Stack,
     parts: &mut Vec<Part>,
+    cut: &CutSettings,
     geometry: &dyn Fn(platener_geom::GridError) -> Error,
 ) -> Result<Vec<Joint>> {
     let mut joints = Vec::new();
@@ -73,7 +189,7 @@ fn shaft_parts(
                 break;
             }
         }
-        parts.push(Part {
+        let mut part = Part {
             id: shaft.part,
             kind: PartKind::Shaft,
             thickness: stack.shaft_thickness,
@@ -82,7 +198,9 @@ fn shaft_parts(
             marks: marks.unwrap_or_default(),
             edge_labels: Vec::new(),
             merged: Vec::new(),
-        });
+        };
+        make_room_for_number(&mut part, cut);
+        parts.push(part);
         for b in &shaft.bands {
             joints.push(Joint {
                 // Shaft first: a sampled check (`platener verify`) starting from the shaft's

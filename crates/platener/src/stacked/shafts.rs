@@ -158,7 +158,8 @@ fn overlapping_pairs(islands: &[Vec<Polygon>]) -> Result<Vec<Pair>, GridError> {
     Ok(per_layer.into_iter().flatten().collect())
 }
 
-fn boxes_meet(a: &Polygon, b: &Polygon) -> bool {
+/// Whether the bounds of `a` and `b` meet (a cheap test before a boolean).
+pub(super) fn boxes_meet(a: &Polygon, b: &Polygon) -> bool {
     let ((a0, a1), (b0, b1)) = (a.bounds(), b.bounds());
     a0.x <= b1.x && b0.x <= a1.x && a0.y <= b1.y && b0.y <= a1.y
 }
