@@ -7,6 +7,7 @@
 
 mod orient;
 mod topology;
+mod touching;
 
 use glam::DVec3;
 use serde::Serialize;
@@ -28,7 +29,8 @@ pub struct Health {
     pub non_manifold_edges: usize,
     /// Connected bodies (faces connected through shared edges).
     pub components: usize,
-    /// Separate solids: components not inside another (a hollow box's cavity is not one).
+    /// Separate solids: components not inside another (a hollow box's cavity is not one), bodies
+    /// that touch or cross counted once (see `touching`).
     pub solids: usize,
     /// Triangles whose winding was turned round to agree with their neighbours / point out.
     pub flipped_faces: usize,

@@ -15,7 +15,8 @@ pub(super) struct Oriented {
     pub reversed: Vec<bool>,
     pub component: Vec<u32>,
     pub components: usize,
-    /// Components not nested inside another closed one (solids; cavities excluded).
+    /// Components not nested inside another closed one (cavities excluded), those that touch or
+    /// cross each other counted once: the separate solids.
     pub solids: usize,
     pub flipped: usize,
     pub non_orientable_edges: usize,
@@ -106,12 +107,18 @@ pub(super) fn orient(vertices: &[DVec3], triangles: &[[u32; 3]], topology: &Topo
             }
         }
     }
+    let top: Vec<&[u32]> = bodies
+        .iter()
+        .zip(&depth)
+        .filter(|(_, d)| *d % 2 == 0)
+        .map(|(b, _)| b.as_slice())
+        .collect();
     Oriented {
+        solids: super::touching::count_solids(vertices, &out, &top),
         flipped: flip.iter().filter(|&&f| f).count(),
         reversed: flip,
         triangles: out,
         components: bodies.len(),
-        solids: depth.iter().filter(|&&d| d % 2 == 0).count(),
         component,
         non_orientable_edges,
     }
