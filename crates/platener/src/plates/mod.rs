@@ -12,6 +12,7 @@
 //! 4. [`coverage`]: per shape, which plates use it or why none does.
 
 mod coverage;
+mod features;
 mod inherent;
 mod overlap;
 mod pairs;
@@ -32,6 +33,7 @@ use crate::settings::{PlateMode, Settings};
 use crate::shapes::Shapes;
 
 pub use coverage::{Coverage, Rejection, ShapeUse, ThicknessShare};
+pub use features::{Feature, Relief, Side};
 
 /// How a plate was found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -106,6 +108,9 @@ pub struct Plates {
     pub trimmed: usize,
     /// Plates made whole again after a plate passing through had split them.
     pub rejoined: usize,
+    /// Features on one face of a plate (engraved or embossed text, pockets, standoffs), plate
+    /// by plate; empty unless `--features engrave`.
+    pub features: Vec<Feature>,
 }
 
 /// Whether a laser can sensibly cut this outline at this thickness: big enough, and on
@@ -136,17 +141,14 @@ pub(crate) fn map_polygon(p: &Polygon, from: &Frame, to: &Frame) -> Polygon {
     out
 }
 
-/// Finds the plates of a model's shapes; `surface_area` is the model's, for the coverage share.
-pub fn find_plates(
-    shapes: &Shapes,
-    surface_area: f64,
-    center: DVec3,
-    settings: &Settings,
-) -> Result<Plates, GridError> {
+/// Finds the plates of a model's shapes; the mesh gives the cross-sections that tell holes
+/// from one-sided features, and its surface area the coverage share.
+pub fn find_plates(shapes: &Shapes, mesh: &Mesh, center: DVec3, settings: &Settings) -> Result<Plates, GridError> {
     let ps = &settings.plates;
-    let mut found = inherent::find(shapes, center, settings)?;
+    let sections = features::Sections::new(mesh, settings.features);
+    let mut found = inherent::find(shapes, &sections, center, settings)?;
     if ps.mode == PlateMode::InherentAndExtruded {
-        inherent::extrude_leftovers(shapes, &mut found, settings);
+        inherent::extrude_leftovers(shapes, &sections, &mut found, settings)?;
     }
     let detected_use: Vec<f64> = shapes
         .shapes
@@ -162,13 +164,15 @@ pub fn find_plates(
             .cmp(&(b.kind == PlateKind::Extruded))
             .then(b.area.total_cmp(&a.area))
     });
-    let coverage = coverage::report(shapes, &found.detail, &detected_use, &plates, surface_area, settings);
+    let coverage = coverage::report(shapes, &found.detail, &detected_use, &plates, mesh.surface_area, settings);
+    let features = features::assign(&found.features, &plates)?;
     Ok(Plates {
         plates,
         coverage,
         contained_removed: contained,
         trimmed,
         rejoined,
+        features,
     })
 }
 
@@ -182,11 +186,14 @@ pub fn run(
 ) -> Result<Plates> {
     cx.check_cancel()?;
     let center = (model.bounds.min + model.bounds.max) / 2.0;
-    let plates = find_plates(shapes, mesh.surface_area, center, settings)
+    let plates = find_plates(shapes, mesh, center, settings)
         .map_err(|e| Error::model(&model.name, ModelProblem::OffGrid(e)))?;
     let offered = settings.offered_thicknesses();
     if let Some(why) = coverage::why_no_plates(&plates.coverage, settings.plates.min_area, &offered) {
         cx.warn(WarningKind::Plates, why);
+    }
+    for why in features::warnings(&plates.features) {
+        cx.warn(WarningKind::Features, why);
     }
     Ok(plates)
 }

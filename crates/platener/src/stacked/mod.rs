@@ -48,6 +48,7 @@ use crate::settings::Settings;
 pub use islands::{DroppedIsland, LayerIslands, islands_of};
 pub use loops::LoopStats;
 pub use orient::{AxisChoice, SlicePlan, choose_up};
+pub(crate) use slice::section;
 pub use parts::plan_input;
 pub use slice::{SliceLoop, Sliced, slice};
 
