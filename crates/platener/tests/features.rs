@@ -12,7 +12,7 @@ use platener::method::MethodKind;
 use platener::plan::{MarkKind, Part};
 use platener::plates::{Feature, Relief, Side};
 use platener::samples::voxels;
-use platener::{Cancel, Features, Settings, Source, State, Weld, WarningKind};
+use platener::{Cancel, Features, Settings, Source, State, WarningKind, Weld};
 
 /// Converts `triangles` with the plate method, no weld, and `features`.
 fn plate_method(name: &str, triangles: Vec<platener::read::Triangle>, features: Features) -> State {
@@ -21,8 +21,13 @@ fn plate_method(name: &str, triangles: Vec<platener::read::Triangle>, features: 
         features,
         ..Settings::default()
     };
-    convert(MethodKind::Plate, Source::triangles(name, triangles), settings, &Cancel::default())
-        .unwrap_or_else(|e| panic!("{name}: {e}"))
+    convert(
+        MethodKind::Plate,
+        Source::triangles(name, triangles),
+        settings,
+        &Cancel::default(),
+    )
+    .unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 fn parts(state: &State) -> &[Part] {
@@ -58,9 +63,10 @@ fn mark_bounds(part: &Part) -> (DVec3, DVec3) {
         .into_iter()
         .flatten()
         .map(|q| part.frame.to_model(q.extend(0.0)))
-        .fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), p| {
-            (lo.min(p), hi.max(p))
-        })
+        .fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), p| (lo.min(p), hi.max(p)),
+        )
 }
 
 #[test]
@@ -86,9 +92,15 @@ fn a_1mm_pocket_is_a_score_mark_not_a_hole() {
     let face_z = if f[0].side == Side::Up { 0.0 } else { p.thickness };
     let face = p.frame.to_model(DVec3::new(0.0, 0.0, face_z));
     assert!((face.z - 3.0).abs() < 1e-6, "{:?} face at z {}", f[0].side, face.z);
-    assert!((f[0].center - DVec3::new(27.5, 20.0, 3.0)).length() < 1e-6, "{}", f[0].center);
     assert!(
-        state.warnings().any(|w| w.kind == WarningKind::Features && w.message.contains("1 feature")),
+        (f[0].center - DVec3::new(27.5, 20.0, 3.0)).length() < 1e-6,
+        "{}",
+        f[0].center
+    );
+    assert!(
+        state
+            .warnings()
+            .any(|w| w.kind == WarningKind::Features && w.message.contains("1 feature")),
         "the report lists the feature"
     );
 }
@@ -176,4 +188,151 @@ fn plan_json_has_the_marks_as_score() {
         .filter(|m| m["kind"] == "score")
         .count();
     assert_eq!(scores, 1);
+}
+
+/// Converts a corpus model with the plate method and default settings but `features`; `None`
+/// (after saying why) when the corpus is absent.
+fn corpus_plan(file: &str, features: Features) -> Option<State> {
+    let dir = platener::samples::shared_corpus().map_err(|m| eprintln!("{m}")).ok()?;
+    let settings = Settings {
+        features,
+        ..Settings::default()
+    };
+    let state = convert(
+        MethodKind::Plate,
+        Source::File(dir.join(file)),
+        settings,
+        &Cancel::default(),
+    )
+    .unwrap_or_else(|e| panic!("{file}: {e}"));
+    Some(state)
+}
+
+/// One line per part: holes, score marks; and the features found. The figures of the report.
+fn describe(file: &str, features: Features, state: &State) {
+    let ps = parts(state);
+    let holes: Vec<usize> = ps.iter().map(|p| p.polygon.holes.len()).collect();
+    let marks: Vec<usize> = ps.iter().map(|p| score_marks(p).len()).collect();
+    eprintln!(
+        "{file} ({features:?}): {} parts, holes per part {holes:?}, score marks per part {marks:?}, {} features",
+        ps.len(),
+        self::features(state).len()
+    );
+    for w in state.warnings().filter(|w| w.kind == WarningKind::Features) {
+        eprintln!("  {}", w.message);
+    }
+}
+
+/// Every score mark of `part` lies inside its outline (clear of its holes).
+fn marks_inside(part: &Part) -> bool {
+    score_marks(part)
+        .into_iter()
+        .flatten()
+        .all(|q| part.polygon.contains(*q) || part.polygon.boundary_distance(*q) < 1e-6)
+}
+
+#[test]
+fn ipad_base_keeps_its_lettering_as_score_marks_on_its_top() {
+    let file = "plates/ipad_mini_arcade_cabinet_half.stl";
+    let Some(cut) = corpus_plan(file, Features::Cut) else {
+        return;
+    };
+    describe(file, Features::Cut, &cut);
+    let Some(state) = corpus_plan(file, Features::Engrave) else {
+        return;
+    };
+    describe(file, Features::Engrave, &state);
+    let ps = parts(&state);
+    let fs = features(&state);
+    assert!(!fs.is_empty(), "the lettering is found");
+    // The base: the plate the lettering is on. Its part's holes are joint slots only; cut, the
+    // same part had the letters as holes.
+    let base = fs[0].plate as usize;
+    assert!(fs.iter().all(|f| f.plate as usize == base), "all on the base");
+    let base_plate = &state.plates.as_ref().expect("plates").plates[base];
+    assert!(base_plate.polygon.holes.is_empty(), "no hole from the lettering");
+    let cut_base = &parts(&cut)[base];
+    assert!(
+        cut_base.polygon.holes.len() >= ps[base].polygon.holes.len() + fs.len(),
+        "cut: {} holes, engraved: {}",
+        cut_base.polygon.holes.len(),
+        ps[base].polygon.holes.len()
+    );
+    let part = &ps[base];
+    assert!(marks_inside(part), "part {}: marks outside it", part.id);
+    assert!(score_marks(part).len() >= fs.len(), "every letter is scored");
+    for f in fs {
+        assert_eq!(f.relief, Relief::Recessed, "lettering is engraved");
+        // The lettering is on the base's top face: the side named is the face at the top.
+        let z = if f.side == Side::Up { 0.0 } else { part.thickness };
+        let face = part.frame.to_model(DVec3::new(0.0, 0.0, z));
+        let other = part.frame.to_model(DVec3::new(0.0, 0.0, part.thickness - z));
+        assert!(face.z > other.z, "feature at {} is on the lower face", f.center);
+    }
+    assert_eq!(ps.len(), parts(&cut).len(), "the same parts");
+}
+
+#[test]
+fn xyz_cube_faces_have_no_holes_from_their_letters() {
+    let file = "solids/xyz_calibration_cube_20mm.stl";
+    let Some(state) = corpus_plan(file, Features::Engrave) else {
+        return;
+    };
+    describe(file, Features::Engrave, &state);
+    let ps = parts(&state);
+    assert_eq!(ps.len(), 6, "a hull of six faces");
+    assert!(ps.iter().all(|p| p.polygon.holes.is_empty()), "no through-hole");
+    let marked = ps.iter().filter(|p| !score_marks(p).is_empty()).count();
+    assert!(marked >= 3, "X, Y and Z are scored ({marked} parts marked)");
+    assert!(ps.iter().all(marks_inside));
+    assert!(features(&state).iter().all(|f| f.relief == Relief::Recessed));
+}
+
+#[test]
+fn arduino_floor_has_no_holes_under_its_standoffs_and_reports_them() {
+    let file = "plates/arduino_uno_enclosure.stl";
+    let Some(cut) = corpus_plan(file, Features::Cut) else {
+        return;
+    };
+    describe(file, Features::Cut, &cut);
+    let Some(state) = corpus_plan(file, Features::Engrave) else {
+        return;
+    };
+    describe(file, Features::Engrave, &state);
+    let ps = parts(&state);
+    // The floor: the largest part, lying flat.
+    let floor = ps
+        .iter()
+        .filter(|p| p.frame.n.z.abs() > 0.999)
+        .max_by(|a, b| a.polygon.area().total_cmp(&b.polygon.area()))
+        .expect("a floor");
+    assert!(
+        floor.polygon.holes.is_empty(),
+        "floor holes {:?}",
+        floor.polygon.holes.len()
+    );
+    let standoffs: Vec<&Feature> = features(&state)
+        .iter()
+        .filter(|f| f.relief == Relief::Raised && ps[f.plate as usize].id == floor.id)
+        .collect();
+    assert!(standoffs.len() >= 4, "{} standoffs found", standoffs.len());
+    for s in &standoffs {
+        assert!(s.height.is_some_and(|h| h > 1.0), "standoff height {:?}", s.height);
+    }
+    assert!(
+        state
+            .warnings()
+            .any(|w| w.kind == WarningKind::Features && w.message.contains("boss")),
+        "the standoffs are reported"
+    );
+}
+
+#[test]
+fn features_setting_parses_the_three_words_and_names_a_bad_one() {
+    assert_eq!("engrave".parse::<Features>().ok(), Some(Features::Engrave));
+    assert_eq!(" CUT ".parse::<Features>().ok(), Some(Features::Cut));
+    assert_eq!("ignore".parse::<Features>().ok(), Some(Features::Ignore));
+    let e = "drill".parse::<Features>().expect_err("not a mode").to_string();
+    assert!(e.contains("features") && e.contains("drill"), "{e}");
+    assert_eq!(Settings::default().features, Features::Engrave);
 }

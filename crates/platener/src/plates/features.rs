@@ -153,8 +153,8 @@ impl<'a> Sections<'a> {
             let out = if face.z > t / 2.0 { 1.0 } else { -1.0 };
             let probe = self.at(frame, face.z + out * PROBE.min(t / 10.0))?;
             for region in on_face {
-                let raised = polygon::total_area(&intersection(std::slice::from_ref(&region), &probe)?)
-                    > 0.5 * region.area();
+                let raised =
+                    polygon::total_area(&intersection(std::slice::from_ref(&region), &probe)?) > 0.5 * region.area();
                 let height = match raised {
                     true => self.height(frame, face.z, out, &region, &mut budget)?,
                     false => None,
@@ -260,7 +260,9 @@ pub(super) fn assign(found: &[Feature], plates: &[Plate]) -> Result<Vec<Feature>
     for (i, plate) in plates.iter().enumerate() {
         for f in found {
             let along = plate.frame.n.dot(f.frame.n);
-            let mid = plate.frame.to_local(f.frame.to_model(DVec3::new(0.0, 0.0, f.thickness / 2.0)));
+            let mid = plate
+                .frame
+                .to_local(f.frame.to_model(DVec3::new(0.0, 0.0, f.thickness / 2.0)));
             if along.abs() < parallel || mid.z <= 0.0 || mid.z >= plate.thickness {
                 continue;
             }
@@ -316,7 +318,9 @@ fn plate_warnings(plate: u32, fs: &[Feature]) -> Vec<String> {
         .iter()
         .filter(|f| f.relief == Relief::Raised)
         .map(|f| {
-            let tall = f.height.map_or("height not measured".to_string(), |h| format!("{h:.1} mm tall"));
+            let tall = f
+                .height
+                .map_or("height not measured".to_string(), |h| format!("{h:.1} mm tall"));
             let c = f.center;
             format!(
                 "{:.1} × {:.1} mm, {tall}, at ({:.1}, {:.1}, {:.1})",

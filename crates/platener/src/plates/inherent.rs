@@ -175,12 +175,12 @@ fn take_plates(
             Face {
                 side: Side::Down,
                 z: (pair.distance + t) / 2.0,
-                shape: vec![list[ia].polygon.clone()],
+                shape: in_plane_of(list, ia, &fa),
             },
             Face {
                 side: Side::Up,
                 z: (t - pair.distance) / 2.0,
-                shape: vec![map_polygon(&list[ib].polygon, &fb, &fa)],
+                shape: in_plane_of(list, ib, &fa),
             },
         ];
         let mut used = Vec::new();
@@ -215,6 +215,17 @@ fn take_plates(
     Ok((plates, remaining))
 }
 
+/// Every shape in the plane of shape `i` and facing its way (the shape itself, the islands
+/// inside a letter's counter), mapped to `frame`'s plane: what a face covers, for telling
+/// features from the face.
+fn in_plane_of(list: &[Shape], i: usize, frame: &platener_geom::Frame) -> Vec<Polygon> {
+    let own = &list[i].frame;
+    list.iter()
+        .filter(|s| s.frame.n.dot(own.n) > 1.0 - 1e-9 && own.to_local(s.frame.origin).z.abs() < 1e-3)
+        .map(|s| map_polygon(&s.polygon, &s.frame, frame))
+        .collect()
+}
+
 /// Extrudes what is left of every shape inwards (along its inverse normal) by the extrusion
 /// thickness, piece by piece, skipping pieces too small or too thin to cut. What is left of a
 /// face an inherent plate used must be at least twice the thickness wide: the rim of a wall's
@@ -240,7 +251,7 @@ pub(super) fn extrude_leftovers(
         let face = [Face {
             side: Side::Down,
             z: t,
-            shape: vec![shape.polygon.clone()],
+            shape: in_plane_of(&shapes.shapes, i, &frame),
         }];
         for piece in pieces {
             if let Err(why) = cuttable(&piece, needed, settings.plates.min_area) {
@@ -250,7 +261,10 @@ pub(super) fn extrude_leftovers(
             }
             let (solid, features) = sections.solid(piece, &frame, t, &face)?;
             found.features.extend(features);
-            for p in solid.into_iter().filter(|p| cuttable(p, needed, settings.plates.min_area).is_ok()) {
+            for p in solid
+                .into_iter()
+                .filter(|p| cuttable(p, needed, settings.plates.min_area).is_ok())
+            {
                 found.plates.push(Plate {
                     kind: PlateKind::Extruded,
                     thickness: t,

@@ -164,7 +164,14 @@ pub fn find_plates(shapes: &Shapes, mesh: &Mesh, center: DVec3, settings: &Setti
             .cmp(&(b.kind == PlateKind::Extruded))
             .then(b.area.total_cmp(&a.area))
     });
-    let coverage = coverage::report(shapes, &found.detail, &detected_use, &plates, mesh.surface_area, settings);
+    let coverage = coverage::report(
+        shapes,
+        &found.detail,
+        &detected_use,
+        &plates,
+        mesh.surface_area,
+        settings,
+    );
     let features = features::assign(&found.features, &plates)?;
     Ok(Plates {
         plates,
@@ -186,8 +193,8 @@ pub fn run(
 ) -> Result<Plates> {
     cx.check_cancel()?;
     let center = (model.bounds.min + model.bounds.max) / 2.0;
-    let plates = find_plates(shapes, mesh, center, settings)
-        .map_err(|e| Error::model(&model.name, ModelProblem::OffGrid(e)))?;
+    let plates =
+        find_plates(shapes, mesh, center, settings).map_err(|e| Error::model(&model.name, ModelProblem::OffGrid(e)))?;
     let offered = settings.offered_thicknesses();
     if let Some(why) = coverage::why_no_plates(&plates.coverage, settings.plates.min_area, &offered) {
         cx.warn(WarningKind::Plates, why);

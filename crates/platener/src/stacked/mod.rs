@@ -48,8 +48,8 @@ use crate::settings::Settings;
 pub use islands::{DroppedIsland, LayerIslands, islands_of};
 pub use loops::LoopStats;
 pub use orient::{AxisChoice, SlicePlan, choose_up};
-pub(crate) use slice::section;
 pub use parts::plan_input;
+pub(crate) use slice::section;
 pub use slice::{SliceLoop, Sliced, slice};
 
 /// One island of a layer: a connected piece of the cross-section, cut as one part.
