@@ -121,13 +121,14 @@ impl<'a> Sections<'a> {
 
     /// The plate `piece` (a region both faces share, in `frame`'s plane, `t` thick) makes:
     /// its connected polygons as the model's material at the mid-plane, and the features of
-    /// `faces` in its holes. With `--features cut`, or no holes, the piece as it is.
+    /// `faces()` in its holes. With `--features cut`, or no holes, the piece as it is (and
+    /// `faces` is not called).
     pub fn solid(
         &self,
         piece: Polygon,
         frame: &Frame,
         t: f64,
-        faces: &[Face],
+        faces: impl FnOnce() -> Vec<Face>,
     ) -> Result<(Vec<Polygon>, Vec<Feature>), GridError> {
         if self.mode == Mode::Cut || piece.holes.is_empty() {
             return Ok((vec![piece], Vec::new()));
@@ -145,7 +146,7 @@ impl<'a> Sections<'a> {
         let missing = significant(difference(&inside, std::slice::from_ref(&piece))?);
         let mut features = Vec::new();
         let mut budget = HEIGHT_PROBES;
-        for face in faces {
+        for face in &faces() {
             let on_face = significant(difference(&missing, &face.shape)?);
             if on_face.is_empty() {
                 continue;

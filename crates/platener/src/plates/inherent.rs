@@ -171,18 +171,21 @@ fn take_plates(
         // Face a is at local z = 0 of its frame, face b at −distance: the plate keeps their
         // mid-plane, so face a lies at z = (distance + t)/2 of the plate's frame.
         let frame = fa.shifted(-(pair.distance + t) / 2.0);
-        let faces = [
-            Face {
-                side: Side::Down,
-                z: (pair.distance + t) / 2.0,
-                shape: in_plane_of(list, ia, &fa),
-            },
-            Face {
-                side: Side::Up,
-                z: (t - pair.distance) / 2.0,
-                shape: in_plane_of(list, ib, &fa),
-            },
-        ];
+        // Only pieces with holes need the faces (every shape is looked at): made on demand.
+        let faces = || {
+            vec![
+                Face {
+                    side: Side::Down,
+                    z: (pair.distance + t) / 2.0,
+                    shape: in_plane_of(list, ia, &fa),
+                },
+                Face {
+                    side: Side::Up,
+                    z: (t - pair.distance) / 2.0,
+                    shape: in_plane_of(list, ib, &fa),
+                },
+            ]
+        };
         let mut used = Vec::new();
         for piece in common {
             if let Err(why) = cuttable(&piece, t, ps.min_area) {
@@ -190,7 +193,7 @@ fn take_plates(
                 detail[ib].refused.get_or_insert(why);
                 continue;
             }
-            let (solid, found) = sections.solid(piece, &frame, t, &faces)?;
+            let (solid, found) = sections.solid(piece, &frame, t, faces)?;
             features.extend(found);
             // Islands of material inside a through-hole are plates of their own if they can
             // be cut; the piece itself always can.
@@ -248,18 +251,20 @@ pub(super) fn extrude_leftovers(
             pieces = outside_neighbours(pieces, shape, &inherent, t);
         }
         let frame = shape.frame.shifted(-t);
-        let face = [Face {
-            side: Side::Down,
-            z: t,
-            shape: in_plane_of(&shapes.shapes, i, &frame),
-        }];
+        let face = || {
+            vec![Face {
+                side: Side::Down,
+                z: t,
+                shape: in_plane_of(&shapes.shapes, i, &frame),
+            }]
+        };
         for piece in pieces {
             if let Err(why) = cuttable(&piece, needed, settings.plates.min_area) {
                 found.detail[i].refused.get_or_insert(why);
                 found.remaining[i].push(piece);
                 continue;
             }
-            let (solid, features) = sections.solid(piece, &frame, t, &face)?;
+            let (solid, features) = sections.solid(piece, &frame, t, face)?;
             found.features.extend(features);
             for p in solid
                 .into_iter()
