@@ -5,11 +5,12 @@
 //! open through the plate, but also under engraved or embossed text, pockets and the footprints
 //! of standoffs. Only the model's cross-section at the plate's mid-plane tells them apart:
 //!
-//! - **shape** = `piece ∪ (filled(piece) ∩ section)`: the outline comes from the faces (the
-//!   piece, with its holes filled), the holes from the section. The union keeps everything the
-//!   faces vouch for, so a section spoilt by a defective mesh never shrinks a plate.
 //! - **features** = `(filled(piece) ∩ section) ∖ piece`: material at the mid-plane where a face
-//!   is missing. A feature belongs to the face it is missing from (both, if both are); it is
+//!   is missing (pieces smaller or narrower than a kerf are seams along a through-hole's edge
+//!   and are dropped).
+//! - **shape** = `piece ∪ features`: the outline comes from the faces, the holes from the
+//!   section. The union keeps everything the faces vouch for, so a section spoilt by a
+//!   defective mesh never shrinks a plate, and a through-hole keeps the faces' exact ring. A feature belongs to the face it is missing from (both, if both are); it is
 //!   *raised* (a boss, embossed text) when the model has material just outside that face over
 //!   it, *recessed* (a pocket, engraved text) when not. A raised feature's height is found by
 //!   sectioning at the heights of the mesh vertices above it until the material stops.
@@ -138,14 +139,19 @@ impl<'a> Sections<'a> {
         let section = self.at(frame, t / 2.0)?;
         let filled = Polygon::new(piece.outer.clone());
         let inside = intersection(&[filled], &section)?;
-        let mut solid = union(std::slice::from_ref(&piece), &inside)?;
+        // Material in the piece's holes; seams along a through-hole's edge are not, so such a
+        // hole keeps the faces' exact ring.
+        let missing = significant(difference(&inside, std::slice::from_ref(&piece))?);
+        if missing.is_empty() {
+            return Ok((vec![piece], Vec::new()));
+        }
+        let mut solid = union(std::slice::from_ref(&piece), &missing)?;
         for p in &mut solid {
             p.normalize_orientation();
         }
         if self.mode == Mode::Ignore {
             return Ok((solid, Vec::new()));
         }
-        let missing = significant(difference(&inside, std::slice::from_ref(&piece))?);
         let mut features = Vec::new();
         let mut budget = HEIGHT_PROBES;
         for face in &faces() {
