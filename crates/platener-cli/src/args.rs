@@ -189,6 +189,11 @@ pub struct ModelArgs {
     /// Sheet thickness in mm; repeat for several.
     #[arg(short = 't', long = "thickness", default_values_t = [3.0])]
     pub thickness: Vec<f64>,
+    /// Plate method: features on one face of a plate that do not go through it (engraved text,
+    /// pockets, standoff footprints) are scored on it (`engrave`), cut through (`cut`, the
+    /// behaviour before) or left out of a solid plate (`ignore`).
+    #[arg(long, value_name = "engrave|cut|ignore", default_value = "engrave")]
+    pub features: String,
 }
 
 /// `platener inspect`.
@@ -231,6 +236,7 @@ impl ModelArgs {
             scale: self.scale,
             weld,
             thicknesses: self.thickness.clone(),
+            features: self.features.parse().map_err(|e| anyhow::anyhow!("--features: {e}"))?,
             ..Settings::default()
         };
         settings.validate()?;

@@ -18,14 +18,14 @@ fn bench(c: &mut Criterion) {
     let mesh = state.mesh.clone().expect("mesh");
     let model = state.read.clone().expect("read");
     let center = (model.bounds.min + model.bounds.max) / 2.0;
-    let found = find_plates(&shapes, mesh.surface_area, center, &settings).expect("plates");
+    let found = find_plates(&shapes, &mesh, center, &settings).expect("plates");
     assert_eq!(found.plates.len(), 6 * 29 * 29);
 
     let mut group = c.benchmark_group("plates");
     group.sample_size(10);
     group.throughput(Throughput::Elements(n as u64));
     group.bench_function("find_plates/box-grid-100k", |b| {
-        b.iter(|| find_plates(&shapes, mesh.surface_area, center, &settings).expect("plates"));
+        b.iter(|| find_plates(&shapes, &mesh, center, &settings).expect("plates"));
     });
     group.bench_function("file-to-plates/box-grid-100k", |b| {
         b.iter(|| {

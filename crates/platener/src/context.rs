@@ -62,6 +62,8 @@ pub enum WarningKind {
     StoredNormals,
     /// Plate finding found nothing (the message says why for each kind of face).
     Plates,
+    /// One-sided features of plates engraved as marks, or bosses standing on plates left out.
+    Features,
     /// A joint could not be made as planned (a plate would fall apart…).
     Joints,
     /// Something the cutting-plan steps had to adapt (a label skipped, a part larger than the

@@ -73,4 +73,4 @@ pub use error::{Error, Result};
 pub use pipeline::State;
 pub use platener_geom::glam;
 pub use read::Source;
-pub use settings::{PlateMode, PlateSettings, Settings, Units, Weld};
+pub use settings::{Features, PlateMode, PlateSettings, Settings, Units, Weld};

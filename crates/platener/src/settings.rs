@@ -118,6 +118,38 @@ impl std::str::FromStr for StackAxis {
     }
 }
 
+/// What the plate method makes of features on one face of a plate that do not go through it
+/// (engraved or embossed text, pockets, standoff footprints): `--features`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Features {
+    /// The plate is the model's material at its mid-plane; the features are engraved as score
+    /// marks on the face where they are (the default).
+    #[default]
+    Engrave,
+    /// Every hole of the plate's faces is cut through (the behaviour before issue 15).
+    Cut,
+    /// The plate is the model's material at its mid-plane, without marks.
+    Ignore,
+}
+
+impl std::str::FromStr for Features {
+    type Err = Error;
+
+    /// `engrave`, `cut` or `ignore`, as `--features` takes it.
+    fn from_str(s: &str) -> Result<Self> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "engrave" => Ok(Features::Engrave),
+            "cut" => Ok(Features::Cut),
+            "ignore" => Ok(Features::Ignore),
+            _ => Err(Error::Setting {
+                name: "features",
+                message: format!("{s:?} is none of engrave, cut, ignore"),
+            }),
+        }
+    }
+}
+
 /// Settings of the stacked method (layers joined by shafts); docs/stacked.md explains them.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StackedSettings {
@@ -175,6 +207,8 @@ pub struct Settings {
     pub straight_tolerance: Option<f64>,
     /// Plate finding.
     pub plates: PlateSettings,
+    /// One-sided features of plates: engraved, cut through or ignored.
+    pub features: Features,
     /// The stacked method (layers and shafts).
     pub stacked: StackedSettings,
     /// Joints of the plate method (finger width, style; the style defaults by material).
@@ -193,6 +227,7 @@ impl Default for Settings {
             coplanar_angle_deg: 1.0,
             straight_tolerance: None,
             plates: PlateSettings::default(),
+            features: Features::Engrave,
             stacked: StackedSettings::default(),
             joints: crate::joints::JointSettings::default(),
             cut: crate::plan::CutSettings::default(),

@@ -11,8 +11,11 @@ use std::collections::BTreeMap;
 
 use crate::context::StepContext;
 use crate::joints::{Connection, ConnectionKind, JointStyle, Joints};
-use crate::plan::{EdgeLabel, Joint, JointKind, Method, Part, PlanInput, SettingValue, SourceInfo};
-use crate::plates::Plates;
+use platener_geom::Polygon;
+use platener_geom::boolean::intersection;
+
+use crate::plan::{EdgeLabel, Joint, JointKind, Mark, MarkKind, Method, Part, PlanInput, SettingValue, SourceInfo};
+use crate::plates::{Feature, Plates};
 use crate::read::Model;
 use crate::settings::Settings;
 use crate::weld::Welded;
@@ -40,6 +43,10 @@ pub fn run(
     );
     method_settings.insert("weld".to_string(), SettingValue::Number(welded.distance));
     method_settings.insert(
+        "features".to_string(),
+        SettingValue::Text(format!("{:?}", settings.features).to_lowercase()),
+    );
+    method_settings.insert(
         "extruded_plates".to_string(),
         SettingValue::Flag(settings.plates.mode == crate::PlateMode::InherentAndExtruded),
     );
@@ -51,6 +58,7 @@ pub fn run(
         "contained_removed": plates.contained_removed,
         "trimmed": plates.trimmed,
         "rejoined": plates.rejoined,
+        "features": &plates.features,
         "connections": joints.map(|j| &j.connections),
     }))
     .ok();
@@ -68,6 +76,7 @@ fn plate_parts(plates: &Plates, joints: Option<&Joints>, ids: &[Option<u32>]) ->
         .map(|(i, p, id)| {
             let outline = joints.map_or(&p.polygon, |j| &j.outlines[i]);
             let mut part = Part::plate(id, p.thickness, outline.clone(), p.frame);
+            part.marks = feature_marks(&plates.features, i as u32, outline);
             if let Some(j) = joints {
                 part.edge_labels = j.edges[i]
                     .iter()
@@ -82,6 +91,31 @@ fn plate_parts(plates: &Plates, joints: Option<&Joints>, ids: &[Option<u32>]) ->
 /// The part id of plate `p`: a joint's plates are never left out.
 fn id_of(ids: &[Option<u32>], p: u32) -> u32 {
     ids[p as usize].expect("a plate with a joint is kept")
+}
+
+/// The `score` marks of plate `plate`'s one-sided features: every ring of their footprints,
+/// closed, clipped to the part's outline (joints may have cut into it). Features carry the
+/// side they are on in the report; the marks are drawn in the part's frame either way.
+fn feature_marks(features: &[Feature], plate: u32, outline: &Polygon) -> Vec<Mark> {
+    let regions: Vec<Polygon> = features
+        .iter()
+        .filter(|f| f.plate == plate)
+        .map(|f| f.region.clone())
+        .collect();
+    if regions.is_empty() {
+        return Vec::new();
+    }
+    // A region that the booleans cannot clip is drawn as found: it lay inside the plate.
+    let clipped = intersection(&regions, std::slice::from_ref(outline)).unwrap_or(regions);
+    clipped
+        .iter()
+        .flat_map(|p| std::iter::once(&p.outer).chain(&p.holes))
+        .filter(|r| r.len() >= 3)
+        .map(|r| Mark {
+            kind: MarkKind::Score,
+            path: r.iter().copied().chain(r.first().copied()).collect(),
+        })
+        .collect()
 }
 
 /// A connection as plan.json's joint.

@@ -31,6 +31,9 @@ pub enum MarkKind {
     Bend,
     /// Any other engraving.
     Engrave,
+    /// The outline of a feature on one face of a plate (engraved or embossed text, a pocket,
+    /// a standoff's footprint), scored, not cut through (plan.json's `score`).
+    Score,
     /// Text and numbers (made by the `labels` step).
     Label,
 }

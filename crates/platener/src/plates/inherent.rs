@@ -10,6 +10,7 @@ use platener_geom::boolean::{difference, intersection};
 use platener_geom::slab::Slab;
 use platener_geom::{GridError, Polygon, polygon::total_area};
 
+use super::features::{Face, Feature, Sections, Side};
 use super::pairs::{Pair, opposite_pairs};
 use super::{Plate, PlateKind, Rejection, cuttable, map_polygon};
 use crate::settings::Settings;
@@ -34,6 +35,8 @@ pub(super) struct Detection {
     pub remaining: Vec<Vec<Polygon>>,
     /// Per shape: nearest opposite faces.
     pub detail: Vec<Nearest>,
+    /// Features on one face of the plates (in the frames they were found in).
+    pub features: Vec<Feature>,
 }
 
 /// The offered thickness that makes a plate of faces `distance` apart: the nearest offered
@@ -56,7 +59,12 @@ pub(super) fn matching_thickness(distance: f64, settings: &Settings) -> Option<f
 
 /// The inherent plates of `shapes`: pairs of facing shapes on parallel planes a sheet's
 /// thickness apart, thinnest gap first, each taking the parts of both shapes not yet taken.
-pub(super) fn find(shapes: &Shapes, center: DVec3, settings: &Settings) -> Result<Detection, GridError> {
+pub(super) fn find(
+    shapes: &Shapes,
+    sections: &Sections<'_>,
+    center: DVec3,
+    settings: &Settings,
+) -> Result<Detection, GridError> {
     let list = &shapes.shapes;
     let ps = &settings.plates;
     let t_max = settings.thicknesses.iter().copied().fold(0.0, f64::max);
@@ -65,11 +73,13 @@ pub(super) fn find(shapes: &Shapes, center: DVec3, settings: &Settings) -> Resul
     let pairs = opposite_pairs(list, ps.parallel_angle_deg.to_radians(), search, center);
     let mut detail = vec![Nearest::default(); list.len()];
     let candidates = candidates(list, pairs, settings, &mut detail)?;
-    let (plates, remaining) = take_plates(list, candidates, settings, &mut detail)?;
+    let mut features = Vec::new();
+    let (plates, remaining) = take_plates(list, candidates, sections, settings, &mut detail, &mut features)?;
     Ok(Detection {
         plates,
         remaining,
         detail,
+        features,
     })
 }
 
@@ -140,12 +150,15 @@ fn candidates(
 }
 
 /// The plates of the `candidates`, in order: each takes what both its shapes still have in
-/// common, where that can be cut; returns the plates and what remains of each shape.
+/// common, where that can be cut, as the model's material at its mid-plane (see
+/// [`super::features`]); returns the plates and what remains of each shape.
 fn take_plates(
     list: &[Shape],
     candidates: Vec<(Pair, f64, f64)>,
+    sections: &Sections<'_>,
     settings: &Settings,
     detail: &mut [Nearest],
+    features: &mut Vec<Feature>,
 ) -> Result<(Vec<Plate>, Vec<Vec<Polygon>>), GridError> {
     let ps = &settings.plates;
     let mut remaining: Vec<Vec<Polygon>> = list.iter().map(|s| vec![s.polygon.clone()]).collect();
@@ -155,27 +168,45 @@ fn take_plates(
         let (fa, fb) = (list[ia].frame, list[ib].frame);
         let b_in_a: Vec<Polygon> = remaining[ib].iter().map(|p| map_polygon(p, &fb, &fa)).collect();
         let common = intersection(&remaining[ia], &b_in_a)?;
+        // Face a is at local z = 0 of its frame, face b at −distance: the plate keeps their
+        // mid-plane, so face a lies at z = (distance + t)/2 of the plate's frame.
+        let frame = fa.shifted(-(pair.distance + t) / 2.0);
+        // Only pieces with holes need the faces (every shape is looked at): made on demand.
+        let faces = || {
+            vec![
+                Face {
+                    side: Side::Down,
+                    z: (pair.distance + t) / 2.0,
+                    shape: in_plane_of(list, ia, &fa),
+                },
+                Face {
+                    side: Side::Up,
+                    z: (t - pair.distance) / 2.0,
+                    shape: in_plane_of(list, ib, &fa),
+                },
+            ]
+        };
         let mut used = Vec::new();
         for piece in common {
-            match cuttable(&piece, t, ps.min_area) {
-                Ok(()) => {
-                    // Face a is at local z = 0 of its frame, face b at −distance: the plate
-                    // keeps their mid-plane.
-                    let frame = fa.shifted(-(pair.distance + t) / 2.0);
-                    plates.push(Plate {
-                        kind: PlateKind::Inherent,
-                        thickness: t,
-                        frame,
-                        area: piece.area(),
-                        polygon: piece.clone(),
-                        shapes: vec![pair.a, pair.b],
-                    });
-                    used.push(piece);
-                }
-                Err(why) => {
-                    detail[ia].refused.get_or_insert(why);
-                    detail[ib].refused.get_or_insert(why);
-                }
+            if let Err(why) = cuttable(&piece, t, ps.min_area) {
+                detail[ia].refused.get_or_insert(why);
+                detail[ib].refused.get_or_insert(why);
+                continue;
+            }
+            let (solid, found) = sections.solid(piece, &frame, t, faces)?;
+            features.extend(found);
+            // Islands of material inside a through-hole are plates of their own if they can
+            // be cut; the piece itself always can.
+            for p in solid.into_iter().filter(|p| cuttable(p, t, ps.min_area).is_ok()) {
+                plates.push(Plate {
+                    kind: PlateKind::Inherent,
+                    thickness: t,
+                    frame,
+                    area: p.area(),
+                    polygon: p.clone(),
+                    shapes: vec![pair.a, pair.b],
+                });
+                used.push(p);
             }
         }
         if !used.is_empty() {
@@ -187,11 +218,29 @@ fn take_plates(
     Ok((plates, remaining))
 }
 
+/// Every shape in the plane of shape `i` and facing its way (the shape itself, the islands
+/// inside a letter's counter), mapped to `frame`'s plane: what a face covers, for telling
+/// features from the face.
+fn in_plane_of(list: &[Shape], i: usize, frame: &platener_geom::Frame) -> Vec<Polygon> {
+    let own = &list[i].frame;
+    list.iter()
+        .filter(|s| s.frame.n.dot(own.n) > 1.0 - 1e-9 && own.to_local(s.frame.origin).z.abs() < 1e-3)
+        .map(|s| map_polygon(&s.polygon, &s.frame, frame))
+        .collect()
+}
+
 /// Extrudes what is left of every shape inwards (along its inverse normal) by the extrusion
 /// thickness, piece by piece, skipping pieces too small or too thin to cut. What is left of a
 /// face an inherent plate used must be at least twice the thickness wide: the rim of a wall's
 /// outer face, as wide as the wall is thick, is where joints will go, not a plate of its own.
-pub(super) fn extrude_leftovers(shapes: &Shapes, found: &mut Detection, settings: &Settings) {
+/// A piece's holes are closed where the model has material at the plate's mid-plane, as for
+/// inherent plates; its features are on the face, down on the sheet.
+pub(super) fn extrude_leftovers(
+    shapes: &Shapes,
+    sections: &Sections<'_>,
+    found: &mut Detection,
+    settings: &Settings,
+) -> Result<(), GridError> {
     let t = settings.extrusion_thickness();
     let inherent: Vec<Slab> = found.plates.iter().map(Plate::slab).collect();
     for (i, shape) in shapes.shapes.iter().enumerate() {
@@ -201,23 +250,38 @@ pub(super) fn extrude_leftovers(shapes: &Shapes, found: &mut Detection, settings
         if partly_used {
             pieces = outside_neighbours(pieces, shape, &inherent, t);
         }
+        let frame = shape.frame.shifted(-t);
+        let face = || {
+            vec![Face {
+                side: Side::Down,
+                z: t,
+                shape: in_plane_of(&shapes.shapes, i, &frame),
+            }]
+        };
         for piece in pieces {
-            match cuttable(&piece, needed, settings.plates.min_area) {
-                Ok(()) => found.plates.push(Plate {
+            if let Err(why) = cuttable(&piece, needed, settings.plates.min_area) {
+                found.detail[i].refused.get_or_insert(why);
+                found.remaining[i].push(piece);
+                continue;
+            }
+            let (solid, features) = sections.solid(piece, &frame, t, face)?;
+            found.features.extend(features);
+            for p in solid
+                .into_iter()
+                .filter(|p| cuttable(p, needed, settings.plates.min_area).is_ok())
+            {
+                found.plates.push(Plate {
                     kind: PlateKind::Extruded,
                     thickness: t,
-                    frame: shape.frame.shifted(-t),
-                    area: piece.area(),
-                    polygon: piece,
+                    frame,
+                    area: p.area(),
+                    polygon: p,
                     shapes: vec![i as u32],
-                }),
-                Err(why) => {
-                    found.detail[i].refused.get_or_insert(why);
-                    found.remaining[i].push(piece);
-                }
+                });
             }
         }
     }
+    Ok(())
 }
 
 /// What is left of a partly used face, minus the parts lying in the layer of an inherent plate

@@ -15,6 +15,7 @@
 
 mod corners;
 mod coverage;
+mod features;
 mod inherent;
 mod overlap;
 mod pairs;
@@ -35,6 +36,7 @@ use crate::settings::{PlateMode, Settings};
 use crate::shapes::Shapes;
 
 pub use coverage::{Coverage, Rejection, ShapeUse, ThicknessShare};
+pub use features::{Feature, Relief, Side};
 
 /// How a plate was found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -111,6 +113,9 @@ pub struct Plates {
     pub rejoined: usize,
     /// Plates grown across a rounded or chamfered corner to the plate they meet there.
     pub corners_closed: usize,
+    /// Features on one face of a plate (engraved or embossed text, pockets, standoffs), plate
+    /// by plate; empty unless `--features engrave`.
+    pub features: Vec<Feature>,
 }
 
 /// Whether a laser can sensibly cut this outline at this thickness: big enough, and on
@@ -141,17 +146,14 @@ pub(crate) fn map_polygon(p: &Polygon, from: &Frame, to: &Frame) -> Polygon {
     out
 }
 
-/// Finds the plates of a model's shapes; `surface_area` is the model's, for the coverage share.
-pub fn find_plates(
-    shapes: &Shapes,
-    surface_area: f64,
-    center: DVec3,
-    settings: &Settings,
-) -> Result<Plates, GridError> {
+/// Finds the plates of a model's shapes; the mesh gives the cross-sections that tell holes
+/// from one-sided features, and its surface area the coverage share.
+pub fn find_plates(shapes: &Shapes, mesh: &Mesh, center: DVec3, settings: &Settings) -> Result<Plates, GridError> {
     let ps = &settings.plates;
-    let mut found = inherent::find(shapes, center, settings)?;
+    let sections = features::Sections::new(mesh, settings.features);
+    let mut found = inherent::find(shapes, &sections, center, settings)?;
     if ps.mode == PlateMode::InherentAndExtruded {
-        inherent::extrude_leftovers(shapes, &mut found, settings);
+        inherent::extrude_leftovers(shapes, &sections, &mut found, settings)?;
     }
     let detected_use: Vec<f64> = shapes
         .shapes
@@ -167,7 +169,15 @@ pub fn find_plates(
             .cmp(&(b.kind == PlateKind::Extruded))
             .then(b.area.total_cmp(&a.area))
     });
-    let coverage = coverage::report(shapes, &found.detail, &detected_use, &plates, surface_area, settings);
+    let coverage = coverage::report(
+        shapes,
+        &found.detail,
+        &detected_use,
+        &plates,
+        mesh.surface_area,
+        settings,
+    );
+    let features = features::assign(&found.features, &plates)?;
     Ok(Plates {
         plates,
         coverage,
@@ -175,6 +185,7 @@ pub fn find_plates(
         trimmed,
         rejoined,
         corners_closed: 0,
+        features,
     })
 }
 
@@ -189,12 +200,15 @@ pub fn run(
     cx.check_cancel()?;
     let center = (model.bounds.min + model.bounds.max) / 2.0;
     let off_grid = |e| Error::model(&model.name, ModelProblem::OffGrid(e));
-    let mut plates = find_plates(shapes, mesh.surface_area, center, settings).map_err(off_grid)?;
+    let mut plates = find_plates(shapes, mesh, center, settings).map_err(off_grid)?;
     let inside = crate::assembly::Inside::new(&mesh.vertices, &mesh.triangles);
     plates.corners_closed = corners::close(&mut plates.plates, &inside, 1e-3).map_err(off_grid)?;
     let offered = settings.offered_thicknesses();
     if let Some(why) = coverage::why_no_plates(&plates.coverage, settings.plates.min_area, &offered) {
         cx.warn(WarningKind::Plates, why);
+    }
+    for why in features::warnings(&plates.features) {
+        cx.warn(WarningKind::Features, why);
     }
     Ok(plates)
 }

@@ -75,8 +75,8 @@ pub fn islands_of(sliced: &Sliced, settings: &StackedSettings) -> Result<LayerIs
     })
 }
 
-/// The material a layer's loops enclose.
-fn fill(loops: &[SliceLoop]) -> Result<Vec<Polygon>, GridError> {
+/// The material a layer's loops enclose (also the plates step's mid-plane sections).
+pub(crate) fn fill(loops: &[SliceLoop]) -> Result<Vec<Polygon>, GridError> {
     let mut components: Vec<u32> = loops.iter().map(|l| l.component).collect();
     components.sort_unstable();
     components.dedup();

@@ -56,6 +56,7 @@ pub use islands::{DroppedIsland, LayerIslands, islands_of};
 pub use loops::LoopStats;
 pub use orient::{AxisChoice, SlicePlan, choose_up};
 pub use parts::{Numbers, plan_input};
+pub(crate) use slice::section;
 pub use slice::{SliceLoop, Sliced, slice};
 pub use support::KeptIsland;
 pub use tabs::{TAB_SIZE, tab_size};

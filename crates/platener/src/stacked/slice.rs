@@ -239,3 +239,23 @@ fn clean_ring(ring: &[DVec2], tolerance: f64) -> Ring {
     }
     remove_straight_vertices(&out, tolerance)
 }
+
+/// The model's material in one plane: the cross-section of `mesh` at local height `z` of
+/// `frame`, filled as the stacked method fills a layer, in `frame`'s 2D coordinates. The plate
+/// method uses it to tell holes through a plate from features on one of its faces.
+pub(crate) fn section(
+    mesh: &Mesh,
+    frame: &platener_geom::Frame,
+    z: f64,
+    tolerance: f64,
+) -> Result<Vec<platener_geom::Polygon>, platener_geom::GridError> {
+    // One layer of thickness 1 has its mid-plane at local 0.5: move the frame so it lies at `z`.
+    let plan = SlicePlan {
+        frame: frame.shifted(z - 0.5),
+        thickness: 1.0,
+        count: 1,
+        choice: super::orient::AxisChoice::Given,
+    };
+    let sliced = slice(mesh, &plan, tolerance);
+    super::islands::fill(&sliced.loops[0])
+}

@@ -1,0 +1,338 @@
+//! A plate's shape is the model's material at its mid-plane (issue 15): features on one face
+//! (pockets, engraved lettering, standoff footprints) are scored on the face where they are,
+//! holes are cut only where the model is open through the plate. `--features cut` keeps the
+//! holes, `--features ignore` gives solid plates without marks.
+//!
+//! Hand-made plates are rectilinear solids (`samples::voxels`) converted with `--weld 0`, so the
+//! expected geometry is exact; the corpus models use the default settings.
+
+use platener::convert::convert;
+use platener::glam::{DVec2, DVec3};
+use platener::method::MethodKind;
+use platener::plan::{MarkKind, Part};
+use platener::plates::{Feature, Relief, Side};
+use platener::samples::voxels;
+use platener::{Cancel, Features, Settings, Source, State, WarningKind, Weld};
+
+/// Converts `triangles` with the plate method, no weld, and `features`.
+fn plate_method(name: &str, triangles: Vec<platener::read::Triangle>, features: Features) -> State {
+    let settings = Settings {
+        weld: Weld::Off,
+        features,
+        ..Settings::default()
+    };
+    convert(
+        MethodKind::Plate,
+        Source::triangles(name, triangles),
+        settings,
+        &Cancel::default(),
+    )
+    .unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+fn parts(state: &State) -> &[Part] {
+    &state.parts.as_ref().expect("parts").parts
+}
+
+fn features(state: &State) -> &[Feature] {
+    &state.plates.as_ref().expect("plates").features
+}
+
+fn score_marks(part: &Part) -> Vec<&Vec<DVec2>> {
+    part.marks
+        .iter()
+        .filter(|m| m.kind == MarkKind::Score)
+        .map(|m| &m.path)
+        .collect()
+}
+
+/// A 60 × 40 mm plate, 3 mm thick, with cell (1, 1) (x 20–35, y 15–25) shaped by `cell`:
+/// `cell(k)` says whether layer k (z 0–2, 2–3) is material there.
+fn plate_with_cell(cell: impl Fn(usize) -> bool) -> Vec<platener::read::Triangle> {
+    voxels(
+        &[0.0, 20.0, 35.0, 60.0],
+        &[0.0, 15.0, 25.0, 40.0],
+        &[0.0, 2.0, 3.0],
+        |i, j, k| (i, j) != (1, 1) || cell(k),
+    )
+}
+
+/// The model-space bounds of a part's marks.
+fn mark_bounds(part: &Part) -> (DVec3, DVec3) {
+    score_marks(part)
+        .into_iter()
+        .flatten()
+        .map(|q| part.frame.to_model(q.extend(0.0)))
+        .fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), p| (lo.min(p), hi.max(p)),
+        )
+}
+
+#[test]
+fn a_1mm_pocket_is_a_score_mark_not_a_hole() {
+    let state = plate_with_cell(|k| k == 0);
+    let state = plate_method("pocket", state, Features::Engrave);
+    let ps = parts(&state);
+    assert_eq!(ps.len(), 1, "one plate");
+    let p = &ps[0];
+    assert!(p.polygon.holes.is_empty(), "no hole: {:?}", p.polygon.holes);
+    assert!((p.polygon.area() - 2400.0).abs() < 1e-6, "area {}", p.polygon.area());
+    let marks = score_marks(p);
+    assert_eq!(marks.len(), 1, "one ring around the pocket");
+    assert_eq!(marks[0].first(), marks[0].last(), "the ring is closed");
+    let (lo, hi) = mark_bounds(p);
+    assert!((lo.x - 20.0).abs() < 1e-6 && (hi.x - 35.0).abs() < 1e-6, "x {lo}..{hi}");
+    assert!((lo.y - 15.0).abs() < 1e-6 && (hi.y - 25.0).abs() < 1e-6, "y {lo}..{hi}");
+    let f = features(&state);
+    assert_eq!(f.len(), 1);
+    assert_eq!(f[0].relief, Relief::Recessed);
+    assert!((f[0].area - 150.0).abs() < 1e-6, "area {}", f[0].area);
+    // The pocket is in the model's top face (z = 3): the side named is the face there.
+    let face_z = if f[0].side == Side::Up { 0.0 } else { p.thickness };
+    let face = p.frame.to_model(DVec3::new(0.0, 0.0, face_z));
+    assert!((face.z - 3.0).abs() < 1e-6, "{:?} face at z {}", f[0].side, face.z);
+    assert!(
+        (f[0].center - DVec3::new(27.5, 20.0, 3.0)).length() < 1e-6,
+        "{}",
+        f[0].center
+    );
+    assert!(
+        state
+            .warnings()
+            .any(|w| w.kind == WarningKind::Features && w.message.contains("1 feature")),
+        "the report lists the feature"
+    );
+}
+
+#[test]
+fn a_hole_through_the_plate_stays_a_hole() {
+    let state = plate_method("through", plate_with_cell(|_| false), Features::Engrave);
+    let ps = parts(&state);
+    assert_eq!(ps.len(), 1);
+    assert_eq!(ps[0].polygon.holes.len(), 1);
+    assert!((ps[0].polygon.area() - (2400.0 - 150.0)).abs() < 1e-6);
+    assert!(score_marks(&ps[0]).is_empty());
+    assert!(features(&state).is_empty());
+}
+
+#[test]
+fn features_cut_gives_the_holes_of_before() {
+    let state = plate_method("pocket", plate_with_cell(|k| k == 0), Features::Cut);
+    let ps = parts(&state);
+    // As before issue 15: the plate has the pocket as a hole, and the pocket's floor, left
+    // over, is extruded into a plate of its own.
+    assert_eq!(ps.len(), 2);
+    assert_eq!(ps[0].polygon.holes.len(), 1, "the pocket is cut through");
+    assert!((ps[0].polygon.area() - 2250.0).abs() < 1e-6);
+    assert!((ps[1].polygon.area() - 150.0).abs() < 1e-6);
+    assert!(ps.iter().all(|p| score_marks(p).is_empty()));
+    assert!(features(&state).is_empty());
+}
+
+#[test]
+fn features_ignore_gives_a_solid_plate_without_marks() {
+    let state = plate_method("pocket", plate_with_cell(|k| k == 0), Features::Ignore);
+    let ps = parts(&state);
+    assert_eq!(ps.len(), 1);
+    assert!(ps[0].polygon.holes.is_empty());
+    assert!((ps[0].polygon.area() - 2400.0).abs() < 1e-6);
+    assert!(score_marks(&ps[0]).is_empty());
+    assert!(features(&state).is_empty());
+}
+
+#[test]
+fn a_standoff_is_scored_and_reported_with_its_size_and_height() {
+    // A 5 × 5 × 6 mm column on a 60 × 40 × 3 mm floor.
+    let triangles = voxels(
+        &[0.0, 20.0, 25.0, 60.0],
+        &[0.0, 15.0, 20.0, 40.0],
+        &[0.0, 3.0, 9.0],
+        |i, j, k| k == 0 || (i, j) == (1, 1),
+    );
+    let state = plate_method("standoff", triangles, Features::Engrave);
+    let floor = parts(&state)
+        .iter()
+        .find(|p| (p.polygon.area() - 2400.0).abs() < 1e-6)
+        .expect("the whole floor is one part");
+    assert!(floor.polygon.holes.is_empty(), "no hole under the standoff");
+    assert_eq!(score_marks(floor).len(), 1);
+    let f = features(&state);
+    assert_eq!(f.len(), 1);
+    assert_eq!(f[0].relief, Relief::Raised);
+    assert!((f[0].size[0] - 5.0).abs() < 1e-6 && (f[0].size[1] - 5.0).abs() < 1e-6);
+    assert_eq!(f[0].height.map(|h| (h * 1e6).round() / 1e6), Some(6.0));
+    assert!((f[0].center - DVec3::new(22.5, 17.5, 3.0)).length() < 1e-6);
+    assert!(
+        state
+            .warnings()
+            .any(|w| w.kind == WarningKind::Features && w.message.contains("5.0 × 5.0 mm, 6.0 mm tall")),
+        "the standoff is reported"
+    );
+}
+
+#[test]
+fn plan_json_has_the_marks_as_score() {
+    let state = plate_method("pocket", plate_with_cell(|k| k == 0), Features::Engrave);
+    let bundle = state.bundle().expect("bundle");
+    let (_, json) = bundle
+        .files
+        .iter()
+        .find(|(n, _)| n.ends_with("plan.json"))
+        .expect("plan.json");
+    let plan: serde_json::Value = serde_json::from_slice(json).expect("json");
+    let scores = plan["parts"][0]["marks"]
+        .as_array()
+        .expect("marks")
+        .iter()
+        .filter(|m| m["kind"] == "score")
+        .count();
+    assert_eq!(scores, 1);
+}
+
+/// Converts a corpus model with the plate method and default settings but `features`; `None`
+/// (after saying why) when the corpus is absent.
+fn corpus_plan(file: &str, features: Features) -> Option<State> {
+    let dir = platener::samples::shared_corpus().map_err(|m| eprintln!("{m}")).ok()?;
+    let settings = Settings {
+        features,
+        ..Settings::default()
+    };
+    let state = convert(
+        MethodKind::Plate,
+        Source::File(dir.join(file)),
+        settings,
+        &Cancel::default(),
+    )
+    .unwrap_or_else(|e| panic!("{file}: {e}"));
+    Some(state)
+}
+
+/// One line per part: holes, score marks; and the features found. The figures of the report.
+fn describe(file: &str, features: Features, state: &State) {
+    let ps = parts(state);
+    let holes: Vec<usize> = ps.iter().map(|p| p.polygon.holes.len()).collect();
+    let marks: Vec<usize> = ps.iter().map(|p| score_marks(p).len()).collect();
+    eprintln!(
+        "{file} ({features:?}): {} parts, holes per part {holes:?}, score marks per part {marks:?}, {} features",
+        ps.len(),
+        self::features(state).len()
+    );
+    for w in state.warnings().filter(|w| w.kind == WarningKind::Features) {
+        eprintln!("  {}", w.message);
+    }
+}
+
+/// Every score mark of `part` lies inside its outline (clear of its holes).
+fn marks_inside(part: &Part) -> bool {
+    score_marks(part)
+        .into_iter()
+        .flatten()
+        .all(|q| part.polygon.contains(*q) || part.polygon.boundary_distance(*q) < 1e-6)
+}
+
+#[test]
+fn ipad_base_keeps_its_lettering_as_score_marks_on_its_top() {
+    let file = "plates/ipad_mini_arcade_cabinet_half.stl";
+    let Some(cut) = corpus_plan(file, Features::Cut) else {
+        return;
+    };
+    describe(file, Features::Cut, &cut);
+    let Some(state) = corpus_plan(file, Features::Engrave) else {
+        return;
+    };
+    describe(file, Features::Engrave, &state);
+    let ps = parts(&state);
+    let fs = features(&state);
+    assert!(!fs.is_empty(), "the lettering is found");
+    // The base: the plate the lettering is on. Its part's holes are joint slots only; cut, the
+    // same part had the letters as holes.
+    let base = fs[0].plate as usize;
+    assert!(fs.iter().all(|f| f.plate as usize == base), "all on the base");
+    let base_plate = &state.plates.as_ref().expect("plates").plates[base];
+    assert!(base_plate.polygon.holes.is_empty(), "no hole from the lettering");
+    let cut_base = &parts(&cut)[base];
+    assert!(
+        cut_base.polygon.holes.len() >= ps[base].polygon.holes.len() + fs.len(),
+        "cut: {} holes, engraved: {}",
+        cut_base.polygon.holes.len(),
+        ps[base].polygon.holes.len()
+    );
+    let part = &ps[base];
+    assert!(marks_inside(part), "part {}: marks outside it", part.id);
+    assert!(score_marks(part).len() >= fs.len(), "every letter is scored");
+    for f in fs {
+        assert_eq!(f.relief, Relief::Recessed, "lettering is engraved");
+        // The lettering is on the base's top face: the side named is the face at the top.
+        let z = if f.side == Side::Up { 0.0 } else { part.thickness };
+        let face = part.frame.to_model(DVec3::new(0.0, 0.0, z));
+        let other = part.frame.to_model(DVec3::new(0.0, 0.0, part.thickness - z));
+        assert!(face.z > other.z, "feature at {} is on the lower face", f.center);
+    }
+    assert_eq!(ps.len(), parts(&cut).len(), "the same parts");
+}
+
+#[test]
+fn xyz_cube_faces_have_no_holes_from_their_letters() {
+    let file = "solids/xyz_calibration_cube_20mm.stl";
+    let Some(state) = corpus_plan(file, Features::Engrave) else {
+        return;
+    };
+    describe(file, Features::Engrave, &state);
+    let ps = parts(&state);
+    assert_eq!(ps.len(), 6, "a hull of six faces");
+    assert!(ps.iter().all(|p| p.polygon.holes.is_empty()), "no through-hole");
+    let marked = ps.iter().filter(|p| !score_marks(p).is_empty()).count();
+    assert!(marked >= 3, "X, Y and Z are scored ({marked} parts marked)");
+    assert!(ps.iter().all(marks_inside));
+    assert!(features(&state).iter().all(|f| f.relief == Relief::Recessed));
+}
+
+#[test]
+fn arduino_floor_has_no_holes_under_its_standoffs_and_reports_them() {
+    let file = "plates/arduino_uno_enclosure.stl";
+    let Some(cut) = corpus_plan(file, Features::Cut) else {
+        return;
+    };
+    describe(file, Features::Cut, &cut);
+    let Some(state) = corpus_plan(file, Features::Engrave) else {
+        return;
+    };
+    describe(file, Features::Engrave, &state);
+    let ps = parts(&state);
+    // The floor: the largest part, lying flat.
+    let floor = ps
+        .iter()
+        .filter(|p| p.frame.n.z.abs() > 0.999)
+        .max_by(|a, b| a.polygon.area().total_cmp(&b.polygon.area()))
+        .expect("a floor");
+    assert!(
+        floor.polygon.holes.is_empty(),
+        "floor holes {:?}",
+        floor.polygon.holes.len()
+    );
+    let standoffs: Vec<&Feature> = features(&state)
+        .iter()
+        .filter(|f| f.relief == Relief::Raised && ps[f.plate as usize].id == floor.id)
+        .collect();
+    assert!(standoffs.len() >= 4, "{} standoffs found", standoffs.len());
+    for s in &standoffs {
+        assert!(s.height.is_some_and(|h| h > 1.0), "standoff height {:?}", s.height);
+    }
+    assert!(
+        state
+            .warnings()
+            .any(|w| w.kind == WarningKind::Features && w.message.contains("boss")),
+        "the standoffs are reported"
+    );
+}
+
+#[test]
+fn features_setting_parses_the_three_words_and_names_a_bad_one() {
+    assert_eq!("engrave".parse::<Features>().ok(), Some(Features::Engrave));
+    assert_eq!(" CUT ".parse::<Features>().ok(), Some(Features::Cut));
+    assert_eq!("ignore".parse::<Features>().ok(), Some(Features::Ignore));
+    let e = "drill".parse::<Features>().expect_err("not a mode").to_string();
+    assert!(e.contains("features") && e.contains("drill"), "{e}");
+    assert_eq!(Settings::default().features, Features::Engrave);
+}
