@@ -17,9 +17,12 @@
 //! | [`triangulate`] | triangles covering a polygon with holes (i_triangle), for 3D scenes |
 //! | [`dedup`] | finding equal items among millions (sorted fingerprints) |
 //! | [`weld`] | merging nearby points in 2D or 3D (spatial hash) |
+//! | [`validity`] | is a part outline valid: simple rings, holes inside, nothing narrower than the kerf |
+//! | [`clean`] | repairing outlines into valid pieces (regularise, open, separate touches) |
 
 pub mod boolean;
 pub mod boxes;
+pub mod clean;
 pub mod dedup;
 pub mod frame;
 pub mod grid;
@@ -29,6 +32,7 @@ pub mod rng;
 pub mod slab;
 pub mod tolerance;
 pub mod triangulate;
+pub mod validity;
 pub mod weld;
 
 pub use frame::Frame;
@@ -36,3 +40,4 @@ pub use glam;
 pub use grid::GridError;
 pub use polygon::{Polygon, Ring};
 pub use tolerance::Tolerances;
+pub use validity::{Finding, Problem, RingId, validate};
