@@ -2,10 +2,13 @@
 //!
 //! Each plate is one part, numbered from 1 in plate order, with the outline the `joints` step
 //! gave it (fingers, tabs, slots) and its connections as plan.json joints; dovetail keys follow
-//! as parts of their own.
+//! as parts of their own. Outlines that joints left invalid are repaired ([`clean`]).
+
+pub mod clean;
 
 use std::collections::BTreeMap;
 
+use crate::context::StepContext;
 use crate::joints::{Connection, ConnectionKind, JointStyle, Joints};
 use crate::plan::{EdgeLabel, Joint, JointKind, Method, Part, PlanInput, SettingValue, SourceInfo};
 use crate::plates::Plates;
@@ -14,7 +17,14 @@ use crate::settings::Settings;
 use crate::weld::Welded;
 
 /// Step `parts` of the plate method: the plates with their joints as parts to cut.
-pub fn run(model: &Model, plates: &Plates, joints: Option<&Joints>, welded: &Welded, settings: &Settings) -> PlanInput {
+pub fn run(
+    model: &Model,
+    plates: &Plates,
+    joints: Option<&Joints>,
+    welded: &Welded,
+    settings: &Settings,
+    cx: &mut StepContext<'_>,
+) -> PlanInput {
     let mut parts = plate_parts(plates, joints);
     let mut connections: Vec<Joint> = joints.map_or(Vec::new(), |j| j.connections.iter().map(joint).collect());
     if let Some(j) = joints {
@@ -41,6 +51,7 @@ pub fn run(model: &Model, plates: &Plates, joints: Option<&Joints>, welded: &Wel
         "connections": joints.map(|j| &j.connections),
     }))
     .ok();
+    clean::clean_input(&mut input, cx);
     input
 }
 

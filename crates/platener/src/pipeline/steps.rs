@@ -149,7 +149,7 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
         StepId::Parts => {
             let (model, plates) = (need(&state.read, name, "read")?, need(&state.plates, name, "plates")?);
             let welded = need(&state.weld, name, "weld")?;
-            let input = parts::run(model, plates, state.joints.as_deref(), welded, &s);
+            let input = parts::run(model, plates, state.joints.as_deref(), welded, &s, cx);
             state.parts = Some(Arc::new(input));
         }
         StepId::Stacked => {

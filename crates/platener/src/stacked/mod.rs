@@ -195,7 +195,8 @@ pub fn run(
     for w in warnings(&stack) {
         cx.warn(WarningKind::CuttingPlan, w);
     }
-    let input = plan_input(&stack, model, settings)?;
+    let mut input = plan_input(&stack, model, settings)?;
+    crate::parts::clean::clean_input(&mut input, cx);
     Ok((stack, input))
 }
 
