@@ -61,6 +61,17 @@ pub fn clean(polygon: &Polygon, min_width: f64) -> Result<Vec<Polygon>, GridErro
             .collect();
         pieces = open(&boolean::difference(&pieces, &squares)?, min_width)?;
     }
+    // An opening on the grid is not quite idempotent (miter corners move by a step): open
+    // again what is still found narrow.
+    for _ in 0..ROUNDS {
+        if !pieces
+            .iter()
+            .any(|p| validate(p, min_width).iter().any(|f| f.problem == Problem::Narrow))
+        {
+            break;
+        }
+        pieces = open(&pieces, min_width)?;
+    }
     Ok(pieces)
 }
 

@@ -126,9 +126,9 @@ fn pockets(ring: &[DVec2]) -> Vec<DVec2> {
 /// cut path is at least the spacing wide.
 pub(crate) const MIN_NEST_WIDTH: f64 = 0.01;
 
-/// Whether `ring` can go to jagua-rs: a valid simple ring (exact predicates) with no piece
-/// narrower than [`MIN_NEST_WIDTH`]. Checked once per part and per hole region, before any
-/// rotation or translation.
+/// Whether `ring` can go to jagua-rs as a region: a valid simple ring (exact predicates) with
+/// no piece narrower than [`MIN_NEST_WIDTH`]. Hole regions are checked with it: a hole shrunk
+/// by half the spacing can leave slivers microns wide.
 pub(crate) fn nestable(ring: &[DVec2]) -> bool {
     let (lo, hi) = bounds_of(ring.iter().copied());
     (hi - lo).min_element() >= MIN_NEST_WIDTH && validate(&Polygon::new(ring.to_vec()), MIN_NEST_WIDTH).is_empty()
@@ -166,13 +166,16 @@ pub(crate) fn grown_outline(cut: &Polygon, grow: f64) -> Option<Ring> {
         .map(|p| remove_straight_vertices(&p.outer, NEST_SIMPLIFY))
 }
 
-/// The nest shape of a part with cut path `cut` and nominal area `area`; `None` when its grown
-/// outline is not [`nestable`] (the caller names the part).
+/// The nest shape of a part with cut path `cut` and nominal area `area`; `None` when no
+/// orientation of its grown outline can go to jagua-rs ([`to_spolygon`]; the caller names the
+/// part). Grown by half the spacing (more than half the kerf), an outline is never thinner
+/// than [`MIN_NEST_WIDTH`]; simplifying it may make it touch itself, which jagua-rs refuses
+/// and [`to_spolygon`] replaces by the bounding rectangle.
 ///
 /// Orientations: 0, 90, 180 and 270°, and with `fine` also the smallest-rectangle angle plus
 /// 90° steps when it differs from those (a part drawn askew in its frame).
 pub(crate) fn nest_shape(cut: &Polygon, area: f64, spacing: f64, fine: bool) -> Option<NestShape> {
-    let ring = grown_outline(cut, spacing / 2.0).filter(|r| nestable(r))?;
+    let ring = grown_outline(cut, spacing / 2.0)?;
     let mut angles: Vec<f64> = (0..4).map(|k| f64::from(k) * FRAC_PI_2).collect();
     if fine {
         let a = min_area_angle(&ring);
