@@ -75,10 +75,13 @@ pub fn clean(polygon: &Polygon, min_width: f64) -> Result<Vec<Polygon>, GridErro
     Ok(pieces)
 }
 
-/// The opening of `pieces` by half of `min_width` (none for 0), without crumbs, largest first.
+/// The opening of `pieces` by half of `min_width` (none for 0), within `pieces`, without
+/// crumbs, largest first.
 fn open(pieces: &[Polygon], min_width: f64) -> Result<Vec<Polygon>, GridError> {
+    // Miter joins make an opening grow back sharp corners where the shrink removed short
+    // edges (a chamfer comes back square): intersected with the input, it never adds material.
     let opened = if min_width > 0.0 {
-        offset::opening(pieces, min_width / 2.0)?
+        boolean::intersection(&offset::opening(pieces, min_width / 2.0)?, pieces)?
     } else {
         pieces.to_vec()
     };

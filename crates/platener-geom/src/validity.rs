@@ -328,7 +328,17 @@ fn narrow_spots(polygon: &Polygon, min_width: f64) -> Result<Vec<DVec2>, GridErr
         return Ok(Vec::new());
     }
     let cores = offset::offset(&lost, -NOISE_WIDTH)?;
-    Ok(cores.iter().filter_map(|p| p.outer.first().copied()).collect())
+    // Miter joins are not a true structuring element: where the shrink removes an edge shorter
+    // than the width (a small chamfer, a finger's notch), growing back leaves a crumb at the
+    // corner, at most about the width across. Narrow material runs longer than that.
+    Ok(cores
+        .iter()
+        .filter(|p| {
+            let (lo, hi) = p.bounds();
+            (hi - lo).max_element() > 2.0 * min_width
+        })
+        .filter_map(|p| p.outer.first().copied())
+        .collect())
 }
 
 #[cfg(test)]

@@ -1,8 +1,8 @@
 //! Issue 15, "no internal errors" and "every outline is valid": every corpus model and every
 //! sample, converted with both methods at every sheet thickness from 1 to 6 mm, either
 //! converts or fails with a model or setting error (never an internal error, never a panic),
-//! and every part of every plan it makes has a valid outline (simple rings, holes inside, no
-//! material narrower than the kerf) and a valid cut path.
+//! and every part of every plan it makes has a valid outline (simple rings, holes strictly
+//! inside and apart, no material narrower than the kerf) and a valid cut path.
 
 use std::time::{Duration, Instant};
 

@@ -139,7 +139,8 @@ pub(crate) fn nestable(ring: &[DVec2]) -> bool {
 /// for a ring narrower than [`MIN_NEST_WIDTH`] in x or y, which jagua-rs cannot take.
 pub(crate) fn to_spolygon(ring: &[DVec2]) -> Option<SPolygon> {
     let (lo, hi) = bounds_of(ring.iter().copied());
-    if ring.len() < 3 || !((hi - lo).min_element() >= MIN_NEST_WIDTH) {
+    let extent = (hi - lo).min_element();
+    if ring.len() < 3 || extent.is_nan() || extent < MIN_NEST_WIDTH {
         return None;
     }
     let points: Vec<Point> = ring.iter().map(|p| Point(p.x as f32, p.y as f32)).collect();
