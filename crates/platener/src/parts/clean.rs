@@ -20,6 +20,10 @@ use rayon::prelude::*;
 use crate::context::{StepContext, WarningKind};
 use crate::plan::{Joint, Part, PlanInput};
 
+/// A repair may cut off at most this share of a part's area; beyond it the outline is left
+/// as it was, with a warning (see [`clean_part`]).
+const MAX_LOSS: f64 = 0.02;
+
 /// What cleaning did to one part: a warning for it, and whether it is gone.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Repair {
@@ -68,6 +72,20 @@ fn clean_part(part: &mut Part, min_width: f64) -> Option<Repair> {
         .filter(|a| *a >= CRUMB_AREA)
         .collect();
     let lost = part.polygon.area() - total_area(&pieces);
+    let whole = part.polygon.area();
+    let gone = lost.max(0.0) + cut_off.iter().sum::<f64>();
+    if gone > MAX_LOSS * whole {
+        // Separating a touch split the part (a slot notch pinching a layer's neck): losing a
+        // piece this large is worse than an outline that touches itself; leave it and say so.
+        return Some(Repair {
+            part: id,
+            message: Some(format!(
+                "part {id}: its outline touches itself or is narrower than the kerf ({min_width} mm) somewhere, \
+                 and repairing it would cut off {gone:.1} mm² of {whole:.1}; left as it is"
+            )),
+            removed: false,
+        });
+    }
     part.polygon = kept;
     let message = (!cut_off.is_empty() || lost >= 1.0).then(|| {
         format!(
