@@ -18,9 +18,12 @@
 //! | [`dedup`] | finding equal items among millions (sorted fingerprints) |
 //! | [`weld`] | merging nearby points in 2D or 3D (spatial hash) |
 //! | [`plane_fit`] | planes fitted to triangles, points fitted to planes (QEF) |
+//! | [`validity`] | is a part outline valid: simple rings, holes inside, nothing narrower than the kerf |
+//! | [`clean`] | repairing outlines into valid pieces (regularise, open, separate touches) |
 
 pub mod boolean;
 pub mod boxes;
+pub mod clean;
 pub mod dedup;
 pub mod frame;
 pub mod grid;
@@ -31,6 +34,7 @@ pub mod rng;
 pub mod slab;
 pub mod tolerance;
 pub mod triangulate;
+pub mod validity;
 pub mod weld;
 
 pub use frame::Frame;
@@ -38,3 +42,4 @@ pub use glam;
 pub use grid::GridError;
 pub use polygon::{Polygon, Ring};
 pub use tolerance::Tolerances;
+pub use validity::{Finding, Problem, RingId, validate};

@@ -3,9 +3,10 @@
 //! Each plate is one part, numbered from 1 in plate order, with the outline the `joints` step
 //! gave it (fingers, tabs, slots) and its connections as plan.json joints; dovetail keys follow
 //! as parts of their own. Plates no joint holds are named in warnings, and small ones left out
-//! ([`loose`]).
+//! ([`loose`]). Outlines that joints left invalid are repaired ([`clean`]).
 
 mod loose;
+pub mod clean;
 
 use std::collections::BTreeMap;
 
@@ -62,6 +63,7 @@ pub fn run(
         "connections": joints.map(|j| &j.connections),
     }))
     .ok();
+    clean::clean_input(&mut input, cx);
     input
 }
 

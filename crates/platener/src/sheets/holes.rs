@@ -11,7 +11,7 @@ use glam::DVec2;
 use platener_geom::{Polygon, offset};
 
 use super::blf::Bin;
-use super::shape::{NestShape, rotate};
+use super::shape::{NestShape, nestable, rotate};
 
 /// Where a child sits in its host's frame: host-frame point = R(angle) · p + translation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -25,7 +25,9 @@ pub(crate) struct Child {
 }
 
 /// The free regions of a host's holes: each hole (made counter-clockwise) shrunk by half the
-/// spacing, largest first.
+/// spacing, largest first. A curved hole barely wider than the spacing shrinks to slivers
+/// microns wide; only regions jagua-rs can take ([`nestable`]) are kept (no part fits the
+/// others anyway).
 fn hole_regions(host: &NestShape, spacing: f64) -> Vec<Polygon> {
     let mut regions: Vec<Polygon> = host
         .cut
@@ -37,7 +39,7 @@ fn hole_regions(host: &NestShape, spacing: f64) -> Vec<Polygon> {
             offset::offset(&[Polygon::new(ring)], -spacing / 2.0).ok()
         })
         .flatten()
-        .filter(|p| p.outer.len() >= 3)
+        .filter(|p| nestable(&p.outer))
         .collect();
     regions.sort_by(|a, b| b.area().total_cmp(&a.area()));
     regions

@@ -11,7 +11,7 @@ use std::f64::consts::FRAC_PI_2;
 use glam::DVec2;
 use jagua_rs::geometry::primitives::{Point, SPolygon};
 use platener_geom::polygon::{bounds_of, remove_straight_vertices};
-use platener_geom::{Polygon, Ring, offset};
+use platener_geom::{Polygon, Ring, offset, validate};
 
 /// Rotations closer than this (radians, 0.5°) to a multiple of 90° count as that multiple.
 const SAME_ANGLE: f64 = 0.5 * std::f64::consts::PI / 180.0;
@@ -120,12 +120,31 @@ fn pockets(ring: &[DVec2]) -> Vec<DVec2> {
         .collect()
 }
 
-/// The jagua-rs polygon of `ring`; a ring it refuses (f32 duplicates, self-touching) falls
-/// back to its bounding rectangle, which is larger and so still safe.
+/// Shapes narrower than this (mm) never reach jagua-rs: its f32 engine unwraps a bounding box
+/// and a pole of inaccessibility with no extent (a panic, not an error), and a shape a few
+/// nanometres wide rounds to nothing in f32 once moved across a sheet. Far below any part: a
+/// cut path is at least the spacing wide.
+pub(crate) const MIN_NEST_WIDTH: f64 = 0.01;
+
+/// Whether `ring` can go to jagua-rs as a region: a valid simple ring (exact predicates) with
+/// no piece narrower than [`MIN_NEST_WIDTH`]. Hole regions are checked with it: a hole shrunk
+/// by half the spacing can leave slivers microns wide.
+pub(crate) fn nestable(ring: &[DVec2]) -> bool {
+    let (lo, hi) = bounds_of(ring.iter().copied());
+    (hi - lo).min_element() >= MIN_NEST_WIDTH && validate(&Polygon::new(ring.to_vec()), MIN_NEST_WIDTH).is_empty()
+}
+
+/// The jagua-rs polygon of `ring`; a ring it refuses (f32 duplicates, self-touching after
+/// rotation) falls back to its bounding rectangle, which is larger and so still safe. `None`
+/// for a ring narrower than [`MIN_NEST_WIDTH`] in x or y, which jagua-rs cannot take.
 pub(crate) fn to_spolygon(ring: &[DVec2]) -> Option<SPolygon> {
+    let (lo, hi) = bounds_of(ring.iter().copied());
+    let extent = (hi - lo).min_element();
+    if ring.len() < 3 || extent.is_nan() || extent < MIN_NEST_WIDTH {
+        return None;
+    }
     let points: Vec<Point> = ring.iter().map(|p| Point(p.x as f32, p.y as f32)).collect();
     SPolygon::new(points).ok().or_else(|| {
-        let (lo, hi) = bounds_of(ring.iter().copied());
         let rect = [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
         SPolygon::new(rect.iter().map(|p| Point(p.x as f32, p.y as f32)).collect()).ok()
     })
@@ -148,7 +167,11 @@ pub(crate) fn grown_outline(cut: &Polygon, grow: f64) -> Option<Ring> {
         .map(|p| remove_straight_vertices(&p.outer, NEST_SIMPLIFY))
 }
 
-/// The nest shape of a part with cut path `cut` and nominal area `area`.
+/// The nest shape of a part with cut path `cut` and nominal area `area`; `None` when no
+/// orientation of its grown outline can go to jagua-rs ([`to_spolygon`]; the caller names the
+/// part). Grown by half the spacing (more than half the kerf), an outline is never thinner
+/// than [`MIN_NEST_WIDTH`]; simplifying it may make it touch itself, which jagua-rs refuses
+/// and [`to_spolygon`] replaces by the bounding rectangle.
 ///
 /// Orientations: 0, 90, 180 and 270°, and with `fine` also the smallest-rectangle angle plus
 /// 90° steps when it differs from those (a part drawn askew in its frame).

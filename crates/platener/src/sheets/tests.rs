@@ -109,3 +109,70 @@ fn the_same_seed_gives_the_same_layout() {
     let b = nest_all(&parts, &CutSettings::default());
     assert_eq!(a.placements, b.placements);
 }
+
+/// Issue 15: a near-zero-width shape (3 µm, below the grid) never reaches jagua-rs, whose f32
+/// engine panics on boxes with no extent; the nester names the part instead.
+#[test]
+fn shapes_jagua_cannot_take_are_refused_not_passed_on() {
+    let sliver = [
+        DVec2::new(10.0, 10.0),
+        DVec2::new(10.000_003, 10.0),
+        DVec2::new(10.000_003, 50.0),
+    ];
+    assert!(shape::to_spolygon(&sliver).is_none());
+    assert!(!shape::nestable(&sliver));
+    // A wide ring with a zero-width spike is not nestable either; a plain square is.
+    let spike = [
+        DVec2::new(0.0, 0.0),
+        DVec2::new(10.0, 0.0),
+        DVec2::new(10.0, 5.0),
+        DVec2::new(20.0, 5.0),
+        DVec2::new(10.0, 5.0),
+        DVec2::new(10.0, 10.0),
+        DVec2::new(0.0, 10.0),
+    ];
+    assert!(!shape::nestable(&spike));
+    assert!(shape::nestable(&rect(0.0, 0.0, 10.0, 10.0)));
+    // A part whose cut path arrives with nothing to nest (grown by half the spacing, any
+    // sliver is the spacing wide; an empty path is not): a typed error naming it, no panic.
+    let settings = CutSettings {
+        kerf: Some(0.0),
+        ..CutSettings::default()
+    };
+    let parts = [part(7, Polygon::new(rect(0.0, 0.0, 10.0, 10.0)))];
+    let cut = CutPaths {
+        kerf: 0.0,
+        parts: vec![crate::kerf::CutPart {
+            id: 7,
+            nominal: parts[0].polygon.clone(),
+            cut: Polygon::default(),
+        }],
+    };
+    match nest(&parts, &cut, &settings, &|| false) {
+        Err(PlanError::Part { part: 7, .. }) => {}
+        other => panic!("{other:?}"),
+    }
+}
+
+/// A host whose hole shrinks (by half the spacing) to slivers microns wide: the regions are
+/// skipped, the small part goes on the sheet, nothing panics.
+#[test]
+fn a_hole_barely_wider_than_the_spacing_hosts_nothing() {
+    // A 2.004 mm wide slot: shrunk by 1 mm on each side, 4 µm remain.
+    let host = Polygon {
+        outer: rect(0.0, 0.0, 100.0, 100.0),
+        holes: vec![rect(20.0, 20.0, 22.004, 80.0)],
+    };
+    let parts = [part(1, host), part(2, Polygon::new(rect(0.0, 0.0, 1.0, 1.0)))];
+    let settings = CutSettings {
+        kerf: Some(0.0),
+        ..CutSettings::default()
+    };
+    let n = nest_all(&parts, &settings);
+    assert_eq!(n.sheets.len(), 1);
+    let child = n.placements[1].apply(DVec2::new(0.5, 0.5));
+    assert!(
+        !(20.0..=22.004).contains(&child.x) || !(20.0..=80.0).contains(&child.y),
+        "{child}"
+    );
+}

@@ -207,10 +207,11 @@ pub fn run(
     for w in warnings(&stack) {
         cx.warn(WarningKind::CuttingPlan, w);
     }
-    let (input, numbers) = plan_input(&stack, model, settings)?;
+    let (mut input, numbers) = plan_input(&stack, model, settings)?;
     for w in number_warnings(&numbers) {
         cx.warn(WarningKind::CuttingPlan, w);
     }
+    crate::parts::clean::clean_input(&mut input, cx);
     Ok((stack, input))
 }
 
