@@ -334,7 +334,7 @@ fn a_standing_torus_has_two_islands_in_the_middle_and_all_are_joined() {
     assert_neighbours_joined(&c);
     assert_eq!(assemblies(plan(&c)).len(), 1);
     assert_slots_match(&c);
-    assert_verified(&c);
+    assert_verified_but_outlines(&c, &[1]);
 }
 
 #[test]
@@ -358,7 +358,7 @@ fn two_separate_bodies_are_each_joined_to_their_neighbours() {
     assert_neighbours_joined(&c);
     assert_eq!(assemblies(plan(&c)).len(), 2, "one assembly per body");
     assert_slots_match(&c);
-    assert_verified(&c);
+    assert_verified_but_outlines(&c, &[1, 30]);
 }
 
 #[test]
@@ -456,16 +456,29 @@ fn assert_verified(c: &Conversion) -> platener::verify::Verification {
         v.surface_covered,
         v.volume_inside
     );
-    // verify now also checks outlines; a shaft slot's corner on a layer's edge still makes a
-    // self-touching ring (issue 15, fixed by the stacked part of it): printed, not asserted here
-    // until that lands. Every other check must pass.
-    let outline = |f: &&platener::verify::Failure| f.check == platener::verify::Check::Outline;
-    let (outlines, others): (Vec<_>, Vec<_>) = v.failures.iter().partition(outline);
-    eprintln!("outline findings: {outlines:?}");
-    assert!(others.is_empty(), "{others:?}");
+    assert!(v.passed(), "{:?}", v.problems);
     assert!(v.surface_covered.expect("with the model") >= 0.9);
     assert!(v.volume_inside.expect("with the model") >= 0.9);
     v
+}
+
+/// [`assert_verified`] for a plan whose listed layers keep an outline that touches itself or
+/// is narrower than the kerf where a shaft's notch pinches the layer: separating the touch
+/// would cut off more than 2 % of the layer, so the repair is refused (issue 15, still open;
+/// the fix belongs in the notch placement). Only those parts may fail, and only on outlines;
+/// the test fails when they are repaired, so the exemption goes with the fix.
+fn assert_verified_but_outlines(c: &Conversion, parts: &[u32]) {
+    let mesh = c.mesh.as_ref().expect("mesh");
+    let v = platener::verify::verify(plan(c), Some(mesh));
+    let mut failing: Vec<u32> = Vec::new();
+    for f in &v.failures {
+        assert_eq!(f.check, platener::verify::Check::Outline, "{}", f.message);
+        failing.extend(&f.parts);
+    }
+    failing.dedup();
+    assert_eq!(failing, parts, "{:?}", v.problems);
+    assert!(v.surface_covered.expect("with the model") >= 0.9);
+    assert!(v.volume_inside.expect("with the model") >= 0.9);
 }
 
 #[test]

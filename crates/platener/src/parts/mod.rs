@@ -5,8 +5,8 @@
 //! as parts of their own. Plates no joint holds are named in warnings, and small ones left out
 //! ([`loose`]). Outlines that joints left invalid are repaired ([`clean`]).
 
-mod loose;
 pub mod clean;
+mod loose;
 
 use std::collections::BTreeMap;
 

@@ -175,8 +175,9 @@ pub fn check(plan: &Plan, analysis: &Analysis, min_coverage: f64) -> Verificatio
             ),
         });
     }
+    let kerf = plan.settings.cut.kerf();
     for part in &plan.parts {
-        for finding in outline_findings(part) {
+        for finding in outline_findings(part, kerf) {
             failures.push(Failure {
                 check: Check::Outline,
                 parts: vec![part.id],

@@ -79,9 +79,7 @@ fn coarse_ball_joints_all_meet() {
     let ball = samples::sphere(glam::DVec3::ZERO, 40.0, 8, 6);
     let stored = ball.into_iter().map(|t| t.map(|v| v.as_vec3().as_dvec3())).collect();
     let v = check(stored);
-    // One layer of the ball's parts pinches (a self-touching outline) until outlines are made
-    // valid (issue 15); the assembly itself holds.
-    assert!(v.failures.iter().all(|f| f.check == Check::Outline), "{:?}", v.problems);
+    assert!(v.passed(), "{:?}", v.problems);
     assert!(v.joints_not_meeting.is_empty(), "{:?}", v.joints_not_meeting);
     assert_eq!(v.groups, 1);
     assert!(v.interference_share < 0.001, "{}", v.interference_share);
@@ -191,19 +189,26 @@ fn part_with(outline: Vec<glam::DVec2>, holes: Vec<Vec<glam::DVec2>>) -> crate::
     }
 }
 
+fn outline_findings_at(part: &crate::plan::PlanPart) -> Vec<String> {
+    outline_findings(part, 0.2)
+}
+
 #[test]
 fn outline_findings_name_crossings_touches_spikes_and_stray_holes() {
     use glam::DVec2;
     use platener_geom::polygon::rect;
     let d = |x: f64, y: f64| DVec2::new(x, y);
     let square = rect(0.0, 0.0, 10.0, 10.0);
-    assert!(outline_findings(&part_with(square.clone(), vec![])).is_empty());
+    assert!(outline_findings_at(&part_with(square.clone(), vec![])).is_empty());
     let hole: Vec<DVec2> = rect(2.0, 2.0, 4.0, 4.0).into_iter().rev().collect();
-    assert!(outline_findings(&part_with(square.clone(), vec![hole.clone()])).is_empty());
+    assert!(outline_findings_at(&part_with(square.clone(), vec![hole.clone()])).is_empty());
     // A bow tie crosses itself at (3.75, 3.75).
     let bow = vec![d(0.0, 0.0), d(10.0, 10.0), d(10.0, 0.0), d(0.0, 6.0)];
-    let f = outline_findings(&part_with(bow, vec![]));
-    assert_eq!(f, vec!["the outline touches itself at (3.750, 3.750)".to_string()]);
+    let f = outline_findings_at(&part_with(bow, vec![]));
+    assert!(
+        f.contains(&"the outline touches itself at (3.750, 3.750)".to_string()),
+        "{f:?}"
+    );
     // Two squares sharing the corner (10, 10) as one ring: self-touching.
     let touching = vec![
         d(0.0, 0.0),
@@ -215,7 +220,7 @@ fn outline_findings_name_crossings_touches_spikes_and_stray_holes() {
         d(10.0, 10.0),
         d(0.0, 10.0),
     ];
-    let f = outline_findings(&part_with(touching, vec![]));
+    let f = outline_findings_at(&part_with(touching, vec![]));
     assert!(
         f.iter().any(|m| m.contains("touches itself at (10.000, 10.000)")),
         "{f:?}"
@@ -230,7 +235,7 @@ fn outline_findings_name_crossings_touches_spikes_and_stray_holes() {
         d(5.0, 10.0),
         d(0.0, 10.0),
     ];
-    let f = outline_findings(&part_with(spike, vec![]));
+    let f = outline_findings_at(&part_with(spike, vec![]));
     assert!(
         f.iter()
             .any(|m| m.contains("runs back along itself at (5.000, 15.000)")),
@@ -238,13 +243,13 @@ fn outline_findings_name_crossings_touches_spikes_and_stray_holes() {
     );
     // A hole outside the outline, a hole crossing it, a hole touching another.
     let outside: Vec<DVec2> = rect(20.0, 2.0, 24.0, 4.0).into_iter().rev().collect();
-    let f = outline_findings(&part_with(square.clone(), vec![outside]));
+    let f = outline_findings_at(&part_with(square.clone(), vec![outside]));
     assert_eq!(f, vec!["hole 1 lies outside the outline".to_string()]);
     let crossing: Vec<DVec2> = rect(8.0, 2.0, 12.0, 4.0).into_iter().rev().collect();
-    let f = outline_findings(&part_with(square.clone(), vec![crossing]));
+    let f = outline_findings_at(&part_with(square.clone(), vec![crossing]));
     assert!(f.iter().any(|m| m.contains("the outline and hole 1 touch")), "{f:?}");
     let next: Vec<DVec2> = rect(4.0, 2.0, 6.0, 4.0).into_iter().rev().collect();
-    let f = outline_findings(&part_with(square, vec![hole, next]));
+    let f = outline_findings_at(&part_with(square, vec![hole, next]));
     assert!(f.iter().any(|m| m.contains("hole 1 and hole 2 touch")), "{f:?}");
 }
 

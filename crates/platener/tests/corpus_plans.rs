@@ -1,0 +1,150 @@
+//! Issue 15, "tests over every corpus plan": every corpus model converted with both methods at
+//! the default settings, and every plan made checked as a maker would find it: outlines a
+//! laser can cut (the kernel's validity check at the plan's kerf), no two parts sharing
+//! volume, every part on its sheet, every part numbered (on itself, or for a stacked layer too
+//! thin for digits, on the layer it rests on), and `verify` passing exactly the plans listed in
+//! [`PASSING`] — so a plan that stops reproducing its model, or one that starts to, shows here.
+//!
+//! Skipped with a message when the corpus is absent (CI fails instead).
+
+use std::collections::BTreeSet;
+
+use platener::convert::{Request, Status, convert_all, no_progress};
+use platener::method::MethodKind;
+use platener::verify::Check;
+use platener::{Cancel, Settings, Source, State, samples};
+use platener_geom::{Polygon, validate};
+
+/// The plans `platener verify` passes (model stem / method), measured when issue 15's parts
+/// were merged. Every other plan fails it, for a reason its report names.
+const PASSING: &[&str] = &[
+    "acrylic_case_corner_bracket_5mm/plate",
+    "archimedean_chips_2.4mm/plate",
+    "archimedean_chips_2.4mm/stacked",
+    "arduino_uno_enclosure/plate",
+    "camera_box_shell/plate",
+    "chess_case_bottom/plate",
+    "chinese_chess_piece_engraved/stacked",
+    "clamp_bar_140/stacked",
+    "cube_libre_puzzle_pieces/stacked",
+    "indiafoss_keychain_text/stacked",
+    "ipad_mini_arcade_cabinet_half/plate",
+    "lasercut_fingerjoint_examples_assembly/plate",
+    "model_house_walls/plate",
+    "openscad_letter_block_engraved/plate",
+    "openscad_letter_block_engraved/stacked",
+    "otoscope_name_plate_text/plate",
+    "otoscope_name_plate_text/stacked",
+    "parts_tray_drawer_holder/plate",
+    "photo_frame_5inch_two_parts/plate",
+    "plate_with_holes_12.7mm/plate",
+    "plate_with_holes_12.7mm/stacked",
+    "plycutter_PlyTest0.1/plate",
+    "radial_engine_pushrods_nonmanifold/stacked",
+    "rpi4_mounting_plate/plate",
+    "rpi4_mounting_plate/stacked",
+    "sdcard_snap_box/plate",
+    "slic3r_20mm_box/plate",
+    "slic3r_20mm_box/stacked",
+    "smartphone_desk_stand/plate",
+    "tray_bottom_14in_3.2mm_sheet/plate",
+    "tray_bottom_14in_3.2mm_sheet/stacked",
+    "truchet_tiles_4mm/plate",
+    "truchet_tiles_4mm/stacked",
+    "xyz_calibration_cube_20mm/plate",
+    "xyz_calibration_cube_20mm/stacked",
+];
+
+/// What is wrong with one plan as a maker would find it (empty when nothing is).
+fn faults(name: &str, state: &State, verification: &platener::verify::Verification) -> Vec<String> {
+    let plan = &state.export.as_ref().expect("a converted plan is exported").plan;
+    let kerf = plan.settings.cut.kerf();
+    let mut out = Vec::new();
+    for part in &plan.parts {
+        let polygon = Polygon {
+            outer: part.outline.clone(),
+            holes: part.holes.clone(),
+        };
+        let found = validate(&polygon, kerf);
+        if !found.is_empty() {
+            out.push(format!(
+                "{name}: part {} outline: {:?}",
+                part.id,
+                &found[..found.len().min(3)]
+            ));
+        }
+    }
+    for f in &verification.failures {
+        if matches!(f.check, Check::Interference | Check::Sheet) {
+            out.push(format!("{name}: {:?}: {}", f.check, f.message));
+        }
+    }
+    let labels = state.labels.as_ref().expect("labelled");
+    let on_neighbour: BTreeSet<u64> = state
+        .parts
+        .as_ref()
+        .and_then(|p| p.method_report.as_ref())
+        .and_then(|r| r["numbers"]["on_neighbour"].as_array().cloned())
+        .unwrap_or_default()
+        .iter()
+        .filter_map(|pair| pair[0].as_u64())
+        .collect();
+    for part in &labels.parts {
+        let on_itself = part.boxes.iter().any(|b| b.text == part.id.to_string());
+        if !on_itself && !on_neighbour.contains(&u64::from(part.id)) {
+            out.push(format!("{name}: part {} carries no number", part.id));
+        }
+    }
+    out
+}
+
+#[test]
+fn every_corpus_plan_is_cuttable_numbered_and_verified_as_listed() {
+    let Some(dir) = samples::shared_corpus().map_err(|m| eprintln!("{m}")).ok() else {
+        return;
+    };
+    let files = samples::stl_files(&dir);
+    assert!(files.len() >= 50, "expected the 53-file corpus, found {}", files.len());
+    let (mut found, mut passing, mut plans) = (Vec::new(), BTreeSet::new(), 0);
+    for path in files {
+        let stem = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .expect("utf-8 name")
+            .to_string();
+        let request = Request {
+            methods: MethodKind::ALL.to_vec(),
+            ..Request::new(Source::File(path), Settings::default())
+        };
+        let all = convert_all(request, &Cancel::default(), no_progress());
+        for m in &all.methods {
+            let name = format!("{stem}/{}", m.method.name());
+            assert_ne!(m.status, Status::Panicked, "{name}: {:?}", m.error);
+            assert!(
+                !matches!(m.error, Some(platener::Error::Internal { .. })),
+                "{name}: {:?}",
+                m.error
+            );
+            let (Some(state), Some(v)) = (&m.state, &m.verification) else {
+                continue;
+            };
+            if m.status != Status::Converted {
+                continue;
+            }
+            plans += 1;
+            found.extend(faults(&name, state, v));
+            if v.passed() {
+                passing.insert(name);
+            }
+        }
+    }
+    assert!(plans >= 60, "only {plans} plans were made");
+    assert!(found.is_empty(), "{} fault(s):\n{}", found.len(), found.join("\n"));
+    let want: BTreeSet<String> = PASSING.iter().map(|s| s.to_string()).collect();
+    let newly: Vec<_> = passing.difference(&want).collect();
+    let lost: Vec<_> = want.difference(&passing).collect();
+    assert!(
+        newly.is_empty() && lost.is_empty(),
+        "verify now passes {newly:?} (add them to PASSING if they reproduce their model) and fails {lost:?}"
+    );
+}
