@@ -308,7 +308,30 @@ fn finish_sheets(nesting: &mut Nesting, parts: &[Part], shapes: &[NestShape], se
     }
 }
 
-/// Step `sheets`: every part placed on a sheet of its thickness.
+/// Extra margins (mm) nesting is retried with when jagua-rs panics. jagua-rs 1.1 sorts edges
+/// into its quadtree in f32 and asserts that against an f64 oracle; an edge lying exactly on a
+/// quadrant's split line can trip the assertion (seen: the table sample stacked in 1 mm
+/// layers). The split lines follow the sheet region, so a margin wider by a few hundredths of
+/// a millimetre (not a round number) moves them off the edge; the plan changes by as much.
+const RETRY_MARGINS: [f64; 3] = [0.0137, 0.0291, 0.0533];
+
+/// Step `sheets`: every part placed on a sheet of its thickness. A panic inside the nester is
+/// retried with a slightly wider margin ([`RETRY_MARGINS`]); the last one propagates (the
+/// conversion reports it as an internal error).
 pub fn run(input: &PlanInput, cut: &CutPaths, cx: &StepContext<'_>) -> Result<Nesting, PlanError> {
-    nest(&input.parts, cut, &input.settings, &|| cx.is_cancelled())
+    let attempt = |settings: &crate::plan::CutSettings| {
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            nest(&input.parts, cut, settings, &|| cx.is_cancelled())
+        }))
+    };
+    let mut outcome = attempt(&input.settings);
+    for extra in RETRY_MARGINS {
+        if outcome.is_ok() {
+            break;
+        }
+        let mut wider = input.settings.clone();
+        wider.margin += extra;
+        outcome = attempt(&wider);
+    }
+    outcome.unwrap_or_else(|payload| std::panic::resume_unwind(payload))
 }
