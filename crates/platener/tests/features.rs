@@ -230,6 +230,16 @@ fn describe(file: &str, features: Features, state: &State) {
     }
 }
 
+/// The plate method's plans of corpus `file` with features cut and engraved, each described;
+/// `None` when the corpus is absent.
+fn cut_and_engraved(file: &str) -> Option<(State, State)> {
+    let cut = corpus_plan(file, Features::Cut)?;
+    describe(file, Features::Cut, &cut);
+    let engraved = corpus_plan(file, Features::Engrave)?;
+    describe(file, Features::Engrave, &engraved);
+    Some((cut, engraved))
+}
+
 /// Every score mark of `part` lies inside its outline (clear of its holes).
 fn marks_inside(part: &Part) -> bool {
     score_marks(part)
@@ -240,15 +250,9 @@ fn marks_inside(part: &Part) -> bool {
 
 #[test]
 fn ipad_base_keeps_its_lettering_as_score_marks_on_its_top() {
-    let file = "plates/ipad_mini_arcade_cabinet_half.stl";
-    let Some(cut) = corpus_plan(file, Features::Cut) else {
+    let Some((cut, state)) = cut_and_engraved("plates/ipad_mini_arcade_cabinet_half.stl") else {
         return;
     };
-    describe(file, Features::Cut, &cut);
-    let Some(state) = corpus_plan(file, Features::Engrave) else {
-        return;
-    };
-    describe(file, Features::Engrave, &state);
     let ps = parts(&state);
     let fs = features(&state);
     assert!(!fs.is_empty(), "the lettering is found");
@@ -297,16 +301,18 @@ fn xyz_cube_faces_have_no_holes_from_their_letters() {
 
 #[test]
 fn arduino_floor_has_no_holes_under_its_standoffs_and_reports_them() {
-    let file = "plates/arduino_uno_enclosure.stl";
-    let Some(cut) = corpus_plan(file, Features::Cut) else {
+    let Some((cut, state)) = cut_and_engraved("plates/arduino_uno_enclosure.stl") else {
         return;
     };
-    describe(file, Features::Cut, &cut);
-    let Some(state) = corpus_plan(file, Features::Engrave) else {
-        return;
-    };
-    describe(file, Features::Engrave, &state);
     let ps = parts(&state);
+    // Cut, the standoffs' footprints were holes through the floor (4 of them).
+    let holes = |ps: &[Part]| ps.iter().map(|p| p.polygon.holes.len()).sum::<usize>();
+    assert!(
+        holes(parts(&cut)) >= holes(ps) + 4,
+        "cut {} holes, engraved {}",
+        holes(parts(&cut)),
+        holes(ps)
+    );
     // The floor: the largest part, lying flat.
     let floor = ps
         .iter()
