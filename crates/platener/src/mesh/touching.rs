@@ -144,31 +144,19 @@ fn distance_to_triangle(p: DVec3, [a, b, c]: &[DVec3; 3]) -> f64 {
 mod tests {
     use super::*;
 
-    fn cube(min: DVec3, size: DVec3, vertices: &mut Vec<DVec3>, triangles: &mut Vec<[u32; 3]>) -> Vec<u32> {
-        let base = vertices.len() as u32;
-        for i in 0..8 {
-            let corner = DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64);
-            vertices.push(min + corner * size);
-        }
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        let first = triangles.len() as u32;
-        for q in quads {
-            triangles.push([base + q[0], base + q[1], base + q[2]]);
-            triangles.push([base + q[0], base + q[2], base + q[3]]);
-        }
-        (first..triangles.len() as u32).collect()
-    }
-
+    /// Solids among boxes given as (min corner, size), each its own body. Corners are not
+    /// shared between triangles: only positions matter here.
     fn solids(boxes: &[(DVec3, DVec3)]) -> usize {
-        let (mut v, mut t) = (Vec::new(), Vec::new());
-        let bodies: Vec<Vec<u32>> = boxes.iter().map(|&(m, s)| cube(m, s, &mut v, &mut t)).collect();
+        let (mut v, mut t, mut bodies) = (Vec::new(), Vec::new(), Vec::new());
+        for &(min, size) in boxes {
+            let first = t.len() as u32;
+            for tri in crate::samples::cuboid(min, min + size) {
+                let base = v.len() as u32;
+                v.extend(tri);
+                t.push([base, base + 1, base + 2]);
+            }
+            bodies.push((first..t.len() as u32).collect::<Vec<u32>>());
+        }
         let refs: Vec<&[u32]> = bodies.iter().map(|b| b.as_slice()).collect();
         count_solids(&v, &t, &refs)
     }
