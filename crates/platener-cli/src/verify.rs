@@ -3,8 +3,8 @@
 use std::fmt::Write as _;
 
 use anyhow::Context;
-use platener::verify::{Verification, plan_from_zip, source_mismatch, verify_with};
-use platener::{Cancel, Source, Weld};
+use platener::verify::{Verification, model_weld, plan_from_zip, source_mismatch, verify_with};
+use platener::{Cancel, Source};
 
 use crate::args::VerifyArgs;
 
@@ -14,9 +14,9 @@ pub fn run(args: &VerifyArgs) -> anyhow::Result<u8> {
     let plan = plan_from_zip(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", args.plan.display()))?;
     let state = match &args.model {
         Some(path) => {
-            // Measured against the model as it is, so without welding.
+            // Measured against the mesh convert judged the plan on: the model welded as the plan records.
             let settings = platener::Settings {
-                weld: Weld::Off,
+                weld: model_weld(&plan),
                 ..args.model_args.settings()?
             };
             let (state, _) =

@@ -288,3 +288,26 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_wall_as_thick_as_the_sheet_cuts_the_weld_without_a_warning() {
+    // The shipped 3 mm box: its walls are the sheet, so the automatic weld is cut below them
+    // quietly (the weld record keeps the figures); only a thinner wall is news to the maker.
+    let state = plate_parts(
+        Source::triangles("box", platener::samples::closed_box(100.0, 80.0, 60.0, 3.0)),
+        Settings::default(),
+    );
+    let welded = state.weld.as_deref().expect("weld");
+    // Asked 1.8 mm (0.6 × the sheet), welded at most 0.45 × the 3 mm wall.
+    assert!(
+        welded.distance > 0.0 && welded.distance <= 0.45 * 3.0 + 1e-9,
+        "{}",
+        welded.distance
+    );
+    assert_eq!(welded.thinnest_wall.map(|w| (w * 1e6).round() / 1e6), Some(3.0));
+    assert!(
+        state.warnings().all(|w| w.kind != WarningKind::WeldThinWall),
+        "{:?}",
+        state.warnings().collect::<Vec<_>>()
+    );
+}

@@ -285,6 +285,16 @@ fn joints_failure(plan: &Plan, analysis: &Analysis) -> Option<Failure> {
     })
 }
 
+/// The weld `plan` was made with (recorded as `settings.weld`, mm), so that `verify --model`
+/// measures the same mesh convert judged the plan against: coverage on another weld of the
+/// model could differ from convert's report. Plans without the setting were made unwelded.
+pub fn model_weld(plan: &Plan) -> crate::Weld {
+    match plan.settings.method.get("weld") {
+        Some(crate::plan::SettingValue::Number(d)) if *d > 0.0 => crate::Weld::Distance(*d),
+        _ => crate::Weld::Off,
+    }
+}
+
 /// Why `model` does not look like the model `plan` was made from (its bounding box differs by
 /// more than 1 % of the plan's, or 0.01 mm), naming the units and scale the plan was made
 /// with; `None` when it matches.

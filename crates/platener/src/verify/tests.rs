@@ -280,3 +280,34 @@ fn convert_score_and_verify_agree_on_the_box() {
     assert_eq!(Some(s.surface.value), v.surface_covered);
     assert_eq!(s.assembly.interference, v.interference_share);
 }
+
+#[test]
+fn verify_welds_the_model_as_the_plan_records() {
+    // A plate plan records the weld its mesh was made with; a stacked plan welds nothing.
+    let model = samples::closed_box(100.0, 80.0, 60.0, 3.0);
+    let settings = Settings {
+        weld: crate::Weld::Distance(0.5),
+        ..Settings::default()
+    };
+    let plate = convert(
+        MethodKind::Plate,
+        Source::triangles("m", model.clone()),
+        settings.clone(),
+        &Cancel::default(),
+    )
+    .expect("converts");
+    let welded = plate.weld.as_deref().expect("welded").distance;
+    assert!(welded > 0.0, "{welded}");
+    assert_eq!(
+        model_weld(&plate.bundle().expect("plan").plan),
+        crate::Weld::Distance(welded)
+    );
+    let stacked = convert(
+        MethodKind::Stacked,
+        Source::triangles("m", model),
+        settings,
+        &Cancel::default(),
+    )
+    .expect("converts");
+    assert_eq!(model_weld(&stacked.bundle().expect("plan").plan), crate::Weld::Off);
+}

@@ -282,7 +282,10 @@ pub fn run(model: &Model, cleaned: &Cleaned, settings: &Settings, cx: &mut StepC
 
 /// The weld distance `asked` by the settings, kept below the model's thinnest wall `wall`: the
 /// automatic distance is cut to [`AUTO_WELD_WALL_SHARE`] × `wall`; a distance the user set is
-/// kept. Either way a warning gives both figures.
+/// kept. A warning gives both figures when the user's distance reaches the wall, or when the
+/// automatic one was cut for a wall thinner than the thinnest sheet offered: a wall as thick as
+/// the sheet is what every plate has, and cutting for it is routine (the weld step's record
+/// in report.json keeps the figures), where a thinner wall is a detail the maker should hear of.
 fn distance_for_walls(settings: &Settings, asked: f64, wall: Option<f64>, cx: &mut StepContext<'_>) -> f64 {
     let Some(wall) = wall else {
         return asked;
@@ -296,6 +299,9 @@ fn distance_for_walls(settings: &Settings, asked: f64, wall: Option<f64>, cx: &m
             let mut d = asked;
             while d > cap {
                 d /= 2.0;
+            }
+            if wall >= 0.99 * settings.thinnest() {
+                return d;
             }
             cx.warn(
                 WarningKind::WeldThinWall,
