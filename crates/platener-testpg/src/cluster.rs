@@ -69,11 +69,12 @@ impl Cluster {
         if let Some(user) = run_as {
             user.chown(tmp.path())?;
         }
-        let watchdog = Watchdog::spawn(&bins, run_as, tmp.path())?;
+        let mut watchdog = Watchdog::spawn(&bins, run_as, tmp.path(), READY_SECONDS)?;
         // From here on the watchdog removes the directory, whatever happens.
         let dir = tmp.keep();
-        init(&bins, run_as, &dir)?;
-        let port = start_server(&bins, run_as, &dir)?;
+        watchdog.init()?;
+        configure(&dir)?;
+        let port = start_server(&mut watchdog, &dir)?;
         let cluster = Cluster {
             bins,
             dir,
@@ -152,19 +153,8 @@ impl Cluster {
     }
 }
 
-/// `initdb` into `dir/data`, then the settings of a fast, loopback-only, throwaway server.
-fn init(bins: &Binaries, run_as: Option<RunAs>, dir: &Path) -> Result<(), Error> {
-    let mut command = server_command(bins, run_as, dir, "initdb");
-    command.arg("-D").arg(dir.join("data")).args([
-        "-U",
-        SUPERUSER,
-        "--auth=trust",
-        "--encoding=UTF8",
-        "--locale=C",
-        "--no-sync",
-        "--no-instructions",
-    ]);
-    run(&mut command)?;
+/// The settings of a fast, loopback-only, throwaway server, after initdb's.
+fn configure(dir: &Path) -> Result<(), Error> {
     let socket_dir = dir.to_string_lossy().replace('\'', "''");
     let settings = format!(
         "\n# platener-testpg: a throwaway cluster for tests\n\
@@ -183,42 +173,27 @@ fn init(bins: &Binaries, run_as: Option<RunAs>, dir: &Path) -> Result<(), Error>
 
 /// Starts the server on a free port, trying another port when someone else took it between
 /// our probe and the server's bind (several test binaries start clusters at once).
-fn start_server(bins: &Binaries, run_as: Option<RunAs>, dir: &Path) -> Result<u16, Error> {
+fn start_server(watchdog: &mut Watchdog, dir: &Path) -> Result<u16, Error> {
     let log = dir.join("postgres.log");
     for _ in 0..PORT_ATTEMPTS {
         let port = free_port()?;
         let log_start = std::fs::metadata(&log).map_or(0, |m| m.len());
-        let mut command = server_command(bins, run_as, dir, "pg_ctl");
-        command
-            .args(["start", "-w", "-s", "-t", &READY_SECONDS.to_string(), "-D"])
-            .arg(dir.join("data"))
-            .arg("-l")
-            .arg(&log)
-            .args(["-o", &format!("-p {port}")]);
-        let started = run(&mut command);
+        let started = watchdog.start(port)?;
         let attempt_log = log_tail(&log, log_start);
         match started {
-            Ok(_) => return wait_for_tcp(port, &attempt_log).map(|()| port),
-            Err(Error::Command { .. }) if attempt_log.contains("Address already in use") => continue,
-            Err(Error::Command { output, .. }) if output.contains("did not start in time") => {
+            Ok(()) => return wait_for_tcp(port, &attempt_log).map(|()| port),
+            Err(_) if attempt_log.contains("Address already in use") => continue,
+            Err(failed) if failed.output.contains("did not start in time") => {
                 return Err(Error::NotReady {
                     port,
                     seconds: READY_SECONDS,
                     log: attempt_log,
                 });
             }
-            Err(Error::Command {
-                program,
-                status,
-                output,
-            }) => {
-                return Err(Error::Command {
-                    program,
-                    status,
-                    output: format!("{output}\nserver log:\n{attempt_log}"),
-                });
+            Err(mut failed) => {
+                failed.output = format!("{}\nserver log:\n{attempt_log}", failed.output);
+                return Err(watchdog.command_error("pg_ctl", failed));
             }
-            Err(other) => return Err(other),
         }
     }
     Err(Error::NoFreePort {
@@ -251,21 +226,6 @@ fn wait_for_tcp(port: u16, log: &str) -> Result<(), Error> {
         std::thread::sleep(Duration::from_millis(20));
     }
     Ok(())
-}
-
-/// A server program as the unprivileged user (when root), from inside the cluster's directory
-/// (root's working directory may be unreadable to that user), with messages in English so that
-/// their text can be recognised.
-fn server_command(bins: &Binaries, run_as: Option<RunAs>, dir: &Path, program: &str) -> Command {
-    let mut command = Command::new(bins.program(program));
-    command.current_dir(dir).env("LC_ALL", "C").env("LANG", "C");
-    for var in LIBPQ_VARS {
-        command.env_remove(var);
-    }
-    if let Some(user) = run_as {
-        user.apply(&mut command);
-    }
-    command
 }
 
 /// Runs a program to completion (no input), turning a failure into [`Error::Command`] with its

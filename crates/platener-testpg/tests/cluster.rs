@@ -75,6 +75,11 @@ fn two_workers_claim_every_row_exactly_once() {
         // While one worker holds row 1 in an open transaction, the other neither waits nor
         // takes it: it gets row 2. This is the property the job queue needs.
         let (mut a, mut b) = (connect(&db.url).await, connect(&db.url).await);
+        // Without SKIP LOCKED, b would wait for a forever: make that an error instead.
+        sqlx::query("SET lock_timeout = '30s'")
+            .execute(&mut b)
+            .await
+            .expect("lock timeout");
         let mut tx_a = a.begin().await.expect("begin a");
         let mut tx_b = b.begin().await.expect("begin b");
         assert_eq!(claim(&mut tx_a, 1).await, Some(1));
