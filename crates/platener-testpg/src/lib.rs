@@ -18,4 +18,4 @@ mod watchdog;
 pub use binaries::{BIN_DIR_VAR, Binaries};
 pub use cluster::{Cluster, DEFAULT_DATABASE, Database, SUPERUSER};
 pub use error::Error;
-pub use shared::{REQUIRE_POSTGRES, for_tests, own_for_tests, shared};
+pub use shared::{REQUIRE_POSTGRES, for_tests, installed_for_tests, own_for_tests, shared};

@@ -35,6 +35,15 @@ pub fn own_for_tests() -> Option<Cluster> {
     }
 }
 
+/// Whether PostgreSQL is installed, for tests that start their clusters in another process:
+/// `false` after printing why the test skips, with the same policy as [`for_tests`].
+pub fn installed_for_tests() -> bool {
+    match crate::Binaries::find() {
+        Ok(_) => true,
+        Err(err) => skip_or_panic::<()>(&err).is_some(),
+    }
+}
+
 /// `None` with a message when `err` is a missing installation that may be skipped, else panics.
 fn skip_or_panic<T>(err: &Error) -> Option<T> {
     let required = std::env::var_os(REQUIRE_POSTGRES).is_some_and(|v| v == "1");
