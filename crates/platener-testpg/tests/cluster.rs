@@ -4,7 +4,7 @@
 
 use std::collections::BTreeSet;
 
-use platener_testpg::{Cluster, for_tests, own_for_tests};
+use platener_testpg::Cluster;
 use sqlx::{Connection, PgConnection, Row};
 
 /// Rows in the queue test, as the two-workers test.
@@ -58,7 +58,7 @@ async fn drain(url: String, worker: i32) -> Vec<i32> {
 
 #[test]
 fn two_workers_claim_every_row_exactly_once() {
-    let Some(cluster) = for_tests() else { return };
+    let Some(cluster) = Cluster::for_tests() else { return };
     let db = cluster.fresh_database().expect("database");
     runtime().block_on(async {
         let mut setup = connect(&db.url).await;
@@ -117,7 +117,7 @@ fn two_workers_claim_every_row_exactly_once() {
 
 #[test]
 fn fresh_databases_are_separate() {
-    let Some(cluster) = for_tests() else { return };
+    let Some(cluster) = Cluster::for_tests() else { return };
     let (one, two) = (
         cluster.fresh_database().expect("one"),
         cluster.fresh_database().expect("two"),
@@ -146,14 +146,14 @@ fn fresh_databases_are_separate() {
         assert_eq!(db, two.name);
     });
     assert!(
-        std::ptr::eq(cluster, for_tests().expect("shared")),
+        std::ptr::eq(cluster, Cluster::for_tests().expect("shared")),
         "one cluster per test binary"
     );
 }
 
 #[test]
 fn bad_database_names_are_refused() {
-    let Some(cluster) = for_tests() else { return };
+    let Some(cluster) = Cluster::for_tests() else { return };
     for name in ["", "Robert'); DROP", "a b", "UPPER"] {
         let err = cluster.create_database(name).expect_err(name);
         assert!(err.to_string().contains("not a lower-case identifier"), "{err}");
@@ -171,7 +171,7 @@ fn alive(pid: u32) -> bool {
 
 #[test]
 fn two_clusters_at_once_then_drop_leaves_nothing() {
-    let Some(first) = own_for_tests() else { return };
+    let Some(first) = Cluster::own_for_tests() else { return };
     let second = Cluster::start().expect("a second cluster");
     assert_ne!(first.port(), second.port());
     assert_ne!(first.dir(), second.dir());

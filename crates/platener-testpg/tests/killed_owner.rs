@@ -40,7 +40,7 @@ fn alive(pid: u32) -> bool {
 
 #[test]
 fn killed_owner_leaves_nothing_behind() {
-    if !platener_testpg::installed_for_tests() {
+    if !Cluster::installed_for_tests() {
         return;
     }
     let mut child = Command::new(std::env::current_exe().expect("test binary"))
