@@ -6,6 +6,18 @@
 //!   cluster, and [`Cluster::fresh_database`] each test its own database.
 //! - [`load`]: the load benchmark client behind the `platener-load` binary, which drives
 //!   `platener serve` through the API of `shared/spec/api.md`.
+//!
+//! A test that needs PostgreSQL:
+//!
+//! ```no_run
+//! use platener_testpg::Cluster;
+//!
+//! // Skips with a message when PostgreSQL is not installed (fails under PLATENER_REQUIRE_POSTGRES=1).
+//! let Some(cluster) = Cluster::for_tests() else { return };
+//! let db = cluster.fresh_database().expect("a database of this test's own");
+//! assert!(db.url.starts_with("postgres://platener@127.0.0.1:"));
+//! // Connect to db.url with sqlx; the cluster stops when the test binary exits.
+//! ```
 
 mod binaries;
 mod cluster;

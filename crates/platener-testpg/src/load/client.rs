@@ -117,8 +117,8 @@ async fn follow_events(http: &Client, config: &Config, url: &str, rec: &mut Reco
         tokio::select! {
             chunk = stream.next() => match chunk {
                 Some(Ok(bytes)) => {
-                    let last = parser.push(&bytes).into_iter().find(|e| e.name == "done" || e.name == "failed");
-                    if let Some(event) = last {
+                    let events = parser.push(&bytes);
+                    if let Some(event) = events.into_iter().find(|e| e.name == "done" || e.name == "failed") {
                         return Some(event.name);
                     }
                 }
