@@ -154,8 +154,11 @@ fn assert_neighbour_reference(name: &str, c: &State, id: u32, on: u32) {
     );
 }
 
+/// Polylines of an SVG group.
+type Paths = Vec<Vec<DVec2>>;
+
 /// The paths of `<g id="{id}">` in one of our SVG sheets, by stroke colour: (red, blue).
-fn svg_group(svg: &str, id: &str) -> Option<(Vec<Vec<DVec2>>, Vec<Vec<DVec2>>)> {
+fn svg_group(svg: &str, id: &str) -> Option<(Paths, Paths)> {
     let start = svg.find(&format!("<g id=\"{id}\">"))?;
     let body = &svg[start..start + svg[start..].find("</g>").expect("group ends")];
     let (mut red, mut blue) = (Vec::new(), Vec::new());
@@ -222,7 +225,7 @@ fn assert_sheet_legends(name: &str, c: &State) {
         for p in bundle.plan.parts.iter().filter(|p| p.sheet.index == sheet.index) {
             let (cut, _) = svg_group(&svg, &format!("part-{}", p.id)).expect("part group");
             let outline = Polygon::new(cut[0].clone());
-            let meet = boolean::intersection(&[text_box.clone()], &[outline]).expect("grid");
+            let meet = boolean::intersection(std::slice::from_ref(&text_box), &[outline]).expect("grid");
             assert!(
                 meet.is_empty(),
                 "{name}: the legend on {} meets part {}",

@@ -93,9 +93,9 @@ mod tests {
             DVec2::new(0.0, 10.0),
         ]);
         let slot = rect(5.0, 4.0, 14.8, 6.0);
-        let raw = boolean::difference(std::slice::from_ref(&outline), std::slice::from_ref(&slot)).unwrap();
+        let raw = boolean::difference(std::slice::from_ref(&outline), std::slice::from_ref(&slot)).expect("grid");
         assert!(raw.iter().any(|p| !validate(p, 0.2).is_empty()), "the raw cut pinches");
-        let pieces = cut_slots(&outline, std::slice::from_ref(&slot), 1.5).unwrap();
+        let pieces = cut_slots(&outline, std::slice::from_ref(&slot), 1.5).expect("grid");
         assert_eq!(pieces.len(), 1);
         assert!(validate(&pieces[0], 0.2).is_empty(), "{:?}", validate(&pieces[0], 0.2));
         assert!(pieces[0].holes.is_empty(), "the slot is a notch now");
@@ -108,7 +108,7 @@ mod tests {
     fn a_slot_with_a_full_bridge_is_cut_exactly() {
         let outline = rect(0.0, 0.0, 20.0, 10.0);
         let slot = rect(5.0, 4.0, 15.0, 6.0);
-        let pieces = cut_slots(&outline, std::slice::from_ref(&slot), 1.5).unwrap();
+        let pieces = cut_slots(&outline, std::slice::from_ref(&slot), 1.5).expect("grid");
         assert_eq!(pieces.len(), 1);
         assert_eq!(pieces[0].holes.len(), 1);
         assert!((pieces[0].area() - (200.0 - 20.0)).abs() < 1e-6);
@@ -119,7 +119,7 @@ mod tests {
         // The slot reaches within 0.5 mm of both long sides: two pieces, not one pinched one.
         let outline = rect(0.0, 0.0, 20.0, 4.0);
         let slot = rect(8.0, 0.5, 11.0, 3.5);
-        let pieces = cut_slots(&outline, &[slot], 1.5).unwrap();
+        let pieces = cut_slots(&outline, &[slot], 1.5).expect("grid");
         assert_eq!(pieces.len(), 2);
         assert!(pieces.iter().all(|p| validate(p, 0.2).is_empty()));
     }
