@@ -9,6 +9,9 @@
 use std::path::PathBuf;
 
 use platener::convert;
+use platener::export::legend;
+use platener::glam::DVec2;
+use platener::labels::font;
 use platener::method::MethodKind;
 use platener::plan::{MarkKind, PartKind, Plan};
 use platener::stacked::{Stack, glued_groups};
@@ -151,6 +154,88 @@ fn assert_neighbour_reference(name: &str, c: &State, id: u32, on: u32) {
     );
 }
 
+/// Polylines of an SVG group.
+type Paths = Vec<Vec<DVec2>>;
+
+/// The paths of `<g id="{id}">` in one of our SVG sheets, by stroke colour: (red, blue).
+fn svg_group(svg: &str, id: &str) -> Option<(Paths, Paths)> {
+    let start = svg.find(&format!("<g id=\"{id}\">"))?;
+    let body = &svg[start..start + svg[start..].find("</g>").expect("group ends")];
+    let (mut red, mut blue) = (Vec::new(), Vec::new());
+    for tag in body.split("<path ").skip(1) {
+        let d = tag
+            .split("d=\"")
+            .nth(1)
+            .and_then(|t| t.split('"').next())
+            .expect("path data");
+        let nums: Vec<f64> = d
+            .split_whitespace()
+            .map(|t| t.trim_start_matches(['M', 'L']))
+            .filter(|t| !t.is_empty() && *t != "Z")
+            .map(|t| t.parse().expect("number"))
+            .collect();
+        let points = nums.chunks_exact(2).map(|c| DVec2::new(c[0], c[1])).collect();
+        if tag.contains("stroke=\"#ff0000\"") {
+            red.push(points);
+        } else {
+            assert!(
+                tag.contains("stroke=\"#0000ff\""),
+                "{id}: a path neither cut nor engraved"
+            );
+            blue.push(points);
+        }
+    }
+    Some((red, blue))
+}
+
+/// Every sheet holding a part whose number is on a tab or on a neighbour has a legend saying
+/// so: blue strokes only, exactly the strokes of the lines for that sheet's parts, inside the
+/// sheet and outside every part's cut outline (the box around the text meets no part).
+fn assert_sheet_legends(name: &str, c: &State) {
+    let bundle = c.export.as_ref().expect("exported");
+    let report = c.parts.as_ref().expect("parts").method_report.clone();
+    for sheet in &bundle.plan.sheets {
+        let mut on_sheet: Vec<u32> = bundle
+            .plan
+            .parts
+            .iter()
+            .filter(|p| p.sheet.index == sheet.index)
+            .map(|p| p.id)
+            .collect();
+        on_sheet.sort_unstable();
+        let lines = legend::legend_lines(report.as_ref(), &on_sheet);
+        let svg = String::from_utf8(bundle.files[&sheet.file].clone()).expect("utf-8");
+        let Some((red, blue)) = svg_group(&svg, legend::LEGEND_ID) else {
+            assert!(lines.is_empty(), "{name}: {} has no legend for {lines:?}", sheet.file);
+            continue;
+        };
+        assert!(red.is_empty(), "{name}: the legend is not cut");
+        let strokes: usize = lines.iter().map(|l| font::text_strokes(l, 1.0).len()).sum();
+        assert!(
+            !lines.is_empty() && blue.len() == strokes,
+            "{name}: {} strokes for {lines:?}",
+            blue.len()
+        );
+        let (lo, hi) = blue.iter().flatten().fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(a, b), p| (a.min(*p), b.max(*p)),
+        );
+        assert!(lo.x >= 0.0 && lo.y >= 0.0 && hi.x <= sheet.width && hi.y <= sheet.height);
+        let text_box = Polygon::new(vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)]);
+        for p in bundle.plan.parts.iter().filter(|p| p.sheet.index == sheet.index) {
+            let (cut, _) = svg_group(&svg, &format!("part-{}", p.id)).expect("part group");
+            let outline = Polygon::new(cut[0].clone());
+            let meet = boolean::intersection(std::slice::from_ref(&text_box), &[outline]).expect("grid");
+            assert!(
+                meet.is_empty(),
+                "{name}: the legend on {} meets part {}",
+                sheet.file,
+                p.id
+            );
+        }
+    }
+}
+
 fn touches(a: &Polygon, b: &Polygon) -> bool {
     let o = boolean::intersection(std::slice::from_ref(a), std::slice::from_ref(b)).expect("grid");
     total_area(&o) > TOUCH
@@ -189,6 +274,7 @@ fn every_part_of_every_stacked_corpus_plan_carries_its_number() {
         converted += 1;
         parts += plan(&c).parts.len();
         let (t, n) = assert_every_part_numbered(&name, &c);
+        assert_sheet_legends(&name, &c);
         eprintln!(
             "{name}: {} parts, {t} numbered on a tab, {n} on a neighbour",
             plan(&c).parts.len()
@@ -210,6 +296,16 @@ fn the_bird_feeder_cups_thin_rings_carry_their_numbers_on_tabs() {
     // Before: 31 of the 32 rings had no number; each now has it on a tab of the size the step
     // makes (its length out of the outline, plus under ATTACH into it, times its width).
     assert_eq!(tabs, 31);
+    // The sheets say so: every sheet's legend lists its parts numbered on a tab.
+    let sheets = &plan(&c).sheets;
+    let with_legend = sheets
+        .iter()
+        .filter(|s| {
+            String::from_utf8_lossy(&c.export.as_ref().expect("zip").files[&s.file]).contains("<g id=\"legend\">")
+        })
+        .count();
+    assert_eq!(with_legend, sheets.len());
+    assert_sheet_legends("bird_water_feeder_cup", &c);
     let kerf = plan(&c).settings.cut.kerf.expect("recorded");
     let input = c.parts.as_ref().expect("parts");
     for island in stack(&c).layers.iter().flat_map(|l| &l.islands) {

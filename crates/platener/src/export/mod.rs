@@ -7,6 +7,7 @@
 //! unless asked, so the same input and settings give a byte-identical ZIP.
 
 pub mod dxf;
+pub mod legend;
 pub mod plan_json;
 pub mod png;
 pub mod report;
@@ -64,7 +65,8 @@ pub fn run(
     let stem = plan_json::file_stem(&input.source.name);
     let stems = plan_json::sheet_stems(&stem, nesting);
     let plan = plan_json::build_plan(input, cut, labels, nesting, &stems);
-    let groups = plan_json::sheet_groups(input, cut, labels, nesting);
+    let mut groups = plan_json::sheet_groups(input, cut, labels, nesting);
+    add_legends(input, nesting, &mut groups);
     let mut files = BTreeMap::new();
     for ((sheet, stem), g) in nesting.sheets.iter().zip(&stems).zip(&groups) {
         let svg = sheet_svg(sheet.width, sheet.height, g, &SvgStyle::CUT);
@@ -89,6 +91,25 @@ pub fn run(
         files,
         zip,
     })
+}
+
+/// Adds to each sheet's groups the legend saying where the numbers of its parts too thin for
+/// them went ([`legend`]), when there are such parts and room for it.
+fn add_legends(input: &PlanInput, nesting: &Nesting, groups: &mut [Vec<svg::SvgGroup>]) {
+    for (index, (sheet, g)) in nesting.sheets.iter().zip(groups.iter_mut()).enumerate() {
+        let mut on_sheet: Vec<u32> = input
+            .parts
+            .iter()
+            .zip(&nesting.placements)
+            .filter(|(_, p)| p.index as usize == index)
+            .map(|(part, _)| part.id)
+            .collect();
+        on_sheet.sort_unstable();
+        let lines = legend::legend_lines(input.method_report.as_ref(), &on_sheet);
+        if let Some(l) = legend::legend_group(&lines, sheet.width, sheet.height, g) {
+            g.push(l);
+        }
+    }
 }
 
 fn build_report(

@@ -2,17 +2,19 @@
 //!
 //! A shaft's slot in a layer and the shaft's piece inside that layer are the same set: the
 //! stretch `from..to` of its centre line, the shaft's thickness wide, the layer's thickness
-//! tall. The layer loses exactly that rectangle (a hole, or a notch where phase 2 cut the shaft
-//! flush with the outline) and the shaft's outline is the stack of those rectangles, so the two
+//! tall. The layer loses that rectangle (a hole, or a notch where phase 2 cut the shaft flush
+//! with the outline; where that would leave material narrower than a bridge beside it, the notch
+//! opens through it to the outside, see `notch`) and the shaft's outline is the stack of those rectangles, so the two
 //! meet face to face with no overlap and no gap; the `kerf` step then grows the shaft and shrinks
 //! the slot by half the kerf each, which keeps them fitting once cut.
 
 use glam::{DVec2, DVec3};
 use platener_geom::polygon::remove_straight_vertices;
-use platener_geom::{Frame, GridError, Polygon, Ring, boolean};
+use platener_geom::{Frame, GridError, Polygon, Ring};
 
 use super::islands::LayerIslands;
 use super::loops::LoopStats;
+use super::notch::cut_slots;
 use super::orient::SlicePlan;
 use super::shafts::{Placed, PlacedShaft};
 use super::{Island, Layer, Shaft, Stack};
@@ -45,15 +47,12 @@ pub(crate) fn assemble(
                         .map(|b| s.line.rect(b.from, b.to, half))
                 })
                 .collect();
-            let polygon = if cuts.is_empty() {
-                outline.clone()
-            } else {
-                // Slots keep a margin (phase 1) or were checked not to split the island (phase
-                // 2), so one piece remains; grid crumbs are dropped with the smaller pieces.
-                let mut pieces = boolean::difference(std::slice::from_ref(&outline), &cuts)?;
-                pieces.sort_by(|a, b| b.area().total_cmp(&a.area()));
-                pieces.into_iter().next().unwrap_or_default()
-            };
+            // Slots keep a margin (phase 1) or were checked not to split the island (phase 2),
+            // so one piece remains; grid crumbs are dropped with the smaller pieces.
+            let polygon = cut_slots(&outline, &cuts, placed.bridge)?
+                .into_iter()
+                .next()
+                .unwrap_or_default();
             layer.islands.push(Island {
                 outline,
                 polygon,

@@ -12,6 +12,7 @@ use platener_geom::{GridError, Polygon, boolean};
 
 use super::Band;
 use super::fit::SlotLine;
+use super::notch::cut_slots;
 use super::shafts::{Pair, Planner, SLIVER};
 
 impl Planner<'_> {
@@ -88,9 +89,10 @@ impl Planner<'_> {
             return Ok(None);
         };
         // The island must stay in one piece with all its slots: a slot running out of the
-        // island at both ends would cut it in two, so it is shortened by the margin at one end,
-        // then at the other, then at both, leaving a bridge.
-        let bridge = self.s.margin;
+        // island at both ends would cut it in two (or pinch it, which `cut_slots` opens into a
+        // cut), so it is shortened by the margin at one end, then at the other, then at both,
+        // leaving a bridge.
+        let shorten = self.s.margin;
         let others: Vec<Polygon> = self.slots[m]
             .iter()
             .filter(|(i, _)| *i == x)
@@ -98,17 +100,18 @@ impl Planner<'_> {
             .collect();
         for (a, b) in [
             (from, to),
-            (from, to - bridge),
-            (from + bridge, to),
-            (from + bridge, to - bridge),
+            (from, to - shorten),
+            (from + shorten, to),
+            (from + shorten, to - shorten),
         ] {
             if b - a < min_band {
                 continue;
             }
             let mut cuts = others.clone();
             cuts.push(line.rect(a, b, self.half));
-            let left = boolean::difference(std::slice::from_ref(&self.islands[m][x]), &cuts)?;
-            if left.iter().filter(|p| p.area() > SLIVER).count() == 1 {
+            // Cut as `assemble` will cut it: a pinch beside the slot is opened, so a slot
+            // that nearly crosses the island splits it here and is shortened instead.
+            if cut_slots(&self.islands[m][x], &cuts, self.bridge())?.len() == 1 {
                 return Ok(Some(Band {
                     layer: m,
                     island: x,

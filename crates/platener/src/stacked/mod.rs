@@ -16,6 +16,7 @@
 //! | `fit` | the longest slot that fits a region |
 //! | `shafts` | the three phases of shaft placement |
 //! | `extend` | phase 2: a shaft extended flush into a layer left unjoined |
+//! | `notch` | slots cut into a layer, notches opened where they would pinch it |
 //! | `assemble` | slots cut into the layers, shaft outlines, frames |
 //! | `glued` | groups of parts no shaft holds together, only glue |
 //! | `marks` | layer and shaft numbers with alignment arrows |
@@ -31,6 +32,7 @@ mod glued;
 mod islands;
 mod loops;
 mod marks;
+mod notch;
 mod orient;
 mod parts;
 mod shafts;

@@ -55,6 +55,8 @@ pub(crate) struct Placed {
     pub shafts: Vec<PlacedShaft>,
     pub unjoined: Vec<Unjoined>,
     pub removed: usize,
+    /// The narrowest material kept between a slot and the outline, mm ([`Planner::bridge`]).
+    pub bridge: f64,
 }
 
 /// Two overlapping islands of layers `k` and `k + 1`.
@@ -122,6 +124,7 @@ pub(crate) fn place(islands: &[Vec<Polygon>], s: &StackedSettings, shaft_thickne
         })
         .collect();
     Ok(Placed {
+        bridge: p.bridge(),
         shafts: p.shafts,
         unjoined,
         removed,
@@ -173,6 +176,13 @@ fn region_box(region: &[Polygon]) -> Polygon {
 }
 
 impl Planner<'_> {
+    /// The narrowest material kept between a slot and the layer's outline, mm: the relaxed
+    /// margin, the least any phase keeps on purpose. Thinner material beside a slot is opened
+    /// to the outside (`notch`), so no slot pinches its layer.
+    pub(super) fn bridge(&self) -> f64 {
+        self.s.margin / 2.0
+    }
+
     fn is_joined(&self, pair: &Pair) -> bool {
         self.joined.contains(&(pair.k, pair.lower, pair.upper))
     }

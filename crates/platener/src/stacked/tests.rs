@@ -299,7 +299,9 @@ proptest! {
 
     /// Any sphere in any sheet thickness: every overlapping pair of layers is joined, every
     /// shaft spans consecutive layers (at least two) and its outline is exactly its slots, and
-    /// every layer loses to its slots exactly the shafts' sections.
+    /// every layer loses to its slots the shafts' sections plus at most the pinches opened
+    /// beside their ends (under a bridge wide, across the slot's thickness at each end), and
+    /// stays a valid outline at a 0.2 mm kerf.
     #[test]
     fn spheres_stack_with_every_pair_joined_and_exact_slots(
         r in 20.0f64..60.0, t in 2.0f64..6.0,
@@ -312,8 +314,9 @@ proptest! {
         let layers = islands_of(&sliced, &s).expect("grid");
         let placed = place(&layers.islands, &s, t).expect("grid");
         prop_assert!(placed.unjoined.is_empty(), "{:?}", placed.unjoined);
+        let bridge = placed.bridge;
         let stack = super::assemble::assemble(plan, t, layers, placed, sliced.stats).expect("grid");
-        let mut lost: Vec<Vec<f64>> = stack.layers.iter().map(|l| vec![0.0; l.islands.len()]).collect();
+        let mut lost: Vec<Vec<(f64, f64)>> = stack.layers.iter().map(|l| vec![(0.0, 0.0); l.islands.len()]).collect();
         for sh in &stack.shafts {
             let ks: Vec<usize> = sh.bands.iter().map(|b| b.layer).collect();
             prop_assert!(ks.len() >= 2);
@@ -321,14 +324,19 @@ proptest! {
             let slots: f64 = sh.bands.iter().map(|b| (b.to - b.from) * t).sum();
             prop_assert!((sh.polygon.area() - slots).abs() < 1e-6 * slots, "{} vs {}", sh.polygon.area(), slots);
             for b in &sh.bands {
-                lost[b.layer][b.island] += (b.to - b.from) * t;
+                lost[b.layer][b.island].0 += (b.to - b.from) * t;
+                lost[b.layer][b.island].1 += 1.0;
             }
         }
         for (l, lost) in stack.layers.iter().zip(&lost) {
-            for (island, want) in l.islands.iter().zip(lost) {
+            for (island, &(want, slots)) in l.islands.iter().zip(lost) {
                 let got = island.outline.area() - island.polygon.area();
                 // The 1 µm grid along the slot's perimeter.
-                prop_assert!((got - want).abs() < 1e-3 * (2.0 * want / t + 2.0 * t), "{} vs {}", got, want);
+                let grid = 1e-3 * (2.0 * want / t + 2.0 * t);
+                let pinches = slots * 2.0 * bridge * t;
+                prop_assert!(got > want - grid && got < want + pinches + grid, "{} vs {}", got, want);
+                let findings = platener_geom::validity::validate(&island.polygon, 0.2);
+                prop_assert!(findings.is_empty(), "layer {}: {:?}", l.number, findings);
             }
         }
     }
