@@ -41,7 +41,11 @@ fn check_link(server: &Server, link: &str) {
     let ct = r.header("content-type").unwrap_or_default().to_string();
     if path.ends_with(".zip") {
         assert_eq!(ct, "application/zip", "{link}");
-        assert!(r.header("content-disposition").is_some_and(|d| d.starts_with("attachment;")), "{link}");
+        assert!(
+            r.header("content-disposition")
+                .is_some_and(|d| d.starts_with("attachment;")),
+            "{link}"
+        );
         assert!(zip_parts(&r.body) > 0, "{link}");
     } else if path.ends_with(".glb") {
         assert_eq!(ct, "model/gltf-binary", "{link}");
@@ -67,7 +71,11 @@ fn check_link(server: &Server, link: &str) {
 fn upload_box_streams_events_and_every_link_works() {
     let dir = tempfile::tempdir().expect("temp dir");
     let server = Server::start(dir.path(), &["--workers", "2", "--no-examples"], &[]);
-    let r = server.upload("box-3mm.stl", &example_box(), &[("thickness", "3"), ("material", "wood")]);
+    let r = server.upload(
+        "box-3mm.stl",
+        &example_box(),
+        &[("thickness", "3"), ("material", "wood")],
+    );
     assert_eq!(r.status, 202, "{}", r.text());
     let c = r.json();
     let id = c["id"].as_str().expect("id").to_string();
@@ -79,9 +87,15 @@ fn upload_box_streams_events_and_every_link_works() {
     let evs = events(&server.addr, &id);
     let kinds: Vec<&str> = evs.iter().map(|(k, _)| k.as_str()).collect();
     assert_eq!(kinds.last(), Some(&"done"), "{kinds:?}");
-    assert!(evs.iter().any(|(k, d)| k == "step" && d["step"] == "read" && d["state"] == "finished"));
+    assert!(
+        evs.iter()
+            .any(|(k, d)| k == "step" && d["step"] == "read" && d["state"] == "finished")
+    );
     for m in ["plate", "stacked"] {
-        assert!(evs.iter().any(|(k, d)| k == "method" && d["method"] == m), "{m}: {kinds:?}");
+        assert!(
+            evs.iter().any(|(k, d)| k == "method" && d["method"] == m),
+            "{m}: {kinds:?}"
+        );
     }
     // A late client gets the same events so far.
     assert_eq!(events(&server.addr, &id).len(), evs.len());
@@ -91,13 +105,27 @@ fn upload_box_streams_events_and_every_link_works() {
     assert_eq!(c["best"], "plate");
     assert!(c.get("delete_token").is_none(), "the token is shown once only");
     assert_eq!(c["model"]["triangles"], 120);
-    let bbox: Vec<f64> = c["model"]["bbox_mm"].as_array().expect("bbox").iter().filter_map(Value::as_f64).collect();
+    let bbox: Vec<f64> = c["model"]["bbox_mm"]
+        .as_array()
+        .expect("bbox")
+        .iter()
+        .filter_map(Value::as_f64)
+        .collect();
     assert_eq!(bbox.len(), 3);
-    let plate = c["methods"].as_array().expect("methods").iter().find(|m| m["method"] == "plate").expect("plate").clone();
+    let plate = c["methods"]
+        .as_array()
+        .expect("methods")
+        .iter()
+        .find(|m| m["method"] == "plate")
+        .expect("plate")
+        .clone();
     assert_eq!(plate["parts"], 6, "{plate}");
     assert_eq!(plate["status"], "done");
     assert!(plate["score"].as_f64().is_some_and(|s| s > 0.5 && s <= 1.0), "{plate}");
-    assert_eq!(zip_parts(&server.get(&format!("/api/conversions/{id}/plan.zip")).body), 6);
+    assert_eq!(
+        zip_parts(&server.get(&format!("/api/conversions/{id}/plan.zip")).body),
+        6
+    );
 
     let mut links = Vec::new();
     all_links(&c["links"], &mut links);
@@ -115,7 +143,9 @@ fn upload_box_streams_events_and_every_link_works() {
 /// Publish (401 without the token), gallery, recut, delete.
 fn publish_recut_delete(server: &Server, id: &str, token: &str) {
     let publish = format!("/api/conversions/{id}/publish");
-    server.request("POST", &publish, &[], b"").assert_error(401, "unauthorized");
+    server
+        .request("POST", &publish, &[], b"")
+        .assert_error(401, "unauthorized");
     server
         .request("POST", &publish, &[("Authorization", "Bearer 00")], b"")
         .assert_error(401, "unauthorized");
@@ -146,37 +176,71 @@ fn publish_recut_delete(server: &Server, id: &str, token: &str) {
     assert_eq!(done["status"], "done", "{done}");
 
     let path = format!("/api/conversions/{id}");
-    server.request("DELETE", &path, &[], b"").assert_error(401, "unauthorized");
-    assert_eq!(server.request("DELETE", &path, &[("Authorization", &bearer)], b"").status, 204);
+    server
+        .request("DELETE", &path, &[], b"")
+        .assert_error(401, "unauthorized");
+    assert_eq!(
+        server
+            .request("DELETE", &path, &[("Authorization", &bearer)], b"")
+            .status,
+        204
+    );
     server.get(&path).assert_error(404, "not_found");
     server.get(&format!("{path}/plan.zip")).assert_error(404, "not_found");
     server.get(&format!("{path}/events")).assert_error(404, "not_found");
     let g = server.get("/api/gallery").json();
     assert!(g["items"].as_array().expect("items").iter().all(|i| i["id"] != id));
-    assert_eq!(server.get(&format!("/api/conversions/{rid}")).status, 200, "the recut stays");
+    assert_eq!(
+        server.get(&format!("/api/conversions/{rid}")).status,
+        200,
+        "the recut stays"
+    );
 }
 
 #[test]
 fn every_error_has_its_status_and_code() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let server = Server::start(dir.path(), &["--workers", "0", "--no-examples", "--max-upload-mb", "1"], &[]);
+    let server = Server::start(
+        dir.path(),
+        &["--workers", "0", "--no-examples", "--max-upload-mb", "1"],
+        &[],
+    );
     let unknown = format!("/api/conversions/c_{}", "0".repeat(32));
     server.get(&unknown).assert_error(404, "not_found");
-    server.get("/api/conversions/../../etc/passwd").assert_error(404, "not_found");
+    server
+        .get("/api/conversions/../../etc/passwd")
+        .assert_error(404, "not_found");
     server.get("/api/conversions/c_nothex").assert_error(404, "not_found");
     server.get("/nothing/here").assert_error(404, "not_found");
     server.get("/api/gallery?page=0").assert_error(400, "bad_request");
-    server.get("/api/test-strip.svg?thickness=-1").assert_error(400, "bad_request");
-    server.get("/api/test-strip.json?material=gold").assert_error(400, "bad_request");
+    server
+        .get("/api/test-strip.svg?thickness=-1")
+        .assert_error(400, "bad_request");
+    server
+        .get("/api/test-strip.json?material=gold")
+        .assert_error(400, "bad_request");
 
     let box_stl = example_box();
-    server.upload("box.stl", &box_stl, &[("material", "<b>gold</b>")]).assert_error(400, "bad_request");
-    server.upload("box.stl", &box_stl, &[("colour", "red")]).assert_error(400, "bad_request");
     server
-        .request("POST", "/api/conversions", &[("Content-Type", "application/json")], b"{}")
+        .upload("box.stl", &box_stl, &[("material", "<b>gold</b>")])
         .assert_error(400, "bad_request");
-    server.upload("page.stl", b"<html><script>alert(1)</script></html>", &[]).assert_error(415, "unsupported_format");
-    server.upload("empty.stl", b"", &[]).assert_error(422, "unreadable_model");
+    server
+        .upload("box.stl", &box_stl, &[("colour", "red")])
+        .assert_error(400, "bad_request");
+    server
+        .request(
+            "POST",
+            "/api/conversions",
+            &[("Content-Type", "application/json")],
+            b"{}",
+        )
+        .assert_error(400, "bad_request");
+    server
+        .upload("page.stl", b"<html><script>alert(1)</script></html>", &[])
+        .assert_error(415, "unsupported_format");
+    server
+        .upload("empty.stl", b"", &[])
+        .assert_error(422, "unreadable_model");
     let big = vec![b'x'; 1_200_000];
     server.upload("big.stl", &big, &[]).assert_error(413, "too_large");
 
@@ -187,15 +251,33 @@ fn every_error_has_its_status_and_code() {
     let name = c["model"]["name"].as_str().expect("name");
     assert!(!name.contains('<') && name.ends_with(".stl"), "{name}");
     let id = c["id"].as_str().expect("id");
-    server.get(&format!("/api/conversions/{id}/plan.zip")).assert_error(409, "not_ready");
-    server.get(&format!("/api/conversions/{id}/methods/cubist/plan.zip")).assert_error(404, "not_found");
-    server.get(&format!("/api/conversions/{id}/methods/plate/sheets/0.svg")).assert_error(404, "not_found");
-    server.get(&format!("/api/conversions/{id}/scenes/nothing.glb")).assert_error(404, "not_found");
     server
-        .request("POST", &format!("/api/conversions/{id}/recut"), &[("Content-Type", "application/json")], b"[1]")
+        .get(&format!("/api/conversions/{id}/plan.zip"))
+        .assert_error(409, "not_ready");
+    server
+        .get(&format!("/api/conversions/{id}/methods/cubist/plan.zip"))
+        .assert_error(404, "not_found");
+    server
+        .get(&format!("/api/conversions/{id}/methods/plate/sheets/0.svg"))
+        .assert_error(404, "not_found");
+    server
+        .get(&format!("/api/conversions/{id}/scenes/nothing.glb"))
+        .assert_error(404, "not_found");
+    server
+        .request(
+            "POST",
+            &format!("/api/conversions/{id}/recut"),
+            &[("Content-Type", "application/json")],
+            b"[1]",
+        )
         .assert_error(400, "bad_request");
     server
-        .request("POST", &format!("/api/conversions/{id}/recut"), &[("Content-Type", "application/json")], b"{\"colour\":1}")
+        .request(
+            "POST",
+            &format!("/api/conversions/{id}/recut"),
+            &[("Content-Type", "application/json")],
+            b"{\"colour\":1}",
+        )
         .assert_error(400, "bad_request");
 }
 
@@ -259,7 +341,15 @@ fn rate_limit_and_full_queue_are_429_and_503() {
     let dir = tempfile::tempdir().expect("temp dir");
     let server = Server::start(
         dir.path(),
-        &["--workers", "0", "--no-examples", "--rate-limit", "3", "--max-queue", "2"],
+        &[
+            "--workers",
+            "0",
+            "--no-examples",
+            "--rate-limit",
+            "3",
+            "--max-queue",
+            "2",
+        ],
         &[],
     );
     let box_stl = example_box();
@@ -271,7 +361,12 @@ fn rate_limit_and_full_queue_are_429_and_503() {
     server.get("/api/health").assert_error(503, "busy");
     let limited = server.upload("d.stl", &box_stl, &[]);
     limited.assert_error(429, "rate_limited");
-    assert!(limited.header("retry-after").and_then(|s| s.parse::<u64>().ok()).is_some_and(|s| (1..=60).contains(&s)));
+    assert!(
+        limited
+            .header("retry-after")
+            .and_then(|s| s.parse::<u64>().ok())
+            .is_some_and(|s| (1..=60).contains(&s))
+    );
 }
 
 #[test]
@@ -314,10 +409,17 @@ fn broken_corpus_files_give_the_readers_message() {
 #[test]
 fn a_killed_worker_retries_and_a_hostile_model_fails_with_a_reason() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let server = Server::start(dir.path(), &["--workers", "1", "--no-examples"], &[("PLATENER_TEST_HOOKS", "1")]);
+    let server = Server::start(
+        dir.path(),
+        &["--workers", "1", "--no-examples"],
+        &[("PLATENER_TEST_HOOKS", "1")],
+    );
     let box_stl = example_box();
     // A slow model: kill -9 its worker while it runs; the job runs again and converts.
-    let id = server.upload("platener-test-slow-box.stl", &box_stl, &[]).json()["id"].as_str().expect("id").to_string();
+    let id = server.upload("platener-test-slow-box.stl", &box_stl, &[]).json()["id"]
+        .as_str()
+        .expect("id")
+        .to_string();
     let c = server.wait_for(&id, |s| s == "running");
     assert_eq!(c["attempts"], 1);
     let workers = server.worker_pids();
@@ -330,16 +432,27 @@ fn a_killed_worker_retries_and_a_hostile_model_fails_with_a_reason() {
     assert!(evs.iter().any(|(k, _)| k == "retry"), "{evs:?}");
 
     // A model that aborts its worker every time: tried twice, then failed with a reason.
-    let id = server.upload("platener-test-abort.stl", &box_stl, &[]).json()["id"].as_str().expect("id").to_string();
+    let id = server.upload("platener-test-abort.stl", &box_stl, &[]).json()["id"]
+        .as_str()
+        .expect("id")
+        .to_string();
     let c = server.wait_ended(&id);
     assert_eq!(c["status"], "failed", "{c}");
     assert_eq!(c["attempts"], 2);
     assert_eq!(c["error"]["code"], "worker_died");
-    assert!(c["error"]["message"].as_str().is_some_and(|m| m.contains("stopped 2 times")), "{c}");
+    assert!(
+        c["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("stopped 2 times")),
+        "{c}"
+    );
     // The server still answers and a good model still converts.
     let health = server.get("/api/health");
     assert_eq!(health.status, 200, "{}", health.text());
-    let id = server.upload("box.stl", &box_stl, &[]).json()["id"].as_str().expect("id").to_string();
+    let id = server.upload("box.stl", &box_stl, &[]).json()["id"]
+        .as_str()
+        .expect("id")
+        .to_string();
     assert_eq!(server.wait_ended(&id)["status"], "done");
 }
 
@@ -350,8 +463,14 @@ fn jobs_survive_a_killed_server_and_a_sigterm() {
     let box_stl = example_box();
     let args = ["--workers", "1", "--no-examples", "--grace", "1"];
     let mut server = Server::start(dir.path(), &args, &hooks);
-    let slow = server.upload("platener-test-slow-a.stl", &box_stl, &[]).json()["id"].as_str().expect("id").to_string();
-    let queued = server.upload("box.stl", &box_stl, &[]).json()["id"].as_str().expect("id").to_string();
+    let slow = server.upload("platener-test-slow-a.stl", &box_stl, &[]).json()["id"]
+        .as_str()
+        .expect("id")
+        .to_string();
+    let queued = server.upload("box.stl", &box_stl, &[]).json()["id"]
+        .as_str()
+        .expect("id")
+        .to_string();
     server.wait_for(&slow, |s| s == "running");
     // kill -9 of the server mid-job: the worker finishes its job (its lifeline closed) and
     // exits; a new server finds one job done and runs the other.
@@ -364,7 +483,10 @@ fn jobs_survive_a_killed_server_and_a_sigterm() {
 
     // SIGTERM with a job running past the grace period: the server stops cleanly and the
     // job, back in the queue, converts after the next start.
-    let slow = server.upload("platener-test-slow-b.stl", &box_stl, &[]).json()["id"].as_str().expect("id").to_string();
+    let slow = server.upload("platener-test-slow-b.stl", &box_stl, &[]).json()["id"]
+        .as_str()
+        .expect("id")
+        .to_string();
     server.wait_for(&slow, |s| s == "running");
     assert!(server.terminate(), "exit status 0 after SIGTERM");
     let server = Server::start(dir.path(), &args, &hooks);
@@ -377,22 +499,38 @@ fn examples_are_published_once_and_the_page_escapes_and_locks_down() {
     let dir = tempfile::tempdir().expect("temp dir");
     let server = Server::start(dir.path(), &["--workers", "1"], &[]);
     let g = server.get("/api/gallery").json();
-    let mut names: Vec<&str> = g["items"].as_array().expect("items").iter().filter_map(|i| i["name"].as_str()).collect();
+    let mut names: Vec<&str> = g["items"]
+        .as_array()
+        .expect("items")
+        .iter()
+        .filter_map(|i| i["name"].as_str())
+        .collect();
     names.sort_unstable();
     assert_eq!(names, ["box-3mm.stl", "phone-stand.stl", "tray-3mm.stl"]);
     let first = g["items"][0]["id"].as_str().expect("id").to_string();
     let page = server.get("/");
     assert_eq!(page.status, 200);
-    assert!(page.header("content-security-policy").is_some_and(|c| c.contains("default-src 'none'")));
+    assert!(
+        page.header("content-security-policy")
+            .is_some_and(|c| c.contains("default-src 'none'"))
+    );
     assert!(page.text().contains("box-3mm.stl"));
     let done = server.wait_ended(&first);
     assert_eq!(done["status"], "done", "{done}");
     drop(server);
     let server = Server::start(dir.path(), &["--workers", "0"], &[]);
-    assert_eq!(server.get("/api/gallery").json()["items"].as_array().map(Vec::len), Some(3), "seeded once");
+    assert_eq!(
+        server.get("/api/gallery").json()["items"].as_array().map(Vec::len),
+        Some(3),
+        "seeded once"
+    );
     let m = server.get("/metrics");
     assert_eq!(m.status, 200);
-    assert!(m.text().contains("platener_conversions{status=\"done\"}"), "{}", m.text());
+    assert!(
+        m.text().contains("platener_conversions{status=\"done\"}"),
+        "{}",
+        m.text()
+    );
     assert!(m.text().contains("platener_conversion_seconds_count"));
     let strip = server.get("/api/test-strip.json?thickness=3&material=wood").json();
     assert!(strip["holes"].as_array().is_some_and(|h| h.len() > 5), "{strip}");

@@ -79,7 +79,7 @@ pub fn summary(all: &Conversions) -> Value {
         let size = m.bounds.max - m.bounds.min;
         json!({"triangles": m.triangles.len(), "bbox_mm": [size.x, size.y, size.z]})
     });
-    let steps: Vec<Value> = all.shared.as_ref().map_or_else(Vec::new, |s| steps_json(s));
+    let steps: Vec<Value> = all.shared.as_ref().map_or_else(Vec::new, steps_json);
     let methods: Vec<Value> = all.methods.iter().map(method_json).collect();
     json!({
         "model": model,

@@ -165,7 +165,9 @@ mod tests {
         assert_eq!(s.thicknesses, vec![4.0, 6.0]);
         let (lib, _) = s.to_library().expect("valid");
         assert_eq!(lib.cut.material, Material::Acrylic);
-        let r = s.with_changes(&serde_json::json!({"kerf": 0.15, "thickness": 5})).expect("valid");
+        let r = s
+            .with_changes(&serde_json::json!({"kerf": 0.15, "thickness": 5}))
+            .expect("valid");
         assert_eq!(r.kerf, Some(0.15));
         assert_eq!(r.thicknesses, vec![5.0]);
         assert!(s.with_changes(&serde_json::json!({"colour": "red"})).is_err());
@@ -174,9 +176,15 @@ mod tests {
 
     #[test]
     fn bad_values_are_refused_without_echo() {
-        for (field, value) in [("material", "<b>gold</b>"), ("sheet", "<b>"), ("method", "<x>"), ("joint", "<y>")] {
+        for (field, value) in [
+            ("material", "<b>gold</b>"),
+            ("sheet", "<b>"),
+            ("method", "<x>"),
+            ("joint", "<y>"),
+        ] {
             let mut s = JobSettings::default();
-            s.set_field(field, value, &mut false).expect("text fields take any text");
+            s.set_field(field, value, &mut false)
+                .expect("text fields take any text");
             let e = s.to_library().expect_err("refused");
             assert!(!e.contains('<'), "{e}");
         }

@@ -51,7 +51,9 @@ const TEXT_WINDOW: usize = 64 * 1024;
 /// count exceeds `max_triangles` (before anything is allocated for them).
 pub fn sniff(bytes: &[u8], max_triangles: u64) -> Result<Sniffed, Refusal> {
     if bytes.is_empty() {
-        return Err(Refusal::Unreadable("the file is empty (0 bytes); export the model again".into()));
+        return Err(Refusal::Unreadable(
+            "the file is empty (0 bytes); export the model again".into(),
+        ));
     }
     if bytes.starts_with(b"PK\x03\x04") {
         return Ok(Sniffed {
@@ -126,8 +128,16 @@ mod tests {
         let s = sniff(&binary(12, 0), 100).expect("binary STL");
         assert_eq!((s.kind, s.triangles), (Kind::Stl, Some(12)));
         assert_eq!(sniff(&binary(12, 1), 100).expect("trailing byte").triangles, Some(12));
-        assert_eq!(sniff(b"solid x\nfacet normal 0 0 1\n", 100).expect("ascii").kind, Kind::Stl);
-        assert_eq!(sniff(b"# cube\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", 100).expect("obj").kind, Kind::Obj);
+        assert_eq!(
+            sniff(b"solid x\nfacet normal 0 0 1\n", 100).expect("ascii").kind,
+            Kind::Stl
+        );
+        assert_eq!(
+            sniff(b"# cube\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", 100)
+                .expect("obj")
+                .kind,
+            Kind::Obj
+        );
         assert_eq!(sniff(b"PK\x03\x04rest", 100).expect("3mf").kind, Kind::ThreeMf);
         assert!(matches!(sniff(b"<html><script>", 100), Err(Refusal::Unsupported(_))));
         assert!(matches!(sniff(b"\x89PNG\r\n\x1a\n", 100), Err(Refusal::Unsupported(_))));

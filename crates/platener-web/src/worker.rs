@@ -135,12 +135,21 @@ async fn watch_lifeline(cut: Cancel) {
 async fn convert_job(db: &Db, me: &str, job: Claimed, config: &WorkerConfig) -> Result<bool, WorkerError> {
     tracing::info!(job = %job.id, attempt = job.attempts, "converting");
     let cancel = Cancel::default();
-    let heartbeat = tokio::spawn(heartbeat(db.clone(), job.id.clone(), me.to_string(), config.lease_ms, cancel.clone()));
+    let heartbeat = tokio::spawn(heartbeat(
+        db.clone(),
+        job.id.clone(),
+        me.to_string(),
+        config.lease_ms,
+        cancel.clone(),
+    ));
     let outcome = match parse_settings(&job) {
         Ok(request) => {
             let (request, restart) = (request_with_limits(request, config), config.timeout.is_some());
             let all = run_observed(db, &job, request, &cancel, config.test_hooks).await?;
-            let timed_out = all.methods.iter().any(|m| m.status == platener::convert::Status::TimedOut);
+            let timed_out = all
+                .methods
+                .iter()
+                .any(|m| m.status == platener::convert::Status::TimedOut);
             let finished = tokio::task::spawn_blocking(move || results::finished(&all))
                 .await
                 .map_err(|e| std::io::Error::other(e.to_string()))?;

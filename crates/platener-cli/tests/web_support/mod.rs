@@ -218,7 +218,10 @@ impl Response {
 pub fn request(addr: &str, method: &str, path: &str, headers: &[(&str, &str)], body: &[u8]) -> Response {
     let mut stream = TcpStream::connect(addr).expect("connect");
     stream.set_read_timeout(Some(PATIENCE)).expect("timeout");
-    let mut head = format!("{method} {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nContent-Length: {}\r\n", body.len());
+    let mut head = format!(
+        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nContent-Length: {}\r\n",
+        body.len()
+    );
     for (k, v) in headers {
         head.push_str(&format!("{k}: {v}\r\n"));
     }
@@ -246,7 +249,10 @@ pub fn parse(raw: &[u8]) -> Response {
         .map(|(k, v)| (k.trim().to_ascii_lowercase(), v.trim().to_string()))
         .collect();
     let mut body = raw[split + 4..].to_vec();
-    if headers.iter().any(|(k, v)| k == "transfer-encoding" && v.contains("chunked")) {
+    if headers
+        .iter()
+        .any(|(k, v)| k == "transfer-encoding" && v.contains("chunked"))
+    {
         body = dechunk(&body);
     }
     Response { status, headers, body }
@@ -270,7 +276,10 @@ fn dechunk(mut data: &[u8]) -> Vec<u8> {
 pub fn events(addr: &str, id: &str) -> Vec<(String, Value)> {
     let r = request(addr, "GET", &format!("/api/conversions/{id}/events"), &[], b"");
     assert_eq!(r.status, 200, "{}", r.text());
-    assert!(r.header("content-type").is_some_and(|c| c.starts_with("text/event-stream")));
+    assert!(
+        r.header("content-type")
+            .is_some_and(|c| c.starts_with("text/event-stream"))
+    );
     let mut out = Vec::new();
     for block in r.text().split("\n\n") {
         let mut event = None;
@@ -291,5 +300,6 @@ pub fn events(addr: &str, id: &str) -> Vec<(String, Value)> {
 
 /// The example box of the repository.
 pub fn example_box() -> Vec<u8> {
-    std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/box-3mm.stl")).expect("examples/box-3mm.stl")
+    std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/box-3mm.stl"))
+        .expect("examples/box-3mm.stl")
 }

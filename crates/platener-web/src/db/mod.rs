@@ -134,14 +134,12 @@ impl Db {
     /// Extends the lease of a job `worker` still holds; `false` when it no longer does (the
     /// job was given to another worker or deleted), and the worker should drop it.
     pub async fn heartbeat(&self, id: &str, worker: &str, lease_ms: i64) -> Result<bool> {
-        let done = sqlx::query(
-            "UPDATE jobs SET lease_until = $1 WHERE id = $2 AND worker = $3 AND status = 'running'",
-        )
-        .bind(now_ms() + lease_ms)
-        .bind(id)
-        .bind(worker)
-        .execute(&self.pool)
-        .await?;
+        let done = sqlx::query("UPDATE jobs SET lease_until = $1 WHERE id = $2 AND worker = $3 AND status = 'running'")
+            .bind(now_ms() + lease_ms)
+            .bind(id)
+            .bind(worker)
+            .execute(&self.pool)
+            .await?;
         Ok(done.rows_affected() == 1)
     }
 
@@ -195,7 +193,10 @@ impl Db {
         .fetch_all(&self.pool)
         .await?;
         let ids = |rows: Vec<AnyRow>| -> Result<Vec<String>> {
-            let mut ids: Vec<String> = rows.iter().map(|r| r.try_get("id")).collect::<std::result::Result<_, _>>()?;
+            let mut ids: Vec<String> = rows
+                .iter()
+                .map(|r| r.try_get("id"))
+                .collect::<std::result::Result<_, _>>()?;
             ids.sort();
             Ok(ids)
         };
@@ -204,8 +205,12 @@ impl Db {
             self.append_event(id, "failed", &error).await?;
         }
         for id in &requeued {
-            self.append_event(id, "retry", r#"{"reason":"the worker stopped; the job is queued again"}"#)
-                .await?;
+            self.append_event(
+                id,
+                "retry",
+                r#"{"reason":"the worker stopped; the job is queued again"}"#,
+            )
+            .await?;
         }
         Ok((requeued, failed))
     }
@@ -226,12 +231,13 @@ impl Db {
 
     /// A job's events after sequence number `after`, in order (at most `limit`).
     pub async fn events_after(&self, id: &str, after: i64, limit: i64) -> Result<Vec<EventRow>> {
-        let rows = sqlx::query("SELECT seq, kind, data FROM events WHERE job_id = $1 AND seq > $2 ORDER BY seq LIMIT $3")
-            .bind(id)
-            .bind(after)
-            .bind(limit)
-            .fetch_all(&self.pool)
-            .await?;
+        let rows =
+            sqlx::query("SELECT seq, kind, data FROM events WHERE job_id = $1 AND seq > $2 ORDER BY seq LIMIT $3")
+                .bind(id)
+                .bind(after)
+                .bind(limit)
+                .fetch_all(&self.pool)
+                .await?;
         rows.iter().map(EventRow::from_row).collect()
     }
 
@@ -287,15 +293,25 @@ impl Db {
             .bind(file)
             .fetch_optional(&self.pool)
             .await?;
-        row.map(|r| Ok((r.try_get("content_type")?, r.try_get("data")?))).transpose()
+        row.map(|r| Ok((r.try_get("content_type")?, r.try_get("data")?)))
+            .transpose()
     }
 
     /// Removes a job, its events and results, in one transaction.
     pub async fn delete(&self, id: &str) -> Result<bool> {
         let mut tx = self.pool.begin().await?;
-        sqlx::query("DELETE FROM results WHERE job_id = $1").bind(id).execute(&mut *tx).await?;
-        sqlx::query("DELETE FROM events WHERE job_id = $1").bind(id).execute(&mut *tx).await?;
-        let done = sqlx::query("DELETE FROM jobs WHERE id = $1").bind(id).execute(&mut *tx).await?;
+        sqlx::query("DELETE FROM results WHERE job_id = $1")
+            .bind(id)
+            .execute(&mut *tx)
+            .await?;
+        sqlx::query("DELETE FROM events WHERE job_id = $1")
+            .bind(id)
+            .execute(&mut *tx)
+            .await?;
+        let done = sqlx::query("DELETE FROM jobs WHERE id = $1")
+            .bind(id)
+            .execute(&mut *tx)
+            .await?;
         tx.commit().await?;
         Ok(done.rows_affected() == 1)
     }

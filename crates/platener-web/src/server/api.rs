@@ -44,7 +44,9 @@ pub async fn create(
     }
     let form = form.map_err(|_| ApiError::bad_request("send the model as a multipart/form-data field named model"))?;
     let upload = read_form(form, &app).await?;
-    let model = upload.model.ok_or_else(|| ApiError::bad_request("the form has no field named model"))?;
+    let model = upload
+        .model
+        .ok_or_else(|| ApiError::bad_request("the form has no field named model"))?;
     enqueue(&app, model, upload.name, upload.settings, None).await
 }
 
@@ -111,7 +113,10 @@ async fn admit(app: &App, peer: SocketAddr) -> ApiResult<()> {
         return Err(ApiError::rate_limited(wait));
     }
     if app.db.queue_len().await? >= app.config.max_queue {
-        return Err(ApiError::busy("the conversion queue is full; try again in a minute", 30));
+        return Err(ApiError::busy(
+            "the conversion queue is full; try again in a minute",
+            30,
+        ));
     }
     Ok(())
 }
@@ -160,7 +165,13 @@ pub fn safe_stem(name: Option<&str>) -> String {
     let stem = base.rsplit_once('.').map_or(base, |(s, _)| s);
     let clean: String = stem
         .chars()
-        .map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
         .take(60)
         .collect();
     let clean = clean.trim_matches('_').to_string();
@@ -226,11 +237,16 @@ pub async fn recut(
     body: Result<Json<Value>, axum::extract::rejection::JsonRejection>,
 ) -> ApiResult<Response> {
     let row = load(&app, &id).await?;
-    let Json(changes) = body.map_err(|_| ApiError::bad_request("the body must be JSON settings, e.g. {\"kerf\": 0.15}"))?;
+    let Json(changes) =
+        body.map_err(|_| ApiError::bad_request("the body must be JSON settings, e.g. {\"kerf\": 0.15}"))?;
     admit(&app, peer).await?;
     let settings: JobSettings = serde_json::from_str(&row.settings).map_err(|_| ApiError::internal())?;
     let settings = settings.with_changes(&changes).map_err(ApiError::bad_request)?;
-    let model = app.db.model(&row.id).await?.ok_or_else(|| ApiError::not_found("conversion"))?;
+    let model = app
+        .db
+        .model(&row.id)
+        .await?
+        .ok_or_else(|| ApiError::not_found("conversion"))?;
     enqueue(&app, model, Some(row.name.clone()), settings, Some(row.id)).await
 }
 

@@ -8,7 +8,10 @@ use crate::settings::JobSettings;
 /// The examples/ folder of the repository: name and bytes.
 pub const EXAMPLES: [(&str, &[u8]); 3] = [
     ("box-3mm.stl", include_bytes!("../../../../examples/box-3mm.stl")),
-    ("phone-stand.stl", include_bytes!("../../../../examples/phone-stand.stl")),
+    (
+        "phone-stand.stl",
+        include_bytes!("../../../../examples/phone-stand.stl"),
+    ),
     ("tray-3mm.stl", include_bytes!("../../../../examples/tray-3mm.stl")),
 ];
 

@@ -23,10 +23,12 @@ fn best_of(row: &JobRow) -> ApiResult<String> {
         .unwrap_or_default();
     match summary["best"].as_str() {
         Some(b) => Ok(b.to_string()),
-        None if matches!(row.status.as_str(), "queued" | "running") => {
-            Err(ApiError::not_ready("the conversion has not finished yet; follow its events"))
-        }
-        None => Err(ApiError::not_ready("no method converted this model, so there is no plan")),
+        None if matches!(row.status.as_str(), "queued" | "running") => Err(ApiError::not_ready(
+            "the conversion has not finished yet; follow its events",
+        )),
+        None => Err(ApiError::not_ready(
+            "no method converted this model, so there is no plan",
+        )),
     }
 }
 

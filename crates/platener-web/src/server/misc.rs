@@ -73,7 +73,11 @@ pub async fn gallery_page(app: &App, page: i64) -> ApiResult<Value> {
         .iter()
         .take(usize::try_from(GALLERY_PAGE).unwrap_or(20))
         .map(|r| {
-            let summary: Value = r.summary.as_deref().and_then(|s| serde_json::from_str(s).ok()).unwrap_or_default();
+            let summary: Value = r
+                .summary
+                .as_deref()
+                .and_then(|s| serde_json::from_str(s).ok())
+                .unwrap_or_default();
             let best = summary["best"].as_str();
             let method = summary["methods"]
                 .as_array()
@@ -106,7 +110,9 @@ pub struct StripQuery {
     material: Option<String>,
 }
 
-fn strip(query: Result<Query<StripQuery>, axum::extract::rejection::QueryRejection>) -> ApiResult<(platener::kerf::strip::TestStrip, Material, f64)> {
+fn strip(
+    query: Result<Query<StripQuery>, axum::extract::rejection::QueryRejection>,
+) -> ApiResult<(platener::kerf::strip::TestStrip, Material, f64)> {
     let Query(q) = query.map_err(|_| ApiError::bad_request("thickness must be a number of mm"))?;
     let thickness = q.thickness.unwrap_or(3.0);
     let material = match q.material.as_deref().unwrap_or("wood") {
@@ -114,22 +120,33 @@ fn strip(query: Result<Query<StripQuery>, axum::extract::rejection::QueryRejecti
         "acrylic" => Material::Acrylic,
         "cardboard" => Material::Cardboard,
         "paper" => Material::Paper,
-        _ => return Err(ApiError::bad_request("material must be wood, acrylic, cardboard or paper")),
+        _ => {
+            return Err(ApiError::bad_request(
+                "material must be wood, acrylic, cardboard or paper",
+            ));
+        }
     };
     if !(thickness.is_finite() && thickness > 0.0 && thickness <= 50.0) {
-        return Err(ApiError::bad_request("thickness must be a number of mm above 0 and at most 50"));
+        return Err(ApiError::bad_request(
+            "thickness must be a number of mm above 0 and at most 50",
+        ));
     }
     let s = test_strip(thickness, material).map_err(|e| ApiError::bad_request(e.to_string()))?;
     Ok((s, material, thickness))
 }
 
 /// `GET /api/test-strip.svg`.
-pub async fn test_strip_svg(query: Result<Query<StripQuery>, axum::extract::rejection::QueryRejection>) -> ApiResult<Response> {
+pub async fn test_strip_svg(
+    query: Result<Query<StripQuery>, axum::extract::rejection::QueryRejection>,
+) -> ApiResult<Response> {
     let (s, _, _) = strip(query)?;
     Ok((
         [
             (header::CONTENT_TYPE, "image/svg+xml"),
-            (header::CONTENT_SECURITY_POLICY, "default-src 'none'; style-src 'unsafe-inline'; sandbox"),
+            (
+                header::CONTENT_SECURITY_POLICY,
+                "default-src 'none'; style-src 'unsafe-inline'; sandbox",
+            ),
         ],
         s.svg(),
     )
@@ -137,7 +154,9 @@ pub async fn test_strip_svg(query: Result<Query<StripQuery>, axum::extract::reje
 }
 
 /// `GET /api/test-strip.json`: its holes and the kerf each stands for.
-pub async fn test_strip_json(query: Result<Query<StripQuery>, axum::extract::rejection::QueryRejection>) -> ApiResult<Json<Value>> {
+pub async fn test_strip_json(
+    query: Result<Query<StripQuery>, axum::extract::rejection::QueryRejection>,
+) -> ApiResult<Json<Value>> {
     let (s, material, thickness) = strip(query)?;
     let holes: Vec<Value> = s
         .holes
@@ -176,12 +195,21 @@ pub async fn metrics(State(app): State<Arc<App>>) -> ApiResult<Response> {
     let mut s = String::new();
     let _ = writeln!(s, "# HELP platener_http_responses_total Responses by status code.");
     let _ = writeln!(s, "# TYPE platener_http_responses_total counter");
-    let responses = app.metrics.responses.lock().unwrap_or_else(std::sync::PoisonError::into_inner).clone();
+    let responses = app
+        .metrics
+        .responses
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+        .clone();
     for (code, n) in responses {
         let _ = writeln!(s, "platener_http_responses_total{{status=\"{code}\"}} {n}");
     }
     let _ = writeln!(s, "# TYPE platener_uploads_accepted_total counter");
-    let _ = writeln!(s, "platener_uploads_accepted_total {}", app.metrics.accepted.load(Ordering::Relaxed));
+    let _ = writeln!(
+        s,
+        "platener_uploads_accepted_total {}",
+        app.metrics.accepted.load(Ordering::Relaxed)
+    );
     let _ = writeln!(s, "# HELP platener_conversions Conversions in the database by status.");
     let _ = writeln!(s, "# TYPE platener_conversions gauge");
     for (status, n) in app.db.counts().await? {
@@ -192,10 +220,17 @@ pub async fn metrics(State(app): State<Arc<App>>) -> ApiResult<Response> {
     let _ = writeln!(s, "# TYPE platener_workers gauge");
     let _ = writeln!(s, "platener_workers {}", app.live_workers.load(Ordering::SeqCst));
     let (counts, n, total) = app.db.durations(&BUCKETS_MS).await?;
-    let _ = writeln!(s, "# HELP platener_conversion_seconds Time from a worker's first claim to the result.");
+    let _ = writeln!(
+        s,
+        "# HELP platener_conversion_seconds Time from a worker's first claim to the result."
+    );
     let _ = writeln!(s, "# TYPE platener_conversion_seconds histogram");
     for (b, c) in BUCKETS_MS.iter().zip(&counts) {
-        let _ = writeln!(s, "platener_conversion_seconds_bucket{{le=\"{}\"}} {c}", *b as f64 / 1000.0);
+        let _ = writeln!(
+            s,
+            "platener_conversion_seconds_bucket{{le=\"{}\"}} {c}",
+            *b as f64 / 1000.0
+        );
     }
     let _ = writeln!(s, "platener_conversion_seconds_bucket{{le=\"+Inf\"}} {n}");
     let _ = writeln!(s, "platener_conversion_seconds_sum {}", total as f64 / 1000.0);

@@ -199,7 +199,10 @@ fn router(app: Arc<App>) -> Router {
         .route("/api/conversions/{id}/publish", post(api::publish))
         .route("/api/conversions/{id}/plan.zip", get(files::best_plan))
         .route("/api/conversions/{id}/methods/{method}/{file}", get(files::method_file))
-        .route("/api/conversions/{id}/methods/{method}/sheets/{file}", get(files::sheet))
+        .route(
+            "/api/conversions/{id}/methods/{method}/sheets/{file}",
+            get(files::sheet),
+        )
         .route("/api/conversions/{id}/scenes/{file}", get(files::scene))
         .route("/api/gallery", get(misc::gallery))
         .route("/api/test-strip.svg", get(misc::test_strip_svg))

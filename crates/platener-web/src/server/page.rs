@@ -64,6 +64,9 @@ pub async fn index(State(app): State<Arc<App>>) -> ApiResult<Response> {
 mod tests {
     #[test]
     fn escapes_markup() {
-        assert_eq!(super::escape_html("<a href='x'>&\"</a>"), "&lt;a href=&#39;x&#39;&gt;&amp;&quot;&lt;/a&gt;");
+        assert_eq!(
+            super::escape_html("<a href='x'>&\"</a>"),
+            "&lt;a href=&#39;x&#39;&gt;&amp;&quot;&lt;/a&gt;"
+        );
     }
 }

@@ -47,7 +47,9 @@ pub fn conversion(row: &JobRow, files: &[(String, String)]) -> Value {
         .and_then(|s| serde_json::from_str(s).ok())
         .unwrap_or(Value::Null);
     let model_summary = &summary["model"];
-    let triangles = model_summary["triangles"].as_u64().map_or_else(|| json!(row.triangles), |t| json!(t));
+    let triangles = model_summary["triangles"]
+        .as_u64()
+        .map_or_else(|| json!(row.triangles), |t| json!(t));
     let best = summary["best"].as_str().map(str::to_string);
     json!({
         "id": row.id,
@@ -79,9 +81,9 @@ fn links(id: &str, best: Option<&str>, files: &[(String, String)]) -> Value {
     let base = format!("/api/conversions/{id}");
     let mut methods: BTreeMap<&str, Value> = BTreeMap::new();
     for (method, file) in files {
-        let entry = methods.entry(method).or_insert_with(|| {
-            json!({"sheets": [], "previews": [], "scenes": {}})
-        });
+        let entry = methods
+            .entry(method)
+            .or_insert_with(|| json!({"sheets": [], "previews": [], "scenes": {}}));
         let url = format!("{base}/methods/{method}/{file}");
         if let Some(n) = file.strip_prefix("sheets/") {
             let list = if n.ends_with(".svg") { "sheets" } else { "previews" };
@@ -130,7 +132,10 @@ fn strip_method_query(scenes: &Value) -> Value {
             map.iter()
                 .map(|(k, v)| {
                     let url = v.as_str().unwrap_or_default();
-                    (k.clone(), Value::String(url.split('?').next().unwrap_or_default().to_string()))
+                    (
+                        k.clone(),
+                        Value::String(url.split('?').next().unwrap_or_default().to_string()),
+                    )
                 })
                 .collect(),
         ),
