@@ -76,9 +76,12 @@ pub struct WorkerArgs {
     pub lifeline: bool,
 }
 
+/// Logs at info level on stderr, coloured only on a terminal (so log files stay plain text).
 fn init_logs() {
+    use std::io::IsTerminal as _;
     let _ = tracing_subscriber::fmt()
         .with_max_level(tracing::Level::INFO)
+        .with_ansi(std::io::stderr().is_terminal())
         .with_writer(std::io::stderr)
         .try_init();
 }

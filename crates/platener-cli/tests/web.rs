@@ -536,3 +536,82 @@ fn examples_are_published_once_and_the_page_escapes_and_locks_down() {
     assert!(strip["holes"].as_array().is_some_and(|h| h.len() > 5), "{strip}");
     assert!(server.get("/api/test-strip.svg?thickness=3").text().contains("<svg"));
 }
+
+/// The job ids a worker's log says it converted.
+fn converted_by(log: &str) -> Vec<String> {
+    log.lines()
+        .filter(|l| l.contains("converting"))
+        .filter_map(|l| l.split("job=").nth(1))
+        .map(|rest| {
+            rest.chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn two_workers_on_postgres_share_40_jobs_each_run_once() {
+    let Ok(url) = std::env::var("PLATENER_TEST_POSTGRES") else {
+        eprintln!("skipping: PLATENER_TEST_POSTGRES does not name a PostgreSQL database");
+        return;
+    };
+    let dir = tempfile::tempdir().expect("temp dir");
+    let args = [
+        "--workers",
+        "0",
+        "--no-examples",
+        "--database",
+        &url,
+        "--rate-limit",
+        "0",
+        "--max-queue",
+        "1000",
+    ];
+    let server = Server::start(dir.path(), &args, &[]);
+    let box_stl = example_box();
+    let ids: Vec<String> = (0..40)
+        .map(|i| {
+            let r = server.upload(&format!("box{i}.stl"), &box_stl, &[("method", "plate")]);
+            assert_eq!(r.status, 202, "{}", r.text());
+            r.json()["id"].as_str().expect("id").to_string()
+        })
+        .collect();
+    let logs: Vec<_> = (0..2)
+        .map(|_| tempfile::NamedTempFile::new().expect("log file"))
+        .collect();
+    let mut workers: Vec<std::process::Child> = logs
+        .iter()
+        .map(|log| {
+            std::process::Command::new(env!("CARGO_BIN_EXE_platener"))
+                .args(["worker", "--database", &url, "--memory-mb", "0"])
+                .stderr(log.reopen().expect("log"))
+                .spawn()
+                .expect("worker starts")
+        })
+        .collect();
+    for id in &ids {
+        let c = server.wait_ended(id);
+        assert_eq!(c["status"], "done", "{c}");
+        assert_eq!(c["attempts"], 1, "run once: {c}");
+        let reads = events(&server.addr, id)
+            .iter()
+            .filter(|(k, d)| k == "step" && d["step"] == "read" && d["state"] == "started")
+            .count();
+        assert_eq!(reads, 1, "{id} read once");
+    }
+    for w in &mut workers {
+        let _ = w.kill();
+        let _ = w.wait();
+    }
+    let done: Vec<Vec<String>> = logs
+        .iter()
+        .map(|l| converted_by(&std::fs::read_to_string(l.path()).unwrap_or_default()))
+        .collect();
+    let mut all: Vec<&String> = done.iter().flatten().filter(|id| ids.contains(id)).collect();
+    assert!(done.iter().all(|d| !d.is_empty()), "both workers took jobs: {done:?}");
+    all.sort();
+    let n = all.len();
+    all.dedup();
+    assert_eq!((n, all.len()), (40, 40), "every job by exactly one worker");
+}

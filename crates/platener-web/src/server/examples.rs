@@ -22,8 +22,8 @@ pub async fn seed(db: &Db) -> Result<()> {
         return Ok(());
     }
     let settings = serde_json::to_string(&JobSettings::default()).unwrap_or_default();
+    let now = now_ms();
     for (i, (name, bytes)) in EXAMPLES.iter().enumerate() {
-        let now = now_ms();
         let job = NewJob {
             id: ids::conversion_id(),
             name: (*name).to_string(),
