@@ -4,6 +4,9 @@
 //! - [`db`]: jobs, events and results in SQLite (default) or PostgreSQL.
 //! - [`worker`]: the worker process's loop: claim a job, run [`platener::convert_all`], store.
 //! - [`server`]: the axum server, its worker processes, the gallery's examples.
+//! - [`results`]: what a worker stores of a conversion (summary, ZIP, sheets, scenes).
+//! - [`settings`], [`sniff`], [`ids`]: upload settings, formats by content, random ids and
+//!   hashed delete tokens.
 //!
 //! docs/architecture.md: this crate may use `platener`; the CLI calls [`server::serve`] and
 //! [`worker::run`] and does nothing else.

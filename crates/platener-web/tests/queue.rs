@@ -146,6 +146,15 @@ fn results_status_and_last_event_are_written_together() {
             assert_eq!(db.result_index(&j.id).await.expect("index").len(), 3);
             assert!(db.delete(&j.id).await.expect("delete"));
             assert!(db.job(&j.id).await.expect("read").is_none());
+            // Deleted while running: the worker's late events and results are dropped.
+            let k = job(now_ms());
+            db.insert_job(&k).await.expect("insert");
+            db.claim("w1", 60_000).await.expect("claim").expect("job");
+            assert!(db.delete(&k.id).await.expect("delete"));
+            db.append_event(&k.id, "step", "{}").await.expect("a late event");
+            assert!(!db.finish(&k.id, "w1", &finished(2)).await.expect("finish"));
+            assert!(db.events_after(&k.id, 0, 100).await.expect("events").is_empty());
+            assert!(db.result_index(&k.id).await.expect("index").is_empty());
             assert!(db.result_index(&j.id).await.expect("index").is_empty());
             assert!(db.events_after(&j.id, 0, 100).await.expect("events").is_empty());
         }

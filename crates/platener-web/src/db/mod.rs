@@ -260,6 +260,11 @@ impl Db {
         .await?;
         if updated.rows_affected() != 1 {
             tx.rollback().await?;
+            // A job deleted while it ran leaves no events behind.
+            sqlx::query("DELETE FROM events WHERE job_id = $1 AND NOT EXISTS (SELECT 1 FROM jobs WHERE id = $1)")
+                .bind(id)
+                .execute(&self.pool)
+                .await?;
             return Ok(false);
         }
         for f in &outcome.files {
