@@ -14,6 +14,7 @@ const MAIN_EXAMPLES: &str = "Examples:
   platener convert models/ -o out -t 3 -t 6 --method plate -j 4
   platener inspect examples/box-3mm.stl --plates
   platener test-strip -t 3 -o strip.svg
+  platener serve --addr 127.0.0.1:3000 --workers 2
   platener completions bash > /etc/bash_completion.d/platener
 
 Exit codes: 0 success; 1 something failed: for convert, a model that no method converted or an
@@ -63,6 +64,13 @@ pub enum Command {
     /// assembly of the cut parts.
     #[command(after_help = crate::scene::EXAMPLES)]
     Scene(SceneArgs),
+    /// Serves the web API (and page) on a port, with conversions queued in a database and run
+    /// by worker processes it starts.
+    #[command(after_help = crate::web::SERVE_EXAMPLES)]
+    Serve(crate::web::ServeArgs),
+    /// Takes conversions from the web service's queue and runs them (started by `serve`, or
+    /// on other machines sharing a PostgreSQL database).
+    Worker(crate::web::WorkerArgs),
     /// Prints a shell completion script.
     #[command(after_help = crate::completions::EXAMPLES)]
     Completions(CompletionsArgs),

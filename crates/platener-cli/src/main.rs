@@ -16,6 +16,7 @@ mod report;
 mod scene;
 mod test_strip;
 mod verify;
+mod web;
 
 use std::process::ExitCode;
 
@@ -29,6 +30,8 @@ fn main() -> ExitCode {
         args::Command::TestStrip(a) => test_strip::run(&a).map(|()| 0),
         args::Command::Verify(a) => verify::run(&a),
         args::Command::Scene(a) => scene::run(&a).map(|()| 0),
+        args::Command::Serve(a) => web::serve(&a).map(|()| 0),
+        args::Command::Worker(a) => web::worker(&a).map(|()| 0),
         args::Command::Completions(a) => {
             completions::run(&a);
             Ok(0)

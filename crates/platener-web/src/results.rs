@@ -1,0 +1,165 @@
+//! What a worker stores of a conversion: the summary the API shows and every file it serves.
+//!
+//! Everything the server answers is made here, in the worker, so the server only copies bytes
+//! out of the database (it never runs a step, not even to draw a scene).
+
+use platener::convert::{Conversions, MethodResult, Status};
+use platener::scene::View;
+use platener::{Error, State};
+use serde_json::{Value, json};
+
+use crate::db::{Finished, ResultFile};
+
+/// The content type of a ZIP.
+pub const ZIP: &str = "application/zip";
+/// The content type of JSON.
+pub const JSON: &str = "application/json";
+/// The content type of an SVG sheet.
+pub const SVG: &str = "image/svg+xml";
+/// The content type of a PNG preview.
+pub const PNG: &str = "image/png";
+/// The content type of a glTF binary scene.
+pub const GLB: &str = "model/gltf-binary";
+
+/// How a finished conversion is recorded: `done` when a method converted, else `failed` with
+/// the first method's error (the reader's message for an unreadable model).
+pub fn finished(all: &Conversions) -> Finished {
+    let summary = summary(all);
+    let mut files = Vec::new();
+    for m in &all.methods {
+        files.extend(method_files(m));
+    }
+    let (status, error) = match all.best {
+        Some(_) => ("done", None),
+        None => ("failed", Some(error_of(all))),
+    };
+    let event = match &error {
+        None => json!({"status": status, "best": all.best.map(|b| b.name())}),
+        Some(e) => json!({"status": status, "error": e}),
+    };
+    Finished {
+        status: status.into(),
+        error: error.map(|e| e.to_string()),
+        summary: summary.to_string(),
+        files,
+        event: event.to_string(),
+    }
+}
+
+/// `{"code", "message"}` of a conversion no method converted.
+fn error_of(all: &Conversions) -> Value {
+    let first = all.methods.iter().find_map(|m| m.error.as_ref().map(|e| (m, e)));
+    match first {
+        Some((_, e @ Error::Read(_))) => json!({"code": "unreadable_model", "message": e.to_string()}),
+        Some((m, e)) => {
+            let code = match m.status {
+                Status::TimedOut => "timed_out",
+                _ => "conversion_failed",
+            };
+            let others: Vec<String> = all
+                .methods
+                .iter()
+                .filter(|o| o.method != m.method)
+                .filter_map(|o| o.error.as_ref().map(|e| format!("{}: {e}", o.method.name())))
+                .collect();
+            let mut message = format!("no method converted the model; {}: {e}", m.method.name());
+            for o in others {
+                message.push_str("; ");
+                message.push_str(&o);
+            }
+            json!({"code": code, "message": message})
+        }
+        None => json!({"code": "conversion_failed", "message": "no method converted the model"}),
+    }
+}
+
+/// The summary JSON: the model, the shared steps, every method and the best.
+pub fn summary(all: &Conversions) -> Value {
+    let model = all.shared.as_ref().and_then(|s| s.read.as_ref()).map(|m| {
+        let size = m.bounds.max - m.bounds.min;
+        json!({"triangles": m.triangles.len(), "bbox_mm": [size.x, size.y, size.z]})
+    });
+    let steps: Vec<Value> = all.shared.as_ref().map_or_else(Vec::new, steps_json);
+    let methods: Vec<Value> = all.methods.iter().map(method_json).collect();
+    json!({
+        "model": model,
+        "steps": steps,
+        "methods": methods,
+        "best": all.best.map(|b| b.name()),
+        "seconds": all.seconds,
+    })
+}
+
+fn steps_json(state: &State) -> Vec<Value> {
+    state
+        .records
+        .iter()
+        .map(|r| json!({"name": r.name, "ms": r.millis, "warnings": r.warnings}))
+        .collect()
+}
+
+fn method_json(m: &MethodResult) -> Value {
+    let plan = m.bundle().map(|b| &b.plan);
+    let warnings: Vec<&platener::Warning> = m.warnings().collect();
+    json!({
+        "method": m.method.name(),
+        "status": status_name(m.status),
+        "score": m.score.as_ref().map(|s| s.total),
+        "parts": plan.map(|p| p.parts.len()),
+        "sheets": plan.map(|p| p.sheets.len()),
+        "verified": m.verification.as_ref().map(|v| v.passed()),
+        "seconds": m.seconds,
+        "warnings": warnings,
+        "error": m.error.as_ref().map(ToString::to_string),
+    })
+}
+
+/// The API's name of a method status: `done` for a plan, else the library's word.
+pub fn status_name(status: Status) -> &'static str {
+    match status {
+        Status::Converted => "done",
+        Status::Failed => "failed",
+        Status::Panicked => "panicked",
+        Status::TimedOut => "timed-out",
+        Status::Cancelled => "cancelled",
+    }
+}
+
+/// A method's files: the ZIP, plan.json, report.json, sheets (SVG, PNG) and the scenes it
+/// reached.
+fn method_files(m: &MethodResult) -> Vec<ResultFile> {
+    let method = m.method.name();
+    let file = |file: String, content_type: &str, data: Vec<u8>| ResultFile {
+        method: method.into(),
+        file,
+        content_type: content_type.into(),
+        data,
+    };
+    let mut files = Vec::new();
+    if let Some(bundle) = m.bundle() {
+        files.push(file("plan.zip".into(), ZIP, bundle.zip.clone()));
+        for name in ["plan.json", "report.json"] {
+            if let Some(data) = bundle.files.get(name) {
+                files.push(file(name.into(), JSON, data.clone()));
+            }
+        }
+        for (i, sheet) in bundle.plan.sheets.iter().enumerate() {
+            let n = i + 1;
+            if let Some(svg) = bundle.files.get(&sheet.file) {
+                files.push(file(format!("sheets/{n}.svg"), SVG, svg.clone()));
+            }
+            let png_name = sheet.file.strip_suffix(".svg").map(|s| format!("{s}.png"));
+            if let Some(png) = png_name.and_then(|p| bundle.files.get(&p)) {
+                files.push(file(format!("sheets/{n}.png"), PNG, png.clone()));
+            }
+        }
+    }
+    if let Some(state) = &m.state {
+        for view in View::ALL {
+            if let Ok(scene) = state.scene(view) {
+                files.push(file(format!("scenes/{view}.glb"), GLB, scene.glb));
+            }
+        }
+    }
+    files
+}

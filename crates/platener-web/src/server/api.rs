@@ -1,0 +1,320 @@
+//! The conversion endpoints: upload, show, events, recut, publish, delete.
+
+use std::collections::VecDeque;
+use std::convert::Infallible;
+use std::net::SocketAddr;
+use std::sync::Arc;
+use std::sync::atomic::Ordering;
+use std::time::Duration;
+
+use axum::Json;
+use axum::extract::multipart::{Multipart, MultipartRejection};
+use axum::extract::{ConnectInfo, Path, State};
+use axum::http::{HeaderMap, StatusCode, header};
+use axum::response::sse::{Event, KeepAlive, Sse};
+use axum::response::{IntoResponse, Response};
+use futures_util::Stream;
+use serde_json::Value;
+
+use super::error::{ApiError, ApiResult};
+use super::{App, view};
+use crate::db::{EventRow, JobRow, NewJob, now_ms};
+use crate::ids;
+use crate::settings::JobSettings;
+use crate::sniff::{self, Refusal};
+
+/// Bytes a multipart form may have beyond the model (boundaries, headers, settings fields).
+pub const FORM_SLACK: usize = 64 * 1024;
+
+/// `POST /api/conversions`.
+pub async fn create(
+    State(app): State<Arc<App>>,
+    ConnectInfo(peer): ConnectInfo<SocketAddr>,
+    headers: HeaderMap,
+    form: Result<Multipart, MultipartRejection>,
+) -> ApiResult<Response> {
+    admit(&app, peer).await?;
+    let limit = app.config.max_upload_bytes();
+    let declared = headers
+        .get(header::CONTENT_LENGTH)
+        .and_then(|v| v.to_str().ok())
+        .and_then(|v| v.parse::<usize>().ok());
+    if declared.is_some_and(|n| n > limit + FORM_SLACK) {
+        return Err(too_large(&app));
+    }
+    let form = form.map_err(|_| ApiError::bad_request("send the model as a multipart/form-data field named model"))?;
+    let upload = read_form(form, &app).await?;
+    let model = upload
+        .model
+        .ok_or_else(|| ApiError::bad_request("the form has no field named model"))?;
+    enqueue(&app, model, upload.name, upload.settings, None).await
+}
+
+/// What an upload form held.
+struct Upload {
+    model: Option<Vec<u8>>,
+    name: Option<String>,
+    settings: JobSettings,
+}
+
+async fn read_form(mut form: Multipart, app: &App) -> ApiResult<Upload> {
+    let mut upload = Upload {
+        model: None,
+        name: None,
+        settings: JobSettings::default(),
+    };
+    let mut thicknesses_seen = false;
+    let body_error = |e: axum::extract::multipart::MultipartError| {
+        if e.status() == StatusCode::PAYLOAD_TOO_LARGE {
+            too_large(app)
+        } else {
+            ApiError::bad_request("the multipart form could not be read")
+        }
+    };
+    while let Some(field) = form.next_field().await.map_err(body_error)? {
+        let field_name = field.name().unwrap_or_default().to_string();
+        match field_name.as_str() {
+            "model" => {
+                if upload.name.is_none() {
+                    upload.name = field.file_name().map(str::to_string);
+                }
+                let bytes = field.bytes().await.map_err(body_error)?;
+                if bytes.len() > app.config.max_upload_bytes() {
+                    return Err(too_large(app));
+                }
+                upload.model = Some(bytes.to_vec());
+            }
+            "name" => upload.name = Some(field.text().await.map_err(body_error)?),
+            other => {
+                let value = field.text().await.map_err(body_error)?;
+                upload
+                    .settings
+                    .set_field(other, &value, &mut thicknesses_seen)
+                    .map_err(ApiError::bad_request)?;
+            }
+        }
+    }
+    Ok(upload)
+}
+
+fn too_large(app: &App) -> ApiError {
+    ApiError::too_large(format!(
+        "the upload is larger than this server's limit of {} MB; simplify or split the model",
+        app.config.max_upload_mb
+    ))
+}
+
+/// Refuses work while draining, above the per-address rate or with a full queue.
+async fn admit(app: &App, peer: SocketAddr) -> ApiResult<()> {
+    if app.draining.load(Ordering::SeqCst) {
+        return Err(ApiError::busy("the server is restarting; try again in a minute", 60));
+    }
+    if let Err(wait) = app.limiter.check(peer.ip()) {
+        return Err(ApiError::rate_limited(wait));
+    }
+    if app.db.queue_len().await? >= app.config.max_queue {
+        return Err(ApiError::busy(
+            "the conversion queue is full; try again in a minute",
+            30,
+        ));
+    }
+    Ok(())
+}
+
+/// Checks a model and its settings and stores the job; answers `202` with the conversion,
+/// its `Location` and its delete token (the only time the token is shown).
+async fn enqueue(
+    app: &App,
+    model: Vec<u8>,
+    name: Option<String>,
+    settings: JobSettings,
+    parent: Option<String>,
+) -> ApiResult<Response> {
+    let sniffed = sniff::sniff(&model, app.config.max_triangles).map_err(|r| match r {
+        Refusal::Unsupported(m) => ApiError::unsupported_format(m),
+        Refusal::Unreadable(m) => ApiError::unreadable_model(m),
+        Refusal::TooManyTriangles(m) => ApiError::too_large(m),
+    })?;
+    settings.to_library().map_err(ApiError::bad_request)?;
+    let token = ids::token();
+    let job = NewJob {
+        id: ids::conversion_id(),
+        name: format!("{}.{}", safe_stem(name.as_deref()), sniffed.kind.extension()),
+        model,
+        triangles: sniffed.triangles.and_then(|t| i64::try_from(t).ok()),
+        settings: serde_json::to_string(&settings).map_err(|_| ApiError::internal())?,
+        created: now_ms(),
+        delete_token_hash: ids::hash_token(&token),
+        published: None,
+        parent,
+    };
+    app.db.insert_job(&job).await?;
+    app.metrics.accepted.fetch_add(1, Ordering::Relaxed);
+    let row = app.db.job(&job.id).await?.ok_or_else(ApiError::internal)?;
+    let mut body = view::conversion(&row, &[]);
+    body["delete_token"] = Value::String(token);
+    let location = format!("/api/conversions/{}", job.id);
+    Ok((StatusCode::ACCEPTED, [(header::LOCATION, location)], Json(body)).into_response())
+}
+
+/// A model name safe everywhere it appears: letters, digits, `-`, `_` and `.` of the stem
+/// (never used as a path), at most 60 characters, `model` when nothing is left.
+pub fn safe_stem(name: Option<&str>) -> String {
+    let name = name.unwrap_or_default();
+    let base = name.rsplit(['/', '\\']).next().unwrap_or_default();
+    let stem = base.rsplit_once('.').map_or(base, |(s, _)| s);
+    let clean: String = stem
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .take(60)
+        .collect();
+    let clean = clean.trim_matches('_').to_string();
+    if clean.is_empty() { "model".into() } else { clean }
+}
+
+/// Loads a job by an id of the right shape, else 404.
+pub(super) async fn load(app: &App, id: &str) -> ApiResult<JobRow> {
+    if !ids::is_conversion_id(id) {
+        return Err(ApiError::not_found("conversion"));
+    }
+    app.db.job(id).await?.ok_or_else(|| ApiError::not_found("conversion"))
+}
+
+/// `GET /api/conversions/{id}`.
+pub async fn show(State(app): State<Arc<App>>, Path(id): Path<String>) -> ApiResult<Json<Value>> {
+    let row = load(&app, &id).await?;
+    let files = app.db.result_index(&row.id).await?;
+    Ok(Json(view::conversion(&row, &files)))
+}
+
+/// Checks the `Authorization: Bearer` token against the job's stored hash.
+fn authorize(headers: &HeaderMap, row: &JobRow) -> ApiResult<()> {
+    let token = headers
+        .get(header::AUTHORIZATION)
+        .and_then(|v| v.to_str().ok())
+        .and_then(|v| v.strip_prefix("Bearer "))
+        .ok_or_else(ApiError::unauthorized)?;
+    if ids::same(&ids::hash_token(token.trim()), &row.delete_token_hash) {
+        Ok(())
+    } else {
+        Err(ApiError::unauthorized())
+    }
+}
+
+/// `DELETE /api/conversions/{id}`.
+pub async fn delete(State(app): State<Arc<App>>, Path(id): Path<String>, headers: HeaderMap) -> ApiResult<StatusCode> {
+    let row = load(&app, &id).await?;
+    authorize(&headers, &row)?;
+    app.db.delete(&row.id).await?;
+    Ok(StatusCode::NO_CONTENT)
+}
+
+/// `POST /api/conversions/{id}/publish`.
+pub async fn publish(
+    State(app): State<Arc<App>>,
+    Path(id): Path<String>,
+    headers: HeaderMap,
+) -> ApiResult<Json<Value>> {
+    let row = load(&app, &id).await?;
+    authorize(&headers, &row)?;
+    app.db.publish(&row.id).await?;
+    let row = load(&app, &id).await?;
+    let files = app.db.result_index(&row.id).await?;
+    Ok(Json(view::conversion(&row, &files)))
+}
+
+/// `POST /api/conversions/{id}/recut`: the same model with changed settings, a new conversion.
+pub async fn recut(
+    State(app): State<Arc<App>>,
+    ConnectInfo(peer): ConnectInfo<SocketAddr>,
+    Path(id): Path<String>,
+    body: Result<Json<Value>, axum::extract::rejection::JsonRejection>,
+) -> ApiResult<Response> {
+    let row = load(&app, &id).await?;
+    let Json(changes) =
+        body.map_err(|_| ApiError::bad_request("the body must be JSON settings, e.g. {\"kerf\": 0.15}"))?;
+    admit(&app, peer).await?;
+    let settings: JobSettings = serde_json::from_str(&row.settings).map_err(|_| ApiError::internal())?;
+    let settings = settings.with_changes(&changes).map_err(ApiError::bad_request)?;
+    let model = app
+        .db
+        .model(&row.id)
+        .await?
+        .ok_or_else(|| ApiError::not_found("conversion"))?;
+    enqueue(&app, model, Some(row.name.clone()), settings, Some(row.id)).await
+}
+
+/// Events a stream sends at a time.
+const EVENT_BATCH: i64 = 200;
+/// How often a stream looks for new events.
+const EVENT_POLL: Duration = Duration::from_millis(200);
+
+/// `GET /api/conversions/{id}/events`: every event so far, then new ones as workers write
+/// them, until `done` or `failed` (polling the events table, which works the same for any
+/// number of servers on one database).
+pub async fn events(
+    State(app): State<Arc<App>>,
+    Path(id): Path<String>,
+) -> ApiResult<Sse<impl Stream<Item = Result<Event, Infallible>>>> {
+    let row = load(&app, &id).await?;
+    let state = EventState {
+        app,
+        id: row.id,
+        after: 0,
+        pending: VecDeque::new(),
+        ended: false,
+    };
+    let stream = futures_util::stream::unfold(state, next_event);
+    Ok(Sse::new(stream).keep_alive(KeepAlive::default()))
+}
+
+struct EventState {
+    app: Arc<App>,
+    id: String,
+    after: i64,
+    pending: VecDeque<EventRow>,
+    ended: bool,
+}
+
+/// The last events of a job.
+fn is_last(kind: &str) -> bool {
+    matches!(kind, "done" | "failed" | "cancelled")
+}
+
+async fn next_event(mut s: EventState) -> Option<(Result<Event, Infallible>, EventState)> {
+    loop {
+        if let Some(e) = s.pending.pop_front() {
+            s.after = e.seq;
+            s.ended = is_last(&e.kind);
+            let event = Event::default().event(e.kind).id(e.seq.to_string()).data(e.data);
+            return Some((Ok(event), s));
+        }
+        if s.ended || *s.app.stopping.borrow() {
+            return None;
+        }
+        match s.app.db.events_after(&s.id, s.after, EVENT_BATCH).await {
+            Ok(rows) if !rows.is_empty() => s.pending.extend(rows),
+            Ok(_) => {
+                // A deleted job has nothing more to say.
+                if !matches!(s.app.db.job(&s.id).await, Ok(Some(_))) {
+                    return None;
+                }
+                let mut stopping = s.app.stopping.clone();
+                tokio::select! {
+                    () = tokio::time::sleep(EVENT_POLL) => {}
+                    _ = stopping.changed() => {}
+                }
+            }
+            Err(e) => {
+                tracing::error!("events of {}: {e}", s.id);
+                return None;
+            }
+        }
+    }
+}

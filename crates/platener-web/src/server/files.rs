@@ -1,0 +1,133 @@
+//! Result files: plans, sheets and scenes, copied out of the database with fixed content
+//! types (the worker chose them), ZIPs as attachments and SVGs under a CSP that runs nothing.
+
+use std::sync::Arc;
+
+use axum::extract::{Path, Query, State};
+use axum::http::{HeaderValue, header};
+use axum::response::{IntoResponse, Response};
+use serde::Deserialize;
+
+use super::App;
+use super::api::load;
+use super::error::{ApiError, ApiResult};
+use crate::db::JobRow;
+use crate::results::{SVG, ZIP};
+
+/// The best method of a finished job, from its summary.
+fn best_of(row: &JobRow) -> ApiResult<String> {
+    let summary: serde_json::Value = row
+        .summary
+        .as_deref()
+        .and_then(|s| serde_json::from_str(s).ok())
+        .unwrap_or_default();
+    match summary["best"].as_str() {
+        Some(b) => Ok(b.to_string()),
+        None if matches!(row.status.as_str(), "queued" | "running") => Err(ApiError::not_ready(
+            "the conversion has not finished yet; follow its events",
+        )),
+        None => Err(ApiError::not_ready(
+            "no method converted this model, so there is no plan",
+        )),
+    }
+}
+
+/// Serves one stored file of a job.
+async fn serve_file(app: &App, row: &JobRow, method: &str, file: &str) -> ApiResult<Response> {
+    let (content_type, data) = app
+        .db
+        .result_file(&row.id, method, file)
+        .await?
+        .ok_or_else(|| ApiError::not_found("file"))?;
+    let mut response = data.into_response();
+    let headers = response.headers_mut();
+    headers.insert(
+        header::CONTENT_TYPE,
+        HeaderValue::from_str(&content_type).map_err(|_| ApiError::internal())?,
+    );
+    if content_type == ZIP {
+        // The stored name is letters, digits, `-`, `_` and `.` only (api::safe_stem).
+        let stem = row.name.rsplit_once('.').map_or(row.name.as_str(), |(s, _)| s);
+        let disposition = format!("attachment; filename=\"{stem}-{method}.zip\"");
+        headers.insert(
+            header::CONTENT_DISPOSITION,
+            HeaderValue::from_str(&disposition).map_err(|_| ApiError::internal())?,
+        );
+    }
+    if content_type == SVG {
+        headers.insert(
+            header::CONTENT_SECURITY_POLICY,
+            HeaderValue::from_static("default-src 'none'; style-src 'unsafe-inline'; sandbox"),
+        );
+    }
+    Ok(response)
+}
+
+/// `GET /api/conversions/{id}/plan.zip`: the best method's ZIP.
+pub async fn best_plan(State(app): State<Arc<App>>, Path(id): Path<String>) -> ApiResult<Response> {
+    let row = load(&app, &id).await?;
+    let best = best_of(&row)?;
+    serve_file(&app, &row, &best, "plan.zip").await
+}
+
+/// Methods and files a URL may name (anything else is 404 without a query).
+fn known_method(method: &str) -> ApiResult<()> {
+    if platener::method::MethodKind::ALL.iter().any(|m| m.name() == method) {
+        Ok(())
+    } else {
+        Err(ApiError::not_found("method"))
+    }
+}
+
+/// `GET /api/conversions/{id}/methods/{method}/{plan.zip|plan.json|report.json}`.
+pub async fn method_file(
+    State(app): State<Arc<App>>,
+    Path((id, method, file)): Path<(String, String, String)>,
+) -> ApiResult<Response> {
+    known_method(&method)?;
+    if !matches!(file.as_str(), "plan.zip" | "plan.json" | "report.json") {
+        return Err(ApiError::not_found("file"));
+    }
+    let row = load(&app, &id).await?;
+    serve_file(&app, &row, &method, &file).await
+}
+
+/// `GET /api/conversions/{id}/methods/{method}/sheets/{n}.svg|png`.
+pub async fn sheet(
+    State(app): State<Arc<App>>,
+    Path((id, method, file)): Path<(String, String, String)>,
+) -> ApiResult<Response> {
+    known_method(&method)?;
+    let (n, ext) = file.split_once('.').ok_or_else(|| ApiError::not_found("sheet"))?;
+    let n: u32 = n.parse().map_err(|_| ApiError::not_found("sheet"))?;
+    if n == 0 || !matches!(ext, "svg" | "png") {
+        return Err(ApiError::not_found("sheet"));
+    }
+    let row = load(&app, &id).await?;
+    serve_file(&app, &row, &method, &format!("sheets/{n}.{ext}")).await
+}
+
+/// `?method=` of a scene.
+#[derive(Debug, Deserialize)]
+pub struct SceneQuery {
+    method: Option<String>,
+}
+
+/// `GET /api/conversions/{id}/scenes/{view}.glb[?method=]`.
+pub async fn scene(
+    State(app): State<Arc<App>>,
+    Path((id, file)): Path<(String, String)>,
+    Query(query): Query<SceneQuery>,
+) -> ApiResult<Response> {
+    let view = file.strip_suffix(".glb").ok_or_else(|| ApiError::not_found("scene"))?;
+    let view: platener::scene::View = view.parse().map_err(|_| ApiError::not_found("scene"))?;
+    let row = load(&app, &id).await?;
+    let method = match query.method {
+        Some(m) if m != "best" => {
+            known_method(&m)?;
+            m
+        }
+        _ => best_of(&row)?,
+    };
+    serve_file(&app, &row, &method, &format!("scenes/{view}.glb")).await
+}

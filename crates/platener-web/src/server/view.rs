@@ -1,0 +1,157 @@
+//! The conversion as the API shows it (api.md, "A conversion"), from a job row, its summary
+//! and the names of its result files.
+
+use std::collections::BTreeMap;
+
+use serde_json::{Value, json};
+
+use crate::db::JobRow;
+
+/// An ISO 8601 UTC time of milliseconds since 1970 (`2026-11-23T18:00:00Z`).
+pub fn iso_time(ms: i64) -> String {
+    let secs = ms.div_euclid(1000);
+    let (days, rest) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
+    let (y, m, d) = civil_from_days(days);
+    format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
+        rest / 3600,
+        rest % 3600 / 60,
+        rest % 60
+    )
+}
+
+/// Year, month, day of a day count since 1970-01-01 (Howard Hinnant's `civil_from_days`).
+fn civil_from_days(z: i64) -> (i64, i64, i64) {
+    let z = z + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    (yoe + era * 400 + i64::from(m <= 2), m, d)
+}
+
+/// The conversion JSON; `files` are the (method, file) names of its results.
+pub fn conversion(row: &JobRow, files: &[(String, String)]) -> Value {
+    let summary: Value = row
+        .summary
+        .as_deref()
+        .and_then(|s| serde_json::from_str(s).ok())
+        .unwrap_or(Value::Null);
+    let settings: Value = serde_json::from_str(&row.settings).unwrap_or(Value::Null);
+    let error: Value = row
+        .error
+        .as_deref()
+        .and_then(|s| serde_json::from_str(s).ok())
+        .unwrap_or(Value::Null);
+    let model_summary = &summary["model"];
+    let triangles = model_summary["triangles"]
+        .as_u64()
+        .map_or_else(|| json!(row.triangles), |t| json!(t));
+    let best = summary["best"].as_str().map(str::to_string);
+    json!({
+        "id": row.id,
+        "status": row.status,
+        "created": iso_time(row.created),
+        "started": row.started.map(iso_time),
+        "finished": row.finished.map(iso_time),
+        "attempts": row.attempts,
+        "published": row.published.is_some(),
+        "recut_of": row.parent,
+        "model": {
+            "name": row.name,
+            "bytes": row.model_bytes,
+            "triangles": triangles,
+            "bbox_mm": model_summary["bbox_mm"],
+        },
+        "settings": settings,
+        "steps": summary.get("steps").cloned().unwrap_or_else(|| json!([])),
+        "methods": summary.get("methods").cloned().unwrap_or_else(|| json!([])),
+        "best": best,
+        "error": error,
+        "links": links(&row.id, best.as_deref(), files),
+    })
+}
+
+/// Every link of a conversion: its own, its events, the best plan and scenes, and per method
+/// its plan, files, sheets and scenes.
+fn links(id: &str, best: Option<&str>, files: &[(String, String)]) -> Value {
+    let base = format!("/api/conversions/{id}");
+    let mut methods: BTreeMap<&str, Value> = BTreeMap::new();
+    for (method, file) in files {
+        let entry = methods
+            .entry(method)
+            .or_insert_with(|| json!({"sheets": [], "previews": [], "scenes": {}}));
+        let url = format!("{base}/methods/{method}/{file}");
+        if let Some(n) = file.strip_prefix("sheets/") {
+            let list = if n.ends_with(".svg") { "sheets" } else { "previews" };
+            if let Some(a) = entry[list].as_array_mut() {
+                a.push(Value::String(url));
+            }
+        } else if let Some(view) = file.strip_prefix("scenes/").and_then(|v| v.strip_suffix(".glb")) {
+            entry["scenes"][view] = Value::String(format!("{base}/scenes/{view}.glb?method={method}"));
+        } else {
+            let key = file.replace('.', "_");
+            entry[key] = Value::String(url);
+        }
+    }
+    for entry in methods.values_mut() {
+        for list in ["sheets", "previews"] {
+            if let Some(a) = entry[list].as_array_mut() {
+                a.sort_by_key(|v| sheet_number(v.as_str().unwrap_or_default()));
+            }
+        }
+    }
+    let scenes = best
+        .and_then(|b| methods.get(b))
+        .map_or_else(|| json!({}), |m| strip_method_query(&m["scenes"]));
+    json!({
+        "self": base,
+        "events": format!("{base}/events"),
+        "plan": best.map(|_| format!("{base}/plan.zip")),
+        "scenes": scenes,
+        "methods": methods,
+    })
+}
+
+/// The number of a `…/sheets/N.svg` link, for ordering 1, 2, …, 10.
+fn sheet_number(url: &str) -> u64 {
+    url.rsplit('/')
+        .next()
+        .and_then(|f| f.split('.').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(0)
+}
+
+/// The best method's scene links without `?method=` (the default is the best).
+fn strip_method_query(scenes: &Value) -> Value {
+    match scenes {
+        Value::Object(map) => Value::Object(
+            map.iter()
+                .map(|(k, v)| {
+                    let url = v.as_str().unwrap_or_default();
+                    (
+                        k.clone(),
+                        Value::String(url.split('?').next().unwrap_or_default().to_string()),
+                    )
+                })
+                .collect(),
+        ),
+        _ => json!({}),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn times_are_iso_utc() {
+        assert_eq!(iso_time(0), "1970-01-01T00:00:00Z");
+        // 2026-11-23T18:00:00Z
+        assert_eq!(iso_time(1_795_456_800_000), "2026-11-23T18:00:00Z");
+        assert_eq!(iso_time(951_782_400_000), "2000-02-29T00:00:00Z");
+    }
+}

@@ -1,0 +1,197 @@
+//! The settings of a conversion as the API takes them (form fields, recut JSON), stored with
+//! the job as JSON and turned into the library's [`Settings`] by the worker.
+//!
+//! The server checks them with [`JobSettings::to_library`] before accepting an upload (cheap:
+//! no model is read), so a bad value is a `400` rather than a failed job.
+
+use platener::joints::JointStyle;
+use platener::method::MethodKind;
+use platener::plan::{Material, SheetSize};
+use platener::{Settings, Units};
+use serde::{Deserialize, Serialize};
+
+/// The settings of one conversion, as in the conversion's `settings` field.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct JobSettings {
+    /// Sheet thicknesses, mm (the form field `thickness`, repeatable).
+    #[serde(alias = "thickness")]
+    pub thicknesses: Vec<f64>,
+    /// wood, acrylic, cardboard, paper.
+    pub material: String,
+    /// Kerf in mm; `None`: the material's.
+    pub kerf: Option<f64>,
+    /// plate, stacked or all.
+    pub method: String,
+    /// `WxH` in mm or `fit`.
+    pub sheet: String,
+    /// auto, finger, jim, dovetail.
+    pub joint: String,
+    /// mm, cm, in.
+    pub units: String,
+    /// Scale factor after the unit.
+    pub scale: f64,
+}
+
+impl Default for JobSettings {
+    fn default() -> Self {
+        Self {
+            thicknesses: vec![3.0],
+            material: "wood".into(),
+            kerf: None,
+            method: "all".into(),
+            sheet: "600x400".into(),
+            joint: "auto".into(),
+            units: "mm".into(),
+            scale: 1.0,
+        }
+    }
+}
+
+impl JobSettings {
+    /// Sets one form field; the error is a sentence for a `400`.
+    pub fn set_field(&mut self, field: &str, value: &str, thicknesses_seen: &mut bool) -> Result<(), String> {
+        let number = |v: &str| {
+            v.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("the field {field} takes a number"))
+        };
+        match field {
+            "thickness" | "thicknesses" => {
+                if !*thicknesses_seen {
+                    self.thicknesses.clear();
+                    *thicknesses_seen = true;
+                }
+                self.thicknesses.push(number(value)?);
+            }
+            "material" => self.material = value.trim().to_string(),
+            "kerf" => self.kerf = Some(number(value)?),
+            "method" => self.method = value.trim().to_string(),
+            "sheet" => self.sheet = value.trim().to_string(),
+            "joint" => self.joint = value.trim().to_string(),
+            "units" => self.units = value.trim().to_string(),
+            "scale" => self.scale = number(value)?,
+            _ => return Err("unknown form field (expected model, thickness, material, method, kerf, sheet, joint, units, scale or name)".into()),
+        }
+        Ok(())
+    }
+
+    /// The library's settings and the methods to run; the error is a sentence for a `400`
+    /// that names the setting (never echoing the value).
+    pub fn to_library(&self) -> Result<(Settings, Vec<MethodKind>), String> {
+        let mut settings = Settings::default();
+        settings.thicknesses.clone_from(&self.thicknesses);
+        settings.cut.material = match self.material.as_str() {
+            "wood" => Material::Wood,
+            "acrylic" => Material::Acrylic,
+            "cardboard" => Material::Cardboard,
+            "paper" => Material::Paper,
+            _ => return Err("material must be wood, acrylic, cardboard or paper".into()),
+        };
+        settings.cut.kerf = self.kerf;
+        settings.cut.sheet = self
+            .sheet
+            .parse::<SheetSize>()
+            .map_err(|_| "sheet must be WxH in mm (e.g. 600x400) or fit".to_string())?;
+        settings.joints.style = match self.joint.as_str() {
+            "auto" => None,
+            "finger" => Some(JointStyle::Finger),
+            "jim" => Some(JointStyle::Jim),
+            "dovetail" => Some(JointStyle::Dovetail),
+            _ => return Err("joint must be auto, finger, jim or dovetail".into()),
+        };
+        settings.units = match self.units.as_str() {
+            "mm" => Units::Mm,
+            "cm" => Units::Cm,
+            "in" => Units::In,
+            _ => return Err("units must be mm, cm or in".into()),
+        };
+        settings.scale = self.scale;
+        let methods = match self.method.as_str() {
+            "all" => MethodKind::ALL.to_vec(),
+            name => vec![
+                name.parse::<MethodKind>()
+                    .map_err(|_| "method must be plate, stacked or all".to_string())?,
+            ],
+        };
+        if let Some(k) = self.kerf
+            && !(k.is_finite() && (0.0..5.0).contains(&k))
+        {
+            return Err("kerf must be a number of mm from 0 to 5".into());
+        }
+        settings.validate().map_err(|e| e.to_string())?;
+        Ok((settings, methods))
+    }
+
+    /// These settings with the fields of a recut's JSON body applied over them.
+    pub fn with_changes(&self, changes: &serde_json::Value) -> Result<Self, String> {
+        let serde_json::Value::Object(changes) = changes else {
+            return Err("the body must be a JSON object of settings, e.g. {\"kerf\": 0.15}".into());
+        };
+        let mut merged = serde_json::to_value(self).map_err(|e| e.to_string())?;
+        for (k, v) in changes {
+            let key = if k == "thickness" { "thicknesses" } else { k.as_str() };
+            let v = match (key, v) {
+                ("thicknesses", serde_json::Value::Number(_)) => serde_json::Value::Array(vec![v.clone()]),
+                _ => v.clone(),
+            };
+            merged[key] = v;
+        }
+        serde_json::from_value(merged).map_err(|_| {
+            "unknown setting or wrong type (settings: thicknesses, material, kerf, method, sheet, joint, units, scale)"
+                .to_string()
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_the_libraries() {
+        let (settings, methods) = JobSettings::default().to_library().expect("valid");
+        assert_eq!(settings, Settings::default());
+        assert_eq!(methods, MethodKind::ALL.to_vec());
+    }
+
+    #[test]
+    fn form_fields_and_recut_changes_apply() {
+        let mut s = JobSettings::default();
+        let mut seen = false;
+        s.set_field("thickness", "4", &mut seen).expect("number");
+        s.set_field("thickness", "6", &mut seen).expect("number");
+        s.set_field("material", "acrylic", &mut seen).expect("text");
+        assert_eq!(s.thicknesses, vec![4.0, 6.0]);
+        let (lib, _) = s.to_library().expect("valid");
+        assert_eq!(lib.cut.material, Material::Acrylic);
+        let r = s
+            .with_changes(&serde_json::json!({"kerf": 0.15, "thickness": 5}))
+            .expect("valid");
+        assert_eq!(r.kerf, Some(0.15));
+        assert_eq!(r.thicknesses, vec![5.0]);
+        assert!(s.with_changes(&serde_json::json!({"colour": "red"})).is_err());
+        assert!(s.set_field("kerf", "<script>", &mut seen).is_err());
+    }
+
+    #[test]
+    fn bad_values_are_refused_without_echo() {
+        for (field, value) in [
+            ("material", "<b>gold</b>"),
+            ("sheet", "<b>"),
+            ("method", "<x>"),
+            ("joint", "<y>"),
+        ] {
+            let mut s = JobSettings::default();
+            s.set_field(field, value, &mut false)
+                .expect("text fields take any text");
+            let e = s.to_library().expect_err("refused");
+            assert!(!e.contains('<'), "{e}");
+        }
+        let s = JobSettings {
+            thicknesses: vec![-1.0],
+            ..JobSettings::default()
+        };
+        assert!(s.to_library().is_err());
+    }
+}

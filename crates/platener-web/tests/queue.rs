@@ -1,0 +1,198 @@
+//! The job queue: claims, leases, retries, results in one transaction, events, gallery
+//! order. In-process, on SQLite in a temp dir; each test runs again on PostgreSQL when
+//! `PLATENER_TEST_POSTGRES` names an empty database to use (until the throwaway-cluster
+//! harness of crates/platener-testpg is wired in, see docs/decisions.md).
+
+use platener_web::db::{Db, Finished, NewJob, ResultFile, now_ms};
+use platener_web::ids;
+
+/// The databases a test runs on: SQLite in `dir`, and PostgreSQL when asked for (its tables
+/// emptied first).
+async fn databases(dir: &tempfile::TempDir) -> Vec<Db> {
+    let url = format!("sqlite://{}?mode=rwc", dir.path().join("q.sqlite").display());
+    let mut all = vec![Db::connect(&url, 4).await.expect("database")];
+    match std::env::var("PLATENER_TEST_POSTGRES") {
+        Ok(pg) => {
+            let db = Db::connect(&pg, 4).await.expect("PostgreSQL");
+            db.clear_for_tests().await.expect("empty tables");
+            all.push(db);
+        }
+        Err(_) => eprintln!("skipping PostgreSQL: PLATENER_TEST_POSTGRES is not set"),
+    }
+    all
+}
+
+fn job(created: i64) -> NewJob {
+    NewJob {
+        id: ids::conversion_id(),
+        name: "box.stl".into(),
+        model: vec![1, 2, 3],
+        triangles: Some(12),
+        settings: "{}".into(),
+        created,
+        delete_token_hash: ids::hash_token("t"),
+        published: None,
+        parent: None,
+    }
+}
+
+fn finished(files: usize) -> Finished {
+    Finished {
+        status: "done".into(),
+        error: None,
+        summary: r#"{"best":"plate"}"#.into(),
+        files: (0..files)
+            .map(|i| ResultFile {
+                method: "plate".into(),
+                file: format!("sheets/{}.svg", i + 1),
+                content_type: "image/svg+xml".into(),
+                data: vec![b'<'; 10],
+            })
+            .collect(),
+        event: r#"{"status":"done"}"#.into(),
+    }
+}
+
+fn runtime() -> tokio::runtime::Runtime {
+    tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .expect("runtime")
+}
+
+#[test]
+fn claims_take_the_oldest_job_once() {
+    runtime().block_on(async {
+        let dir = tempfile::tempdir().expect("dir");
+        for db in databases(&dir).await {
+            let (old, new) = (job(1000), job(2000));
+            db.insert_job(&new).await.expect("insert");
+            db.insert_job(&old).await.expect("insert");
+            assert_eq!(db.queue_len().await.expect("len"), 2);
+            let a = db.claim("w1", 60_000).await.expect("claim").expect("a job");
+            assert_eq!(a.id, old.id, "oldest first");
+            assert_eq!((a.attempts, a.model.as_slice()), (1, &[1u8, 2, 3][..]));
+            let b = db.claim("w2", 60_000).await.expect("claim").expect("a job");
+            assert_eq!(b.id, new.id);
+            assert!(db.claim("w3", 60_000).await.expect("claim").is_none(), "each job once");
+            let row = db.job(&a.id).await.expect("read").expect("row");
+            assert_eq!((row.status.as_str(), row.worker.as_deref()), ("running", Some("w1")));
+            assert!(db.heartbeat(&a.id, "w1", 60_000).await.expect("beat"));
+            assert!(!db.heartbeat(&a.id, "w2", 60_000).await.expect("beat"), "not w2's job");
+        }
+    });
+}
+
+#[test]
+fn an_expired_lease_requeues_then_fails_after_two_attempts() {
+    runtime().block_on(async {
+        let dir = tempfile::tempdir().expect("dir");
+        for db in databases(&dir).await {
+            let j = job(now_ms());
+            db.insert_job(&j).await.expect("insert");
+            db.claim("w1", 60_000).await.expect("claim").expect("job");
+            assert_eq!(db.reap(2).await.expect("reap"), (vec![], vec![]), "a live lease stays");
+            db.expire_worker("w1").await.expect("expire");
+            assert_eq!(db.reap(2).await.expect("reap"), (vec![j.id.clone()], vec![]));
+            assert_eq!(db.job(&j.id).await.expect("read").expect("row").status, "queued");
+            let again = db.claim("w2", 60_000).await.expect("claim").expect("job");
+            assert_eq!(again.attempts, 2);
+            // A worker that lost its job cannot record it.
+            db.expire_worker("w2").await.expect("expire");
+            assert_eq!(db.reap(2).await.expect("reap"), (vec![], vec![j.id.clone()]));
+            assert!(!db.finish(&j.id, "w2", &finished(1)).await.expect("finish"));
+            let row = db.job(&j.id).await.expect("read").expect("row");
+            assert_eq!(row.status, "failed");
+            let error: serde_json::Value = serde_json::from_str(row.error.as_deref().expect("error")).expect("json");
+            assert_eq!(error["code"], "worker_died");
+            assert!(
+                db.result_index(&j.id).await.expect("index").is_empty(),
+                "nothing half-written"
+            );
+            let events = db.events_after(&j.id, 0, 100).await.expect("events");
+            let kinds: Vec<&str> = events.iter().map(|e| e.kind.as_str()).collect();
+            assert_eq!(kinds, ["retry", "failed"]);
+            assert_eq!(events.iter().map(|e| e.seq).collect::<Vec<_>>(), [1, 2]);
+        }
+    });
+}
+
+#[test]
+fn results_status_and_last_event_are_written_together() {
+    runtime().block_on(async {
+        let dir = tempfile::tempdir().expect("dir");
+        for db in databases(&dir).await {
+            let j = job(now_ms());
+            db.insert_job(&j).await.expect("insert");
+            db.claim("w1", 60_000).await.expect("claim").expect("job");
+            db.append_event(&j.id, "step", "{}").await.expect("event");
+            assert!(db.finish(&j.id, "w1", &finished(3)).await.expect("finish"));
+            let row = db.job(&j.id).await.expect("read").expect("row");
+            assert_eq!(row.status, "done");
+            assert!(row.finished.is_some() && row.summary.is_some());
+            let index = db.result_index(&j.id).await.expect("index");
+            assert_eq!(index.len(), 3);
+            let (ct, data) = db
+                .result_file(&j.id, "plate", "sheets/2.svg")
+                .await
+                .expect("read")
+                .expect("file");
+            assert_eq!((ct.as_str(), data.len()), ("image/svg+xml", 10));
+            let events = db.events_after(&j.id, 1, 100).await.expect("events");
+            assert_eq!(events.len(), 1);
+            assert_eq!((events[0].seq, events[0].kind.as_str()), (2, "done"));
+            // Finishing twice does nothing: the job is no longer running.
+            assert!(!db.finish(&j.id, "w1", &finished(3)).await.expect("finish"));
+            assert_eq!(db.result_index(&j.id).await.expect("index").len(), 3);
+            assert!(db.delete(&j.id).await.expect("delete"));
+            assert!(db.job(&j.id).await.expect("read").is_none());
+            // Deleted while running: the worker's late events and results are dropped.
+            let k = job(now_ms());
+            db.insert_job(&k).await.expect("insert");
+            db.claim("w1", 60_000).await.expect("claim").expect("job");
+            assert!(db.delete(&k.id).await.expect("delete"));
+            db.append_event(&k.id, "step", "{}").await.expect("a late event");
+            assert!(!db.finish(&k.id, "w1", &finished(2)).await.expect("finish"));
+            assert!(db.events_after(&k.id, 0, 100).await.expect("events").is_empty());
+            assert!(db.result_index(&k.id).await.expect("index").is_empty());
+            assert!(db.result_index(&j.id).await.expect("index").is_empty());
+            assert!(db.events_after(&j.id, 0, 100).await.expect("events").is_empty());
+        }
+    });
+}
+
+#[test]
+fn a_graceful_stop_requeues_without_counting_and_the_gallery_is_newest_first() {
+    runtime().block_on(async {
+        let dir = tempfile::tempdir().expect("dir");
+        for db in databases(&dir).await {
+            let j = job(now_ms());
+            db.insert_job(&j).await.expect("insert");
+            db.claim("w1", 60_000).await.expect("claim").expect("job");
+            assert_eq!(db.requeue_worker("w1").await.expect("requeue"), 1);
+            let row = db.job(&j.id).await.expect("read").expect("row");
+            assert_eq!((row.status.as_str(), row.attempts), ("queued", 0));
+
+            let mut ids = Vec::new();
+            for i in 0..3 {
+                let mut p = job(now_ms());
+                p.published = Some(1000 + i);
+                db.insert_job(&p).await.expect("insert");
+                ids.push(p.id);
+            }
+            let page = db.gallery(1, 2).await.expect("gallery");
+            assert_eq!(
+                page.iter().map(|r| r.id.clone()).collect::<Vec<_>>(),
+                [ids[2].clone(), ids[1].clone()]
+            );
+            let page2 = db.gallery(2, 2).await.expect("gallery");
+            assert_eq!(page2.len(), 1);
+            assert_eq!(page2[0].id, ids[0]);
+            db.publish(&j.id).await.expect("publish");
+            assert_eq!(db.gallery(1, 10).await.expect("gallery").len(), 4);
+            assert!(db.set_meta_once("k", "v").await.expect("meta"));
+            assert!(!db.set_meta_once("k", "w").await.expect("meta"));
+            assert_eq!(db.meta("k").await.expect("meta").as_deref(), Some("v"));
+        }
+    });
+}
