@@ -552,10 +552,11 @@ fn converted_by(log: &str) -> Vec<String> {
 
 #[test]
 fn two_workers_on_postgres_share_40_jobs_each_run_once() {
-    let Ok(url) = std::env::var("PLATENER_TEST_POSTGRES") else {
-        eprintln!("skipping: PLATENER_TEST_POSTGRES does not name a PostgreSQL database");
+    // Skips with a message when PostgreSQL is not installed (fails under PLATENER_REQUIRE_POSTGRES=1).
+    let Some(cluster) = platener_testpg::Cluster::for_tests() else {
         return;
     };
+    let url = cluster.fresh_database().expect("a PostgreSQL database of this test's own").url;
     let dir = tempfile::tempdir().expect("temp dir");
     let args = [
         "--workers",

@@ -1,23 +1,19 @@
 //! The job queue: claims, leases, retries, results in one transaction, events, gallery
-//! order. In-process, on SQLite in a temp dir; each test runs again on PostgreSQL when
-//! `PLATENER_TEST_POSTGRES` names an empty database to use (until the throwaway-cluster
-//! harness of crates/platener-testpg is wired in, see docs/decisions.md).
+//! order. In-process, on SQLite in a temp dir, and again on PostgreSQL: a database of the
+//! test's own in the test binary's throwaway cluster (crates/platener-testpg; skipped with a
+//! message when PostgreSQL is not installed, a failure under `PLATENER_REQUIRE_POSTGRES=1`).
 
 use platener_web::db::{Db, Finished, NewJob, ResultFile, now_ms};
 use platener_web::ids;
 
-/// The databases a test runs on: SQLite in `dir`, and PostgreSQL when asked for (its tables
-/// emptied first).
+/// The databases a test runs on: SQLite in `dir`, and a fresh PostgreSQL database when
+/// PostgreSQL is installed.
 async fn databases(dir: &tempfile::TempDir) -> Vec<Db> {
     let url = format!("sqlite://{}?mode=rwc", dir.path().join("q.sqlite").display());
     let mut all = vec![Db::connect(&url, 4).await.expect("database")];
-    match std::env::var("PLATENER_TEST_POSTGRES") {
-        Ok(pg) => {
-            let db = Db::connect(&pg, 4).await.expect("PostgreSQL");
-            db.clear_for_tests().await.expect("empty tables");
-            all.push(db);
-        }
-        Err(_) => eprintln!("skipping PostgreSQL: PLATENER_TEST_POSTGRES is not set"),
+    if let Some(cluster) = platener_testpg::Cluster::for_tests() {
+        let pg = cluster.fresh_database().expect("a PostgreSQL database of this test's own");
+        all.push(Db::connect(&pg.url, 4).await.expect("PostgreSQL"));
     }
     all
 }

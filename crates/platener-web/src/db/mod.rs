@@ -431,18 +431,3 @@ impl Db {
             .collect()
     }
 }
-
-impl Db {
-    /// Empties every table: for tests that share one PostgreSQL database between runs.
-    pub async fn clear_for_tests(&self) -> Result<()> {
-        for sql in [
-            "DELETE FROM results",
-            "DELETE FROM events",
-            "DELETE FROM jobs",
-            "DELETE FROM meta",
-        ] {
-            sqlx::query(sql).execute(&self.pool).await?;
-        }
-        Ok(())
-    }
-}
