@@ -122,6 +122,40 @@ fn a_plus_of_two_plates_is_two_parts_with_a_halving_joint() {
     assert!(a.interference < 1e-6 * a.model_volume, "{a:?}");
 }
 
+/// Crossing plates of unequal height (issue 15): a tall divider through a low one, a grid of
+/// them, and two plates offset so they share only part of their heights, are each whole
+/// plates with halving joints; the slots open at each plate's own end of the shared height,
+/// so the parts go together without interference and rebuild the model's volume. A "+"
+/// whose arms differ in length is the same.
+#[test]
+fn crossing_plates_of_unequal_height_are_whole_with_halving_joints() {
+    let cases: Vec<(&str, Vec<Triangle>, usize)> = vec![
+        (
+            "tall through low, short arm",
+            egg_crate(&[20.0], &[35.0], 3.0, [20.0, 8.0, 35.0, 25.0], (40.0, 15.0)),
+            2,
+        ),
+        (
+            "3 x 2 grid, tall through low",
+            egg_crate(&[0.0, 25.0, 50.0], &[0.0, 30.0], 3.0, [10.0, 12.0, 9.0, 15.0], (35.0, 20.0)),
+            5,
+        ),
+        (
+            "offset",
+            samples::crossing_plates_spans(80.0, 3.0, (0.0, 40.0), (20.0, 60.0)),
+            2,
+        ),
+    ];
+    for (name, model, parts) in cases {
+        let a = assemble(&convert_plates(model, 3.0, false));
+        let crossings = parts / 2 * (parts - parts / 2);
+        assert_eq!((a.parts, a.halved, a.groups), (parts, crossings, 1), "{name}: {a:?}");
+        assert!(a.kinds.iter().all(|k| *k == ConnectionKind::Cross), "{name}: {a:?}");
+        assert!((a.volume - a.model_volume).abs() < 1e-4 * a.model_volume, "{name}: {a:?}");
+        assert!(a.interference < 1e-6 * a.model_volume, "{name}: {a:?}");
+    }
+}
+
 /// Two plates crossing at 50°: square-cut slots must be wider than the crossing (by t·cot θ
 /// through the sheet) for the plates to go together, so each slot leaves a wedge of the
 /// model empty on both sides of the other plate: t²·cot θ per mm of depth in all.
