@@ -702,6 +702,9 @@ fn passes(p: &Plate, region: &Polygon) -> Result<bool, GridError> {
     Ok(outside < 1e-6 * region.area().max(1.0))
 }
 
+/// An interval along a joint's axis (model coordinates projected on it).
+type Span = (f64, f64);
+
 /// Plate `p`'s outline in the column of `region`'s width across the joint (narrowed by
 /// `inset` of that width on each side), in pieces.
 fn column(p: &Plate, region: &Polygon, axis: DVec3, inset: f64) -> Result<Vec<Polygon>, GridError> {
@@ -729,7 +732,7 @@ fn column_extent(
     axis: DVec3,
     range: (f64, f64),
     tol: f64,
-) -> Result<((f64, f64), (f64, f64)), GridError> {
+) -> Result<[Span; 2], GridError> {
     let mut extents: Vec<(f64, f64)> = column(p, region, axis, 0.25)?
         .iter()
         .map(|piece| extent(p, piece, axis))
@@ -749,7 +752,7 @@ fn column_extent(
             touch.1 = touch.1.max(x.0);
         }
     }
-    Ok((e, touch))
+    Ok([e, touch])
 }
 
 /// How two plates cross: which takes the slot from the low end of the shared `range`, and
@@ -777,7 +780,7 @@ fn halving(
     range: (f64, f64),
     tol: f64,
 ) -> Result<Halving, GridError> {
-    let ((ea, ta), (eb, tb)) = (
+    let ([ea, ta], [eb, tb]) = (
         column_extent(pa, ra, r.axis, range, tol)?,
         column_extent(pb, rb, r.axis, range, tol)?,
     );
