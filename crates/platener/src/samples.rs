@@ -257,6 +257,23 @@ pub fn crossing_plates(size: f64, t: f64) -> Vec<Triangle> {
     prism(&profile, size)
 }
 
+/// Two `t`-thick plates crossing at right angles (each `len` long, centred on each other),
+/// standing over different heights: plate a (normal y) spans `a` in z, plate b (normal x)
+/// spans `b`. Where the spans differ the crossing is only as tall as their overlap (a taller
+/// divider through a shorter one, or two offset ones).
+pub fn crossing_plates_spans(len: f64, t: f64, a: (f64, f64), b: (f64, f64)) -> Vec<Triangle> {
+    let across = [0.0, (len - t) / 2.0, (len + t) / 2.0, len];
+    let mut zs = vec![a.0, a.1, b.0, b.1];
+    zs.sort_by(f64::total_cmp);
+    zs.dedup();
+    let within = |z: f64, s: (f64, f64)| s.0 < z && z < s.1;
+    let zs2 = zs.clone();
+    voxels(&across, &across, &zs, move |i, j, k| {
+        let z = (zs2[k] + zs2[k + 1]) / 2.0;
+        (j == 1 && within(z, a)) || (i == 1 && within(z, b))
+    })
+}
+
 /// A shelf: two `t`-thick sides `h` tall, `w` apart outside, and a board between them at
 /// `shelf` height (an H-shaped profile), `depth` deep.
 pub fn shelf(w: f64, h: f64, shelf: f64, depth: f64, t: f64) -> Vec<Triangle> {

@@ -31,6 +31,7 @@ const PASSING: &[&str] = &[
     "ipad_mini_arcade_cabinet_half/plate",
     "lasercut_fingerjoint_examples_assembly/plate",
     "model_house_walls/plate",
+    "openscad_bad_stl_tardis/plate",
     "openscad_letter_block_engraved/plate",
     "openscad_letter_block_engraved/stacked",
     "otoscope_name_plate_text/plate",

@@ -349,3 +349,86 @@ fn features_setting_parses_the_three_words_and_names_a_bad_one() {
     assert!(e.contains("features") && e.contains("drill"), "{e}");
     assert_eq!(Settings::default().features, Features::Engrave);
 }
+
+/// A 60 × 40 mm plate, 3 mm thick, with a pocket 15 × 10 mm at its edge (x 20–35, y 0–10),
+/// `depth` deep from the top face (z = 3).
+fn plate_with_edge_pocket(depth: f64) -> Vec<platener::read::Triangle> {
+    voxels(
+        &[0.0, 20.0, 35.0, 60.0],
+        &[0.0, 10.0, 40.0],
+        &[0.0, 3.0 - depth, 3.0],
+        |i, j, k| (i, j, k) != (1, 0, 1),
+    )
+}
+
+/// A pocket shallower than the sheet that reaches the plate's edge is scored like one inside
+/// it: the outline is the whole 60 × 40 rectangle (no notch), and a score mark traces the
+/// pocket (its side along the edge included).
+#[test]
+fn a_pocket_at_the_edge_is_scored_not_notched() {
+    let state = plate_method("edge pocket", plate_with_edge_pocket(1.0), Features::Engrave);
+    let ps = parts(&state);
+    assert_eq!(ps.len(), 1, "one plate");
+    let p = &ps[0];
+    assert!(p.polygon.holes.is_empty(), "no hole: {:?}", p.polygon.holes);
+    assert!((p.polygon.area() - 2400.0).abs() < 1e-6, "area {}", p.polygon.area());
+    assert_eq!(p.polygon.outer.len(), 4, "a plain rectangle: {:?}", p.polygon.outer);
+    let marks = score_marks(p);
+    assert_eq!(marks.len(), 1, "one ring around the pocket");
+    let (lo, hi) = mark_bounds(p);
+    assert!((lo.x - 20.0).abs() < 1e-6 && (hi.x - 35.0).abs() < 1e-6, "x {lo}..{hi}");
+    assert!(lo.y.abs() < 1e-6 && (hi.y - 10.0).abs() < 1e-6, "y {lo}..{hi}");
+    assert!(
+        (lo.z - 3.0).abs() < 1e-6 && (hi.z - 3.0).abs() < 1e-6,
+        "on the top face: {lo}..{hi}"
+    );
+    let f = features(&state);
+    assert_eq!(f.len(), 1);
+    assert_eq!(f[0].relief, Relief::Recessed);
+    assert!((f[0].area - 150.0).abs() < 1e-6, "area {}", f[0].area);
+    // A pocket deeper than half the sheet is no material at the mid-plane: a notch.
+    let deep = plate_method("deep edge pocket", plate_with_edge_pocket(2.0), Features::Engrave);
+    let p = &parts(&deep)[0];
+    assert!((p.polygon.area() - 2250.0).abs() < 1e-6, "area {}", p.polygon.area());
+    assert!(features(&deep).is_empty());
+}
+
+/// Score marks say in plan.json which face they are on: `top` (up on the sheet, engraved as
+/// drawn) or `bottom` (turn the part over), the face of the feature the report names.
+#[test]
+fn plan_json_score_marks_name_their_side() {
+    for (zs, cell, model_z) in [([0.0, 2.0, 3.0], 0, 3.0), ([0.0, 1.0, 3.0], 1, 0.0)] {
+        // A 1 mm pocket in the top face (z = 3) or the bottom one (z = 0).
+        let model = voxels(&[0.0, 20.0, 35.0, 60.0], &[0.0, 15.0, 25.0, 40.0], &zs, |i, j, k| {
+            (i, j) != (1, 1) || k == cell
+        });
+        let state = plate_method("pocket", model, Features::Engrave);
+        let p = &parts(&state)[0];
+        let f = features(&state);
+        assert_eq!(f.len(), 1);
+        let face_z = if f[0].side == Side::Up { 0.0 } else { p.thickness };
+        assert!((p.frame.to_model(DVec3::new(0.0, 0.0, face_z)).z - model_z).abs() < 1e-6);
+        let want = if f[0].side == Side::Up { "top" } else { "bottom" };
+        let bundle = state.bundle().expect("bundle");
+        let (_, json) = bundle
+            .files
+            .iter()
+            .find(|(n, _)| n.ends_with("plan.json"))
+            .expect("plan.json");
+        let plan: serde_json::Value = serde_json::from_slice(json).expect("json");
+        let marks = plan["parts"][0]["marks"].as_array().expect("marks");
+        let sides: Vec<&serde_json::Value> = marks
+            .iter()
+            .filter(|m| m["kind"] == "score")
+            .map(|m| &m["side"])
+            .collect();
+        assert_eq!(sides, vec![want], "pocket at z {model_z}");
+        assert!(
+            marks
+                .iter()
+                .filter(|m| m["kind"] != "score")
+                .all(|m| m.get("side").is_none()),
+            "other marks have no side"
+        );
+    }
+}

@@ -13,3 +13,13 @@ pub use analysis::{Analysis, COVER_SLACK, Interference, analyse, cover_distance}
 pub(crate) use groups::UnionFind;
 pub(crate) use inside::Inside;
 pub(crate) use solid::Solid;
+
+/// Whether two parts (as slabs) meet as the assembly analysis counts it for a joint: the same
+/// sampling as [`analyse`] at the step of these two, so a step that drops joints whose
+/// parts do not meet agrees with `verify`.
+pub(crate) fn slabs_meet(a: &platener_geom::slab::Slab, b: &platener_geom::slab::Slab) -> bool {
+    let solids = [Solid::from_slab(0, a.clone()), Solid::from_slab(1, b.clone())];
+    let step = sample::step_for(&solids);
+    let [sa, sb] = &solids;
+    sample::meet(sa, &sample::cells(sa, step).0, sb, step) || sample::meet(sb, &sample::cells(sb, step).0, sa, step)
+}

@@ -45,9 +45,14 @@ impl Solid {
             },
             thickness: part.thickness,
         };
+        Self::from_slab(part.id, slab)
+    }
+
+    /// A slab as the solid of part `id` (for checks made before the plan exists).
+    pub(crate) fn from_slab(id: u32, slab: Slab) -> Self {
         let (lo, hi) = slab.model_bounds();
         Self {
-            id: part.id,
+            id,
             volume: slab.volume(),
             slab,
             lo,

@@ -4,7 +4,7 @@
 use glam::{DVec2, DVec3};
 use platener_geom::boolean::{difference, intersection, union_all};
 use platener_geom::boxes::{Box3, near_pairs};
-use platener_geom::offset::offset;
+use platener_geom::offset::{closing, offset};
 use platener_geom::polygon::total_area;
 use platener_geom::slab::{Slab, strip_in_box};
 use platener_geom::{GridError, Polygon};
@@ -113,6 +113,9 @@ pub(super) struct Region {
     pub kind: ConnectionKind,
     /// For a T: the plate that passes through.
     pub through: Option<usize>,
+    /// For a halved joint: the plate whose slot opens at the low end of `range` (its
+    /// material across the joint ends there); the other's opens at the high end.
+    pub slot_low: Option<usize>,
     /// The enclosed angle, degrees.
     pub angle_deg: f64,
     /// Unit direction of the joint line (na × nb).
@@ -622,6 +625,27 @@ impl<'a> Finding<'a> {
             return Ok(None);
         };
         let (kind, through) = kind_of(r, (pa, &ra), (pb, &rb))?;
+        let (mut ra, mut rb, mut slot_low, mut range) = (ra, rb, None, range);
+        if kind == ConnectionKind::Cross {
+            let h = halving(r, (pa, &ra), (pb, &rb), range, self.t_min / 2.0)?;
+            slot_low = Some(h.low);
+            if let (Some(a), Some(b)) = (
+                largest(band(pa, &r.in_a, r.axis, h.span.0, h.span.1)?),
+                largest(band(pb, &r.in_b, r.axis, h.span.0, h.span.1)?),
+            ) {
+                (ra, rb, range) = (a, b, h.span);
+            }
+            if let Some((long, reach)) = h.through {
+                let (p, region) = if long == r.a { (pa, &mut ra) } else { (pb, &mut rb) };
+                let mut reaching = column(p, region, r.axis, 0.0)?;
+                reaching.push(region.clone());
+                if let Some(whole) = largest(union_all(&reaching)?)
+                    && let Some(longer) = largest(band(p, &whole, r.axis, reach.0, reach.1)?)
+                {
+                    *region = longer;
+                }
+            }
+        }
         // Towards 180° (and 0°) the layers' crossing is long: fingers reach only as far past
         // the middle line as at 150°, and a shorter variant stands by for plates the full
         // one would cut apart.
@@ -659,6 +683,7 @@ impl<'a> Finding<'a> {
             short: short.map(Box::new),
             kind,
             through,
+            slot_low,
             angle_deg: angle_of(kind, pa, pb, r.axis, center),
             axis: r.axis,
             range,
@@ -677,6 +702,141 @@ fn passes(p: &Plate, region: &Polygon) -> Result<bool, GridError> {
     Ok(outside < 1e-6 * region.area().max(1.0))
 }
 
+/// An interval along a joint's axis (model coordinates projected on it).
+type Span = (f64, f64);
+
+/// Plate `p`'s outline in the column of `region`'s width across the joint (narrowed by
+/// `inset` of that width on each side), in pieces.
+fn column(p: &Plate, region: &Polygon, axis: DVec3, inset: f64) -> Result<Vec<Polygon>, GridError> {
+    let f = &p.frame;
+    let across = axis.cross(f.n);
+    let (w0, w1) = along::span(region.outer.iter().map(|q| across.dot(at(p, *q))));
+    let inset = inset * (w1 - w0);
+    let n2 = DVec2::new(across.dot(f.u), across.dot(f.v));
+    let c = across.dot(f.origin);
+    let (lo, hi) = p.polygon.bounds();
+    match strip_in_box(lo - DVec2::ONE, hi + DVec2::ONE, n2, w0 + inset - c, w1 - inset - c) {
+        Some(strip) => intersection(std::slice::from_ref(&p.polygon), &[strip]),
+        None => Ok(Vec::new()),
+    }
+}
+
+/// Where plate `p`'s material across the joint starts and ends along `axis`: the shared
+/// `range` (the other plate left a notch there in the plate's faces) and the pieces of the
+/// plate's column that reach it within `tol`, in the middle of the column (its sides run
+/// along the other plate's faces). Also the range widened to touch those pieces (growing
+/// the plates may stop a few µm short of them).
+fn column_extent(
+    p: &Plate,
+    region: &Polygon,
+    axis: DVec3,
+    range: (f64, f64),
+    tol: f64,
+) -> Result<[Span; 2], GridError> {
+    let mut extents: Vec<(f64, f64)> = column(p, region, axis, 0.25)?
+        .iter()
+        .map(|piece| extent(p, piece, axis))
+        .collect();
+    extents.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let (mut e, mut touch) = (range, range);
+    // Pieces beyond one that reaches the range reach it through that one: two passes, up
+    // and down.
+    for x in extents.iter().chain(extents.iter().rev()) {
+        if x.0 <= e.1 + tol && x.1 >= e.0 - tol {
+            e = (e.0.min(x.0), e.1.max(x.1));
+        }
+        if x.1 <= range.0 && x.1 >= range.0 - tol {
+            touch.0 = touch.0.min(x.1);
+        }
+        if x.0 >= range.1 && x.0 <= range.1 + tol {
+            touch.1 = touch.1.max(x.0);
+        }
+    }
+    Ok([e, touch])
+}
+
+/// How two plates cross: which takes the slot from the low end of the shared `range`, and
+/// whether the other's slot must run on past the range to its own edge.
+struct Halving {
+    /// The plate whose slot opens at the low end.
+    low: usize,
+    /// The shared range, out to the plates' own ends where they end at it.
+    span: (f64, f64),
+    /// The plate whose material runs on past both ends of the range, and how far the joint
+    /// region in it must reach to open its slot at its nearer end.
+    through: Option<(usize, (f64, f64))>,
+}
+
+/// Which plate of a crossing takes the slot from the low end of the shared `range`: each
+/// slot must open at an end of the plate's own material across the joint, so that the parts
+/// slide together and each slot runs to the middle of the shared height. Plates of equal
+/// height may go either way: b's slot at the low end, as always. Where one plate's crossing
+/// lies within the other's, the longer one's slot runs from its nearer end (the part of it
+/// beyond the shorter plate is left open; a T would cut the shorter plate in two).
+fn halving(
+    r: &Raw,
+    (pa, ra): (&Plate, &Polygon),
+    (pb, rb): (&Plate, &Polygon),
+    range: (f64, f64),
+    tol: f64,
+) -> Result<Halving, GridError> {
+    let ([ea, ta], [eb, tb]) = (
+        column_extent(pa, ra, r.axis, range, tol)?,
+        column_extent(pb, rb, r.axis, range, tol)?,
+    );
+    let ends = |e: (f64, f64)| (e.0 > range.0 - tol, e.1 < range.1 + tol);
+    let ((a_low, a_high), (b_low, b_high)) = (ends(ea), ends(eb));
+    // The joint spans the crossing to the plates' own ends (the range found by growing them
+    // may stop a few µm short, which would leave a hairline of the notch as a hole).
+    let snap = |at: f64, e: [f64; 2], ending: [bool; 2], pick: fn(f64, f64) -> f64| {
+        (0..2).filter(|&k| ending[k]).fold(at, |x, k| pick(x, e[k]))
+    };
+    let span = (
+        snap(ta.0.min(tb.0), [ea.0, eb.0], [a_low, b_low], f64::min),
+        snap(ta.1.max(tb.1), [ea.1, eb.1], [a_high, b_high], f64::max),
+    );
+    let fixed = |low| Halving {
+        low,
+        span,
+        through: None,
+    };
+    if b_low && a_high {
+        return Ok(fixed(r.b));
+    }
+    if a_low && b_high {
+        return Ok(fixed(r.a));
+    }
+    let (long, e, other) = if ea.1 - ea.0 >= eb.1 - eb.0 {
+        (r.a, ea, r.b)
+    } else {
+        (r.b, eb, r.a)
+    };
+    Ok(if range.0 - e.0 <= e.1 - range.1 {
+        Halving {
+            low: long,
+            span,
+            through: Some((long, (e.0, span.1))),
+        }
+    } else {
+        Halving {
+            low: other,
+            span,
+            through: Some((long, (span.0, e.1))),
+        }
+    })
+}
+
+/// Whether `region` (in `p`'s plane) lies within the plate's outline once notches narrower
+/// than the region is wide are closed: a plate crossing another over less than its full
+/// height is found with a notch where the other interrupts its faces.
+fn passes_notched(p: &Plate, region: &Polygon, axis: DVec3) -> Result<bool, GridError> {
+    let across = axis.cross(p.frame.n);
+    let (w0, w1) = along::span(region.outer.iter().map(|q| across.dot(at(p, *q))));
+    let closed = closing(std::slice::from_ref(&p.polygon), 0.75 * (w1 - w0))?;
+    let outside = total_area(&difference(std::slice::from_ref(region), &closed)?);
+    Ok(outside < 1e-3 * region.area().max(1.0))
+}
+
 /// How the plates of `r` meet, from whether each one's region lies within its outline (a
 /// plate passing through) or not (a plate ending there); for a T, the plate passing through.
 fn kind_of(
@@ -684,6 +844,9 @@ fn kind_of(
     (pa, ra): (&Plate, &Polygon),
     (pb, rb): (&Plate, &Polygon),
 ) -> Result<(ConnectionKind, Option<usize>), GridError> {
+    let passes = |p: &Plate, region: &Polygon| -> Result<bool, GridError> {
+        Ok(passes(p, region)? || passes_notched(p, region, r.axis)?)
+    };
     Ok(match (passes(pa, ra)?, passes(pb, rb)?) {
         (false, false) => (ConnectionKind::Corner, None),
         (true, false) => (ConnectionKind::Tee, Some(r.a)),

@@ -237,7 +237,11 @@ fn cut(plates: &[Plate], r: &Region, plan: Plan, style: JointStyle) -> Result<Cu
                 let ending = if through == r.a { r.b } else { r.a };
                 [through, ending][s % 2]
             }
-            (None, ConnectionKind::Cross) => [r.a, r.b][s.min(1)],
+            (None, ConnectionKind::Cross) => {
+                let low = r.slot_low.unwrap_or(r.b);
+                let high = if low == r.a { r.b } else { r.a };
+                [high, low][s.min(1)]
+            }
         };
         let (a0, a1) = (range.0 + step * s as f64, range.0 + step * (s + 1) as f64);
         // The first and last segments reach past the range (the region's ends).
@@ -298,6 +302,15 @@ fn finish(
     // Regions computed through different frames leave hairlines where their edges should
     // meet (a spike of zero width along a plate's edge beside a notch): gone.
     pieces = opening(&pieces, HAIRLINE)?;
+    // …and hairline holes where a joint region fills a notch the other plate left in the
+    // plate's faces (a crossing over part of its height) a few µm off its sides.
+    for p in &mut pieces {
+        p.holes.retain(|h| {
+            let mut hole = Polygon::new(h.clone());
+            hole.normalize_orientation();
+            !opening(&[hole], HAIRLINE).is_ok_and(|o| o.is_empty())
+        });
+    }
     let r = 0.499 * min_feature;
     let opened = intersection(&opening(&pieces, r)?, &pieces)?;
     let mut slivers = difference(&pieces, &opened)?;

@@ -164,7 +164,60 @@ impl Joints {
 /// what the user should know (a joint that had to adapt, a plate that would fall apart…).
 pub fn compute(plates: &[Plate], settings: &JointSettings) -> Result<(Joints, Vec<String>), GridError> {
     let regions = connect::find(plates, settings)?;
-    fingers::apply(plates, regions, settings, settings.style.unwrap_or(JointStyle::Finger))
+    let (mut joints, mut warnings) =
+        fingers::apply(plates, regions, settings, settings.style.unwrap_or(JointStyle::Finger))?;
+    warnings.extend(drop_unmet(plates, &mut joints));
+    Ok((joints, warnings))
+}
+
+/// Whether plates `a` and `b`, cut as `joints` has them, meet as the assembly analysis
+/// (verify) counts it: touching along a line is not holding.
+fn meet(plates: &[Plate], joints: &Joints, a: usize, b: usize) -> bool {
+    crate::assembly::slabs_meet(
+        &plates[a].slab_of(joints.outlines[a].clone()),
+        &plates[b].slab_of(joints.outlines[b].clone()),
+    )
+}
+
+/// Drops the connections whose plates do not meet once cut (shortened fingers or a butt at an
+/// obtuse corner can leave the two apart): a joint that holds nothing is not listed as one,
+/// so the plan's groups are the ones it really has. The rest are numbered again from 1.
+fn drop_unmet(plates: &[Plate], joints: &mut Joints) -> Vec<String> {
+    let mut warnings = Vec::new();
+    let mut dropped = std::collections::BTreeSet::new();
+    for c in &joints.connections {
+        let [a, b] = c.plates.map(|p| p as usize);
+        if !meet(plates, joints, a, b) {
+            warnings.push(format!(
+                "connection {}: plates {} and {} do not meet once cut; it is left out (they need glue or another joint)",
+                c.label,
+                a + 1,
+                b + 1
+            ));
+            dropped.insert(c.label);
+        }
+    }
+    if dropped.is_empty() {
+        return warnings;
+    }
+    joints.connections.retain(|c| !dropped.contains(&c.label));
+    joints.keys.retain(|k| !dropped.contains(&k.label));
+    for e in &mut joints.edges {
+        e.retain(|(label, _)| !dropped.contains(label));
+    }
+    let renumber = |label: u32| label - dropped.range(..label).count() as u32;
+    for c in &mut joints.connections {
+        c.label = renumber(c.label);
+    }
+    for k in &mut joints.keys {
+        k.label = renumber(k.label);
+    }
+    for e in &mut joints.edges {
+        for (label, _) in e.iter_mut() {
+            *label = renumber(*label);
+        }
+    }
+    warnings
 }
 
 /// Step `joints`: the plate graph and the joints along it, in the style the user chose or

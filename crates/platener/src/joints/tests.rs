@@ -455,3 +455,55 @@ fn plates_on_either_side_of_a_chamfer_are_joined_to_it_not_across_it() {
     let worst = shared_volumes(&parts).into_iter().map(|(_, v)| v).fold(0.0, f64::max);
     assert!(worst < 1.0, "{worst} mm³ shared");
 }
+
+/// Crossing plates over different heights (one taller, or offset so they share only part of
+/// their heights): still two whole parts with a halved joint, each slot opening at the
+/// plate's own end of the shared height and running to its middle, so the parts slide
+/// together, share no volume and rebuild the model. Where one plate's crossing lies within
+/// the other's, the longer one's slot opens at its nearer end and the column beyond the
+/// shorter plate stays open (t × t × the distance).
+#[test]
+fn crossing_plates_of_unequal_height_are_halved() {
+    let (len, t) = (100.0, 3.0);
+    for (a, b, open) in [
+        ((0.0, 40.0), (0.0, 20.0), 0.0),
+        ((0.0, 40.0), (20.0, 60.0), 0.0),
+        ((0.0, 40.0), (25.0, 40.0), 0.0),
+        ((0.0, 40.0), (10.0, 30.0), 10.0),
+    ] {
+        let model = samples::crossing_plates_spans(len, t, a, b);
+        let plates = plates_of(model.clone());
+        assert_eq!(plates.len(), 2, "{a:?} {b:?}");
+        let (joints, warnings) = compute(&plates, &JointSettings::default()).expect("grid");
+        assert!(warnings.is_empty(), "{warnings:?}");
+        assert_eq!(joints.connections.len(), 1, "{a:?} {b:?}");
+        let c = &joints.connections[0];
+        assert_eq!((c.kind, c.segments), (ConnectionKind::Cross, 2), "{a:?} {b:?}");
+        let shared = (a.1.min(b.1) - a.0.max(b.0), [c.line[0].z, c.line[1].z]);
+        assert!(
+            (c.line[0].distance(c.line[1]) - shared.0).abs() < 1e-3,
+            "{a:?} {b:?}: {:?}",
+            c.line
+        );
+        let parts = parts(&plates, &joints);
+        assert!(worst_overlap(&parts) < 1e-3, "{a:?} {b:?}: {}", worst_overlap(&parts));
+        assert!(
+            joints.outlines.iter().all(|o| o.holes.is_empty()),
+            "{a:?} {b:?}: slots open at an edge"
+        );
+        // Each plate loses a slot t wide; the depths sum to the shared height (plus what is
+        // left open beyond a shorter plate).
+        let full = |s: (f64, f64)| len * (s.1 - s.0);
+        let lost = full(a) - joints.outlines[0].area() + full(b) - joints.outlines[1].area();
+        assert!(
+            (lost - t * (shared.0 + open)).abs() < 1e-2,
+            "{a:?} {b:?}: {lost} mm² lost"
+        );
+        let expected = model_volume(&model) - t * t * open;
+        assert!(
+            (volume(&parts) - expected).abs() < 1e-2 * t,
+            "{a:?} {b:?}: {} vs {expected}",
+            volume(&parts)
+        );
+    }
+}

@@ -164,6 +164,7 @@ pub fn label_part(part: &Part, mode: LabelMode, kerf: f64) -> (PartLabels, Vec<W
         .map(|path| Mark {
             kind: MarkKind::Label,
             path,
+            side: None,
         })
         .collect();
     (

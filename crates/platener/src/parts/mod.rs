@@ -15,8 +15,10 @@ use crate::joints::{Connection, ConnectionKind, JointStyle, Joints};
 use platener_geom::Polygon;
 use platener_geom::boolean::intersection;
 
-use crate::plan::{EdgeLabel, Joint, JointKind, Mark, MarkKind, Method, Part, PlanInput, SettingValue, SourceInfo};
-use crate::plates::{Feature, Plates};
+use crate::plan::{
+    EdgeLabel, Joint, JointKind, Mark, MarkKind, MarkSide, Method, Part, PlanInput, SettingValue, SourceInfo,
+};
+use crate::plates::{Feature, Plates, Side};
 use crate::read::Model;
 use crate::settings::Settings;
 use crate::weld::Welded;
@@ -96,28 +98,34 @@ fn id_of(ids: &[Option<u32>], p: u32) -> u32 {
 }
 
 /// The `score` marks of plate `plate`'s one-sided features: every ring of their footprints,
-/// closed, clipped to the part's outline (joints may have cut into it). Features carry the
-/// side they are on in the report; the marks are drawn in the part's frame either way.
+/// closed, clipped to the part's outline (joints may have cut into it), with the face each is
+/// on (the part lies with its local z = 0 face up).
 fn feature_marks(features: &[Feature], plate: u32, outline: &Polygon) -> Vec<Mark> {
-    let regions: Vec<Polygon> = features
-        .iter()
-        .filter(|f| f.plate == plate)
-        .map(|f| f.region.clone())
-        .collect();
-    if regions.is_empty() {
-        return Vec::new();
+    let mut marks = Vec::new();
+    for (side, mark_side) in [(Side::Up, MarkSide::Top), (Side::Down, MarkSide::Bottom)] {
+        let regions: Vec<Polygon> = features
+            .iter()
+            .filter(|f| f.plate == plate && f.side == side)
+            .map(|f| f.region.clone())
+            .collect();
+        if regions.is_empty() {
+            continue;
+        }
+        // A region that the booleans cannot clip is drawn as found: it lay inside the plate.
+        let clipped = intersection(&regions, std::slice::from_ref(outline)).unwrap_or(regions);
+        marks.extend(
+            clipped
+                .iter()
+                .flat_map(|p| std::iter::once(&p.outer).chain(&p.holes))
+                .filter(|r| r.len() >= 3)
+                .map(|r| Mark {
+                    kind: MarkKind::Score,
+                    path: r.iter().copied().chain(r.first().copied()).collect(),
+                    side: Some(mark_side),
+                }),
+        );
     }
-    // A region that the booleans cannot clip is drawn as found: it lay inside the plate.
-    let clipped = intersection(&regions, std::slice::from_ref(outline)).unwrap_or(regions);
-    clipped
-        .iter()
-        .flat_map(|p| std::iter::once(&p.outer).chain(&p.holes))
-        .filter(|r| r.len() >= 3)
-        .map(|r| Mark {
-            kind: MarkKind::Score,
-            path: r.iter().copied().chain(r.first().copied()).collect(),
-        })
-        .collect()
+    marks
 }
 
 /// A connection as plan.json's joint.

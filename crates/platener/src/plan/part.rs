@@ -38,6 +38,18 @@ pub enum MarkKind {
     Label,
 }
 
+/// The face of a part a mark is on, as the part lies on the laser's bed (plan.json's
+/// `marks[].side`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MarkSide {
+    /// The face up on the sheet: engraved as drawn.
+    Top,
+    /// The face down on the sheet: engraving it means turning the part over, and the mark
+    /// then reads mirrored.
+    Bottom,
+}
+
 /// An engraved open polyline in the part's own 2D frame.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Mark {
@@ -45,6 +57,10 @@ pub struct Mark {
     pub kind: MarkKind,
     /// The polyline, in mm.
     pub path: Vec<DVec2>,
+    /// The face it belongs on, for marks of one face (a feature's score); `None` for marks
+    /// drawn on the face up (labels, bend lines). Optional in plan.json (added, not renamed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub side: Option<MarkSide>,
 }
 
 /// A jointed edge of a part whose connection number is engraved next to it, on the inside.

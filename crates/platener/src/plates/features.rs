@@ -22,6 +22,7 @@
 
 use glam::{DVec2, DVec3};
 use platener_geom::boolean::{difference, intersection, union};
+use platener_geom::offset::offset;
 use platener_geom::{Frame, GridError, Polygon, polygon};
 use serde::Serialize;
 
@@ -43,6 +44,12 @@ const PROBE: f64 = 0.1;
 /// not measured (a plate covered in embossed text would otherwise cost one section per glyph
 /// and height).
 const HEIGHT_PROBES: usize = 32;
+/// Share of a region beside a plate's edge the mid-plane material must fill (and the material
+/// just inside the pocketed face must leave empty) for it to be a pocket, not a chamfer.
+const EDGE_FILL: f64 = 0.95;
+/// How close (mm) a region beside a piece must come to count as touching its edge (grid
+/// noise between the faces' booleans).
+const EDGE_TOUCH: f64 = 0.01;
 /// Vertices cut ring corners closer than this (mm) to a straight run out of sections.
 const SECTION_TOLERANCE: f64 = 1e-3;
 
@@ -133,7 +140,12 @@ impl<'a> Sections<'a> {
         t: f64,
         faces: impl FnOnce() -> Vec<Face>,
     ) -> Result<(Vec<Polygon>, Vec<Feature>), GridError> {
-        if self.mode == Mode::Cut || piece.holes.is_empty() {
+        if self.mode == Mode::Cut {
+            return Ok((vec![piece], Vec::new()));
+        }
+        let faces = faces();
+        let beside = beside(&piece, &faces)?;
+        if piece.holes.is_empty() && beside.is_empty() {
             return Ok((vec![piece], Vec::new()));
         }
         let section = self.at(frame, t / 2.0)?;
@@ -141,7 +153,8 @@ impl<'a> Sections<'a> {
         let inside = intersection(&[filled], &section)?;
         // Material in the piece's holes; seams along a through-hole's edge are not, so such a
         // hole keeps the faces' exact ring.
-        let missing = significant(difference(&inside, std::slice::from_ref(&piece))?);
+        let mut missing = significant(difference(&inside, std::slice::from_ref(&piece))?);
+        missing.extend(self.recessed_at_edge(beside, &section, frame, t, &faces)?);
         if missing.is_empty() {
             return Ok((vec![piece], Vec::new()));
         }
@@ -154,7 +167,7 @@ impl<'a> Sections<'a> {
         }
         let mut features = Vec::new();
         let mut budget = HEIGHT_PROBES;
-        for face in &faces() {
+        for face in &faces {
             let on_face = significant(difference(&missing, &face.shape)?);
             if on_face.is_empty() {
                 continue;
@@ -173,6 +186,37 @@ impl<'a> Sections<'a> {
             }
         }
         Ok((solid, features))
+    }
+
+    /// The regions `beside` the piece (one face has them, the other not) that are a pocket
+    /// sunk into the other face at the piece's edge: the material at the mid-plane fills the
+    /// region (a chamfer or rounded edge fills about half of it), and just inside the other
+    /// face there is none (at a corner the rim of a wall's outer face is the neighbouring
+    /// wall's material at every depth). Such a pocket is the plate's material with a mark on
+    /// that face, not a notch in its outline.
+    fn recessed_at_edge(
+        &self,
+        beside: Vec<(usize, Polygon)>,
+        section: &[Polygon],
+        frame: &Frame,
+        t: f64,
+        faces: &[Face],
+    ) -> Result<Vec<Polygon>, GridError> {
+        let mut out = Vec::new();
+        for (other, region) in beside {
+            let area = region.area();
+            let mid = polygon::total_area(&intersection(std::slice::from_ref(&region), section)?);
+            if mid < EDGE_FILL * area {
+                continue;
+            }
+            let inward = if faces[other].z > t / 2.0 { -1.0 } else { 1.0 };
+            let probe = self.at(frame, faces[other].z + inward * PROBE.min(t / 10.0))?;
+            let near = polygon::total_area(&intersection(std::slice::from_ref(&region), &probe)?);
+            if near < (1.0 - EDGE_FILL) * area {
+                out.extend(significant(intersection(&[region], section)?));
+            }
+        }
+        Ok(out)
     }
 
     /// How far the material over `region` reaches out of the face at height `z` (direction
@@ -214,6 +258,27 @@ impl<'a> Sections<'a> {
         }
         Ok(None)
     }
+}
+
+/// The regions one face has beyond the piece's outline, touching it, that the other face
+/// (index into `faces`) lacks: where a pocket at the plate's edge notched the piece.
+fn beside(piece: &Polygon, faces: &[Face]) -> Result<Vec<(usize, Polygon)>, GridError> {
+    if faces.len() != 2 {
+        return Ok(Vec::new());
+    }
+    let near = offset(std::slice::from_ref(piece), EDGE_TOUCH)?;
+    let mut out = Vec::new();
+    for (k, face) in faces.iter().enumerate() {
+        let other = 1 - k;
+        let extra = difference(&face.shape, std::slice::from_ref(piece))?;
+        let extra = significant(difference(&extra, &faces[other].shape)?);
+        for region in extra {
+            if polygon::total_area(&intersection(std::slice::from_ref(&region), &near)?) > 0.0 {
+                out.push((other, region));
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// The polygons of `ps` large and wide enough to be features, outer rings counter-clockwise.

@@ -116,11 +116,13 @@ fn draw(text: &str, size: f64, center: DVec2, along: DVec2, arrow: DVec2) -> Vec
     let mut marks = vec![Mark {
         kind: MarkKind::Engrave,
         path: vec![tail, tip, barb],
+        side: None,
     }];
     let origin = left + along * (cell + gap) - up * (size / 2.0);
     marks.extend(place_text(text, size, origin, along).into_iter().map(|path| Mark {
         kind: MarkKind::Label,
         path,
+        side: None,
     }));
     marks
 }

@@ -116,6 +116,7 @@ pub(crate) fn reference_marks(
         .map(|p| Mark {
             kind: MarkKind::Engrave,
             path: closed(&p.outer),
+            side: None,
         })
         .collect();
     let mut with = on.clone();
@@ -129,6 +130,7 @@ pub(crate) fn reference_marks(
         .map(|path| Mark {
             kind: MarkKind::Label,
             path,
+            side: None,
         });
     Ok(Some(outline.into_iter().chain(text).collect()))
 }
