@@ -11,10 +11,16 @@
 //! A repair keeps a part's largest piece. Pieces cut off (narrower than the kerf, or split
 //! off where a slot touched the edge) are reported with the part's id when they held material
 //! ([`CRUMB_AREA`]); a part with nothing wider than the kerf is left out with its joints.
+//! Where cutting would lose more than [`MAX_LOSS`] of a part (a neck narrower than the kerf
+//! holding a large piece), the narrow material is widened to the kerf instead
+//! ([`platener_geom::clean::widen`]) when that keeps the part's area within [`MAX_LOSS`];
+//! otherwise the outline stays as it was and a warning names the part.
 
-use platener_geom::clean::clean;
+use platener_geom::Polygon;
+use platener_geom::clean::{clean, widen};
 use platener_geom::polygon::total_area;
 use platener_geom::tolerance::CRUMB_AREA;
+use platener_geom::validity::is_valid;
 use rayon::prelude::*;
 
 use crate::context::{StepContext, WarningKind};
@@ -75,16 +81,7 @@ fn clean_part(part: &mut Part, min_width: f64) -> Option<Repair> {
     let whole = part.polygon.area();
     let gone = lost.max(0.0) + cut_off.iter().sum::<f64>();
     if gone > MAX_LOSS * whole {
-        // Separating a touch split the part (a slot notch pinching a layer's neck): losing a
-        // piece this large is worse than an outline that touches itself; leave it and say so.
-        return Some(Repair {
-            part: id,
-            message: Some(format!(
-                "part {id}: its outline touches itself or is narrower than the kerf ({min_width} mm) somewhere, \
-                 and repairing it would cut off {gone:.1} mm² of {whole:.1}; left as it is"
-            )),
-            removed: false,
-        });
+        return Some(widen_part(part, min_width, gone));
     }
     part.polygon = kept;
     let message = (!cut_off.is_empty() || lost >= 1.0).then(|| {
@@ -101,6 +98,40 @@ fn clean_part(part: &mut Part, min_width: f64) -> Option<Repair> {
         message,
         removed: false,
     })
+}
+
+/// The repair of a part whose cleaning would cut off `gone` mm² (more than [`MAX_LOSS`]):
+/// its narrow material widened to `min_width` when that leaves one valid piece within
+/// [`MAX_LOSS`] of the part's area, else the outline as it was; a warning names the part
+/// either way.
+fn widen_part(part: &mut Part, min_width: f64, gone: f64) -> Repair {
+    let (id, whole) = (part.id, part.polygon.area());
+    let widened: Option<Polygon> = widen(&part.polygon, min_width)
+        .ok()
+        .filter(|pieces| pieces.len() == 1 && pieces[0].area() > 0.0)
+        .map(|mut pieces| pieces.remove(0))
+        .filter(|p| (p.area() - whole).abs() <= MAX_LOSS * whole && is_valid(p, min_width));
+    let message = match widened {
+        Some(p) => {
+            let added = p.area() - whole;
+            part.polygon = p;
+            format!(
+                "part {id}: material narrower than the kerf ({min_width} mm) held {gone:.1} mm² of it; \
+                 widened to the kerf instead of cutting that off ({added:+.2} mm²)"
+            )
+        }
+        // Separating a touch split the part (a slot notch pinching a layer's neck): losing a
+        // piece this large is worse than an outline that touches itself; leave it and say so.
+        None => format!(
+            "part {id}: its outline touches itself or is narrower than the kerf ({min_width} mm) somewhere, \
+             and repairing it would cut off {gone:.1} mm² of {whole:.1}; left as it is"
+        ),
+    };
+    Repair {
+        part: id,
+        message: Some(message),
+        removed: false,
+    }
 }
 
 /// Cleans the outlines of `input`'s parts for its kerf ([`clean_parts`]) and warns, naming the
