@@ -116,20 +116,28 @@ fn overlaps(a: (DVec2, DVec2), b: (DVec2, DVec2)) -> bool {
     a.0.x <= b.1.x && b.0.x <= a.1.x && a.0.y <= b.1.y && b.0.y <= a.1.y
 }
 
-/// `polygon` with its narrow material grown to at least `min_width`, then [`clean`]ed: the
-/// repair for a neck narrower than the width that holds a large piece, which cutting would
-/// lose. Each piece of narrow material is grown by half the width on every side, so a neck
-/// of width `d` becomes at least `d + min_width` wide where it was narrow; the material added
-/// is about the neck's length times the width. Spikes found narrow are grown the same way.
+/// `polygon` with its necks narrower than `min_width` grown to at least that, then
+/// [`clean`]ed: the repair for a neck that holds a large piece, which cutting would lose.
+/// The necks are the strips an opening removes that the opened polygon meets in two places
+/// ([`crate::necks`]), short pinches included, so a neck of width `d` becomes at least
+/// `d + min_width` wide where it was narrow; the material added is about the neck's length
+/// times the width. Long narrow material the check finds ([`narrow_material`]) is grown too:
+/// a neck the opening meets on one side only (a lobe whose own opening vanishes) is no strip.
 pub fn widen(polygon: &Polygon, min_width: f64) -> Result<Vec<Polygon>, GridError> {
     let mut normalized = polygon.clone();
     normalized.normalize_orientation();
-    let cores = narrow_material(&normalized, min_width)?;
-    if cores.is_empty() {
-        return clean(&normalized, min_width);
+    let regular = boolean::union_all(&[normalized])?;
+    let mut cores = Vec::new();
+    for piece in &regular {
+        cores.extend(crate::necks::strips(piece, min_width / 2.0, GRID_NOISE_AREA)?);
+        cores.extend(narrow_material(piece, min_width)?);
     }
-    let grown = offset::offset(&cores, min_width / 2.0 + MIN_SEPARATION)?;
-    let widened = boolean::union(std::slice::from_ref(&normalized), &grown)?;
+    if cores.is_empty() {
+        return clean(polygon, min_width);
+    }
+    // Bevelled: a sliver's sharp ends would otherwise grow miter spikes millimetres long.
+    let grown = offset::offset_bevelled(&cores, min_width / 2.0 + MIN_SEPARATION)?;
+    let widened = boolean::union(&regular, &grown)?;
     let mut out = Vec::new();
     for piece in &widened {
         out.extend(clean(piece, min_width)?);

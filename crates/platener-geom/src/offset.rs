@@ -40,6 +40,12 @@ pub fn opening(polygons: &[Polygon], r: f64) -> Result<Vec<Polygon>, GridError> 
     offset(&offset(polygons, -r)?, r)
 }
 
+/// Offsets `polygons` by `distance` mm with bevelled corners: growing a thin sliver never
+/// makes miter spikes at its sharp ends (used to widen necks, where only the width matters).
+pub fn offset_bevelled(polygons: &[Polygon], distance: f64) -> Result<Vec<Polygon>, GridError> {
+    offset_joined(polygons, distance, IntLineJoin::Bevel)
+}
+
 /// An opening whose growth bevels corners instead of mitring them: it never grows a sharp
 /// wedge back, so every part of a wedge narrower than `2r` is gone (the miter [`opening`]
 /// rebuilds a thin wedge's tip from its wider base). Convex corners lose a small triangle,

@@ -267,3 +267,45 @@ fn a_slot_corner_on_the_layer_edge_is_repaired_where_parts_are_made() {
     // The sliver is gone: nothing right of x = 20.1.
     assert!(parts[1].polygon.outer.iter().all(|p| p.x <= 20.0 + 1e-9));
 }
+
+/// The geo lamp's plate plan at 3 mm (issue 15: part 55's cut path had two holes touching once
+/// grown by half the kerf): every part's outline is valid at the kerf and every cut path is
+/// valid; where the growth made a cut path touch itself the kerf step separated it and said so.
+#[test]
+fn geo_lamp_at_3_mm_has_valid_outlines_and_cut_paths() {
+    use platener::method::MethodKind;
+    let Ok(dir) = samples::shared_corpus().map_err(|m| eprintln!("{m}")) else {
+        return;
+    };
+    let file = samples::stl_files(&dir)
+        .into_iter()
+        .find(|f| f.file_stem().is_some_and(|s| s == "geo_lamp_lowpoly"))
+        .expect("geo_lamp_lowpoly.stl in the corpus");
+    let settings = Settings {
+        thicknesses: vec![3.0],
+        ..Settings::default()
+    };
+    let state = platener::convert::convert(MethodKind::Plate, Source::File(file), settings, &Cancel::default())
+        .expect("the geo lamp converts");
+    let cut = state.kerf.as_ref().expect("cut paths");
+    assert!(cut.parts.len() >= 40, "{} parts", cut.parts.len());
+    for part in &cut.parts {
+        let outline = validate(&part.nominal, cut.kerf);
+        assert!(outline.is_empty(), "part {} outline: {outline:?}", part.id);
+        let path = validate(&part.cut, 0.0);
+        assert!(path.is_empty(), "part {} cut path: {path:?}", part.id);
+        // The cut path is the outline grown by half the kerf: never smaller, and larger by
+        // no more than half the kerf around (plus the corners' miters).
+        let grown = part.cut.area() - part.nominal.area();
+        assert!(grown > 0.0, "part {}: cut path not grown ({grown} mm²)", part.id);
+    }
+    let separated: Vec<&str> = state
+        .warnings()
+        .filter(|w| w.step == "kerf" && w.message.contains("touched itself"))
+        .map(|w| w.message.as_str())
+        .collect();
+    eprintln!(
+        "geo lamp 3 mm: {} part(s), cut paths separated: {separated:?}",
+        cut.parts.len()
+    );
+}
