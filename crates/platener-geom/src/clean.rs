@@ -116,14 +116,15 @@ fn overlaps(a: (DVec2, DVec2), b: (DVec2, DVec2)) -> bool {
     a.0.x <= b.1.x && b.0.x <= a.1.x && a.0.y <= b.1.y && b.0.y <= a.1.y
 }
 
-/// `polygon` with its necks narrower than `min_width` grown to at least that, then
-/// [`clean`]ed: the repair for a neck that holds a large piece, which cutting would lose.
+/// `polygon` with its necks narrower than `min_width` grown to at least that, never into
+/// `keep_out` (slots and notches a mating part fills), then [`clean`]ed: the repair for a
+/// neck that holds a large piece, which cutting would lose.
 /// The necks are the strips an opening removes that the opened polygon meets in two places
-/// ([`crate::necks`]), short pinches included, so a neck of width `d` becomes at least
-/// `d + min_width` wide where it was narrow; the material added is about the neck's length
-/// times the width. Long narrow material the check finds ([`narrow_material`]) is grown too:
+/// ([`crate::necks`]), short pinches included. They grow by the whole width on every side, so
+/// a neck of width `d` becomes at least `d + min_width` wide even where `keep_out` lets it grow
+/// on one side only; the material added is about the neck's length times twice the width. Long narrow material the check finds ([`narrow_material`]) is grown too:
 /// a neck the opening meets on one side only (a lobe whose own opening vanishes) is no strip.
-pub fn widen(polygon: &Polygon, min_width: f64) -> Result<Vec<Polygon>, GridError> {
+pub fn widen(polygon: &Polygon, min_width: f64, keep_out: &[Polygon]) -> Result<Vec<Polygon>, GridError> {
     let mut normalized = polygon.clone();
     normalized.normalize_orientation();
     let regular = boolean::union_all(&[normalized])?;
@@ -136,7 +137,10 @@ pub fn widen(polygon: &Polygon, min_width: f64) -> Result<Vec<Polygon>, GridErro
         return clean(polygon, min_width);
     }
     // Bevelled: a sliver's sharp ends would otherwise grow miter spikes millimetres long.
-    let grown = offset::offset_bevelled(&cores, min_width / 2.0 + MIN_SEPARATION)?;
+    let mut grown = offset::offset_bevelled(&cores, min_width + MIN_SEPARATION)?;
+    if !keep_out.is_empty() {
+        grown = boolean::difference(&grown, keep_out)?;
+    }
     let widened = boolean::union(&regular, &grown)?;
     let mut out = Vec::new();
     for piece in &widened {

@@ -17,8 +17,13 @@ use rayon::prelude::*;
 /// How a panic or an internal error is marked among the problems: these always fail a sweep.
 const FATAL: &str = "FATAL ";
 
-/// Invalid outlines or cut paths left in the corpus sweep (a ceiling; see [`sweep`]).
-const CORPUS_INVALID: usize = 23;
+/// Invalid outlines or cut paths left in the corpus sweep (a ceiling; see [`sweep`]). 23 when
+/// the sweep joined the default run; 17 after the plate method's repairs (wedges trimmed,
+/// necks under the kerf widened, kerf paths separated): 15 stacked letter-block layers whose
+/// holes touch, the device rear case at 1 mm (part 1) and the geo lamp at 4 mm (part 8), whose
+/// necks cannot widen without growing into their slots. One more for the geo lamp at 1 mm
+/// (part 67, the same case), which timed out in that loaded run.
+const CORPUS_INVALID: usize = 18;
 /// Invalid outlines or cut paths tolerated in the samples sweep: not bounded. Which sample
 /// conversions beat the time limit depends on the machine (spheres and tori at 1–3 mm did
 /// not on two cores), and those that do not show none of their outlines, so any ceiling
@@ -189,8 +194,8 @@ fn corpus_sources() -> Option<Vec<Source>> {
 
 /// The whole sweep of issue 15: every corpus model at every thickness from 1 to 6 mm, 372 plans
 /// of both methods (97 s on two idle cores at the tests' opt-level 1). No panic, no internal
-/// error; 23 invalid outlines or cut paths were left when it joined the default run (repairs
-/// refused because they would cut off more than 2 % of a part, kerf paths whose holes touch).
+/// error; 23 invalid outlines or cut paths were left when it joined the default run, at most
+/// [`CORPUS_INVALID`] now (repairs refused because they would cut off more than 2 % of a part).
 #[test]
 fn every_corpus_model_at_every_thickness_converts_or_fails_with_a_reason() {
     let Some(sources) = corpus_sources() else { return };
