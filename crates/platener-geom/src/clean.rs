@@ -11,7 +11,14 @@
 //! 3. *Separate touches*: where two rings (or one ring with itself) still meet in a point, a
 //!    small square of the minimum width is cut out there, then step 2 runs again. Cutting, not
 //!    filling, so a slot whose corner touched the edge stays large enough for its shaft.
-//! 4. Pieces and holes with no area to speak of ([`GRID_NOISE_AREA`]) are dropped.
+//! 4. *Trim wedges*: a thin wedge (a spike tapering to a point) survives a miter opening,
+//!    which grows its tip back from the wider base; what a bevelled opening removes there
+//!    ([`offset::opening_bevelled`]) is cut away where the check still finds narrow material.
+//! 5. Pieces and holes with no area to speak of ([`GRID_NOISE_AREA`]) are dropped.
+//!
+//! Cutting narrow material away is right for slivers and spikes, but where a neck narrower
+//! than the width holds a large piece it would cut that piece off: [`widen`] instead grows the
+//! narrow material to the width, for callers that refuse a repair that loses too much.
 //!
 //! A polygon that is already valid is returned unchanged (same vertices), so clean outlines are
 //! never moved by a grid round trip.
@@ -21,7 +28,7 @@ use glam::DVec2;
 use crate::grid::{GridError, STEP};
 use crate::polygon::{Polygon, rect};
 use crate::tolerance::GRID_NOISE_AREA;
-use crate::validity::{Problem, validate};
+use crate::validity::{Problem, narrow_material, validate};
 use crate::{boolean, offset};
 
 /// Rounds of "separate touches, open again" before giving up: each round removes the touches
@@ -62,17 +69,85 @@ pub fn clean(polygon: &Polygon, min_width: f64) -> Result<Vec<Polygon>, GridErro
         pieces = open(&boolean::difference(&pieces, &squares)?, min_width)?;
     }
     // An opening on the grid is not quite idempotent (miter corners move by a step): open
-    // again what is still found narrow.
-    for _ in 0..ROUNDS {
-        if !pieces
-            .iter()
-            .any(|p| validate(p, min_width).iter().any(|f| f.problem == Problem::Narrow))
-        {
+    // again what is still found narrow; then cut away thin wedges the opening grows back.
+    for round in 0..ROUNDS {
+        if !pieces.iter().any(|p| is_narrow(p, min_width)) {
             break;
+        }
+        if round > 0 {
+            pieces = trim_wedges(&pieces, min_width)?;
         }
         pieces = open(&pieces, min_width)?;
     }
     Ok(pieces)
+}
+
+/// Whether the check finds material of `polygon` narrower than `min_width`.
+fn is_narrow(polygon: &Polygon, min_width: f64) -> bool {
+    validate(polygon, min_width)
+        .iter()
+        .any(|f| f.problem == Problem::Narrow)
+}
+
+/// `pieces` without the narrow wedges the check finds: for each piece with narrow material
+/// ([`narrow_material`]), what a bevelled opening by half the width removes is cut away where
+/// it holds that material (the rest of what it removes is corner crumbs, which stay).
+fn trim_wedges(pieces: &[Polygon], min_width: f64) -> Result<Vec<Polygon>, GridError> {
+    let mut out = Vec::with_capacity(pieces.len());
+    for piece in pieces {
+        let cores = narrow_material(piece, min_width)?;
+        if cores.is_empty() {
+            out.push(piece.clone());
+            continue;
+        }
+        let one = std::slice::from_ref(piece);
+        let lost = boolean::difference(one, &offset::opening_bevelled(one, min_width / 2.0)?)?;
+        let wedges: Vec<Polygon> = lost
+            .into_iter()
+            .filter(|l| cores.iter().any(|c| overlaps(l.bounds(), c.bounds())))
+            .collect();
+        out.extend(boolean::difference(one, &wedges)?);
+    }
+    Ok(out)
+}
+
+/// Whether two bounding boxes (lower, upper corner) overlap.
+fn overlaps(a: (DVec2, DVec2), b: (DVec2, DVec2)) -> bool {
+    a.0.x <= b.1.x && b.0.x <= a.1.x && a.0.y <= b.1.y && b.0.y <= a.1.y
+}
+
+/// `polygon` with its necks narrower than `min_width` grown to at least that, never into
+/// `keep_out` (slots and notches a mating part fills), then [`clean`]ed: the repair for a
+/// neck that holds a large piece, which cutting would lose.
+/// The necks are the strips an opening removes that the opened polygon meets in two places
+/// ([`crate::necks`]), short pinches included. They grow by the whole width on every side, so
+/// a neck of width `d` becomes at least `d + min_width` wide even where `keep_out` lets it grow
+/// on one side only; the material added is about the neck's length times twice the width. Long narrow material the check finds ([`narrow_material`]) is grown too:
+/// a neck the opening meets on one side only (a lobe whose own opening vanishes) is no strip.
+pub fn widen(polygon: &Polygon, min_width: f64, keep_out: &[Polygon]) -> Result<Vec<Polygon>, GridError> {
+    let mut normalized = polygon.clone();
+    normalized.normalize_orientation();
+    let regular = boolean::union_all(&[normalized])?;
+    let mut cores = Vec::new();
+    for piece in &regular {
+        cores.extend(crate::necks::strips(piece, min_width / 2.0, GRID_NOISE_AREA)?);
+        cores.extend(narrow_material(piece, min_width)?);
+    }
+    if cores.is_empty() {
+        return clean(polygon, min_width);
+    }
+    // Bevelled: a sliver's sharp ends would otherwise grow miter spikes millimetres long.
+    let mut grown = offset::offset_bevelled(&cores, min_width + MIN_SEPARATION)?;
+    if !keep_out.is_empty() {
+        grown = boolean::difference(&grown, keep_out)?;
+    }
+    let widened = boolean::union(&regular, &grown)?;
+    let mut out = Vec::new();
+    for piece in &widened {
+        out.extend(clean(piece, min_width)?);
+    }
+    out.sort_by(|a, b| b.area().total_cmp(&a.area()));
+    Ok(out)
 }
 
 /// The opening of `pieces` by half of `min_width` (none for 0), within `pieces`, without

@@ -27,6 +27,7 @@ pub mod clean;
 pub mod dedup;
 pub mod frame;
 pub mod grid;
+pub mod necks;
 pub mod offset;
 pub mod plane_fit;
 pub mod polygon;

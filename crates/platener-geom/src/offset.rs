@@ -14,12 +14,17 @@ use crate::polygon::Polygon;
 
 /// Offsets `polygons` by `distance` mm (positive grows), with miter joins.
 pub fn offset(polygons: &[Polygon], distance: f64) -> Result<Vec<Polygon>, GridError> {
+    // Interior angles under 5° are bevelled instead of growing a spike to infinity.
+    let join = Angle::from_radians(5f64.to_radians()).map_or(IntLineJoin::Bevel, IntLineJoin::Miter);
+    offset_joined(polygons, distance, join)
+}
+
+/// Offsets `polygons` by `distance` mm with `join` at the corners that grow.
+fn offset_joined(polygons: &[Polygon], distance: f64, join: IntLineJoin) -> Result<Vec<Polygon>, GridError> {
     let mut normalized = polygons.to_vec();
     normalized.iter_mut().for_each(Polygon::normalize_orientation);
     let shapes = polygons_to_grid(&normalized)?;
     let d = grid::to_grid(distance)?;
-    // Interior angles under 5° are bevelled instead of growing a spike to infinity.
-    let join = Angle::from_radians(5f64.to_radians()).map_or(IntLineJoin::Bevel, IntLineJoin::Miter);
     let style = IntOutlineStyle::new(d).line_join(join);
     shapes
         .validate_outline(&style)
@@ -33,6 +38,20 @@ pub fn offset(polygons: &[Polygon], distance: f64) -> Result<Vec<Polygon>, GridE
 /// corners).
 pub fn opening(polygons: &[Polygon], r: f64) -> Result<Vec<Polygon>, GridError> {
     offset(&offset(polygons, -r)?, r)
+}
+
+/// Offsets `polygons` by `distance` mm with bevelled corners: growing a thin sliver never
+/// makes miter spikes at its sharp ends (used to widen necks, where only the width matters).
+pub fn offset_bevelled(polygons: &[Polygon], distance: f64) -> Result<Vec<Polygon>, GridError> {
+    offset_joined(polygons, distance, IntLineJoin::Bevel)
+}
+
+/// An opening whose growth bevels corners instead of mitring them: it never grows a sharp
+/// wedge back, so every part of a wedge narrower than `2r` is gone (the miter [`opening`]
+/// rebuilds a thin wedge's tip from its wider base). Convex corners lose a small triangle,
+/// so it only serves to find narrow material, never as an outline.
+pub fn opening_bevelled(polygons: &[Polygon], r: f64) -> Result<Vec<Polygon>, GridError> {
+    offset_joined(&offset_joined(polygons, -r, IntLineJoin::Bevel)?, r, IntLineJoin::Bevel)
 }
 
 /// Morphological closing (grow by `r`, then shrink back): fills every gap and notch of

@@ -311,13 +311,23 @@ fn containment_findings(polygon: &Polygon) -> Vec<Finding> {
     out
 }
 
-/// Points of `polygon`'s material narrower than `min_width`: what an opening by half the
-/// width removes, ignoring grid-rounding crumbs ([`NOISE_WIDTH`]); one point per piece.
+/// Points of `polygon`'s material narrower than `min_width`: one point per piece of
+/// [`narrow_material`].
+fn narrow_spots(polygon: &Polygon, min_width: f64) -> Result<Vec<DVec2>, GridError> {
+    Ok(narrow_material(polygon, min_width)?
+        .iter()
+        .filter_map(|p| p.outer.first().copied())
+        .collect())
+}
+
+/// The pieces of `polygon`'s material narrower than `min_width`, each shrunk by
+/// [`NOISE_WIDTH`]: what an opening removes, ignoring grid-rounding crumbs. The repair
+/// ([`crate::clean`]) uses them to find what to cut away or widen.
 ///
 /// The opening is by half the width less [`NOISE_WIDTH`]: an opening on the grid moves miter
 /// corners by a step or two, so material the cleaner opened at exactly half the width would
 /// otherwise be found narrow again. Widths are thus checked to within 4 µm.
-fn narrow_spots(polygon: &Polygon, min_width: f64) -> Result<Vec<DVec2>, GridError> {
+pub fn narrow_material(polygon: &Polygon, min_width: f64) -> Result<Vec<Polygon>, GridError> {
     let r = (min_width / 2.0 - NOISE_WIDTH).max(0.0);
     if r == 0.0 {
         return Ok(Vec::new());
@@ -332,12 +342,11 @@ fn narrow_spots(polygon: &Polygon, min_width: f64) -> Result<Vec<DVec2>, GridErr
     // than the width (a small chamfer, a finger's notch), growing back leaves a crumb at the
     // corner, at most about the width across. Narrow material runs longer than that.
     Ok(cores
-        .iter()
+        .into_iter()
         .filter(|p| {
             let (lo, hi) = p.bounds();
             (hi - lo).max_element() > 2.0 * min_width
         })
-        .filter_map(|p| p.outer.first().copied())
         .collect())
 }
 

@@ -28,6 +28,9 @@ use platener_geom::{Frame, Polygon, boolean};
 const TOUCH_AREA: f64 = 1e-2;
 /// Relative tolerance of slot areas against the shafts through them.
 const SLOT_TOL: f64 = 1e-3;
+/// What a layer may lose beyond its slots (mm²): the outline repair cuts thin wedges under the
+/// kerf away (`platener_geom::clean`, 0.097 mm² on an organic corpus layer), never adds.
+const REPAIR_TOL: f64 = 0.15;
 /// Sub-planes per part for volume integrals.
 const LEVELS: usize = 6;
 /// Points sampled on a sphere's surface.
@@ -212,7 +215,7 @@ fn assert_slots_match(c: &Conversion) {
     for (id, (want, pinches)) in slot_area {
         let lost = outlines[&id].area() - polygon(parts[&id]).area();
         assert!(
-            lost >= want - SLOT_TOL * want && lost <= want + pinches + SLOT_TOL * want,
+            lost >= want - SLOT_TOL * want && lost <= want + pinches + SLOT_TOL * want + REPAIR_TOL,
             "layer {id}: slots {lost} mm², shafts {want} mm²"
         );
     }

@@ -85,6 +85,82 @@ fn a_sliver_narrower_than_the_width_vanishes() {
     assert!(clean(&p, 0.1).expect("grid").is_empty());
 }
 
+/// A thin wedge (16°, 0.7 mm long) running off a slanted edge, as the joints leave on the
+/// tardis's front at 1 mm (these are its vertices): a miter opening grows its tip back from
+/// the wider base, so after opening the check still finds it narrow, and the repair trims it.
+/// The wedge goes, the rest stays.
+#[test]
+fn a_thin_wedge_is_trimmed_away() {
+    let p = Polygon::new(vec![
+        v(-25.55, 1.192),
+        v(-20.016, 2.394),
+        v(-19.334, 2.542),
+        v(-20.034, 2.592),
+        v(-20.034, 2.593),
+        v(-20.036, 2.602),
+        v(-20.08, 2.802),
+        v(-20.102, 3.042),
+        v(-20.08, 3.282),
+        v(-20.016, 3.514),
+        v(-19.408, 3.539),
+        v(-19.336, 3.542),
+        v(-20.045, 3.709),
+        v(-25.55, 3.9),
+    ]);
+    assert!(!is_valid(&p, 0.2), "the wedge is narrow material");
+    let out = clean(&p, 0.2).expect("grid");
+    assert_eq!(out.len(), 1, "{out:?}");
+    assert!(is_valid(&out[0], 0.2), "{:?}", validate(&out[0], 0.2));
+    let lost = p.area() - out[0].area();
+    // The two wedges (at 2.5 and 3.5) hold about 0.06 mm² beyond x = -20.1.
+    assert!((0.0..0.15).contains(&lost), "lost {lost} mm²");
+    assert!(!out[0].contains(v(-19.6, 2.53)), "the wedge's tip is gone");
+    assert!(out[0].contains(v(-22.0, 2.5)) && out[0].contains(v(-20.3, 3.0)));
+}
+
+/// Two 10 mm squares held by a neck 0.08 mm wide and 3 mm long (the geo lamp's plates at 1 and
+/// 4 mm, where a slot nearly cuts a corner off): cleaning cuts one square off, widening keeps
+/// both, joined by a neck at least the width, adding well under a mm².
+#[test]
+fn a_neck_narrower_than_the_width_is_widened() {
+    let p = Polygon::new(vec![
+        v(0.0, 0.0),
+        v(10.0, 0.0),
+        v(10.0, 5.0),
+        v(13.0, 5.0),
+        v(13.0, 0.0),
+        v(23.0, 0.0),
+        v(23.0, 10.0),
+        v(13.0, 10.0),
+        v(13.0, 5.08),
+        v(10.0, 5.08),
+        v(10.0, 10.0),
+        v(0.0, 10.0),
+    ]);
+    let cut = clean(&p, 0.2).expect("grid");
+    assert_eq!(cut.len(), 2, "cutting the neck splits the part");
+    let out = widen(&p, 0.2, &[]).expect("grid");
+    assert_eq!(out.len(), 1, "{out:?}");
+    assert!(is_valid(&out[0], 0.2), "{:?}", validate(&out[0], 0.2));
+    let added = out[0].area() - p.area();
+    // The neck grows from 0.08 to about 0.5 mm over its 3 mm (plus its ends): ~1.3 mm².
+    assert!((0.6..2.0).contains(&added), "added {added} mm²");
+    for q in [v(5.0, 5.0), v(18.0, 5.0), v(11.5, 4.95), v(11.5, 5.13)] {
+        assert!(out[0].contains(q), "{q} not material");
+    }
+    // The squares are untouched away from the neck.
+    assert!(!out[0].contains(v(11.5, 4.6)) && !out[0].contains(v(11.5, 5.5)));
+    // A slot below the neck (where a mating part goes) gets no material: the neck grows
+    // upwards only, still to the width.
+    let slot = Polygon::new(rect(10.0, 3.0, 13.0, 5.0));
+    let out = widen(&p, 0.2, std::slice::from_ref(&slot)).expect("grid");
+    assert_eq!(out.len(), 1, "{out:?}");
+    assert!(is_valid(&out[0], 0.2), "{:?}", validate(&out[0], 0.2));
+    assert!(out[0].contains(v(11.5, 5.25)) && !out[0].contains(v(11.5, 4.99)));
+    let inside = boolean::intersection(&out, std::slice::from_ref(&slot)).expect("grid");
+    assert!(total_area(&inside) < 1e-3, "{} mm² in the slot", total_area(&inside));
+}
+
 /// A random rectangle with a zero-width spike out of one side and a rectangular hole that may
 /// touch the outline or nothing at all.
 fn spiky(w: f64, h: f64, side: usize, at: f64, len: f64, hole: (f64, f64, f64, f64)) -> Polygon {

@@ -6,11 +6,20 @@
 //! outline moves out, holes and slots shrink, and the part comes out at nominal size. Corners
 //! stay sharp (miter joins, [`platener_geom::offset`]) so fingers keep their square shoulders.
 //! The kerf itself is measured with the [`strip`] (`platener test-strip`).
+//!
+//! Growing can make a valid outline's cut path touch itself: a hole or a notch whose waist is
+//! exactly the kerf wide closes to a point, two holes end up meeting in one. The laser burns
+//! the material between them anyway, so the cut path is repaired the way the cut comes out
+//! ([`separate_touches`]): a tiny square of material (10 µm) is removed at each touch, which
+//! merges the touching holes into one hole and opens a pinched notch, and a warning names the
+//! part.
 
 pub mod strip;
 
 use glam::DVec2;
-use platener_geom::{Polygon, Ring, offset};
+use platener_geom::clean::clean;
+use platener_geom::validity::Problem;
+use platener_geom::{Polygon, Ring, offset, validate};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -53,6 +62,26 @@ pub fn cut_polygon(nominal: &Polygon, kerf: f64) -> Result<Polygon, platener_geo
     Ok(best)
 }
 
+/// `cut` with its rings made simple where they touch or cross, and how many such places
+/// there were (0: `cut` is returned as it is).
+///
+/// The kernel's [`clean`] at width 0 regularises the rings and cuts a square of ten grid steps
+/// out of the material at each touch: a cut path is the edge of what the laser removes, so
+/// removing a speck more where two cuts meet is what the laser does anyway, whereas filling
+/// it would leave a hole or notch uncut. The largest piece is kept (the squares never split a
+/// part wider than them).
+pub fn separate_touches(cut: &Polygon) -> Result<(Polygon, usize), platener_geom::GridError> {
+    let touches = validate(cut, 0.0)
+        .iter()
+        .filter(|f| matches!(f.problem, Problem::Touching { .. } | Problem::Crossing { .. }))
+        .count();
+    if touches == 0 {
+        return Ok((cut.clone(), 0));
+    }
+    let repaired = clean(cut, 0.0)?.into_iter().next().unwrap_or_else(|| cut.clone());
+    Ok((repaired, touches))
+}
+
 /// `ring` without consecutive repeated points and without a closing copy of its first point
 /// (plan.json's rings are not closed).
 pub fn open_ring(ring: &[DVec2]) -> Ring {
@@ -79,26 +108,19 @@ pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<(CutPaths, Vec<Warning>), 
                 holes: part.polygon.holes.iter().map(|h| open_ring(h)).collect(),
             };
             nominal.normalize_orientation();
-            let cut = cut_polygon(&nominal, kerf).map_err(|e| PlanError::Part {
+            let grid_error = |e: platener_geom::GridError| PlanError::Part {
                 part: part.id,
                 message: e.to_string(),
-            })?;
+            };
+            let (cut, touches) =
+                separate_touches(&cut_polygon(&nominal, kerf).map_err(grid_error)?).map_err(grid_error)?;
             if cut.outer.len() < 3 {
                 return Err(PlanError::Part {
                     part: part.id,
                     message: "the outline vanished when offset by half the kerf".into(),
                 });
             }
-            let closed = nominal.holes.len().saturating_sub(cut.holes.len());
-            let warning = (closed > 0).then(|| Warning {
-                step: "kerf",
-                kind: WarningKind::CuttingPlan,
-                part: Some(part.id),
-                message: format!(
-                    "{closed} hole(s) of part {} are narrower than the kerf ({kerf} mm) and are not cut",
-                    part.id
-                ),
-            });
+            let warning = kerf_warning(part.id, nominal.holes.len(), &cut, touches, kerf);
             Ok((
                 CutPart {
                     id: part.id,
@@ -120,6 +142,30 @@ pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<(CutPaths, Vec<Warning>), 
         warnings.extend(warning);
     }
     Ok((out, warnings))
+}
+
+/// The warning for one part's cut path, if any: holes that closed (narrower than the kerf)
+/// and places where the cut path touched itself and was separated ([`separate_touches`]).
+fn kerf_warning(part: u32, nominal_holes: usize, cut: &Polygon, touches: usize, kerf: f64) -> Option<Warning> {
+    let closed = nominal_holes.saturating_sub(cut.holes.len());
+    let mut said = Vec::new();
+    if closed > 0 {
+        said.push(format!(
+            "{closed} hole(s) of part {part} are narrower than the kerf ({kerf} mm) and are not cut"
+        ));
+    }
+    if touches > 0 {
+        said.push(format!(
+            "the cut path of part {part} touched itself at {touches} place(s) once grown by half the kerf \
+             ({kerf} mm): holes or notches meeting there are cut as one"
+        ));
+    }
+    (!said.is_empty()).then(|| Warning {
+        step: "kerf",
+        kind: WarningKind::CuttingPlan,
+        part: Some(part),
+        message: said.join("; "),
+    })
 }
 
 /// Step `kerf`: the cut path of every part, offset by half the kerf.

@@ -11,10 +11,19 @@
 //! A repair keeps a part's largest piece. Pieces cut off (narrower than the kerf, or split
 //! off where a slot touched the edge) are reported with the part's id when they held material
 //! ([`CRUMB_AREA`]); a part with nothing wider than the kerf is left out with its joints.
+//! Where cutting would lose more than [`MAX_LOSS`] of a part (a neck narrower than the kerf
+//! holding a large piece), the narrow material is widened to the kerf instead
+//! ([`platener_geom::clean::widen`]) when that keeps the part's area within [`MAX_LOSS`];
+//! otherwise the outline stays as it was and a warning names the part.
 
-use platener_geom::clean::clean;
+use std::collections::BTreeMap;
+
+use platener_geom::Polygon;
+use platener_geom::boolean::difference;
+use platener_geom::clean::{clean, widen};
 use platener_geom::polygon::total_area;
 use platener_geom::tolerance::CRUMB_AREA;
+use platener_geom::validity::is_valid;
 use rayon::prelude::*;
 
 use crate::context::{StepContext, WarningKind};
@@ -40,7 +49,22 @@ pub struct Repair {
 /// Returns one [`Repair`] per part that changed, in part order. An outline that cannot go on
 /// the 1 µm grid is left as it is: the `kerf` step refuses it with the part's id.
 pub fn clean_parts(parts: &mut Vec<Part>, joints: &mut Vec<Joint>, min_width: f64) -> Vec<Repair> {
-    let repairs: Vec<Option<Repair>> = parts.par_iter_mut().map(|p| clean_part(p, min_width)).collect();
+    clean_parts_within(parts, joints, min_width, &BTreeMap::new())
+}
+
+/// [`clean_parts`], where a part whose id `uncut` maps to its outline before joints were cut
+/// may have a neck narrower than `min_width` widened ([`widen_part`]) instead of left invalid,
+/// never into its slots and notches (the uncut outline less the part).
+pub fn clean_parts_within(
+    parts: &mut Vec<Part>,
+    joints: &mut Vec<Joint>,
+    min_width: f64,
+    uncut: &BTreeMap<u32, Polygon>,
+) -> Vec<Repair> {
+    let repairs: Vec<Option<Repair>> = parts
+        .par_iter_mut()
+        .map(|p| clean_part(p, min_width, uncut.get(&p.id)))
+        .collect();
     let repairs: Vec<Repair> = repairs.into_iter().flatten().collect();
     let gone: Vec<u32> = repairs.iter().filter(|r| r.removed).map(|r| r.part).collect();
     if !gone.is_empty() {
@@ -50,8 +74,9 @@ pub fn clean_parts(parts: &mut Vec<Part>, joints: &mut Vec<Joint>, min_width: f6
     repairs
 }
 
-/// Repairs one part in place; `None` when its outline was already valid.
-fn clean_part(part: &mut Part, min_width: f64) -> Option<Repair> {
+/// Repairs one part in place; `None` when its outline was already valid. `uncut`: its outline
+/// before joints, when a neck may be widened.
+fn clean_part(part: &mut Part, min_width: f64, uncut: Option<&Polygon>) -> Option<Repair> {
     let pieces = clean(&part.polygon, min_width).ok()?;
     if pieces.len() == 1 && pieces[0] == part.polygon {
         return None;
@@ -75,16 +100,7 @@ fn clean_part(part: &mut Part, min_width: f64) -> Option<Repair> {
     let whole = part.polygon.area();
     let gone = lost.max(0.0) + cut_off.iter().sum::<f64>();
     if gone > MAX_LOSS * whole {
-        // Separating a touch split the part (a slot notch pinching a layer's neck): losing a
-        // piece this large is worse than an outline that touches itself; leave it and say so.
-        return Some(Repair {
-            part: id,
-            message: Some(format!(
-                "part {id}: its outline touches itself or is narrower than the kerf ({min_width} mm) somewhere, \
-                 and repairing it would cut off {gone:.1} mm² of {whole:.1}; left as it is"
-            )),
-            removed: false,
-        });
+        return Some(widen_part(part, min_width, gone, uncut));
     }
     part.polygon = kept;
     let message = (!cut_off.is_empty() || lost >= 1.0).then(|| {
@@ -103,12 +119,55 @@ fn clean_part(part: &mut Part, min_width: f64) -> Option<Repair> {
     })
 }
 
+/// The repair of a part whose cleaning would cut off `gone` mm² (more than [`MAX_LOSS`]):
+/// its narrow material widened to `min_width`, never into the slots and notches its joints cut
+/// (`uncut` less the part), when that leaves one valid piece within [`MAX_LOSS`] of the part's
+/// area; else (or without `uncut`: stacked layers, whose shaft notches the lead found bridged)
+/// the outline as it was. A warning names the part either way.
+fn widen_part(part: &mut Part, min_width: f64, gone: f64, uncut: Option<&Polygon>) -> Repair {
+    let (id, whole) = (part.id, part.polygon.area());
+    let slots = |u: &Polygon| difference(std::slice::from_ref(u), std::slice::from_ref(&part.polygon)).ok();
+    let widened: Option<Polygon> = uncut
+        .and_then(slots)
+        .and_then(|keep_out| widen(&part.polygon, min_width, &keep_out).ok())
+        .filter(|pieces| pieces.len() == 1 && pieces[0].area() > 0.0)
+        .map(|mut pieces| pieces.remove(0))
+        .filter(|p| (p.area() - whole).abs() <= MAX_LOSS * whole && is_valid(p, min_width));
+    let message = match widened {
+        Some(p) => {
+            let added = p.area() - whole;
+            part.polygon = p;
+            format!(
+                "part {id}: material narrower than the kerf ({min_width} mm) held {gone:.1} mm² of it; \
+                 widened to the kerf instead of cutting that off ({added:+.2} mm²)"
+            )
+        }
+        // Separating a touch split the part (a slot notch pinching a layer's neck): losing a
+        // piece this large is worse than an outline that touches itself; leave it and say so.
+        None => format!(
+            "part {id}: its outline touches itself or is narrower than the kerf ({min_width} mm) somewhere, \
+             and repairing it would cut off {gone:.1} mm² of {whole:.1}; left as it is"
+        ),
+    };
+    Repair {
+        part: id,
+        message: Some(message),
+        removed: false,
+    }
+}
+
 /// Cleans the outlines of `input`'s parts for its kerf ([`clean_parts`]) and warns, naming the
 /// part, where material was cut off or a part left out. Both methods call it where they make
 /// their parts.
 pub fn clean_input(input: &mut PlanInput, cx: &mut StepContext<'_>) {
+    clean_input_within(input, &BTreeMap::new(), cx);
+}
+
+/// [`clean_input`] with the parts' outlines before joints ([`clean_parts_within`]): the plate
+/// method's, whose necks may be widened.
+pub fn clean_input_within(input: &mut PlanInput, uncut: &BTreeMap<u32, Polygon>, cx: &mut StepContext<'_>) {
     let kerf = input.settings.kerf();
-    for r in clean_parts(&mut input.parts, &mut input.joints, kerf) {
+    for r in clean_parts_within(&mut input.parts, &mut input.joints, kerf, uncut) {
         if let Some(message) = r.message {
             cx.warn_part(WarningKind::CuttingPlan, Some(r.part), message);
         }
