@@ -556,7 +556,10 @@ fn two_workers_on_postgres_share_40_jobs_each_run_once() {
     let Some(cluster) = platener_testpg::Cluster::for_tests() else {
         return;
     };
-    let url = cluster.fresh_database().expect("a PostgreSQL database of this test's own").url;
+    let url = cluster
+        .fresh_database()
+        .expect("a PostgreSQL database of this test's own")
+        .url;
     let dir = tempfile::tempdir().expect("temp dir");
     let args = [
         "--workers",

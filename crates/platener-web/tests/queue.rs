@@ -12,7 +12,9 @@ async fn databases(dir: &tempfile::TempDir) -> Vec<Db> {
     let url = format!("sqlite://{}?mode=rwc", dir.path().join("q.sqlite").display());
     let mut all = vec![Db::connect(&url, 4).await.expect("database")];
     if let Some(cluster) = platener_testpg::Cluster::for_tests() {
-        let pg = cluster.fresh_database().expect("a PostgreSQL database of this test's own");
+        let pg = cluster
+            .fresh_database()
+            .expect("a PostgreSQL database of this test's own");
         all.push(Db::connect(&pg.url, 4).await.expect("PostgreSQL"));
     }
     all
