@@ -74,12 +74,55 @@ fn the_teapots_knob_neck_gets_a_peg_and_verify_passes() {
         let inner = offset::offset(std::slice::from_ref(&island.outline), -(PEG_MIN_WALL - 0.01)).expect("grid");
         let rect = slot(st, peg, b);
         let out = boolean::difference(std::slice::from_ref(&rect), &inner).expect("grid");
-        assert!(total_area(&out) < GRID_AREA, "layer {}: {}", b.layer + 1, total_area(&out));
+        assert!(
+            total_area(&out) < GRID_AREA,
+            "layer {}: {}",
+            b.layer + 1,
+            total_area(&out)
+        );
         // The layer keeps its wall: the slot is a hole, not a notch.
-        assert_eq!(island.polygon.holes.len(), island.outline.holes.len() + 1, "layer {}", b.layer + 1);
+        assert_eq!(
+            island.polygon.holes.len(),
+            island.outline.holes.len() + 1,
+            "layer {}",
+            b.layer + 1
+        );
     }
     // The neck's slot lies in the neck (an island under 40 mm²).
     let neck = peg.bands.iter().find(|b| b.layer == 8).expect("neck band");
     assert!(st.layers[8].islands[neck.island].outline.area() < 40.0);
 }
 
+#[test]
+fn the_brackets_5_mm_strip_takes_a_3_mm_peg() {
+    let Some(dir) = corpus() else { return };
+    let c = stacked(dir.join("plates/acrylic_case_corner_bracket_5mm.stl"));
+    let st = stack(&c);
+    let plan = &c.export.as_ref().expect("exported").plan;
+    // Layer 4 is the strip x −9.5..−4.5, y −7..7 on layer 3: minus 1 mm walls, 3 × 12 mm.
+    let strip = &st.layers[3].islands[0].outline;
+    let (lo, hi) = strip.bounds();
+    assert!(
+        (hi.x - lo.x - 5.0).abs() < 1e-6 && (hi.y - lo.y - 14.0).abs() < 1e-6,
+        "{lo} {hi}"
+    );
+    assert_eq!(st.shafts.len(), 1);
+    let peg = &st.shafts[0];
+    assert_eq!(peg.phase, 3);
+    assert_eq!(peg.bands.iter().map(|b| b.layer).collect::<Vec<_>>(), vec![2, 3]);
+    for b in &peg.bands {
+        let rect = slot(st, peg, b);
+        let (a, e) = rect.bounds();
+        // Across: the strip's middle, 1 mm from both long sides; along: 12 mm less the slack.
+        assert!((a.x + 8.5).abs() < 0.02 && (e.x + 5.5).abs() < 0.02, "{a} {e}");
+        assert!(e.y - a.y > 11.9 && a.y > -6.0 - 1e-6 && e.y < 6.0 + 1e-6, "{a} {e}");
+        let island = &st.layers[b.layer].islands[b.island];
+        assert_eq!(
+            island.polygon.holes.len(),
+            island.outline.holes.len() + 1,
+            "a hole, walls kept"
+        );
+    }
+    // Layers 3 and 4 are one group now; layers 1 and 2 (no peg fits their overlaps) are glued.
+    assert_eq!(glued_groups(plan), vec![vec![1], vec![2], vec![3, 4, 5]]);
+}

@@ -50,10 +50,7 @@ pub(crate) fn assemble(
                 .collect();
             // Slots keep a margin (phase 1) or were checked not to split the island (phase 2),
             // so one piece remains; grid crumbs are dropped with the smaller pieces.
-            let polygon = cut_slots(&outline, &cuts)?
-                .into_iter()
-                .next()
-                .unwrap_or_default();
+            let polygon = cut_slots(&outline, &cuts)?.into_iter().next().unwrap_or_default();
             layer.islands.push(Island {
                 outline,
                 polygon,

@@ -56,7 +56,11 @@ fn open_pinches(left: Vec<Polygon>, cuts: &[(Polygon, f64)]) -> Result<Vec<Polyg
         let opened = boolean::intersection(&offset::opening(&left, r)?, &left)?;
         let thin = boolean::difference(&left, &opened)?;
         // Only thin material beside a slot goes: the layer's own narrow tips stay as modelled.
-        let these: Vec<Polygon> = cuts.iter().filter(|(_, b)| *b == bridge).map(|(c, _)| c.clone()).collect();
+        let these: Vec<Polygon> = cuts
+            .iter()
+            .filter(|(_, b)| *b == bridge)
+            .map(|(c, _)| c.clone())
+            .collect();
         let near = offset::offset(&boolean::union_all(&these)?, bridge)?;
         pinch.extend(boolean::intersection(&thin, &near)?);
     }
@@ -130,5 +134,20 @@ mod tests {
         let pieces = cut_slots(&outline, &[(slot, 1.5)]).expect("grid");
         assert_eq!(pieces.len(), 2);
         assert!(pieces.iter().all(|p| validate(p, 0.2).is_empty()));
+    }
+
+    #[test]
+    fn a_pegs_bridge_keeps_its_1_mm_wall_where_a_shafts_would_open_it() {
+        // A 3 mm slot in a 5 mm strip leaves 1 mm walls: kept with a peg's 1 mm bridge, opened
+        // (the strip split) with a shaft's 1.5 mm one.
+        let outline = rect(0.0, 0.0, 5.0, 14.0);
+        let slot = rect(1.0, 1.0, 4.0, 13.0);
+        let peg = cut_slots(&outline, &[(slot.clone(), 1.0)]).expect("grid");
+        assert_eq!(peg.len(), 1);
+        assert_eq!(peg[0].holes.len(), 1);
+        assert!((peg[0].area() - (70.0 - 36.0)).abs() < 1e-6);
+        let shaft = cut_slots(&outline, &[(slot, 1.5)]).expect("grid");
+        assert!(shaft.iter().all(|p| p.holes.is_empty()), "the walls are opened");
+        assert!(shaft.iter().map(Polygon::area).sum::<f64>() < 70.0 - 36.0 - 10.0);
     }
 }
