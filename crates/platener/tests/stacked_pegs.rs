@@ -126,4 +126,3 @@ fn the_brackets_5_mm_strip_takes_a_3_mm_peg() {
     // Layers 3 and 4 are one group now; layers 1 and 2 (no peg fits their overlaps) are glued.
     assert_eq!(glued_groups(plan), vec![vec![1], vec![2], vec![3, 4, 5]]);
 }
-
