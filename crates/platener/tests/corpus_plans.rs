@@ -34,6 +34,7 @@ const PASSING: &[&str] = &[
     "openscad_bad_stl_tardis/plate",
     "openscad_letter_block_engraved/plate",
     "openscad_letter_block_engraved/stacked",
+    "openscad_zero_area_triangle/stacked",
     "otoscope_name_plate_text/plate",
     "otoscope_name_plate_text/stacked",
     "parts_tray_drawer_holder/plate",
@@ -52,6 +53,7 @@ const PASSING: &[&str] = &[
     "tray_bottom_14in_3.2mm_sheet/stacked",
     "truchet_tiles_4mm/plate",
     "truchet_tiles_4mm/stacked",
+    "utah_teapot/stacked",
     "xyz_calibration_cube_20mm/plate",
     "xyz_calibration_cube_20mm/stacked",
 ];

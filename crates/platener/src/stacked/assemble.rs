@@ -37,22 +37,20 @@ pub(crate) fn assemble(
             islands: Vec::with_capacity(outlines.len()),
         };
         for (i, outline) in outlines.into_iter().enumerate() {
-            let cuts: Vec<Polygon> = placed
+            let cuts: Vec<(Polygon, f64)> = placed
                 .shafts
                 .iter()
                 .flat_map(|s| {
+                    let bridge = placed.bridge_of(s, k);
                     s.bands
                         .iter()
                         .filter(|b| b.layer == k && b.island == i)
-                        .map(|b| s.line.rect(b.from, b.to, half))
+                        .map(move |b| (s.line.rect(b.from, b.to, half), bridge))
                 })
                 .collect();
             // Slots keep a margin (phase 1) or were checked not to split the island (phase 2),
             // so one piece remains; grid crumbs are dropped with the smaller pieces.
-            let polygon = cut_slots(&outline, &cuts, placed.bridge)?
-                .into_iter()
-                .next()
-                .unwrap_or_default();
+            let polygon = cut_slots(&outline, &cuts)?.into_iter().next().unwrap_or_default();
             layer.islands.push(Island {
                 outline,
                 polygon,

@@ -8,16 +8,27 @@
 //! layers still slide on from there. A slot that would cut the island in two is shortened by
 //! the margin at one end, the other, or both, leaving a bridge.
 
-use platener_geom::{GridError, Polygon, boolean};
+use platener_geom::{GridError, Polygon, boolean, offset};
 
 use super::Band;
 use super::fit::SlotLine;
 use super::notch::cut_slots;
+use super::peg::PEG_MIN_WALL;
 use super::shafts::{Pair, Planner, SLIVER};
 
+/// How a shaft is extended: its shortest slot, the wall kept to the island's outline and the
+/// clearance to other slots (mm), and whether it is a peg's (whose bridge is the wall).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Extension {
+    pub min_band: f64,
+    pub wall: f64,
+    pub clear: f64,
+    pub peg: bool,
+}
+
 impl Planner<'_> {
-    /// Phase 2: extends a shaft ending in one island of `pair` into the other.
-    pub(super) fn expand(&mut self, pair: &Pair, min_band: f64) -> Result<bool, GridError> {
+    /// Phase 2 (and pegs): extends a shaft ending in one island of `pair` into the other.
+    pub(super) fn expand(&mut self, pair: &Pair, ext: Extension) -> Result<bool, GridError> {
         for i in 0..self.shafts.len() {
             let sh = &self.shafts[i];
             let (first, last) = (sh.bands[0], sh.bands[sh.bands.len() - 1]);
@@ -31,10 +42,13 @@ impl Planner<'_> {
             let Some((prev, m, x, up)) = target else {
                 continue;
             };
-            if let Some(band) = self.band_in(&sh.line, prev, m, x, min_band)? {
+            if let Some(band) = self.band_in(&sh.line, prev, m, x, ext)? {
                 let line = sh.line;
                 self.slots[m].push((x, line.rect(band.from, band.to, self.half)));
                 let sh = &mut self.shafts[i];
+                if ext.peg {
+                    sh.pegged.push(m);
+                }
                 if up {
                     sh.bands.push(band);
                 } else {
@@ -55,11 +69,16 @@ impl Planner<'_> {
         prev: Band,
         m: usize,
         x: usize,
-        min_band: f64,
+        ext: Extension,
     ) -> Result<Option<Band>, GridError> {
         let rect = line.rect(prev.from, prev.to, self.half);
-        let clear = self.keep_clear(m, self.s.margin / 2.0)?;
-        let mut allowed = vec![self.islands[m][x].clone()];
+        let clear = self.keep_clear(m, ext.clear)?;
+        let island = std::slice::from_ref(&self.islands[m][x]);
+        let mut allowed = if ext.wall > 0.0 {
+            offset::offset(island, -ext.wall)?
+        } else {
+            island.to_vec()
+        };
         if !clear.is_empty() {
             allowed = boolean::difference(&allowed, &clear)?;
         }
@@ -93,25 +112,26 @@ impl Planner<'_> {
         // cut), so it is shortened by the margin at one end, then at the other, then at both,
         // leaving a bridge.
         let shorten = self.s.margin;
-        let others: Vec<Polygon> = self.slots[m]
+        let others: Vec<(Polygon, f64)> = self.slots[m]
             .iter()
             .filter(|(i, _)| *i == x)
-            .map(|(_, r)| r.clone())
+            .map(|(_, r)| (r.clone(), self.bridge()))
             .collect();
+        let bridge = if ext.peg { PEG_MIN_WALL } else { self.bridge() };
         for (a, b) in [
             (from, to),
             (from, to - shorten),
             (from + shorten, to),
             (from + shorten, to - shorten),
         ] {
-            if b - a < min_band {
+            if b - a < ext.min_band {
                 continue;
             }
             let mut cuts = others.clone();
-            cuts.push(line.rect(a, b, self.half));
+            cuts.push((line.rect(a, b, self.half), bridge));
             // Cut as `assemble` will cut it: a pinch beside the slot is opened, so a slot
             // that nearly crosses the island splits it here and is shortened instead.
-            if cut_slots(&self.islands[m][x], &cuts, self.bridge())?.len() == 1 {
+            if cut_slots(&self.islands[m][x], &cuts)?.len() == 1 {
                 return Ok(Some(Band {
                     layer: m,
                     island: x,

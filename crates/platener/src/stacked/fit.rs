@@ -57,6 +57,20 @@ pub(crate) fn fit_slot(
     min_width: f64,
     max_width: f64,
 ) -> Result<Option<SlotLine>, GridError> {
+    best_slot(region, half, max_width, |slot| {
+        Ok((slot.width >= min_width).then_some(slot))
+    })
+}
+
+/// The best of the candidate slots (one per piece and direction, `max_width` at most) that
+/// `accept` keeps, as it returns them (a peg lengthens its slot): longer first, then the most
+/// central.
+pub(crate) fn best_slot(
+    region: &[Polygon],
+    half: f64,
+    max_width: f64,
+    accept: impl Fn(SlotLine) -> Result<Option<SlotLine>, GridError>,
+) -> Result<Option<SlotLine>, GridError> {
     if region.is_empty() {
         return Ok(None);
     }
@@ -79,16 +93,16 @@ pub(crate) fn fit_slot(
                 continue;
             };
             let width = len.min(max_width);
-            if width < min_width {
-                continue;
-            }
-            let score = width * weight;
-            let slot = SlotLine {
+            let chord = SlotLine {
                 start: start + d * ((len - width) / 2.0),
                 dir: d,
                 width,
             };
-            let off = (slot.start + d * (width / 2.0)).distance(centre);
+            let Some(slot) = accept(chord)? else {
+                continue;
+            };
+            let score = slot.width * weight;
+            let off = (slot.start + d * (slot.width / 2.0)).distance(centre);
             // Longer wins; among equally long slots (a disc, a rectangle) the most central.
             let better = best
                 .as_ref()

@@ -16,6 +16,7 @@
 //! | `fit` | the longest slot that fits a region |
 //! | `shafts` | the three phases of shaft placement |
 //! | `extend` | phase 2: a shaft extended flush into a layer left unjoined |
+//! | `peg` | the last resort: a short shaft with thin walls for layers only glue would hold |
 //! | `notch` | slots cut into a layer, notches opened where they would pinch it |
 //! | `assemble` | slots cut into the layers, shaft outlines, frames |
 //! | `glued` | groups of parts no shaft holds together, only glue |
@@ -35,6 +36,7 @@ mod marks;
 mod notch;
 mod orient;
 mod parts;
+mod peg;
 mod shafts;
 mod slice;
 mod support;
@@ -58,6 +60,7 @@ pub use islands::{DroppedIsland, LayerIslands, islands_of};
 pub use loops::LoopStats;
 pub use orient::{AxisChoice, SlicePlan, choose_up};
 pub use parts::{Numbers, plan_input};
+pub use peg::PEG_MIN_WALL;
 pub(crate) use slice::section;
 pub use slice::{SliceLoop, Sliced, slice};
 pub use support::KeptIsland;
@@ -110,7 +113,8 @@ pub struct Shaft {
     pub width: f64,
     /// The layers it passes through, bottom first, consecutive.
     pub bands: Vec<Band>,
-    /// The phase that placed it: 1 (connect), 2 (relaxed margin for a pair left unjoined).
+    /// The phase that placed it: 1 (connect), 2 (relaxed margin for a pair left unjoined),
+    /// 3 (a peg, the last resort for layers that would only be glued).
     pub phase: u8,
     /// Its outline in its own frame: x along the centre line, y up the stack.
     pub polygon: Polygon,

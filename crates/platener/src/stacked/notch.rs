@@ -24,34 +24,46 @@ const BRIDGE_SLACK: f64 = 0.01;
 /// Material this narrow (mm) left where a pinch was opened is the grid's rounding: 20 steps.
 const HAIR: f64 = 0.02;
 
-/// `outline` minus `cuts`, with every stretch of material narrower than `bridge` (mm) next to a
-/// cut removed: the pieces left over (area above [`SLIVER`]), largest first.
-pub(super) fn cut_slots(outline: &Polygon, cuts: &[Polygon], bridge: f64) -> Result<Vec<Polygon>, GridError> {
+/// `outline` minus `cuts`, with every stretch of material narrower than a cut's bridge (mm,
+/// given with each cut: a peg keeps a thinner wall than a shaft) next to that cut removed: the
+/// pieces left over (area above [`SLIVER`]), largest first.
+pub(super) fn cut_slots(outline: &Polygon, cuts: &[(Polygon, f64)]) -> Result<Vec<Polygon>, GridError> {
     if cuts.is_empty() {
         return Ok(vec![outline.clone()]);
     }
-    let left = boolean::difference(std::slice::from_ref(outline), cuts)?;
-    let r = bridge / 2.0 - BRIDGE_SLACK;
-    let mut pieces = if r > 0.0 {
-        open_pinches(left, cuts, r, bridge)?
-    } else {
-        left
-    };
+    let rects: Vec<Polygon> = cuts.iter().map(|(c, _)| c.clone()).collect();
+    let left = boolean::difference(std::slice::from_ref(outline), &rects)?;
+    let mut pieces = open_pinches(left, cuts)?;
     pieces.retain(|p| p.area() > SLIVER);
     pieces.sort_by(|a, b| b.area().total_cmp(&a.area()));
     Ok(pieces)
 }
 
-/// `left` (a layer minus its slots) without the material narrower than `2r` within `bridge`
-/// of a cut; unchanged when there is none.
-fn open_pinches(left: Vec<Polygon>, cuts: &[Polygon], r: f64, bridge: f64) -> Result<Vec<Polygon>, GridError> {
-    // The opening keeps everything `bridge` wide; intersected with `left` because a miter
-    // opening can grow a chamfer back square.
-    let opened = boolean::intersection(&offset::opening(&left, r)?, &left)?;
-    let thin = boolean::difference(&left, &opened)?;
-    // Only thin material beside a slot goes: the layer's own narrow tips stay as modelled.
-    let near = offset::offset(&boolean::union_all(cuts)?, bridge)?;
-    let mut pinch = boolean::intersection(&thin, &near)?;
+/// `left` (a layer minus its slots) without the material narrower than each cut's bridge
+/// within that bridge of the cut; unchanged when there is none.
+fn open_pinches(left: Vec<Polygon>, cuts: &[(Polygon, f64)]) -> Result<Vec<Polygon>, GridError> {
+    let mut bridges: Vec<f64> = cuts.iter().map(|(_, b)| *b).collect();
+    bridges.sort_by(f64::total_cmp);
+    bridges.dedup();
+    let mut pinch = Vec::new();
+    for bridge in bridges {
+        let r = bridge / 2.0 - BRIDGE_SLACK;
+        if r <= 0.0 {
+            continue;
+        }
+        // The opening keeps everything `bridge` wide; intersected with `left` because a miter
+        // opening can grow a chamfer back square.
+        let opened = boolean::intersection(&offset::opening(&left, r)?, &left)?;
+        let thin = boolean::difference(&left, &opened)?;
+        // Only thin material beside a slot goes: the layer's own narrow tips stay as modelled.
+        let these: Vec<Polygon> = cuts
+            .iter()
+            .filter(|(_, b)| *b == bridge)
+            .map(|(c, _)| c.clone())
+            .collect();
+        let near = offset::offset(&boolean::union_all(&these)?, bridge)?;
+        pinch.extend(boolean::intersection(&thin, &near)?);
+    }
     // Grid crumbs at the slots' inner corners are rounding, not material.
     pinch.retain(|p| p.area() > SLIVER);
     if pinch.is_empty() {
@@ -95,7 +107,7 @@ mod tests {
         let slot = rect(5.0, 4.0, 14.8, 6.0);
         let raw = boolean::difference(std::slice::from_ref(&outline), std::slice::from_ref(&slot)).expect("grid");
         assert!(raw.iter().any(|p| !validate(p, 0.2).is_empty()), "the raw cut pinches");
-        let pieces = cut_slots(&outline, std::slice::from_ref(&slot), 1.5).expect("grid");
+        let pieces = cut_slots(&outline, &[(slot.clone(), 1.5)]).expect("grid");
         assert_eq!(pieces.len(), 1);
         assert!(validate(&pieces[0], 0.2).is_empty(), "{:?}", validate(&pieces[0], 0.2));
         assert!(pieces[0].holes.is_empty(), "the slot is a notch now");
@@ -108,7 +120,7 @@ mod tests {
     fn a_slot_with_a_full_bridge_is_cut_exactly() {
         let outline = rect(0.0, 0.0, 20.0, 10.0);
         let slot = rect(5.0, 4.0, 15.0, 6.0);
-        let pieces = cut_slots(&outline, std::slice::from_ref(&slot), 1.5).expect("grid");
+        let pieces = cut_slots(&outline, &[(slot.clone(), 1.5)]).expect("grid");
         assert_eq!(pieces.len(), 1);
         assert_eq!(pieces[0].holes.len(), 1);
         assert!((pieces[0].area() - (200.0 - 20.0)).abs() < 1e-6);
@@ -119,8 +131,23 @@ mod tests {
         // The slot reaches within 0.5 mm of both long sides: two pieces, not one pinched one.
         let outline = rect(0.0, 0.0, 20.0, 4.0);
         let slot = rect(8.0, 0.5, 11.0, 3.5);
-        let pieces = cut_slots(&outline, &[slot], 1.5).expect("grid");
+        let pieces = cut_slots(&outline, &[(slot, 1.5)]).expect("grid");
         assert_eq!(pieces.len(), 2);
         assert!(pieces.iter().all(|p| validate(p, 0.2).is_empty()));
+    }
+
+    #[test]
+    fn a_pegs_bridge_keeps_its_1_mm_wall_where_a_shafts_would_open_it() {
+        // A 3 mm slot in a 5 mm strip leaves 1 mm walls: kept with a peg's 1 mm bridge, opened
+        // (the strip split) with a shaft's 1.5 mm one.
+        let outline = rect(0.0, 0.0, 5.0, 14.0);
+        let slot = rect(1.0, 1.0, 4.0, 13.0);
+        let peg = cut_slots(&outline, &[(slot.clone(), 1.0)]).expect("grid");
+        assert_eq!(peg.len(), 1);
+        assert_eq!(peg[0].holes.len(), 1);
+        assert!((peg[0].area() - (70.0 - 36.0)).abs() < 1e-6);
+        let shaft = cut_slots(&outline, &[(slot, 1.5)]).expect("grid");
+        assert!(shaft.iter().all(|p| p.holes.is_empty()), "the walls are opened");
+        assert!(shaft.iter().map(Polygon::area).sum::<f64>() < 70.0 - 36.0 - 10.0);
     }
 }

@@ -21,7 +21,8 @@
 //!    phase 1 with half the margin and half the width.
 //! 3. **Remove shafts joining fewer than two layers.**
 //!
-//! Phase 2's extension lives in `extend`.
+//! Phase 2's extension lives in `extend`. Before phase 3, pairs whose islands no shaft group
+//! holds together yet get a peg, a short shaft with thinner walls (`peg`).
 //!
 //! A shaft only ever spans consecutive layers and has a slot in each of them, so it never
 //! bridges a layer it does not pass through.
@@ -32,7 +33,9 @@ use platener_geom::polygon::total_area;
 use platener_geom::{GridError, Polygon, boolean, offset};
 use rayon::prelude::*;
 
+use super::extend::Extension;
 use super::fit::{SlotLine, fit_slot};
+use super::peg::{PEG_PHASE, fit_peg};
 use super::{Band, Unjoined};
 use crate::settings::StackedSettings;
 
@@ -47,6 +50,8 @@ pub(crate) struct PlacedShaft {
     pub line: SlotLine,
     pub bands: Vec<Band>,
     pub phase: u8,
+    /// Layers whose slot the peg phase added by extending the shaft (their walls are a peg's).
+    pub pegged: Vec<usize>,
 }
 
 /// The result of placement.
@@ -59,6 +64,18 @@ pub(crate) struct Placed {
     pub bridge: f64,
 }
 
+impl Placed {
+    /// The narrowest material kept beside `shaft`'s slot in layer `k`, mm: a peg's wall, or
+    /// [`Placed::bridge`].
+    pub fn bridge_of(&self, shaft: &PlacedShaft, k: usize) -> f64 {
+        if shaft.phase == PEG_PHASE || shaft.pegged.contains(&k) {
+            super::peg::PEG_MIN_WALL
+        } else {
+            self.bridge
+        }
+    }
+}
+
 /// Two overlapping islands of layers `k` and `k + 1`.
 pub(super) struct Pair {
     pub k: usize,
@@ -66,6 +83,28 @@ pub(super) struct Pair {
     pub upper: usize,
     pub overlap: Vec<Polygon>,
     pub area: f64,
+}
+
+/// How a new shaft is placed: the material kept to the outline (`wall`) and to other slots
+/// (`clear`), mm, the shortest slot, and the phase it counts as.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Rule {
+    pub wall: f64,
+    pub clear: f64,
+    pub min_width: f64,
+    pub phase: u8,
+}
+
+impl Rule {
+    /// Phases 1 and 2: the same margin to the outline and to other slots.
+    fn margin(margin: f64, min_width: f64, phase: u8) -> Self {
+        Rule {
+            wall: margin,
+            clear: margin,
+            min_width,
+            phase,
+        }
+    }
 }
 
 /// The state of placement: the islands, the slots cut so far and the pairs they join.
@@ -94,16 +133,23 @@ pub(crate) fn place(islands: &[Vec<Polygon>], s: &StackedSettings, shaft_thickne
     // Phase 1.
     for pair in &pairs {
         if !p.is_joined(pair) {
-            p.connect(pair, s.margin, s.shaft_min_width, 1)?;
+            p.connect(pair, Rule::margin(s.margin, s.shaft_min_width, 1))?;
         }
     }
     // Phase 2.
     let relaxed_width = (s.shaft_min_width / 2.0).max(4.0 * p.half);
     for pair in &pairs {
-        if !p.is_joined(pair) && !p.expand(pair, relaxed_width)? {
-            p.connect(pair, s.margin / 2.0, relaxed_width, 2)?;
+        let ext = Extension {
+            min_band: relaxed_width,
+            wall: 0.0,
+            clear: s.margin / 2.0,
+            peg: false,
+        };
+        if !p.is_joined(pair) && !p.expand(pair, ext)? {
+            p.connect(pair, Rule::margin(s.margin / 2.0, relaxed_width, 2))?;
         }
     }
+    p.pegs(&pairs)?;
     // Phase 3.
     let before = p.shafts.len();
     p.shafts.retain(|sh| sh.bands.len() >= 2);
@@ -196,11 +242,20 @@ impl Planner<'_> {
         offset::offset(&boolean::union_all(&rects)?, margin)
     }
 
-    /// `region` within island `x` of layer `m` shrunk by `margin`, clear of its slots.
-    fn narrow(&self, region: &[Polygon], m: usize, x: usize, margin: f64) -> Result<Vec<Polygon>, GridError> {
-        let inner = offset::offset(std::slice::from_ref(&self.islands[m][x]), -margin)?;
+    /// The slot `rule` fits in `region`: a peg's or a shaft's.
+    fn fit(&self, region: &[Polygon], rule: Rule) -> Result<Option<SlotLine>, GridError> {
+        if rule.phase == PEG_PHASE {
+            fit_peg(region, self.half, rule.min_width, self.s.shaft_max_width)
+        } else {
+            fit_slot(region, self.half, rule.min_width, self.s.shaft_max_width)
+        }
+    }
+
+    /// `region` within island `x` of layer `m` shrunk by the rule's wall, clear of its slots.
+    fn narrow(&self, region: &[Polygon], m: usize, x: usize, rule: Rule) -> Result<Vec<Polygon>, GridError> {
+        let inner = offset::offset(std::slice::from_ref(&self.islands[m][x]), -rule.wall)?;
         let within = boolean::intersection(region, &inner)?;
-        let clear = self.keep_clear(m, margin)?;
+        let clear = self.keep_clear(m, rule.clear)?;
         if clear.is_empty() {
             Ok(within)
         } else {
@@ -209,42 +264,36 @@ impl Planner<'_> {
     }
 
     /// The island of layer `m` that keeps the most of `region` with a slot still fitting.
-    fn grow_into(
-        &self,
-        region: &[Polygon],
-        m: usize,
-        margin: f64,
-        min_width: f64,
-    ) -> Result<Option<(usize, Vec<Polygon>)>, GridError> {
+    fn grow_into(&self, region: &[Polygon], m: usize, rule: Rule) -> Result<Option<(usize, Vec<Polygon>)>, GridError> {
         let bbox = region_box(region);
         let mut best: Option<(usize, Vec<Polygon>, f64)> = None;
         for (x, island) in self.islands[m].iter().enumerate() {
             if !boxes_meet(&bbox, island) {
                 continue;
             }
-            let narrowed = self.narrow(region, m, x, margin)?;
+            let narrowed = self.narrow(region, m, x, rule)?;
             let area = total_area(&narrowed);
             if best.as_ref().is_some_and(|b| b.2 >= area) {
                 continue;
             }
-            if fit_slot(&narrowed, self.half, min_width, self.s.shaft_max_width)?.is_some() {
+            if self.fit(&narrowed, rule)?.is_some() {
                 best = Some((x, narrowed, area));
             }
         }
         Ok(best.map(|(x, r, _)| (x, r)))
     }
 
-    /// Phase 1 (and phase 2's fallback): a new shaft through `pair`, grown through as many
-    /// layers as a slot `min_width` wide with `margin` fits. Returns whether one was placed.
-    fn connect(&mut self, pair: &Pair, margin: f64, min_width: f64, phase: u8) -> Result<bool, GridError> {
-        let mut region = offset::offset(&pair.overlap, -margin)?;
+    /// Phase 1 (and phase 2's fallback, and pegs): a new shaft through `pair`, grown through
+    /// as many layers as a slot of `rule` fits. Returns whether one was placed.
+    pub(super) fn connect(&mut self, pair: &Pair, rule: Rule) -> Result<bool, GridError> {
+        let mut region = offset::offset(&pair.overlap, -rule.wall)?;
         for k in [pair.k, pair.k + 1] {
-            let clear = self.keep_clear(k, margin)?;
+            let clear = self.keep_clear(k, rule.clear)?;
             if !clear.is_empty() {
                 region = boolean::difference(&region, &clear)?;
             }
         }
-        if fit_slot(&region, self.half, min_width, self.s.shaft_max_width)?.is_none() {
+        if self.fit(&region, rule)?.is_none() {
             return Ok(false);
         }
         // Layers bottom up with their island.
@@ -253,20 +302,20 @@ impl Planner<'_> {
             if top + 1 >= self.islands.len() {
                 break;
             }
-            let Some((x, r)) = self.grow_into(&region, top + 1, margin, min_width)? else {
+            let Some((x, r)) = self.grow_into(&region, top + 1, rule)? else {
                 break;
             };
             chain.push((top + 1, x));
             region = r;
         }
         while chain[0].0 > 0 {
-            let Some((x, r)) = self.grow_into(&region, chain[0].0 - 1, margin, min_width)? else {
+            let Some((x, r)) = self.grow_into(&region, chain[0].0 - 1, rule)? else {
                 break;
             };
             chain.insert(0, (chain[0].0 - 1, x));
             region = r;
         }
-        let Some(line) = fit_slot(&region, self.half, min_width, self.s.shaft_max_width)? else {
+        let Some(line) = self.fit(&region, rule)? else {
             return Ok(false);
         };
         let bands = chain
@@ -278,7 +327,12 @@ impl Planner<'_> {
                 to: line.width,
             })
             .collect();
-        self.add(PlacedShaft { line, bands, phase });
+        self.add(PlacedShaft {
+            line,
+            bands,
+            phase: rule.phase,
+            pegged: Vec::new(),
+        });
         Ok(true)
     }
 
