@@ -18,12 +18,12 @@ use rayon::prelude::*;
 const FATAL: &str = "FATAL ";
 
 /// Invalid outlines or cut paths left in the corpus sweep (a ceiling; see [`sweep`]). 23 when
-/// the sweep joined the default run; 17 after the plate method's repairs (wedges trimmed,
-/// necks under the kerf widened, kerf paths separated): 15 stacked letter-block layers whose
-/// holes touch, the device rear case at 1 mm (part 1) and the geo lamp at 4 mm (part 8), whose
-/// necks cannot widen without growing into their slots. One more for the geo lamp at 1 mm
-/// (part 67, the same case), which timed out in that loaded run.
-const CORPUS_INVALID: usize = 18;
+/// the sweep joined the default run; 2 after the plate method's repairs and the stacked
+/// notches that never pinch (the device rear case at 1 mm, part 1, and the geo lamp at 4 mm,
+/// part 8, whose necks cannot widen without growing into their slots). The ceiling leaves room
+/// for the 1 mm conversions that beat the 30 s limit in that loaded run and are not checked
+/// then (the geo lamp at 1 mm had the same neck, part 67).
+const CORPUS_INVALID: usize = 6;
 /// Invalid outlines or cut paths tolerated in the samples sweep: not bounded. Which sample
 /// conversions beat the time limit depends on the machine (spheres and tori at 1–3 mm did
 /// not on two cores), and those that do not show none of their outlines, so any ceiling
