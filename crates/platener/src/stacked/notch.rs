@@ -86,12 +86,7 @@ mod tests {
     use super::*;
 
     fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Polygon {
-        Polygon::new(vec![
-            DVec2::new(x0, y0),
-            DVec2::new(x1, y0),
-            DVec2::new(x1, y1),
-            DVec2::new(x0, y1),
-        ])
+        Polygon::new(platener_geom::polygon::rect(x0, y0, x1, y1))
     }
 
     #[test]

@@ -111,18 +111,11 @@ impl Planner<'_> {
 
 #[cfg(test)]
 mod tests {
-    use glam::DVec2;
-
     use super::*;
     use crate::stacked::fit::fit_slot;
 
     fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Polygon {
-        let mut p = Polygon::new(vec![
-            DVec2::new(x0, y0),
-            DVec2::new(x1, y0),
-            DVec2::new(x1, y1),
-            DVec2::new(x0, y1),
-        ]);
+        let mut p = Polygon::new(platener_geom::polygon::rect(x0, y0, x1, y1));
         p.normalize_orientation();
         p
     }

@@ -38,12 +38,7 @@ fn layer_areas(tris: &[Triangle], up: DVec3, t: f64) -> (Sliced, Vec<f64>) {
 }
 
 fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Polygon {
-    Polygon::new(vec![
-        DVec2::new(x0, y0),
-        DVec2::new(x1, y0),
-        DVec2::new(x1, y1),
-        DVec2::new(x0, y1),
-    ])
+    Polygon::new(platener_geom::polygon::rect(x0, y0, x1, y1))
 }
 
 #[test]
