@@ -181,13 +181,7 @@ fn a_standoff_is_scored_and_reported_with_its_size_and_height() {
 #[test]
 fn plan_json_has_the_marks_as_score() {
     let state = plate_method("pocket", plate_with_cell(|k| k == 0), Features::Engrave);
-    let bundle = state.bundle().expect("bundle");
-    let (_, json) = bundle
-        .files
-        .iter()
-        .find(|(n, _)| n.ends_with("plan.json"))
-        .expect("plan.json");
-    let plan: serde_json::Value = serde_json::from_slice(json).expect("json");
+    let plan = plan_json(&state);
     let scores = plan["parts"][0]["marks"]
         .as_array()
         .expect("marks")
@@ -409,13 +403,7 @@ fn plan_json_score_marks_name_their_side() {
         let face_z = if f[0].side == Side::Up { 0.0 } else { p.thickness };
         assert!((p.frame.to_model(DVec3::new(0.0, 0.0, face_z)).z - model_z).abs() < 1e-6);
         let want = if f[0].side == Side::Up { "top" } else { "bottom" };
-        let bundle = state.bundle().expect("bundle");
-        let (_, json) = bundle
-            .files
-            .iter()
-            .find(|(n, _)| n.ends_with("plan.json"))
-            .expect("plan.json");
-        let plan: serde_json::Value = serde_json::from_slice(json).expect("json");
+        let plan = plan_json(&state);
         let marks = plan["parts"][0]["marks"].as_array().expect("marks");
         let sides: Vec<&serde_json::Value> = marks
             .iter()
@@ -431,4 +419,15 @@ fn plan_json_score_marks_name_their_side() {
             "other marks have no side"
         );
     }
+}
+
+/// The plan.json a conversion wrote, as JSON.
+fn plan_json(state: &State) -> serde_json::Value {
+    let bundle = state.bundle().expect("bundle");
+    let (_, json) = bundle
+        .files
+        .iter()
+        .find(|(n, _)| n.ends_with("plan.json"))
+        .expect("plan.json");
+    serde_json::from_slice(json).expect("json")
 }
