@@ -1,24 +1,19 @@
-//! The conversion endpoints: upload, show, events, recut, publish, delete.
+//! The conversion endpoints: upload, show, recut, publish, delete (events are in `events`).
 
-use std::collections::VecDeque;
-use std::convert::Infallible;
 use std::net::SocketAddr;
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
-use std::time::Duration;
 
 use axum::Json;
 use axum::extract::multipart::{Multipart, MultipartRejection};
 use axum::extract::{ConnectInfo, Path, State};
 use axum::http::{HeaderMap, StatusCode, header};
-use axum::response::sse::{Event, KeepAlive, Sse};
 use axum::response::{IntoResponse, Response};
-use futures_util::Stream;
 use serde_json::Value;
 
 use super::error::{ApiError, ApiResult};
 use super::{App, view};
-use crate::db::{EventRow, JobRow, NewJob, now_ms};
+use crate::db::{JobRow, NewJob, now_ms};
 use crate::ids;
 use crate::settings::JobSettings;
 use crate::sniff::{self, Refusal};
@@ -248,73 +243,4 @@ pub async fn recut(
         .await?
         .ok_or_else(|| ApiError::not_found("conversion"))?;
     enqueue(&app, model, Some(row.name.clone()), settings, Some(row.id)).await
-}
-
-/// Events a stream sends at a time.
-const EVENT_BATCH: i64 = 200;
-/// How often a stream looks for new events.
-const EVENT_POLL: Duration = Duration::from_millis(200);
-
-/// `GET /api/conversions/{id}/events`: every event so far, then new ones as workers write
-/// them, until `done` or `failed` (polling the events table, which works the same for any
-/// number of servers on one database).
-pub async fn events(
-    State(app): State<Arc<App>>,
-    Path(id): Path<String>,
-) -> ApiResult<Sse<impl Stream<Item = Result<Event, Infallible>>>> {
-    let row = load(&app, &id).await?;
-    let state = EventState {
-        app,
-        id: row.id,
-        after: 0,
-        pending: VecDeque::new(),
-        ended: false,
-    };
-    let stream = futures_util::stream::unfold(state, next_event);
-    Ok(Sse::new(stream).keep_alive(KeepAlive::default()))
-}
-
-struct EventState {
-    app: Arc<App>,
-    id: String,
-    after: i64,
-    pending: VecDeque<EventRow>,
-    ended: bool,
-}
-
-/// The last events of a job.
-fn is_last(kind: &str) -> bool {
-    matches!(kind, "done" | "failed" | "cancelled")
-}
-
-async fn next_event(mut s: EventState) -> Option<(Result<Event, Infallible>, EventState)> {
-    loop {
-        if let Some(e) = s.pending.pop_front() {
-            s.after = e.seq;
-            s.ended = is_last(&e.kind);
-            let event = Event::default().event(e.kind).id(e.seq.to_string()).data(e.data);
-            return Some((Ok(event), s));
-        }
-        if s.ended || *s.app.stopping.borrow() {
-            return None;
-        }
-        match s.app.db.events_after(&s.id, s.after, EVENT_BATCH).await {
-            Ok(rows) if !rows.is_empty() => s.pending.extend(rows),
-            Ok(_) => {
-                // A deleted job has nothing more to say.
-                if !matches!(s.app.db.job(&s.id).await, Ok(Some(_))) {
-                    return None;
-                }
-                let mut stopping = s.app.stopping.clone();
-                tokio::select! {
-                    () = tokio::time::sleep(EVENT_POLL) => {}
-                    _ = stopping.changed() => {}
-                }
-            }
-            Err(e) => {
-                tracing::error!("events of {}: {e}", s.id);
-                return None;
-            }
-        }
-    }
 }

@@ -7,6 +7,7 @@
 
 mod api;
 mod error;
+mod events;
 mod examples;
 mod files;
 mod limits;
@@ -214,7 +215,7 @@ fn router(app: Arc<App>) -> Router {
             Duration::from_secs(60),
         ));
     Router::new()
-        .route("/api/conversions/{id}/events", get(api::events))
+        .route("/api/conversions/{id}/events", get(events::events))
         .merge(timed)
         .fallback(misc::not_found)
         .layer(DefaultBodyLimit::max(body_limit))
