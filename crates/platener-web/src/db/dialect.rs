@@ -17,6 +17,9 @@ pub enum Dialect {
     Postgres,
 }
 
+/// The PostgreSQL channel a worker notifies with a job's id when it commits an event of it.
+pub const EVENTS_CHANNEL: &str = "platener_events";
+
 static SQLITE_MIGRATIONS: Migrator = sqlx::migrate!("migrations/sqlite");
 static POSTGRES_MIGRATIONS: Migrator = sqlx::migrate!("migrations/postgres");
 
@@ -69,6 +72,16 @@ impl Dialect {
                  FOR UPDATE SKIP LOCKED) \
                  RETURNING id, name, model, settings, attempts"
             }
+        }
+    }
+
+    /// Notifies [`EVENTS_CHANNEL`] with the job id `$1`, or `None` where the database has no
+    /// notifications (SQLite: servers poll). `pg_notify` returns `void`, which sqlx's `Any`
+    /// driver cannot decode, hence the cast.
+    pub fn notify_sql(self) -> Option<&'static str> {
+        match self {
+            Dialect::Sqlite => None,
+            Dialect::Postgres => Some("SELECT CAST(pg_notify('platener_events', $1) AS TEXT) AS sent"),
         }
     }
 }

@@ -5,6 +5,7 @@
 //! is one statement or one transaction here.
 
 pub mod dialect;
+mod feed;
 mod rows;
 
 use std::time::{SystemTime, UNIX_EPOCH};
@@ -226,6 +227,7 @@ impl Db {
         .bind(data)
         .fetch_one(&self.pool)
         .await?;
+        self.notify_event(&self.pool, id).await?;
         Ok(row.try_get("seq")?)
     }
 
@@ -286,6 +288,7 @@ impl Db {
         .bind(&outcome.event)
         .execute(&mut *tx)
         .await?;
+        self.notify_event(&mut *tx, id).await?;
         tx.commit().await?;
         Ok(true)
     }

@@ -1,6 +1,14 @@
 //! `GET /api/conversions/{id}/events`: the server-sent event stream of a conversion.
+//!
+//! Streams read their job's events from the process's [`Hub`], which reads the database for
+//! all of them at once ([`hub`]); the events table stays the one source, so any number of
+//! servers on one database stream the same events.
 
-use std::collections::VecDeque;
+mod hub;
+mod listen;
+#[cfg(test)]
+mod tests;
+
 use std::convert::Infallible;
 use std::sync::Arc;
 use std::time::Duration;
@@ -12,73 +20,25 @@ use futures_util::Stream;
 use super::App;
 use super::api::load;
 use super::error::ApiResult;
-use crate::db::EventRow;
 
-/// Events a stream sends at a time.
-const EVENT_BATCH: i64 = 200;
-/// How often a stream looks for new events.
-const EVENT_POLL: Duration = Duration::from_millis(200);
+pub(crate) use hub::{Hub, Subscription};
+
+/// How often the hub reads the new events of every watched job (on PostgreSQL a fallback:
+/// notifications wake it at once).
+pub(crate) const EVENT_POLL: Duration = Duration::from_millis(200);
 
 /// `GET /api/conversions/{id}/events`: every event so far, then new ones as workers write
-/// them, until `done` or `failed` (polling the events table, which works the same for any
-/// number of servers on one database).
+/// them, until `done`, `failed` or `cancelled`, the job's deletion or the server's shutdown.
 pub async fn events(
     State(app): State<Arc<App>>,
     Path(id): Path<String>,
 ) -> ApiResult<Sse<impl Stream<Item = Result<Event, Infallible>>>> {
     let row = load(&app, &id).await?;
-    let state = EventState {
-        app,
-        id: row.id,
-        after: 0,
-        pending: VecDeque::new(),
-        ended: false,
-    };
-    let stream = futures_util::stream::unfold(state, next_event);
+    let subscription = Subscription::new(app.events.subscribe(&row.id), app.stopping.clone());
+    let stream = futures_util::stream::unfold(subscription, |mut s| async move {
+        let e = s.next().await?;
+        let event = Event::default().event(e.kind).id(e.seq.to_string()).data(e.data);
+        Some((Ok(event), s))
+    });
     Ok(Sse::new(stream).keep_alive(KeepAlive::default()))
-}
-
-struct EventState {
-    app: Arc<App>,
-    id: String,
-    after: i64,
-    pending: VecDeque<EventRow>,
-    ended: bool,
-}
-
-/// The last events of a job.
-fn is_last(kind: &str) -> bool {
-    matches!(kind, "done" | "failed" | "cancelled")
-}
-
-async fn next_event(mut s: EventState) -> Option<(Result<Event, Infallible>, EventState)> {
-    loop {
-        if let Some(e) = s.pending.pop_front() {
-            s.after = e.seq;
-            s.ended = is_last(&e.kind);
-            let event = Event::default().event(e.kind).id(e.seq.to_string()).data(e.data);
-            return Some((Ok(event), s));
-        }
-        if s.ended || *s.app.stopping.borrow() {
-            return None;
-        }
-        match s.app.db.events_after(&s.id, s.after, EVENT_BATCH).await {
-            Ok(rows) if !rows.is_empty() => s.pending.extend(rows),
-            Ok(_) => {
-                // A deleted job has nothing more to say.
-                if !matches!(s.app.db.job(&s.id).await, Ok(Some(_))) {
-                    return None;
-                }
-                let mut stopping = s.app.stopping.clone();
-                tokio::select! {
-                    () = tokio::time::sleep(EVENT_POLL) => {}
-                    _ = stopping.changed() => {}
-                }
-            }
-            Err(e) => {
-                tracing::error!("events of {}: {e}", s.id);
-                return None;
-            }
-        }
-    }
 }

@@ -124,6 +124,8 @@ pub(crate) struct App {
     pub metrics: misc::Metrics,
     /// Becomes true when the server stops: event streams end.
     pub stopping: watch::Receiver<bool>,
+    /// The one reader of new events, feeding every event stream of this process.
+    pub events: Arc<events::Hub>,
 }
 
 /// Runs the server until SIGTERM or Ctrl-C; `on_listening` gets the bound address (to print).
@@ -142,8 +144,12 @@ async fn run(config: ServeConfig, on_listening: impl FnOnce(SocketAddr) + Send +
     }
     let listener = tokio::net::TcpListener::bind(config.addr).await?;
     let (stop_tx, stop_rx) = watch::channel(false);
+    let hub = events::Hub::new(db.clone(), events::EVENT_POLL);
+    let listen_url = (db.dialect() == crate::db::Dialect::Postgres).then(|| config.database_url());
+    hub.start(listen_url, stop_rx.clone());
     let app = Arc::new(App {
         db,
+        events: hub,
         draining: AtomicBool::new(false),
         live_workers: AtomicUsize::new(0),
         limiter: limits::RateLimiter::new(config.rate_limit),
