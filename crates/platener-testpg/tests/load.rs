@@ -16,8 +16,16 @@ use futures_util::Stream;
 use platener_testpg::load::{Config, Conversions, Summary, run};
 use serde_json::json;
 
-/// What the fake plan download returns.
-const FAKE_ZIP: &[u8] = b"PK\x03\x04 a fake plan";
+/// What the fake plan download returns: a stored ZIP holding `plan.json` (`{"parts":[]}`),
+/// written by Python's zipfile, since the client checks the ZIP's directory.
+const FAKE_ZIP: &[u8] = b"\x50\x4b\x03\x04\x14\x00\x00\x00\x00\x00\x00\x00\x78\x5d\x2e\x53\
+    \x97\x53\x0c\x00\x00\x00\x0c\x00\x00\x00\x09\x00\x00\x00\x70\x6c\
+    \x61\x6e\x2e\x6a\x73\x6f\x6e\x7b\x22\x70\x61\x72\x74\x73\x22\x3a\
+    \x5b\x5d\x7d\x50\x4b\x01\x02\x14\x03\x14\x00\x00\x00\x00\x00\x00\
+    \x00\x78\x5d\x2e\x53\x97\x53\x0c\x00\x00\x00\x0c\x00\x00\x00\x09\
+    \x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x80\x01\x00\x00\x00\
+    \x00\x70\x6c\x61\x6e\x2e\x6a\x73\x6f\x6e\x50\x4b\x05\x06\x00\x00\
+    \x00\x00\x01\x00\x01\x00\x37\x00\x00\x00\x33\x00\x00\x00\x00\x00";
 /// The example box the binary uploads by default.
 const EXAMPLE_BOX: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/box-3mm.stl");
 
@@ -176,6 +184,10 @@ fn ten_clients_two_conversions_each_all_done() {
     // Every request the client counted reached the server, and every status read was timed.
     assert_eq!(summary.requests.total as usize, uploads + streams + plans + reads);
     assert_eq!(summary.status_reads.count, reads);
+    assert_eq!((summary.uploads.count, summary.downloads.count), (20, 20));
+    for l in [&summary.uploads, &summary.downloads] {
+        assert!(0.0 < l.p50_ms && l.p50_ms <= l.p99_ms && l.p99_ms <= l.max_ms, "{l:?}");
+    }
     assert!(
         reads >= 40,
         "one read before the events and one after, per conversion: {reads}"
@@ -192,6 +204,9 @@ fn ten_clients_two_conversions_each_all_done() {
         "{:?}",
         summary.server_peak_rss_mb
     );
+    // The "server" is this test process: all of it is the process, none is workers.
+    assert!(summary.server_process_peak_rss_mb.is_some_and(|mb| mb > 1.0));
+    assert!(summary.workers_peak_rss_mb.is_some());
 }
 
 #[test]
@@ -236,6 +251,7 @@ fn failed_conversions_and_failed_requests_are_counted_apart() {
         "only answered reads are timed"
     );
     assert_eq!(summary.server_peak_rss_mb, None);
+    assert_eq!((summary.uploads.count, summary.downloads.count), (10, 8));
 }
 
 #[test]

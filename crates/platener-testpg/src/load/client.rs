@@ -82,8 +82,10 @@ async fn upload(http: &Client, config: &Config, rec: &mut Recorder) -> Option<St
     let request = http
         .post(format!("{}/api/conversions", config.base_url))
         .multipart(form);
+    let started = Instant::now();
     let response = send(rec, "upload", request, StatusCode::ACCEPTED).await?;
     let body: serde_json::Value = json(rec, "upload", response).await?;
+    rec.upload_ms.push(ms_since(started));
     let id = body.get("id").and_then(|v| v.as_str()).map(str::to_string);
     if id.is_none() {
         rec.error("upload: no id in the answer".into());
@@ -138,18 +140,20 @@ async fn follow_events(http: &Client, config: &Config, url: &str, rec: &mut Reco
     }
 }
 
-/// `GET …/plan.zip`; whether a ZIP came back.
+/// `GET …/plan.zip`; whether a whole ZIP holding `plan.json` came back.
 async fn download_plan(http: &Client, url: &str, rec: &mut Recorder) -> bool {
+    let started = Instant::now();
     let Some(response) = send(rec, "plan", http.get(format!("{url}/plan.zip")), StatusCode::OK).await else {
         return false;
     };
     match response.bytes().await {
-        Ok(bytes) if bytes.starts_with(b"PK") => {
+        Ok(bytes) if super::zipdir::names(&bytes).is_some_and(|n| n.iter().any(|n| n == "plan.json")) => {
+            rec.plan_ms.push(ms_since(started));
             rec.plan_bytes += bytes.len() as u64;
             true
         }
         Ok(_) => {
-            rec.error("plan: not a ZIP".into());
+            rec.error("plan: not a ZIP holding plan.json".into());
             false
         }
         Err(e) => {

@@ -11,6 +11,11 @@ const SAMPLE_EVERY: Duration = Duration::from_millis(100);
 
 /// Resident memory (kB) of `root` and its descendants, `None` when `root` does not exist.
 pub fn tree_rss_kb(root: u32) -> Option<u64> {
+    tree_rss(root).map(|(own, descendants)| own + descendants)
+}
+
+/// Resident memory (kB) of `root` alone and of its descendants together.
+fn tree_rss(root: u32) -> Option<(u64, u64)> {
     let mut children: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
     for entry in std::fs::read_dir("/proc").ok()?.flatten() {
         let Some(pid) = entry.file_name().to_str().and_then(|s| s.parse::<u32>().ok()) else {
@@ -28,14 +33,12 @@ pub fn tree_rss_kb(root: u32) -> Option<u64> {
         }
     }
     let root_rss = rss_kb(root)?;
-    Some(
-        root_rss
-            + tree
-                .iter()
-                .filter(|&&p| p != root)
-                .filter_map(|&p| rss_kb(p))
-                .sum::<u64>(),
-    )
+    let descendants = tree
+        .iter()
+        .filter(|&&p| p != root)
+        .filter_map(|&p| rss_kb(p))
+        .sum::<u64>();
+    Some((root_rss, descendants))
 }
 
 /// The parent pid, from `/proc/PID/stat` (the field after the state, after the last `)`).
@@ -51,10 +54,39 @@ fn rss_kb(pid: u32) -> Option<u64> {
     line.split_whitespace().nth(1)?.parse().ok()
 }
 
-/// Samples [`tree_rss_kb`] in the background until [`Sampler::finish`].
+/// Peak resident memory of a process tree, MB: the whole tree, the root alone and its
+/// descendants together (each peak taken on its own, so the tree's may be less than the sum).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Peaks {
+    /// The root and its descendants.
+    pub tree_mb: f64,
+    /// The root process (the server).
+    pub root_mb: f64,
+    /// Its descendants (the workers).
+    pub descendants_mb: f64,
+}
+
+/// Peaks in kB: tree, root, descendants.
+#[derive(Debug, Default)]
+struct PeakKb([AtomicU64; 3]);
+
+impl PeakKb {
+    fn record(&self, (own, descendants): (u64, u64)) {
+        for (peak, kb) in self.0.iter().zip([own + descendants, own, descendants]) {
+            peak.fetch_max(kb, Ordering::Relaxed);
+        }
+    }
+
+    fn mb(&self, i: usize) -> f64 {
+        super::stats::round3(self.0[i].load(Ordering::Relaxed) as f64 / 1024.0)
+    }
+}
+
+/// Samples [`tree_rss_kb`] (root and descendants apart) in the background until
+/// [`Sampler::finish`].
 #[derive(Debug)]
 pub(crate) struct Sampler {
-    peak: Arc<AtomicU64>,
+    peak: Arc<PeakKb>,
     task: tokio::task::JoinHandle<()>,
     pid: u32,
 }
@@ -62,30 +94,30 @@ pub(crate) struct Sampler {
 impl Sampler {
     /// Starts sampling `pid`'s tree.
     pub(crate) fn start(pid: u32) -> Sampler {
-        let peak = Arc::new(AtomicU64::new(tree_rss_kb(pid).unwrap_or(0)));
+        let peak = Arc::new(PeakKb::default());
+        peak.record(tree_rss(pid).unwrap_or_default());
         let shared = Arc::clone(&peak);
         let task = tokio::spawn(async move {
             let mut tick = tokio::time::interval(SAMPLE_EVERY);
             loop {
                 tick.tick().await;
-                if let Some(kb) = tokio::task::spawn_blocking(move || tree_rss_kb(pid))
-                    .await
-                    .ok()
-                    .flatten()
-                {
-                    shared.fetch_max(kb, Ordering::Relaxed);
+                if let Some(kb) = tokio::task::spawn_blocking(move || tree_rss(pid)).await.ok().flatten() {
+                    shared.record(kb);
                 }
             }
         });
         Sampler { peak, task, pid }
     }
 
-    /// Stops sampling; the peak in MB (one last sample included).
-    pub(crate) fn finish(self) -> f64 {
+    /// Stops sampling; the peaks (one last sample included).
+    pub(crate) fn finish(self) -> Peaks {
         self.task.abort();
-        let last = tree_rss_kb(self.pid).unwrap_or(0);
-        let kb = self.peak.load(Ordering::Relaxed).max(last);
-        super::stats::round3(kb as f64 / 1024.0)
+        self.peak.record(tree_rss(self.pid).unwrap_or_default());
+        Peaks {
+            tree_mb: self.peak.mb(0),
+            root_mb: self.peak.mb(1),
+            descendants_mb: self.peak.mb(2),
+        }
     }
 }
 
@@ -116,7 +148,7 @@ mod tests {
             // across the tree's reading.
             if let [kid] = kids[..] {
                 let before = (rss_kb(pid), rss_kb(kid));
-                let tree = tree_rss_kb(pid);
+                let tree = tree_rss(pid);
                 if before == (rss_kb(pid), rss_kb(kid)) {
                     measured = Some((kid, before.0, before.1, tree));
                     break;
@@ -132,6 +164,6 @@ mod tests {
         let (_, Some(sh), Some(kid), Some(tree)) = measured.expect("the shell started its sleep") else {
             panic!("both processes have a resident size: {measured:?}");
         };
-        assert_eq!(tree, sh + kid, "tree of the shell = shell {sh} kB + sleep {kid} kB");
+        assert_eq!(tree, (sh, kid), "the shell {sh} kB apart from its sleep {kid} kB");
     }
 }

@@ -6,10 +6,12 @@
 //! (throughput, status-read latency, failed requests, the server's peak memory) come back as a
 //! [`Summary`]. Only loopback addresses are accepted: this measures a server on this machine.
 
+pub mod bench;
 mod client;
 pub mod memory;
 pub mod sse;
 mod stats;
+pub mod zipdir;
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -76,11 +78,11 @@ pub async fn run(mut config: Config) -> Result<Summary, LoadError> {
         }
     }
     let seconds = started.elapsed().as_secs_f64();
-    let server_peak_rss_mb = sampler.map(memory::Sampler::finish);
-    Ok(summarise(&config, total, seconds, server_peak_rss_mb))
+    let peaks = sampler.map(memory::Sampler::finish);
+    Ok(summarise(&config, total, seconds, peaks))
 }
 
-fn summarise(config: &Config, total: Recorder, seconds: f64, server_peak_rss_mb: Option<f64>) -> Summary {
+fn summarise(config: &Config, total: Recorder, seconds: f64, peaks: Option<memory::Peaks>) -> Summary {
     let finished = (total.done + total.failed) as f64;
     Summary {
         clients: config.clients,
@@ -97,9 +99,13 @@ fn summarise(config: &Config, total: Recorder, seconds: f64, server_peak_rss_mb:
         seconds: round3(seconds),
         conversions_per_second: if seconds > 0.0 { round3(finished / seconds) } else { 0.0 },
         status_reads: Latency::of(total.status_ms),
+        uploads: Latency::of(total.upload_ms),
+        downloads: Latency::of(total.plan_ms),
         conversion: Latency::of(total.conversion_ms),
         plan_bytes: total.plan_bytes,
-        server_peak_rss_mb,
+        server_peak_rss_mb: peaks.map(|p| p.tree_mb),
+        server_process_peak_rss_mb: peaks.map(|p| p.root_mb),
+        workers_peak_rss_mb: peaks.map(|p| p.descendants_mb),
     }
 }
 

@@ -15,6 +15,8 @@ pub(crate) struct Recorder {
     pub(crate) done: u64,
     pub(crate) failed: u64,
     pub(crate) status_ms: Vec<f64>,
+    pub(crate) upload_ms: Vec<f64>,
+    pub(crate) plan_ms: Vec<f64>,
     pub(crate) conversion_ms: Vec<f64>,
     pub(crate) plan_bytes: u64,
 }
@@ -37,6 +39,8 @@ impl Recorder {
         self.done += other.done;
         self.failed += other.failed;
         self.status_ms.extend(other.status_ms);
+        self.upload_ms.extend(other.upload_ms);
+        self.plan_ms.extend(other.plan_ms);
         self.conversion_ms.extend(other.conversion_ms);
         self.plan_bytes += other.plan_bytes;
     }
@@ -59,12 +63,20 @@ pub struct Summary {
     pub conversions_per_second: f64,
     /// Latency of `GET /api/conversions/{id}`.
     pub status_reads: Latency,
+    /// Latency of accepted uploads (`POST /api/conversions`, to the `202` and its body).
+    pub uploads: Latency,
+    /// Latency of plan downloads (`GET …/plan.zip`, to the last byte).
+    pub downloads: Latency,
     /// Upload to downloaded plan, per conversion that ended done.
     pub conversion: Latency,
     /// Bytes of plan ZIPs downloaded.
     pub plan_bytes: u64,
     /// Peak resident memory of the server process and its descendants (MB), when its pid was given.
     pub server_peak_rss_mb: Option<f64>,
+    /// Peak resident memory of the server process alone (MB).
+    pub server_process_peak_rss_mb: Option<f64>,
+    /// Peak resident memory of its descendants together, the worker processes (MB).
+    pub workers_peak_rss_mb: Option<f64>,
 }
 
 /// See [`Summary::conversions`].
