@@ -24,18 +24,20 @@ fn twenty_clients_on_sqlite_all_done_with_no_failed_request() {
             model,
             model_name: "box-3mm.stl".into(),
             status_interval: Duration::from_millis(100),
+            status_reads_while_streaming: 5,
             // Bounds a hang; a conversion of the box takes well under a second.
             timeout: Duration::from_secs(300),
             server_pid: None,
         },
     };
     let runs = bench(&config, |_| {}).expect("the benchmark runs");
-    let [run] = &runs[..] else {
-        panic!("one run: {runs:?}")
-    };
+    let [run] = &runs[..] else { panic!("one run: {runs:?}") };
     let s = &run.summary;
     assert_eq!(s.requests.failed, 0, "{:?}", s.errors);
-    assert_eq!((s.conversions.submitted, s.conversions.done, s.conversions.failed), (20, 20, 0));
+    assert_eq!(
+        (s.conversions.submitted, s.conversions.done, s.conversions.failed),
+        (20, 20, 0)
+    );
     // Every client uploaded, streamed to `done`, read its status and downloaded a ZIP whose
     // directory lists plan.json (the client checks it).
     assert_eq!((s.uploads.count, s.downloads.count, s.conversion.count), (20, 20, 20));

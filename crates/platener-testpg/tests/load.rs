@@ -138,6 +138,7 @@ fn config(base_url: String, clients: usize, per_client: usize) -> Config {
         model: b"solid fake\nendsolid fake\n".to_vec(),
         model_name: "fake.stl".into(),
         status_interval: Duration::from_millis(5),
+        status_reads_while_streaming: 0,
         timeout: Duration::from_secs(60),
         server_pid: Some(std::process::id()),
     }
@@ -334,4 +335,28 @@ fn the_binary_refuses_other_hosts_and_reports_failures_in_its_exit_code() {
     );
     assert_eq!(summary.requests.failed, 2);
     assert_eq!(summary.errors.get("upload: HTTP 400"), Some(&2));
+}
+
+#[test]
+fn status_reads_while_streaming_are_capped() {
+    let fake = Arc::new(Fake {
+        model_len: 25,
+        ..Fake::default()
+    });
+    let summary = runtime().block_on(async {
+        let url = serve(Arc::clone(&fake)).await;
+        run(Config {
+            // A read every millisecond for the fake's 60 ms of events would be dozens.
+            status_interval: Duration::from_millis(1),
+            status_reads_while_streaming: 2,
+            ..config(url, 5, 1)
+        })
+        .await
+        .expect("run")
+    });
+    assert_eq!(summary.requests.failed, 0, "{:?}", summary.errors);
+    let reads = fake.status_reads.load(Ordering::SeqCst);
+    // One before the events, at most two while streaming, one after: per conversion.
+    assert!((10..=20).contains(&reads), "{reads}");
+    assert_eq!(summary.status_reads.count, reads);
 }

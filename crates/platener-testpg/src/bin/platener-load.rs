@@ -79,8 +79,11 @@ struct ClientArgs {
     #[arg(long)]
     model: Option<PathBuf>,
     /// Milliseconds between status reads while a conversion runs.
-    #[arg(long, default_value_t = 250)]
+    #[arg(long, default_value_t = 1000)]
     status_interval_ms: u64,
+    /// Status reads at most while a conversion runs (0: no limit), besides one before and one after.
+    #[arg(long, default_value_t = 5)]
+    status_reads: usize,
     /// Seconds one conversion may take before it counts as failed.
     #[arg(long, default_value_t = 600)]
     timeout_s: u64,
@@ -100,6 +103,7 @@ impl ClientArgs {
                 .file_name()
                 .map_or_else(|| "model.stl".into(), |n| n.to_string_lossy().into_owned()),
             status_interval: Duration::from_millis(self.status_interval_ms.max(1)),
+            status_reads_while_streaming: self.status_reads,
             timeout: Duration::from_secs(self.timeout_s.max(1)),
             server_pid: None,
         })
@@ -154,7 +158,10 @@ fn run_bench(args: &BenchArgs) -> Result<ExitCode, String> {
         client: args.client.config()?,
     };
     let runs = bench::bench(&config, |r| {
-        eprintln!("{}", bench::markdown(std::slice::from_ref(r)).lines().last().unwrap_or(""));
+        eprintln!(
+            "{}",
+            bench::markdown(std::slice::from_ref(r)).lines().last().unwrap_or("")
+        );
     })
     .map_err(|e| e.to_string())?;
     let json = serde_json::to_string_pretty(&runs).map_err(|e| format!("cannot write the runs: {e}"))?;

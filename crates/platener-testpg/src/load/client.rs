@@ -107,7 +107,8 @@ async fn read_status(http: &Client, url: &str, rec: &mut Recorder) -> Option<Str
 }
 
 /// Streams `GET …/events` until `done` or `failed` (returned), reading the status every
-/// `status_interval` meanwhile, as a page showing progress would.
+/// `status_interval` meanwhile (at most `status_reads_while_streaming` times), as a page
+/// showing progress would.
 async fn follow_events(http: &Client, config: &Config, url: &str, rec: &mut Recorder) -> Option<String> {
     let request = http.get(format!("{url}/events")).header("Accept", "text/event-stream");
     let mut stream = send(rec, "events", request, StatusCode::OK).await?.bytes_stream();
@@ -115,6 +116,8 @@ async fn follow_events(http: &Client, config: &Config, url: &str, rec: &mut Reco
     let mut tick = tokio::time::interval(config.status_interval);
     tick.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
     tick.tick().await;
+    let mut reads = 0;
+    let limit = config.status_reads_while_streaming;
     loop {
         tokio::select! {
             chunk = stream.next() => match chunk {
@@ -133,7 +136,8 @@ async fn follow_events(http: &Client, config: &Config, url: &str, rec: &mut Reco
                     return None;
                 }
             },
-            _ = tick.tick() => {
+            _ = tick.tick(), if limit == 0 || reads < limit => {
+                reads += 1;
                 read_status(http, url, rec).await;
             }
         }

@@ -35,6 +35,10 @@ pub struct Config {
     pub model_name: String,
     /// How often a user reads the status while following events.
     pub status_interval: Duration,
+    /// At most this many status reads while following events (0: no limit), besides the one
+    /// before and the one after: "a few", so that 500 clients load the server like 500 users
+    /// with a page open, not like a status-polling storm.
+    pub status_reads_while_streaming: usize,
     /// How long one conversion may take, upload to plan, before it counts as failed.
     pub timeout: Duration,
     /// The server's process id, to sample its (and its workers') memory.

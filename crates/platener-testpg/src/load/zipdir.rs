@@ -58,7 +58,7 @@ mod tests {
             central.extend_from_slice(&ENTRY_SIG);
             central.extend_from_slice(&[0; 24]);
             central.extend_from_slice(&n.to_le_bytes());
-            central.extend_from_slice(&[0; 10]);
+            central.extend_from_slice(&[0; 12]);
             central.extend_from_slice(&offset.to_le_bytes());
             central.extend_from_slice(name.as_bytes());
         }

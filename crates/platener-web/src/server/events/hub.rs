@@ -203,7 +203,11 @@ pub(crate) struct Subscription {
 impl Subscription {
     /// Follows `feed` from its first event until it closes or `stopping` becomes true.
     pub(crate) fn new(feed: watch::Receiver<Feed>, stopping: watch::Receiver<bool>) -> Self {
-        Self { feed, next: 0, stopping }
+        Self {
+            feed,
+            next: 0,
+            stopping,
+        }
     }
 
     /// The next event, waiting for it; `None` once the job's last event was given, the job

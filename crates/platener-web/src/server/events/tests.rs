@@ -82,7 +82,9 @@ async fn a_late_subscriber_sees_the_same_events_as_an_early_one() {
     hub.poll(false).await.expect("poll");
     let (mut seen_late, _) = ready(&mut late);
     assert_eq!(seqs(&seen_late), (1..=7).collect::<Vec<_>>());
-    db.append_event(&id, "done", r#"{"status":"done"}"#).await.expect("done");
+    db.append_event(&id, "done", r#"{"status":"done"}"#)
+        .await
+        .expect("done");
     // Polling twice reads the same rows twice: nothing is appended twice.
     hub.poll(true).await.expect("poll");
     hub.poll(true).await.expect("poll");
@@ -162,7 +164,9 @@ async fn one_poll_reads_the_events_of_hundreds_of_jobs() {
 /// reach a stream through `NOTIFY` alone: the hub's timer never fires during the test.
 #[tokio::test]
 async fn postgres_notifications_wake_the_poller() {
-    let Some(cluster) = platener_testpg::Cluster::for_tests() else { return };
+    let Some(cluster) = platener_testpg::Cluster::for_tests() else {
+        return;
+    };
     let pg = cluster.fresh_database().expect("a database of this test's own");
     let db = Db::connect(&pg.url, 4).await.expect("PostgreSQL");
     let (_stop, stopping) = watch::channel(false);
@@ -192,8 +196,5 @@ async fn postgres_notifications_wake_the_poller() {
     while let Some(e) = tokio::time::timeout(HANG, sub.next()).await.expect("notified in time") {
         seen.push((e.seq, e.kind));
     }
-    assert_eq!(
-        seen,
-        vec![(1, "step".into()), (2, "step".into()), (3, "done".into())]
-    );
+    assert_eq!(seen, vec![(1, "step".into()), (2, "step".into()), (3, "done".into())]);
 }
