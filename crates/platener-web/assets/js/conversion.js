@@ -208,10 +208,16 @@ export function createConversionArea({ state, onGalleryChange }) {
     else if (FINISHED.has(kind) || kind === 'lost') reload(id);
   }
 
+  /** After the last event (or a lost stream): the conversion as it is now. A stream lost
+   * while the job still runs (a restarting server) is followed again a moment later. */
   async function reload(id) {
     try {
       const c = await api.conversion(id);
-      if (state.id === id) await finished(c);
+      if (state.id !== id) return;
+      if (FINISHED.has(c.status)) return await finished(c);
+      setTimeout(() => {
+        if (state.id === id) stopEvents = api.events(id, (kind, data) => onEvent(id, kind, data));
+      }, 2000);
     } catch (e) {
       progress.showError(e.message);
     }
