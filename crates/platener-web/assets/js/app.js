@@ -172,7 +172,7 @@ function route() {
     const id = decodeURIComponent(m[1]);
     if (id !== state.id) {
       area.open(id);
-      document.querySelector('.convert').scrollIntoView({ block: 'start' });
+      window.scrollTo({ top: 0 });
     }
   } else if (hash === '#/' || hash === '#') {
     area.reset();
