@@ -187,8 +187,9 @@ pub(super) fn refusal(refusal: Refusal) -> ApiError {
     }
 }
 
-/// A model name safe everywhere it appears: letters, digits, `-`, `_` and `.` of the stem
-/// (never used as a path), at most 60 characters, `model` when nothing is left.
+/// A model name safe everywhere it appears: the ASCII letters, digits, `-` and `_` of the
+/// stem, anything else `_` (never used as a path), at most 60 characters, `model` when nothing
+/// is left.
 pub fn safe_stem(name: Option<&str>) -> String {
     let name = name.unwrap_or_default();
     let base = name.rsplit(['/', '\\']).next().unwrap_or_default();
