@@ -1,7 +1,7 @@
 //! What a worker stores of a conversion: the summary the API shows and every file it serves.
 //!
 //! Everything the server answers is made here, in the worker, so the server only copies bytes
-//! out of the database (it never runs a step, not even to draw a scene).
+//! out of the database (it runs no step but `read` on an upload, not even to draw a scene).
 
 use platener::convert::{Conversions, MethodResult, Status};
 use platener::scene::View;
