@@ -3,6 +3,8 @@
 
 use std::io::Write as _;
 
+use serde_json::json;
+
 use crate::web_support::{Backend, Server, example_box};
 
 /// An OBJ fan of `n` triangles around the origin (a readable model of any size).
@@ -141,7 +143,16 @@ fn refused_uploads(server: &Server) {
     let r = server.upload("many.stl", &header_only, &[]);
     r.assert_error(413, "too_large");
     assert!(message(&r).contains("1000 triangles"), "{}", message(&r));
-    assert_eq!(server.upload("fan.obj", &obj_fan(150), &[]).status, 202);
+    let r = server.upload("fan.obj", &obj_fan(150), &[]);
+    assert_eq!(r.status, 202, "{}", r.text());
+    let model = r.json()["model"].clone();
+    assert_eq!(
+        (&model["name"], &model["triangles"]),
+        (&json!("fan.obj"), &json!(150)),
+        "{model}"
+    );
+    assert_eq!(model["bbox_mm"][0], 100.0, "{model}");
+    assert_eq!(model["bbox_mm"][2], 0.0, "{model}");
     let r = server.upload("fan.obj", &obj_fan(151), &[]);
     r.assert_error(413, "too_large");
     assert!(message(&r).contains("151 triangles"), "{}", message(&r));
