@@ -33,7 +33,7 @@ pub struct ServeArgs {
     /// Largest upload in MB.
     #[arg(long, value_name = "MB", default_value_t = 50)]
     pub max_upload_mb: u64,
-    /// Largest model in triangles (binary STL, from its header).
+    /// Largest model in triangles (a binary STL from its header, other formats once read).
     #[arg(long, value_name = "N", default_value_t = 5_000_000)]
     pub max_triangles: u64,
     /// Give up a model after this many seconds (0: never).

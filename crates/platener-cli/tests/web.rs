@@ -1,285 +1,47 @@
-//! `platener serve` end to end: the real binary on 127.0.0.1, SQLite in a temp dir, worker
-//! processes that are the same binary (issue 17). Every wait is bounded by
-//! `web_support::PATIENCE`; nothing asserts on speed.
+//! `platener serve` end to end: the real binary on 127.0.0.1, SQLite in a temp dir (and, for
+//! the API's tests, PostgreSQL in the harness' throwaway cluster), worker processes that are the
+//! same binary (issue 17). Every wait is bounded by `web_support::PATIENCE`; nothing asserts on
+//! speed. The API's tests live in `web/`: the main flow, the error table, names.
 
 mod web_support;
 
+#[path = "web/errors.rs"]
+mod errors;
+#[path = "web/flow.rs"]
+mod flow;
+#[path = "web/names.rs"]
+mod names;
+
 use std::io::{Read as _, Write as _};
 
-use serde_json::{Value, json};
-use web_support::{Server, events, example_box, signal};
+use web_support::{Backend, Server, events, example_box, signal};
 
-/// Every `/api/…` link in a conversion's `links`, depth first, sorted.
-fn all_links(v: &Value, out: &mut Vec<String>) {
-    match v {
-        Value::String(s) if s.starts_with("/api/") => out.push(s.clone()),
-        Value::Array(a) => a.iter().for_each(|x| all_links(x, out)),
-        Value::Object(o) => o.values().for_each(|x| all_links(x, out)),
-        _ => {}
-    }
+/// One test per database for each `module::body` (a `fn(Backend)`): `sqlite::body` and
+/// `postgres::body` (which skips, saying why, when PostgreSQL is not installed, and fails
+/// instead under `PLATENER_REQUIRE_POSTGRES=1`).
+macro_rules! on_both_databases {
+    ($($module:ident :: $body:ident),* $(,)?) => {
+        mod sqlite {
+            $(#[test]
+            fn $body() {
+                crate::$module::$body(crate::Backend::Sqlite);
+            })*
+        }
+        mod postgres {
+            $(#[test]
+            fn $body() {
+                crate::$module::$body(crate::Backend::Postgres);
+            })*
+        }
+    };
 }
 
-/// The parts in a ZIP's plan.json.
-fn zip_parts(zip: &[u8]) -> usize {
-    let mut archive = zip::ZipArchive::new(std::io::Cursor::new(zip)).expect("a ZIP");
-    let mut plan = String::new();
-    archive
-        .by_name("plan.json")
-        .expect("plan.json in the ZIP")
-        .read_to_string(&mut plan)
-        .expect("text");
-    let plan: Value = serde_json::from_str(&plan).expect("JSON");
-    plan["parts"].as_array().expect("parts").len()
-}
-
-/// Checks one link's answer by what it names: content type, magic bytes, headers.
-fn check_link(server: &Server, link: &str) {
-    let r = server.get(link);
-    assert_eq!(r.status, 200, "{link}: {}", r.text());
-    assert_eq!(r.header("x-content-type-options"), Some("nosniff"), "{link}");
-    let path = link.split('?').next().unwrap_or_default();
-    let ct = r.header("content-type").unwrap_or_default().to_string();
-    if path.ends_with(".zip") {
-        assert_eq!(ct, "application/zip", "{link}");
-        assert!(
-            r.header("content-disposition")
-                .is_some_and(|d| d.starts_with("attachment;")),
-            "{link}"
-        );
-        assert!(zip_parts(&r.body) > 0, "{link}");
-    } else if path.ends_with(".glb") {
-        assert_eq!(ct, "model/gltf-binary", "{link}");
-        assert_eq!(&r.body[..4], b"glTF", "{link}");
-    } else if path.ends_with(".png") {
-        assert_eq!(ct, "image/png", "{link}");
-        assert_eq!(&r.body[..4], b"\x89PNG", "{link}");
-    } else if path.ends_with(".svg") {
-        assert_eq!(ct, "image/svg+xml", "{link}");
-        assert!(r.text().contains("<svg"), "{link}");
-        assert!(r.header("content-security-policy").is_some(), "{link}");
-    } else if path.ends_with(".json") {
-        assert!(ct.starts_with("application/json"), "{link}");
-        r.json();
-    } else if path.ends_with("/events") {
-        assert!(ct.starts_with("text/event-stream"), "{link}");
-    } else {
-        assert!(ct.starts_with("application/json"), "{link}: {ct}");
-    }
-}
-
-#[test]
-fn upload_box_streams_events_and_every_link_works() {
-    let dir = tempfile::tempdir().expect("temp dir");
-    let server = Server::start(dir.path(), &["--workers", "2", "--no-examples"], &[]);
-    let r = server.upload(
-        "box-3mm.stl",
-        &example_box(),
-        &[("thickness", "3"), ("material", "wood")],
-    );
-    assert_eq!(r.status, 202, "{}", r.text());
-    let c = r.json();
-    let id = c["id"].as_str().expect("id").to_string();
-    assert_eq!(r.header("location"), Some(format!("/api/conversions/{id}").as_str()));
-    assert_eq!(c["status"], "queued");
-    assert_eq!(c["model"]["name"], "box-3mm.stl");
-    let token = c["delete_token"].as_str().expect("a delete token once").to_string();
-
-    let evs = events(&server.addr, &id);
-    let kinds: Vec<&str> = evs.iter().map(|(k, _)| k.as_str()).collect();
-    assert_eq!(kinds.last(), Some(&"done"), "{kinds:?}");
-    assert!(
-        evs.iter()
-            .any(|(k, d)| k == "step" && d["step"] == "read" && d["state"] == "finished")
-    );
-    for m in ["plate", "stacked"] {
-        assert!(
-            evs.iter().any(|(k, d)| k == "method" && d["method"] == m),
-            "{m}: {kinds:?}"
-        );
-    }
-    // A late client gets the same events so far.
-    assert_eq!(events(&server.addr, &id).len(), evs.len());
-
-    let c = server.get(&format!("/api/conversions/{id}")).json();
-    assert_eq!(c["status"], "done", "{c}");
-    assert_eq!(c["best"], "plate");
-    assert!(c.get("delete_token").is_none(), "the token is shown once only");
-    assert_eq!(c["model"]["triangles"], 120);
-    let bbox: Vec<f64> = c["model"]["bbox_mm"]
-        .as_array()
-        .expect("bbox")
-        .iter()
-        .filter_map(Value::as_f64)
-        .collect();
-    assert_eq!(bbox.len(), 3);
-    let plate = c["methods"]
-        .as_array()
-        .expect("methods")
-        .iter()
-        .find(|m| m["method"] == "plate")
-        .expect("plate")
-        .clone();
-    assert_eq!(plate["parts"], 6, "{plate}");
-    assert_eq!(plate["status"], "done");
-    assert!(plate["score"].as_f64().is_some_and(|s| s > 0.5 && s <= 1.0), "{plate}");
-    assert_eq!(
-        zip_parts(&server.get(&format!("/api/conversions/{id}/plan.zip")).body),
-        6
-    );
-
-    let mut links = Vec::new();
-    all_links(&c["links"], &mut links);
-    assert!(links.len() > 20, "{links:?}");
-    for view in ["model", "wireframe", "coplanar", "plates", "bent", "final"] {
-        assert!(c["links"]["scenes"][view].is_string(), "scene {view}");
-    }
-    for link in links.iter().filter(|l| !l.ends_with("/events")) {
-        check_link(&server, link);
-    }
-
-    publish_recut_delete(&server, &id, &token);
-}
-
-/// Publish (401 without the token), gallery, recut, delete.
-fn publish_recut_delete(server: &Server, id: &str, token: &str) {
-    let publish = format!("/api/conversions/{id}/publish");
-    server
-        .request("POST", &publish, &[], b"")
-        .assert_error(401, "unauthorized");
-    server
-        .request("POST", &publish, &[("Authorization", "Bearer 00")], b"")
-        .assert_error(401, "unauthorized");
-    let bearer = format!("Bearer {token}");
-    let r = server.request("POST", &publish, &[("Authorization", &bearer)], b"");
-    assert_eq!(r.status, 200, "{}", r.text());
-    assert_eq!(r.json()["published"], true);
-    let g = server.get("/api/gallery?page=1").json();
-    let item = &g["items"][0];
-    assert_eq!(item["id"], id);
-    assert_eq!(item["parts"], 6);
-    assert_eq!(server.get(item["thumbnail"].as_str().expect("thumbnail")).status, 200);
-
-    let body = json!({"kerf": 0.15}).to_string();
-    let r = server.request(
-        "POST",
-        &format!("/api/conversions/{id}/recut"),
-        &[("Content-Type", "application/json")],
-        body.as_bytes(),
-    );
-    assert_eq!(r.status, 202, "{}", r.text());
-    let recut = r.json();
-    let rid = recut["id"].as_str().expect("id");
-    assert_ne!(rid, id);
-    assert_eq!(recut["recut_of"], id);
-    assert_eq!(recut["settings"]["kerf"], 0.15);
-    let done = server.wait_ended(rid);
-    assert_eq!(done["status"], "done", "{done}");
-
-    let path = format!("/api/conversions/{id}");
-    server
-        .request("DELETE", &path, &[], b"")
-        .assert_error(401, "unauthorized");
-    assert_eq!(
-        server
-            .request("DELETE", &path, &[("Authorization", &bearer)], b"")
-            .status,
-        204
-    );
-    server.get(&path).assert_error(404, "not_found");
-    server.get(&format!("{path}/plan.zip")).assert_error(404, "not_found");
-    server.get(&format!("{path}/events")).assert_error(404, "not_found");
-    let g = server.get("/api/gallery").json();
-    assert!(g["items"].as_array().expect("items").iter().all(|i| i["id"] != id));
-    assert_eq!(
-        server.get(&format!("/api/conversions/{rid}")).status,
-        200,
-        "the recut stays"
-    );
-}
-
-#[test]
-fn every_error_has_its_status_and_code() {
-    let dir = tempfile::tempdir().expect("temp dir");
-    let server = Server::start(
-        dir.path(),
-        &["--workers", "0", "--no-examples", "--max-upload-mb", "1"],
-        &[],
-    );
-    let unknown = format!("/api/conversions/c_{}", "0".repeat(32));
-    server.get(&unknown).assert_error(404, "not_found");
-    server
-        .get("/api/conversions/../../etc/passwd")
-        .assert_error(404, "not_found");
-    server.get("/api/conversions/c_nothex").assert_error(404, "not_found");
-    server.get("/nothing/here").assert_error(404, "not_found");
-    server.get("/api/gallery?page=0").assert_error(400, "bad_request");
-    server
-        .get("/api/test-strip.svg?thickness=-1")
-        .assert_error(400, "bad_request");
-    server
-        .get("/api/test-strip.json?material=gold")
-        .assert_error(400, "bad_request");
-
-    let box_stl = example_box();
-    server
-        .upload("box.stl", &box_stl, &[("material", "<b>gold</b>")])
-        .assert_error(400, "bad_request");
-    server
-        .upload("box.stl", &box_stl, &[("colour", "red")])
-        .assert_error(400, "bad_request");
-    server
-        .request(
-            "POST",
-            "/api/conversions",
-            &[("Content-Type", "application/json")],
-            b"{}",
-        )
-        .assert_error(400, "bad_request");
-    server
-        .upload("page.stl", b"<html><script>alert(1)</script></html>", &[])
-        .assert_error(415, "unsupported_format");
-    server
-        .upload("empty.stl", b"", &[])
-        .assert_error(422, "unreadable_model");
-    let big = vec![b'x'; 1_200_000];
-    server.upload("big.stl", &big, &[]).assert_error(413, "too_large");
-
-    // Accepted, but no worker runs it: its plan is not ready; its files do not exist.
-    let r = server.upload("<script>x</script>.stl", &box_stl, &[]);
-    assert_eq!(r.status, 202, "{}", r.text());
-    let c = r.json();
-    let name = c["model"]["name"].as_str().expect("name");
-    assert!(!name.contains('<') && name.ends_with(".stl"), "{name}");
-    let id = c["id"].as_str().expect("id");
-    server
-        .get(&format!("/api/conversions/{id}/plan.zip"))
-        .assert_error(409, "not_ready");
-    server
-        .get(&format!("/api/conversions/{id}/methods/cubist/plan.zip"))
-        .assert_error(404, "not_found");
-    server
-        .get(&format!("/api/conversions/{id}/methods/plate/sheets/0.svg"))
-        .assert_error(404, "not_found");
-    server
-        .get(&format!("/api/conversions/{id}/scenes/nothing.glb"))
-        .assert_error(404, "not_found");
-    server
-        .request(
-            "POST",
-            &format!("/api/conversions/{id}/recut"),
-            &[("Content-Type", "application/json")],
-            b"[1]",
-        )
-        .assert_error(400, "bad_request");
-    server
-        .request(
-            "POST",
-            &format!("/api/conversions/{id}/recut"),
-            &[("Content-Type", "application/json")],
-            b"{\"colour\":1}",
-        )
-        .assert_error(400, "bad_request");
-}
+on_both_databases!(
+    flow::upload_convert_and_every_link_works,
+    errors::every_error_has_its_status_and_code,
+    errors::rate_limit_and_full_queue_are_429_and_503,
+    errors::broken_corpus_files_give_the_readers_message,
+);
 
 #[test]
 fn a_60_mb_upload_is_refused_before_its_body_is_read() {
@@ -334,76 +96,6 @@ fn a_60_mb_upload_is_refused_before_its_body_is_read() {
     web_support::parse(&answer.join().expect("reader")).assert_error(413, "too_large");
     let grown = server.rss_kb().saturating_sub(before);
     assert!(grown < 30_000, "the server grew by {grown} kB");
-}
-
-#[test]
-fn rate_limit_and_full_queue_are_429_and_503() {
-    let dir = tempfile::tempdir().expect("temp dir");
-    let server = Server::start(
-        dir.path(),
-        &[
-            "--workers",
-            "0",
-            "--no-examples",
-            "--rate-limit",
-            "3",
-            "--max-queue",
-            "2",
-        ],
-        &[],
-    );
-    let box_stl = example_box();
-    assert_eq!(server.upload("a.stl", &box_stl, &[]).status, 202);
-    assert_eq!(server.upload("b.stl", &box_stl, &[]).status, 202);
-    let busy = server.upload("c.stl", &box_stl, &[]);
-    busy.assert_error(503, "busy");
-    assert!(busy.header("retry-after").is_some());
-    server.get("/api/health").assert_error(503, "busy");
-    let limited = server.upload("d.stl", &box_stl, &[]);
-    limited.assert_error(429, "rate_limited");
-    assert!(
-        limited
-            .header("retry-after")
-            .and_then(|s| s.parse::<u64>().ok())
-            .is_some_and(|s| (1..=60).contains(&s))
-    );
-}
-
-#[test]
-fn broken_corpus_files_give_the_readers_message() {
-    let corpus = match platener::samples::shared_corpus() {
-        Ok(dir) => dir,
-        Err(message) => {
-            eprintln!("{message}");
-            return;
-        }
-    };
-    let dir = tempfile::tempdir().expect("temp dir");
-    let server = Server::start(dir.path(), &["--workers", "1", "--no-examples"], &[]);
-    // The files SOURCES.md lists as not parsing, and where the reader stops.
-    let cases = [
-        ("openscad_invalid_vertex.stl", "line 89"),
-        ("openscad_too_many_vertices.stl", "line 93"),
-        ("openscad_empty_0_bytes.stl", "empty"),
-        ("trimesh_empty_binary_header_only.stl", "no triangles"),
-        ("numpy_stl_incomplete_ascii.stl", "line"),
-        ("numpy_stl_end_solid_with_space.stl", "line"),
-    ];
-    for (file, says) in cases {
-        let bytes = std::fs::read(corpus.join("broken").join(file)).expect("corpus file");
-        let r = server.upload(file, &bytes, &[]);
-        let error = if r.status == 202 {
-            let c = server.wait_ended(r.json()["id"].as_str().expect("id"));
-            assert_eq!(c["status"], "failed", "{file}: {c}");
-            c["error"].clone()
-        } else {
-            r.assert_error(422, "unreadable_model");
-            r.json()["error"].clone()
-        };
-        assert_eq!(error["code"], "unreadable_model", "{file}: {error}");
-        let message = error["message"].as_str().expect("message");
-        assert!(message.contains(says), "{file}: {message}");
-    }
 }
 
 #[test]

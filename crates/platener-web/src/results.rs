@@ -1,7 +1,7 @@
 //! What a worker stores of a conversion: the summary the API shows and every file it serves.
 //!
 //! Everything the server answers is made here, in the worker, so the server only copies bytes
-//! out of the database (it never runs a step, not even to draw a scene).
+//! out of the database (it runs no step but `read` on an upload, not even to draw a scene).
 
 use platener::convert::{Conversions, MethodResult, Status};
 use platener::scene::View;
@@ -50,7 +50,11 @@ pub fn finished(all: &Conversions) -> Finished {
 fn error_of(all: &Conversions) -> Value {
     let first = all.methods.iter().find_map(|m| m.error.as_ref().map(|e| (m, e)));
     match first {
-        Some((_, e @ Error::Read(_))) => json!({"code": "unreadable_model", "message": e.to_string()}),
+        // The server reads every upload before queuing it, so this is only a fallback (jobs
+        // queued before that check); the message is made safe the same way.
+        Some((_, e @ Error::Read(_))) => {
+            json!({"code": "unreadable_model", "message": crate::sniff::safe_message(&e.to_string())})
+        }
         Some((m, e)) => {
             let code = match m.status {
                 Status::TimedOut => "timed_out",

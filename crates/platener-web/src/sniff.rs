@@ -1,6 +1,7 @@
-//! What an upload is, from its content (never its name alone), checked without reading the
-//! model: the server refuses what it can tell is wrong in a few bytes and leaves the real
-//! reading to the worker (docs/decisions.md, "Web service").
+//! What an upload is, from its content (never its name alone), checked in a few bytes before
+//! the model is read: an empty file, a format platener does not read, or a binary STL whose
+//! header promises more triangles than the server takes is refused without allocating for it.
+//! The reading itself (`server::inspect`) follows, with the library's reader.
 
 /// A model format, as far as the first bytes tell.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -31,8 +32,8 @@ pub enum Refusal {
     Unsupported(String),
     /// A model format with a defect the header shows (`422`).
     Unreadable(String),
-    /// More triangles than the server takes (`413`).
-    TooManyTriangles(String),
+    /// More triangles (or, for 3MF, more unpacked bytes) than the server takes (`413`).
+    TooLarge(String),
 }
 
 /// What the sniff found: the format and, for binary STL, the triangle count.
@@ -67,11 +68,7 @@ pub fn sniff(bytes: &[u8], max_triangles: u64) -> Result<Sniffed, Refusal> {
                 "binary STL with a header and no triangles; export the model again".into(),
             ));
         }
-        if count > max_triangles {
-            return Err(Refusal::TooManyTriangles(format!(
-                "the model has {count} triangles; this server converts models of at most {max_triangles}"
-            )));
-        }
+        within_triangles(count, max_triangles)?;
         return Ok(Sniffed {
             kind: Kind::Stl,
             triangles: Some(count),
@@ -99,6 +96,44 @@ pub fn sniff(bytes: &[u8], max_triangles: u64) -> Result<Sniffed, Refusal> {
     Err(Refusal::Unsupported(
         "the file is not an STL, OBJ or 3MF model (judged by its content); export it as one of these".into(),
     ))
+}
+
+/// Refuses a model of more than `max_triangles` triangles (`413`), whichever way it was counted
+/// (a binary STL's header, or the triangles read from any format).
+pub fn within_triangles(count: u64, max_triangles: u64) -> Result<(), Refusal> {
+    if count > max_triangles {
+        return Err(Refusal::TooLarge(format!(
+            "the model has {count} triangles; this server converts models of at most {max_triangles}"
+        )));
+    }
+    Ok(())
+}
+
+/// Longest message shown for a model the reader refused, in characters.
+const MESSAGE_MAX: usize = 400;
+
+/// A reader's message made safe to show: the reader quotes the offending line of the upload
+/// (`line 89: unparseable number 'blah' …`), which helps a person find it but is the client's
+/// text. Markup and quoting characters (`<`, `>`, `&`, `"`, `` ` ``, `\`), control characters
+/// and invisible or direction-changing ones become `?`, and the message is cut at
+/// [`MESSAGE_MAX`] characters, so no input reaches a page or a log unescaped whatever renders it.
+pub fn safe_message(message: &str) -> String {
+    let mut out: String = message
+        .chars()
+        .take(MESSAGE_MAX)
+        .map(|c| if shown_as_is(c) { c } else { '?' })
+        .collect();
+    if message.chars().nth(MESSAGE_MAX).is_some() {
+        out.push('…');
+    }
+    out
+}
+
+/// Whether a character of a message is shown as it is (see [`safe_message`]).
+fn shown_as_is(c: char) -> bool {
+    let invisible =
+        matches!(c, '\u{200B}'..='\u{200F}' | '\u{2028}'..='\u{202E}' | '\u{2060}'..='\u{206F}' | '\u{FEFF}');
+    !(c.is_control() || invisible || matches!(c, '<' | '>' | '&' | '"' | '`' | '\\'))
 }
 
 /// The triangle count of a binary STL: 80-byte header, a count, 50 bytes per triangle. The
@@ -144,9 +179,27 @@ mod tests {
     }
 
     #[test]
+    fn messages_show_no_markup_controls_or_invisible_characters() {
+        let m = safe_message(
+            "x.stl: line 3: unexpected text '<img src=x onerror=\"a()\">&\u{202E}\u{7}`\\' (expected facet)",
+        );
+        assert_eq!(
+            m,
+            "x.stl: line 3: unexpected text '?img src=x onerror=?a()???????' (expected facet)"
+        );
+        assert_eq!(safe_message("line 5: 12.5 µm … °"), "line 5: 12.5 µm … °");
+        let long = "y".repeat(MESSAGE_MAX + 10);
+        let cut = safe_message(&long);
+        assert_eq!(cut.chars().count(), MESSAGE_MAX + 1);
+        assert!(cut.ends_with('…'));
+        assert!(within_triangles(100, 100).is_ok());
+        assert!(matches!(within_triangles(101, 100), Err(Refusal::TooLarge(m)) if m.contains("101 triangles")));
+    }
+
+    #[test]
     fn defects_in_the_header_are_refused() {
         assert!(matches!(sniff(b"", 100), Err(Refusal::Unreadable(_))));
         assert!(matches!(sniff(&binary(0, 0), 100), Err(Refusal::Unreadable(_))));
-        assert!(matches!(sniff(&binary(101, 0), 100), Err(Refusal::TooManyTriangles(_))));
+        assert!(matches!(sniff(&binary(101, 0), 100), Err(Refusal::TooLarge(_))));
     }
 }

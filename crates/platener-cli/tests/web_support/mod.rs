@@ -303,3 +303,40 @@ pub fn example_box() -> Vec<u8> {
     std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/box-3mm.stl"))
         .expect("examples/box-3mm.stl")
 }
+
+/// The database a test's server keeps its jobs in; tests of the API run on both.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Backend {
+    /// SQLite in the server's data folder (`serve`'s default).
+    Sqlite,
+    /// A fresh database of the test's own in the test binary's throwaway PostgreSQL cluster.
+    Postgres,
+}
+
+impl Backend {
+    /// `serve`'s flags for this database; `None` (after the harness printed why) when
+    /// PostgreSQL is not installed and `PLATENER_REQUIRE_POSTGRES=1` is not set, so the test
+    /// skips; any other failure to get a database panics.
+    pub fn args(self) -> Option<Vec<String>> {
+        match self {
+            Backend::Sqlite => Some(Vec::new()),
+            Backend::Postgres => {
+                let cluster = platener_testpg::Cluster::for_tests()?;
+                let db = cluster
+                    .fresh_database()
+                    .expect("a PostgreSQL database of this test's own");
+                Some(vec!["--database".into(), db.url])
+            }
+        }
+    }
+}
+
+impl Server {
+    /// [`Server::start`] on `backend`; `None` when the backend is skipped ([`Backend::args`]).
+    pub fn start_on(backend: Backend, data: &Path, args: &[&str], env: &[(&str, &str)]) -> Option<Server> {
+        let mut all = backend.args()?;
+        all.extend(args.iter().map(|a| (*a).to_string()));
+        let all: Vec<&str> = all.iter().map(String::as_str).collect();
+        Some(Server::start(data, &all, env))
+    }
+}

@@ -14,7 +14,7 @@ pub struct NewJob {
     pub name: String,
     /// The model file.
     pub model: Vec<u8>,
-    /// Triangles, when the format tells without reading (binary STL).
+    /// Triangles, as the server read them at upload.
     pub triangles: Option<i64>,
     /// The settings as JSON (`crate::settings::JobSettings`).
     pub settings: String,

@@ -12,7 +12,7 @@ use axum::response::{IntoResponse, Response};
 use serde_json::Value;
 
 use super::error::{ApiError, ApiResult};
-use super::{App, view};
+use super::{App, inspect, view};
 use crate::db::{JobRow, NewJob, now_ms};
 use crate::ids;
 use crate::settings::JobSettings;
@@ -116,8 +116,9 @@ async fn admit(app: &App, peer: SocketAddr) -> ApiResult<()> {
     Ok(())
 }
 
-/// Checks a model and its settings and stores the job; answers `202` with the conversion,
-/// its `Location` and its delete token (the only time the token is shown).
+/// Checks a model's first bytes and its settings, reads it ([`inspect`]) and stores the job;
+/// answers `202` with the conversion (the model's triangles and bounding box as read), its
+/// `Location` and its delete token (the only time the token is shown).
 async fn enqueue(
     app: &App,
     model: Vec<u8>,
@@ -125,18 +126,20 @@ async fn enqueue(
     settings: JobSettings,
     parent: Option<String>,
 ) -> ApiResult<Response> {
-    let sniffed = sniff::sniff(&model, app.config.max_triangles).map_err(|r| match r {
-        Refusal::Unsupported(m) => ApiError::unsupported_format(m),
-        Refusal::Unreadable(m) => ApiError::unreadable_model(m),
-        Refusal::TooManyTriangles(m) => ApiError::too_large(m),
-    })?;
-    settings.to_library().map_err(ApiError::bad_request)?;
+    let sniffed = sniff::sniff(&model, app.config.max_triangles).map_err(refusal)?;
+    let (library, _) = settings.to_library().map_err(ApiError::bad_request)?;
+    let name = format!("{}.{}", safe_stem(name.as_deref()), sniffed.kind.extension());
+    let limits = inspect::ReadLimits {
+        max_triangles: app.config.max_triangles,
+        max_unpacked: (app.config.max_upload_bytes() as u64).saturating_mul(inspect::UNPACK_FACTOR),
+    };
+    let (model, inspected) = inspect::read(name.clone(), model, library, limits).await?;
     let token = ids::token();
     let job = NewJob {
         id: ids::conversion_id(),
-        name: format!("{}.{}", safe_stem(name.as_deref()), sniffed.kind.extension()),
+        name,
         model,
-        triangles: sniffed.triangles.and_then(|t| i64::try_from(t).ok()),
+        triangles: i64::try_from(inspected.triangles).ok(),
         settings: serde_json::to_string(&settings).map_err(|_| ApiError::internal())?,
         created: now_ms(),
         delete_token_hash: ids::hash_token(&token),
@@ -145,15 +148,48 @@ async fn enqueue(
     };
     app.db.insert_job(&job).await?;
     app.metrics.accepted.fetch_add(1, Ordering::Relaxed);
-    let row = app.db.job(&job.id).await?.ok_or_else(ApiError::internal)?;
-    let mut body = view::conversion(&row, &[]);
+    let mut body = view::conversion(&accepted(&job), &[]);
+    body["model"]["bbox_mm"] = serde_json::json!(inspected.bbox_mm);
     body["delete_token"] = Value::String(token);
     let location = format!("/api/conversions/{}", job.id);
     Ok((StatusCode::ACCEPTED, [(header::LOCATION, location)], Json(body)).into_response())
 }
 
-/// A model name safe everywhere it appears: letters, digits, `-`, `_` and `.` of the stem
-/// (never used as a path), at most 60 characters, `model` when nothing is left.
+/// The job as it was stored, for the `202`: built from what was inserted rather than read
+/// back, since a worker may already have claimed it (api.md answers `202` in state `queued`).
+fn accepted(job: &NewJob) -> JobRow {
+    JobRow {
+        id: job.id.clone(),
+        status: "queued".into(),
+        name: job.name.clone(),
+        model_bytes: i64::try_from(job.model.len()).unwrap_or(i64::MAX),
+        triangles: job.triangles,
+        settings: job.settings.clone(),
+        created: job.created,
+        started: None,
+        finished: None,
+        attempts: 0,
+        worker: None,
+        error: None,
+        summary: None,
+        delete_token_hash: job.delete_token_hash.clone(),
+        published: job.published,
+        parent: job.parent.clone(),
+    }
+}
+
+/// The API error of a refused upload.
+pub(super) fn refusal(refusal: Refusal) -> ApiError {
+    match refusal {
+        Refusal::Unsupported(m) => ApiError::unsupported_format(m),
+        Refusal::Unreadable(m) => ApiError::unreadable_model(m),
+        Refusal::TooLarge(m) => ApiError::too_large(m),
+    }
+}
+
+/// A model name safe everywhere it appears: the ASCII letters, digits, `-` and `_` of the
+/// stem, anything else `_` (never used as a path), at most 60 characters, `model` when nothing
+/// is left.
 pub fn safe_stem(name: Option<&str>) -> String {
     let name = name.unwrap_or_default();
     let base = name.rsplit(['/', '\\']).next().unwrap_or_default();

@@ -1,7 +1,8 @@
 //! `platener serve`: the HTTP API of ../shared/spec/api.md over the job database, with the
 //! worker processes it starts and restarts.
 //!
-//! The server never converts: it stores uploads as queued jobs (before answering `202`), reads
+//! The server never converts: it reads each upload's model ([`inspect`]: the library's `read`
+//! step, so an unreadable one is a `422`), stores it as a queued job (before answering `202`), reads
 //! jobs, events and result files back, and supervises `platener worker` processes
 //! ([`workers`]). Several servers may share one PostgreSQL database.
 
@@ -11,6 +12,7 @@ mod error;
 mod events;
 mod examples;
 mod files;
+mod inspect;
 mod limits;
 mod misc;
 mod page;
@@ -48,7 +50,8 @@ pub struct ServeConfig {
     pub workers: usize,
     /// Largest upload, MB (10^6 bytes).
     pub max_upload_mb: u64,
-    /// Largest model in triangles (binary STL, checked from the header).
+    /// Largest model in triangles (a binary STL from its header, other formats once read at
+    /// upload).
     pub max_triangles: u64,
     /// Time limit per model, seconds (0: none).
     pub timeout: f64,
