@@ -78,6 +78,7 @@ async function recut(changes) {
   status('Cutting again with the new settings…');
   try {
     const next = await recutModel(c.id, changes);
+    await area.open(next.id, { recut: true });
     location.hash = `#/c/${encodeURIComponent(next.id)}`;
   } catch (e) {
     showError(e.message);

@@ -20,7 +20,10 @@ struct Assets;
 
 /// One embedded file's bytes, if `path` names one (relative, `/`-separated, no `..`).
 pub fn file(path: &str) -> Option<std::borrow::Cow<'static, [u8]>> {
-    safe_path(path).then(|| Assets::get(path).map(|f| f.data)).flatten()
+    if !safe_path(path) {
+        return None;
+    }
+    Assets::get(path).map(|f| f.data)
 }
 
 /// A path that stays inside `assets/`: non-empty segments of ordinary names only. The
@@ -97,7 +100,7 @@ pub fn inline_script_hashes(html: &str) -> Vec<String> {
         let body = &after[open_end + 1..];
         let Some(close) = body.find("</script>") else { break };
         if !tag.contains("src=") {
-            let digest = Sha256::digest(body[..close].as_bytes());
+            let digest = Sha256::digest(&body.as_bytes()[..close]);
             let b64 = base64::engine::general_purpose::STANDARD.encode(digest);
             hashes.push(format!("'sha256-{b64}'"));
         }
