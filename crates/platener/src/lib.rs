@@ -18,7 +18,8 @@
 //! | `kerf`, `labels`, `sheets`, `export` | [`kerf`] … [`export`] | the cutting plan and its ZIP |
 //!
 //! [`inspect`] runs these and summarises them (`platener inspect`); [`scene`] draws any
-//! snapshot as a 3D scene (glTF binary) for viewers.
+//! snapshot as a 3D scene (glTF binary) for viewers; [`debug`] gives every snapshot of a run as
+//! bounded JSON (the web service's debug view).
 //!
 //! Programs convert a model in one call, [`convert_all`]: every method, each with its plan,
 //! ZIP, score and warnings or error, and the best named. An upload never touches the disk:
@@ -44,6 +45,7 @@ pub mod cleanup;
 pub mod context;
 pub mod convert;
 pub mod coplanar;
+pub mod debug;
 pub mod error;
 pub mod export;
 pub mod inspect;
