@@ -158,10 +158,13 @@ pub async fn test_strip_json(
     query: Result<Query<StripQuery>, axum::extract::rejection::QueryRejection>,
 ) -> ApiResult<Json<Value>> {
     let (s, material, thickness) = strip(query)?;
+    // Each hole's drawn ring (the strip's holes, left to right) and both outlines let a page
+    // draw the strip at true proportions.
     let holes: Vec<Value> = s
         .holes
         .iter()
-        .map(|h| json!({"number": h.number, "kerf": h.kerf, "width": h.width}))
+        .zip(&s.strip.holes)
+        .map(|(h, ring)| json!({"number": h.number, "kerf": h.kerf, "width": h.width, "ring": points(ring)}))
         .collect();
     Ok(Json(json!({
         "thickness": thickness,
@@ -170,7 +173,14 @@ pub async fn test_strip_json(
         "height": s.height,
         "default_hole": s.default_hole,
         "holes": holes,
+        "strip": points(&s.strip.outer),
+        "spike": points(&s.spike.outer),
     })))
+}
+
+/// A ring as `[[x, y], …]`, mm.
+fn points(ring: &[platener::glam::DVec2]) -> Value {
+    ring.iter().map(|p| json!([p.x, p.y])).collect()
 }
 
 /// `GET /api/health`: `200` when the service can take work, else `503 busy`.

@@ -6,6 +6,7 @@
 //! ([`workers`]). Several servers may share one PostgreSQL database.
 
 mod api;
+mod assets;
 mod error;
 mod events;
 mod examples;
@@ -194,6 +195,7 @@ fn router(app: Arc<App>) -> Router {
     let body_limit = app.config.max_upload_bytes() + api::FORM_SLACK;
     let timed = Router::new()
         .route("/", get(page::index))
+        .route("/assets/{*path}", get(assets::asset))
         .route("/api/conversions", post(api::create))
         .route("/api/conversions/{id}", get(api::show).delete(api::delete))
         .route("/api/conversions/{id}/recut", post(api::recut))

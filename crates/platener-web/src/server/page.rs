@@ -1,18 +1,42 @@
-//! `GET /`: a minimal placeholder page listing the gallery (the real page is issue 18),
-//! served under a strict Content-Security-Policy with every name escaped.
+//! `GET /`: the web page (issue 18), `assets/index.html`, served under a strict
+//! Content-Security-Policy: scripts only from this server plus the one inline import map,
+//! allowed by its hash. For browsers without JavaScript the gallery is listed in a
+//! `<noscript>`, every name escaped.
 
 use std::fmt::Write as _;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use axum::extract::State;
 use axum::http::header;
 use axum::response::{IntoResponse, Response};
 
 use super::App;
-use super::error::ApiResult;
+use super::assets;
+use super::error::{ApiError, ApiResult};
 
-/// The page's Content-Security-Policy: nothing but its own images, no scripts.
-pub const PAGE_CSP: &str = "default-src 'none'; img-src 'self'; style-src 'unsafe-inline'; base-uri 'none'; form-action 'self'; frame-ancestors 'none'";
+/// Where index.html wants the `<noscript>` gallery.
+const NOSCRIPT_MARK: &str = "<!--noscript-gallery-->";
+
+/// The page's Content-Security-Policy: its own scripts and styles, the import map by hash,
+/// fetches and images from this server only, no plugins, frames, forms elsewhere or `<base>`.
+pub fn page_csp() -> &'static str {
+    static CSP: OnceLock<String> = OnceLock::new();
+    CSP.get_or_init(|| {
+        let html = index_html();
+        let hashes = assets::inline_script_hashes(&html).join(" ");
+        format!(
+            "default-src 'none'; script-src 'self' {hashes}; style-src 'self'; img-src 'self' data: blob:; \
+             connect-src 'self'; base-uri 'none'; form-action 'self'; frame-ancestors 'none'"
+        )
+    })
+}
+
+/// The embedded `index.html` as text.
+fn index_html() -> String {
+    assets::file("index.html")
+        .map(|d| String::from_utf8_lossy(&d).into_owned())
+        .unwrap_or_default()
+}
 
 /// `text` with `& < > " '` escaped for HTML.
 pub fn escape_html(text: &str) -> String {
@@ -32,30 +56,25 @@ pub fn escape_html(text: &str) -> String {
 
 /// `GET /`.
 pub async fn index(State(app): State<Arc<App>>) -> ApiResult<Response> {
+    let html = index_html();
+    if html.is_empty() {
+        return Err(ApiError::internal());
+    }
     let gallery = super::misc::gallery_page(&app, 1).await?;
-    let mut html = String::from(
-        "<!doctype html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>platener</title></head><body>\
-         <h1>platener</h1><p>3D-print models to laser-cut plans. Upload with \
-         <code>curl -F model=@box.stl http://HOST/api/conversions</code>; the web page comes next.</p>\
-         <h2>Gallery</h2><ul>",
-    );
+    let mut list = String::from("<ul>");
     for item in gallery["items"].as_array().into_iter().flatten() {
         let name = escape_html(item["name"].as_str().unwrap_or_default());
         let status = escape_html(item["status"].as_str().unwrap_or_default());
-        let link = escape_html(item["links"]["self"].as_str().unwrap_or_default());
-        let _ = write!(html, "<li><a href=\"{link}\">{name}</a> ({status})");
-        if let Some(thumb) = item["thumbnail"].as_str() {
-            let _ = write!(html, " <img src=\"{}\" alt=\"\" width=\"120\">", escape_html(thumb));
-        }
-        html.push_str("</li>");
+        let _ = write!(list, "<li>{name} ({status})</li>");
     }
-    html.push_str("</ul></body></html>");
+    list.push_str("</ul>");
     Ok((
         [
             (header::CONTENT_TYPE, "text/html; charset=utf-8"),
-            (header::CONTENT_SECURITY_POLICY, PAGE_CSP),
+            (header::CONTENT_SECURITY_POLICY, page_csp()),
+            (header::CACHE_CONTROL, "no-cache"),
         ],
-        html,
+        html.replacen(NOSCRIPT_MARK, &list, 1),
     )
         .into_response())
 }

@@ -1,0 +1,271 @@
+// The conversion area: upload, settings (a change re-cuts and keeps the view), progress, the six
+// 3D views, the sheets with their numbers, hover linking between 3D and sheet, the final view's
+// exploded slider and assembly player, publishing.
+
+import * as api from './api.js';
+import { createViewer } from './viewer.js';
+import { createSheets } from './sheets.js';
+import { assemblyOrder, cutLengthMm, laserMinutes, SPEED_3MM } from './assembly.js';
+import * as progress from './progress.js';
+
+const $ = (id) => document.getElementById(id);
+export const VIEWS = ['model', 'wireframe', 'coplanar', 'plates', 'bent', 'final'];
+const FINISHED = new Set(['done', 'failed', 'cancelled']);
+
+/** The settings form as the API takes them. */
+export function readSettings() {
+  const thicknesses = [...document.querySelectorAll('input[name="thickness"]:checked')].map((i) => Number(i.value));
+  const custom = Number($('thickness-custom').value);
+  if (custom > 0 && !thicknesses.includes(custom)) thicknesses.push(custom);
+  return { thicknesses: thicknesses.length ? thicknesses : [3], material: $('material').value, method: $('method').value };
+}
+
+function writeSettings(s) {
+  if (!s) return;
+  const ts = (s.thicknesses || []).map(Number);
+  const common = [];
+  for (const box of document.querySelectorAll('input[name="thickness"]')) {
+    box.checked = ts.includes(Number(box.value));
+    if (box.checked) common.push(Number(box.value));
+  }
+  const other = ts.find((t) => !common.includes(t));
+  $('thickness-custom').value = other === undefined ? '' : String(other);
+  if (s.material) $('material').value = s.material;
+  if (s.method) $('method').value = s.method;
+}
+
+export function createConversionArea({ state, onGalleryChange }) {
+  let viewer = null;
+  let current = null; // the conversion JSON
+  let plan = null;
+  let stopEvents = () => {};
+  let playTimer = null;
+  const listeners = new Set();
+  const sheets = createSheets($('sheets'), { onHover: (n) => hover(n, 'part', 'sheet') });
+
+  try {
+    viewer = createViewer($('viewer'), { onHover: (n, kind) => hover(n, kind, 'viewer'), stats: state });
+  } catch (e) {
+    $('viewer-note').textContent = 'This browser cannot show 3D (WebGL is off); the sheets and downloads still work.';
+  }
+
+  /** Hover from either side: label, and the same part on the other side. */
+  function hover(n, kind, from) {
+    state.hovered = n;
+    $('part-label').textContent = n == null ? '' : `${kind === 'plate' ? 'Plate' : 'Part'} ${n}`;
+    if (from === 'viewer') sheets.highlight(kind === 'part' ? n : null);
+    if (from === 'sheet' && viewer && state.view === 'final') viewer.highlight(n);
+  }
+
+  function setViewButtons() {
+    for (const b of document.querySelectorAll('[data-view]')) {
+      b.setAttribute('aria-pressed', String(b.dataset.view === state.view));
+      b.disabled = !(current && current.links && current.links.scenes && current.links.scenes[b.dataset.view]);
+    }
+    $('final-tools').hidden = state.view !== 'final' || !state.loadedView;
+  }
+
+  async function showView(view) {
+    state.view = view;
+    setViewButtons();
+    const url = current && current.links.scenes && current.links.scenes[view];
+    if (!viewer || !url) return;
+    state.loadedView = null;
+    hover(null, null, 'viewer');
+    try {
+      await viewer.load(url);
+      if (state.view !== view) return;
+      state.loadedView = view;
+      $('viewer-note').hidden = true;
+      if (view === 'final') setupFinal();
+      setViewButtons();
+      emit('view', view);
+    } catch (e) {
+      progress.showError(`The ${view} view could not be shown: ${e.message}`);
+    }
+  }
+
+  /** Exploded view and assembly player for the final view, from plan.json's joints. */
+  function setupFinal() {
+    $('explode').value = '0';
+    const parts = plan ? plan.parts.map((p) => p.id) : viewer.parts;
+    state.assembly = assemblyOrder(parts, plan ? plan.joints : []);
+    viewer.setOrder(state.assembly);
+    const player = $('player');
+    player.max = String(state.assembly.length);
+    player.value = String(state.assembly.length);
+    showParts(state.assembly.length);
+  }
+
+  function showParts(k) {
+    viewer.showUpTo(k);
+    $('player').value = String(k);
+    const total = state.assembly.length;
+    const last = state.assembly[k - 1];
+    $('player-out').textContent = k >= total ? `All ${total} parts` : `${k} of ${total} parts${last ? `: part ${last} joined` : ''}`;
+  }
+
+  function stopPlaying() {
+    clearInterval(playTimer);
+    playTimer = null;
+    $('player-play').textContent = 'Play assembly';
+  }
+
+  $('explode').addEventListener('input', (e) => viewer && viewer.explode(Number(e.target.value) / 100));
+  $('player').addEventListener('input', (e) => {
+    stopPlaying();
+    showParts(Number(e.target.value));
+  });
+  $('player-step').addEventListener('click', () => {
+    stopPlaying();
+    const k = Number($('player').value);
+    showParts(k >= state.assembly.length ? 1 : k + 1);
+  });
+  $('player-play').addEventListener('click', () => {
+    if (playTimer) return stopPlaying();
+    showParts(1);
+    $('player-play').textContent = 'Stop';
+    playTimer = setInterval(() => {
+      const k = Number($('player').value);
+      if (k >= state.assembly.length) return stopPlaying();
+      showParts(k + 1);
+    }, 700);
+  });
+  for (const b of document.querySelectorAll('[data-view]')) b.addEventListener('click', () => showView(b.dataset.view));
+  $('zoom-in').addEventListener('click', () => sheets.zoom(1.5));
+  $('zoom-out').addEventListener('click', () => sheets.zoom(1 / 1.5));
+  $('zoom-fit').addEventListener('click', () => sheets.zoom('fit'));
+
+  function emit(kind, data) {
+    for (const f of listeners) f(kind, data);
+  }
+
+  return {
+    get conversion() { return current; },
+    get plan() { return plan; },
+    get viewer() { return viewer; },
+    on(f) { listeners.add(f); },
+    writeSettings,
+    open: openConversion,
+    reset,
+  };
+
+  function reset() {
+    stopEvents();
+    stopPlaying();
+    current = null;
+    plan = null;
+    state.id = null;
+    state.status = null;
+    progress.clearProgress();
+    progress.status('No model yet.');
+    sheets.clear();
+    showStats(null, null);
+    setViewButtons();
+    $('download').disabled = true;
+    $('publish').hidden = true;
+    $('share').hidden = true;
+    $('warnings-box').hidden = true;
+  }
+
+  async function openConversion(id) {
+    reset();
+    state.id = id;
+    progress.status('Loading…');
+    try {
+      current = await api.conversion(id);
+    } catch (e) {
+      progress.status('');
+      progress.showError(e.message);
+      return;
+    }
+    writeSettings(current.settings);
+    state.status = current.status;
+    if (FINISHED.has(current.status)) return finished(current);
+    progress.status(`Converting ${current.model.name}…`);
+    stopEvents = api.events(id, (kind, data) => onEvent(id, kind, data));
+  }
+
+  function onEvent(id, kind, data) {
+    if (state.id !== id) return;
+    if (kind === 'step') progress.stepEvent(data);
+    else if (kind === 'method') progress.methodEvent(data);
+    else if (FINISHED.has(kind) || kind === 'lost') reload(id);
+  }
+
+  async function reload(id) {
+    try {
+      const c = await api.conversion(id);
+      if (state.id === id) await finished(c);
+    } catch (e) {
+      progress.showError(e.message);
+    }
+  }
+
+  async function finished(c) {
+    current = c;
+    state.status = c.status;
+    if (!document.querySelector('#progress li')) progress.finishedSteps(c);
+    else for (const m of c.methods || []) progress.methodEvent(m);
+    const err = progress.errorOf(c);
+    progress.showError(err);
+    showWarnings(progress.warningsOf(c));
+    progress.status(c.best ? `${c.model.name}: plan made by the ${c.best} method.` : `${c.model.name}: no plan.`);
+    setViewButtons();
+    if (!c.best) return emit('finished', c);
+    $('download').disabled = false;
+    const token = api.tokens.get(c.id);
+    $('publish').hidden = !token || c.published;
+    $('publish').disabled = false;
+    $('publish').textContent = 'Publish to gallery';
+    $('share').hidden = false;
+    $('share').href = `#/c/${encodeURIComponent(c.id)}`;
+    await Promise.all([loadPlanAndSheets(c), showView(state.view || 'final')]);
+    emit('finished', c);
+  }
+
+  function showWarnings(list) {
+    $('warnings').replaceChildren(...list.map((w) => Object.assign(document.createElement('li'), { textContent: w })));
+    $('warnings-title').textContent = `${list.length} warning${list.length === 1 ? '' : 's'}`;
+    $('warnings-box').hidden = list.length === 0;
+  }
+
+  async function loadPlanAndSheets(c) {
+    const links = c.links.methods[c.best] || {};
+    try {
+      [plan] = await Promise.all([api.getJson(links.plan_json), sheets.show(links.sheets || [])]);
+      showStats(c, plan);
+      if (state.loadedView === 'final') setupFinal();
+    } catch (e) {
+      progress.showError(`The sheets could not be shown: ${e.message}`);
+    }
+  }
+
+  function showStats(c, p) {
+    const m = c && (c.methods || []).find((x) => x.method === c.best);
+    const set = (k, v) => (document.querySelector(`#stats [data-stat="${k}"]`).textContent = v);
+    set('score', m && m.score != null ? Number(m.score).toFixed(2) : '–');
+    set('parts', m ? String(m.parts) : '–');
+    set('sheets', m ? String(m.sheets) : '–');
+    const material = (p && p.settings && p.settings.material) || (c && c.settings.material) || 'wood';
+    set('cut', p ? `${(cutLengthMm(p) / 1000).toFixed(2)} m` : '–');
+    set('minutes', p ? `≈ ${laserMinutes(p, material).toFixed(1)} min` : '–');
+    $('speed-note').textContent = p
+      ? `Laser time assumes a 40 W CO₂ laser cutting 3 mm ${material} at ${SPEED_3MM[material] || SPEED_3MM.wood} mm/s (slower in proportion for thicker sheets), without travel and engraving.`
+      : '';
+  }
+}
+
+/** Uploads a file and returns the new conversion (its delete token kept in localStorage). */
+export async function uploadModel(file) {
+  const c = await api.upload(file, readSettings());
+  if (c.delete_token) api.tokens.set(c.id, c.delete_token);
+  return c;
+}
+
+/** Re-cuts conversion `id` with `changes`; the new conversion's token is kept too. */
+export async function recutModel(id, changes) {
+  const c = await api.recut(id, changes);
+  if (c.delete_token) api.tokens.set(c.id, c.delete_token);
+  return c;
+}

@@ -1,0 +1,130 @@
+// The SVG sheets, inlined (not <img>) so parts can be hovered: each sheet is fetched, parsed
+// with DOMParser as SVG, stripped of anything active (scripts, foreignObject, event handler
+// attributes, links), and imported. Each part's group `<g id="part-N">` becomes
+// data-testid="sheet-part" data-part="N".
+
+import { getText } from './api.js';
+
+const SVG_NS = 'http://www.w3.org/2000/svg';
+const DROP = new Set(['script', 'foreignobject', 'iframe', 'object', 'embed', 'a', 'use', 'image', 'animate', 'set', 'style', 'animatemotion', 'animatetransform', 'handler', 'listener']);
+
+/** Removes everything that could run or load something; returns the cleaned <svg>. */
+export function sanitizeSvg(root) {
+  const walk = (el) => {
+    for (const child of [...el.children]) {
+      if (DROP.has(child.localName.toLowerCase()) || child.namespaceURI !== SVG_NS) {
+        child.remove();
+        continue;
+      }
+      walk(child);
+    }
+    for (const attr of [...el.attributes]) {
+      const name = attr.name.toLowerCase();
+      const value = attr.value.replace(/\s+/g, '').toLowerCase();
+      if (name.startsWith('on') || name === 'style' || name.endsWith('href') || value.startsWith('javascript:') || value.includes('url(')) {
+        el.removeAttribute(attr.name);
+      }
+    }
+  };
+  walk(root);
+  return root;
+}
+
+/** Parses SVG text into a clean element for this document; throws on anything else. */
+export function parseSvg(text) {
+  const doc = new DOMParser().parseFromString(text, 'image/svg+xml');
+  const root = doc.documentElement;
+  if (!root || root.localName !== 'svg' || root.namespaceURI !== SVG_NS || doc.querySelector('parsererror')) {
+    throw new Error('A sheet is not a valid SVG file.');
+  }
+  return document.importNode(sanitizeSvg(root), true);
+}
+
+/**
+ * The sheets panel: `show(urls)` replaces its content, `highlight(n)` marks part n on every
+ * sheet, `zoom(factor | 'fit')`; `onHover(n|null)` is called as parts are hovered or focused.
+ */
+export function createSheets(container, { onHover = () => {} } = {}) {
+  let zoom = 1;
+  let current = null;
+
+  function applyZoom() {
+    for (const svg of container.querySelectorAll('svg')) svg.style.width = `${Math.round(zoom * 100)}%`;
+  }
+
+  function decorate(svg, sheetNumber) {
+    svg.removeAttribute('width');
+    svg.removeAttribute('height');
+    svg.setAttribute('role', 'img');
+    svg.setAttribute('aria-label', `Sheet ${sheetNumber}`);
+    svg.classList.add('sheet');
+    for (const g of svg.querySelectorAll('g[id^="part-"]')) {
+      const n = Number(g.id.slice(5));
+      if (!Number.isInteger(n)) continue;
+      g.dataset.testid = 'sheet-part';
+      g.dataset.part = String(n);
+      g.setAttribute('tabindex', '0');
+      g.setAttribute('aria-label', `Part ${n}`);
+      g.setAttribute('role', 'button');
+    }
+  }
+
+  async function show(urls) {
+    const texts = await Promise.all(urls.map((u) => getText(u)));
+    container.replaceChildren();
+    texts.forEach((text, i) => {
+      const figure = document.createElement('figure');
+      const svg = parseSvg(text);
+      decorate(svg, i + 1);
+      const caption = document.createElement('figcaption');
+      caption.textContent = `Sheet ${i + 1}`;
+      figure.append(svg, caption);
+      container.append(figure);
+    });
+    applyZoom();
+    current = null;
+  }
+
+  function highlight(n) {
+    current = n;
+    for (const g of container.querySelectorAll('[data-part].hot')) g.classList.remove('hot');
+    if (n === null || n === undefined) return;
+    for (const g of container.querySelectorAll(`[data-part="${Number(n)}"]`)) g.classList.add('hot');
+  }
+
+  const partOf = (target) => (target instanceof Element ? target.closest('[data-part]') : null);
+  const enter = (e) => {
+    const g = partOf(e.target);
+    const n = g ? Number(g.dataset.part) : null;
+    if (n !== current) {
+      highlight(n);
+      onHover(n);
+    }
+  };
+  container.addEventListener('pointerover', enter);
+  container.addEventListener('focusin', enter);
+  container.addEventListener('pointerleave', () => {
+    highlight(null);
+    onHover(null);
+  });
+  container.addEventListener('focusout', (e) => {
+    if (!container.contains(e.relatedTarget)) {
+      highlight(null);
+      onHover(null);
+    }
+  });
+
+  return {
+    show,
+    highlight,
+    clear() {
+      container.replaceChildren();
+      current = null;
+    },
+    zoom(f) {
+      zoom = f === 'fit' ? 1 : Math.min(8, Math.max(0.25, zoom * f));
+      applyZoom();
+      return zoom;
+    },
+  };
+}

@@ -1,0 +1,304 @@
+// The 3D viewer: one GLB scene at a time (the API's scenes follow plan-format.md's conventions:
+// millimetres under a root that scales to metres and turns Z-up into Y-up), orbit controls, a
+// millimetre grid and axes under the model, hover picking of numbered nodes (`part-N` in the
+// final view, `plate-N` in the plates and bent views), an exploded view and an assembly player.
+// It renders on demand (on a change, not 60 times a second), so an idle page costs nothing.
+
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { getBuffer } from './api.js';
+
+/** Names of pickable nodes and the number they carry. */
+const NODE = /^(part|plate)-(\d+)$/;
+const HIGHLIGHT = new THREE.Color(0xff7a00);
+const MM = 0.001;
+
+/** The numbered node an object belongs to, with its kind and number; null if none. */
+function numbered(object) {
+  for (let o = object; o; o = o.parent) {
+    const m = NODE.exec(o.name || '');
+    if (m) return { node: o, kind: m[1], number: Number(m[2]) };
+  }
+  return null;
+}
+
+/** Grid cell (1, 10 or 100 mm) that keeps a grid of `extentMm` under ~100 lines. */
+export function gridCellMm(extentMm) {
+  if (extentMm <= 100) return 1;
+  if (extentMm <= 1000) return 10;
+  return 100;
+}
+
+function disposeTree(root) {
+  root.traverse((o) => {
+    if (o.geometry) o.geometry.dispose();
+    const mats = Array.isArray(o.material) ? o.material : o.material ? [o.material] : [];
+    mats.forEach((m) => m.dispose());
+  });
+}
+
+/**
+ * createViewer(canvas, { onHover(number|null, kind) }) → the viewer API of the page's contract:
+ * load, setRender, highlight, explode, showUpTo, setOrder, frame, dispose, and `stats`
+ * (frames rendered, lastFrameMs: how long the last frame took).
+ */
+export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, lastFrameMs: 0 } } = {}) {
+  const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+  renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(0xf4f5f7);
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x8a8f99, 2.2));
+  const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+  sun.position.set(1, 2, 1.5);
+  scene.add(sun);
+  const camera = new THREE.PerspectiveCamera(40, 1, 0.0005, 100);
+  camera.position.set(0.3, 0.25, 0.3);
+  const controls = new OrbitControls(camera, canvas);
+  controls.enableDamping = false;
+  const helpers = new THREE.Group();
+  scene.add(helpers);
+
+  const state = {
+    model: null,
+    nodes: new Map(), // number → { node, kind, home: Vector3, dir: Vector3 }
+    order: [],
+    shown: Infinity,
+    exploded: 0,
+    highlighted: null,
+    render: 'solid',
+    size: 0.1,
+    pending: false,
+    disposed: false,
+  };
+
+  function requestRender() {
+    if (state.pending || state.disposed) return;
+    state.pending = true;
+    requestAnimationFrame(() => {
+      state.pending = false;
+      const t0 = performance.now();
+      renderer.render(scene, camera);
+      stats.lastFrameMs = performance.now() - t0;
+      stats.frames += 1;
+    });
+  }
+  controls.addEventListener('change', requestRender);
+
+  function resize() {
+    const w = canvas.clientWidth || 1;
+    const h = canvas.clientHeight || 1;
+    renderer.setSize(w, h, false);
+    camera.aspect = w / h;
+    camera.updateProjectionMatrix();
+    requestRender();
+  }
+  const observer = new ResizeObserver(resize);
+  observer.observe(canvas);
+
+  /** Rebuilds the grid and axes under the model's bounding box. */
+  function placeHelpers(box) {
+    disposeTree(helpers);
+    helpers.clear();
+    const size = box.getSize(new THREE.Vector3());
+    const extentMm = Math.max(size.x, size.z, 0.01) / MM;
+    const cell = gridCellMm(extentMm);
+    const cells = Math.max(2, Math.ceil((extentMm * 1.4) / cell / 2) * 2);
+    const grid = new THREE.GridHelper(cells * cell * MM, cells, 0x9aa3af, 0xd5d9df);
+    const centre = box.getCenter(new THREE.Vector3());
+    grid.position.set(centre.x, box.min.y, centre.z);
+    const axes = new THREE.AxesHelper(Math.max(size.x, size.y, size.z) * 0.6);
+    axes.position.set(box.min.x, box.min.y, box.min.z);
+    helpers.add(grid, axes);
+    helpers.userData.cellMm = cell;
+  }
+
+  /** Numbered nodes get their own materials (so one can light up) and explode directions. */
+  function indexNodes(root, centre) {
+    state.nodes.clear();
+    root.traverse((o) => {
+      if (o.isMesh) o.material = o.material.clone();
+      const m = NODE.exec(o.name || '');
+      if (!m || state.nodes.has(Number(m[2]))) return;
+      const c = new THREE.Box3().setFromObject(o).getCenter(new THREE.Vector3());
+      const dir = c.sub(centre);
+      if (dir.lengthSq() < 1e-12) dir.set(0, 1, 0);
+      state.nodes.set(Number(m[2]), { node: o, kind: m[1], home: o.position.clone(), dir: dir.normalize() });
+    });
+    state.order = [...state.nodes.keys()].sort((a, b) => a - b);
+  }
+
+  async function load(url) {
+    const buffer = await getBuffer(url);
+    const gltf = await new Promise((resolve, reject) => {
+      new GLTFLoader().parse(buffer, '', resolve, (e) => reject(new Error(`The 3D scene cannot be read: ${e.message || e}`)));
+    });
+    if (state.model) {
+      scene.remove(state.model);
+      disposeTree(state.model);
+    }
+    state.model = gltf.scene;
+    scene.add(state.model);
+    state.model.updateMatrixWorld(true);
+    const box = new THREE.Box3().setFromObject(state.model);
+    if (box.isEmpty()) box.set(new THREE.Vector3(-0.05, 0, -0.05), new THREE.Vector3(0.05, 0.1, 0.05));
+    state.size = box.getSize(new THREE.Vector3()).length();
+    indexNodes(state.model, box.getCenter(new THREE.Vector3()));
+    placeHelpers(box);
+    state.highlighted = null;
+    state.exploded = 0;
+    state.shown = Infinity;
+    setRender(state.render);
+    frame();
+    return { parts: state.nodes.size };
+  }
+
+  function materials(o) {
+    return Array.isArray(o.material) ? o.material : o.material ? [o.material] : [];
+  }
+
+  function highlight(number) {
+    const paint = (n, on) => {
+      const entry = state.nodes.get(n);
+      if (!entry) return;
+      entry.node.traverse((o) => {
+        for (const m of materials(o)) if (m.emissive) m.emissive.copy(on ? HIGHLIGHT : new THREE.Color(0));
+      });
+    };
+    if (state.highlighted !== null) paint(state.highlighted, false);
+    state.highlighted = state.nodes.has(number) ? number : null;
+    if (state.highlighted !== null) paint(state.highlighted, true);
+    requestRender();
+  }
+
+  /** 'solid' | 'wireframe' | 'hidden' | 'vertices'. */
+  function setRender(mode) {
+    state.render = mode;
+    if (!state.model) return;
+    state.model.visible = mode !== 'hidden';
+    state.model.traverse((o) => {
+      if (o.userData.vertexCloud) {
+        o.visible = mode === 'vertices';
+        return;
+      }
+      if (!o.isMesh) return;
+      for (const m of materials(o)) m.wireframe = mode === 'wireframe';
+      o.material.visible = mode !== 'vertices';
+      if (mode === 'vertices' && !o.userData.points) {
+        const points = new THREE.Points(o.geometry, new THREE.PointsMaterial({ color: 0x1f2937, size: 3, sizeAttenuation: false }));
+        points.userData.vertexCloud = true;
+        o.userData.points = points;
+        o.add(points);
+      }
+    });
+    requestRender();
+  }
+
+  /** Moves every numbered node out from the centre by t (0..1) of the model's size. */
+  function explode(t) {
+    state.exploded = Math.max(0, Math.min(1, Number(t) || 0));
+    for (const { node, home, dir } of state.nodes.values()) {
+      const parent = node.parent;
+      const world = parent.localToWorld(home.clone()).addScaledVector(dir, state.exploded * state.size * 0.6);
+      node.position.copy(parent.worldToLocal(world));
+    }
+    requestRender();
+  }
+
+  /** The assembly order for showUpTo (numbers); unknown numbers are ignored. */
+  function setOrder(numbers) {
+    const known = numbers.filter((n) => state.nodes.has(n));
+    const rest = [...state.nodes.keys()].filter((n) => !known.includes(n)).sort((a, b) => a - b);
+    state.order = known.concat(rest);
+  }
+
+  /** Shows the first k parts of the assembly order (Infinity: all). */
+  function showUpTo(k) {
+    state.shown = k;
+    state.order.forEach((n, i) => {
+      state.nodes.get(n).node.visible = i < k;
+    });
+    requestRender();
+  }
+
+  function frame() {
+    if (!state.model) return;
+    const box = new THREE.Box3().setFromObject(state.model);
+    if (box.isEmpty()) return;
+    const centre = box.getCenter(new THREE.Vector3());
+    const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 0.005);
+    const distance = radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.05;
+    const dir = new THREE.Vector3(1, 0.8, 1.2).normalize();
+    camera.near = distance / 100;
+    camera.far = distance * 100;
+    camera.position.copy(centre).addScaledVector(dir, distance);
+    camera.updateProjectionMatrix();
+    controls.target.copy(centre);
+    controls.update();
+    requestRender();
+  }
+
+  // Hover picking: the nearest numbered node under the pointer.
+  const ray = new THREE.Raycaster();
+  const pointer = new THREE.Vector2();
+  let hovered = null;
+  function setHovered(hit) {
+    const n = hit ? hit.number : null;
+    if (n === hovered) return;
+    hovered = n;
+    highlight(n);
+    onHover(n, hit ? hit.kind : null);
+  }
+  function pick(event) {
+    if (!state.model || state.nodes.size === 0 || event.buttons) return;
+    const r = canvas.getBoundingClientRect();
+    pointer.set(((event.clientX - r.left) / r.width) * 2 - 1, -((event.clientY - r.top) / r.height) * 2 + 1);
+    ray.setFromCamera(pointer, camera);
+    const hits = ray.intersectObject(state.model, true).filter((h) => h.object.isMesh && h.object.visible);
+    setHovered(hits.length ? numbered(hits[0].object) : null);
+  }
+  canvas.addEventListener('pointermove', pick);
+  canvas.addEventListener('pointerleave', () => setHovered(null));
+
+  // Keyboard: arrows turn, + and - zoom, f or Home frames the model.
+  canvas.addEventListener('keydown', (e) => {
+    const offset = camera.position.clone().sub(controls.target);
+    const s = new THREE.Spherical().setFromVector3(offset);
+    const step = Math.PI / 24;
+    const keys = {
+      ArrowLeft: () => (s.theta -= step),
+      ArrowRight: () => (s.theta += step),
+      ArrowUp: () => (s.phi = Math.max(0.05, s.phi - step)),
+      ArrowDown: () => (s.phi = Math.min(Math.PI - 0.05, s.phi + step)),
+      '+': () => (s.radius *= 0.85),
+      '=': () => (s.radius *= 0.85),
+      '-': () => (s.radius /= 0.85),
+    };
+    if (e.key === 'f' || e.key === 'Home') {
+      frame();
+    } else if (keys[e.key]) {
+      keys[e.key]();
+      camera.position.copy(controls.target).add(new THREE.Vector3().setFromSpherical(s));
+      controls.update();
+    } else {
+      return;
+    }
+    e.preventDefault();
+  });
+
+  function dispose() {
+    state.disposed = true;
+    observer.disconnect();
+    controls.dispose();
+    if (state.model) disposeTree(state.model);
+    disposeTree(helpers);
+    renderer.dispose();
+  }
+
+  resize();
+  return {
+    load, setRender, highlight, explode, showUpTo, setOrder, frame, dispose, stats,
+    get parts() { return [...state.nodes.keys()]; },
+    get gridCellMm() { return helpers.userData.cellMm || null; },
+  };
+}
