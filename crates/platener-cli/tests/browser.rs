@@ -54,7 +54,12 @@ impl Rig {
 }
 
 fn example(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name)
+    // Canonical: Chromium refuses to read an upload through a path with `..` in it.
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name)
+        .canonicalize()
+        .expect("the example exists")
 }
 
 fn tid(id: &str) -> String {
@@ -119,37 +124,59 @@ fn canvas_pixels(page: &Page, shot: &str) -> Image {
     Image::from_png(&page.screenshot(shot, Some(rect)))
 }
 
+/// The share of the canvas in the scenes' grey.
+fn grey_share(img: &Image) -> f64 {
+    img.pixels().filter(|p| is_scene_grey(*p)).count() as f64 / f64::from(img.width * img.height)
+}
+
+/// The share of the canvas in saturated colours, and how many 30° hue bins hold more than
+/// 200 pixels (several plates in their own palette colours).
+fn palette_share(img: &Image) -> (f64, usize) {
+    let mut bins = std::collections::BTreeMap::new();
+    for h in img.pixels().filter_map(hue) {
+        *bins.entry((h / 30.0) as u32).or_insert(0usize) += 1;
+    }
+    let coloured: usize = bins.values().sum();
+    let hues = bins.values().filter(|&&n| n > 200).count();
+    (coloured as f64 / f64::from(img.width * img.height), hues)
+}
+
 /// A view's pixels hold its model: not blank, and the view's colours. `model` and
 /// `wireframe` draw the mesh in the scene's grey; the others in palette colours, several.
 fn assert_view_rendered(view: &str, img: &Image) {
-    let bg = img.background();
-    let drawn = img.share_unlike(bg, 8);
+    let drawn = img.share_unlike(img.background(), 8);
     assert!(
         drawn > 0.02,
         "{view}: only {:.2} % of the canvas differs from its background",
         drawn * 100.0
     );
     if matches!(view, "model" | "wireframe") {
-        let grey = img
-            .pixels()
-            .filter(|p| p != &bg && p.iter().max().unwrap_or(&0) - p.iter().min().unwrap_or(&0) <= 6 && p[0] < 235)
-            .count() as f64
-            / f64::from(img.width * img.height);
+        let grey = grey_share(img);
         assert!(grey > 0.01, "{view}: the model's grey covers {:.2} %", grey * 100.0);
     } else {
-        let mut bins = std::collections::BTreeMap::new();
-        for h in img.pixels().filter_map(hue) {
-            *bins.entry((h / 30.0) as u32).or_insert(0usize) += 1;
-        }
-        let coloured: usize = bins.values().sum();
-        let share = coloured as f64 / f64::from(img.width * img.height);
-        let hues = bins.values().filter(|&&n| n > 200).count();
+        let (share, hues) = palette_share(img);
         assert!(
             share > 0.02 && hues >= 2,
             "{view}: palette colours {:.2} % in {hues} hues",
             share * 100.0
         );
     }
+}
+
+/// The same checks fail on the viewer before any model is loaded (so they can fail).
+fn assert_viewer_empty(img: &Image) {
+    let (share, _) = palette_share(img);
+    assert!(grey_share(img) < 0.01 && share < 0.02, "the empty viewer looks drawn");
+}
+
+/// A pixel of the scenes' grey (#BBBBBB) as lit: neutral, and darker than anything the
+/// bluish grid blends to with the background, so a canvas with only the grid has none.
+fn is_scene_grey(p: [u8; 3]) -> bool {
+    let (max, min) = (
+        p.iter().max().copied().unwrap_or(0),
+        p.iter().min().copied().unwrap_or(0),
+    );
+    max - min <= 4 && max < 216 && min > 40
 }
 
 /// Moves the mouse over the canvas on a grid until a part is hovered; its number.
@@ -182,6 +209,7 @@ fn upload_button_progress_six_views_hover_and_settings_recut() {
     };
     let page = rig.open("/");
     page.screenshot("01-landing", None);
+    assert_viewer_empty(&canvas_pixels(&page, "01-viewer-empty"));
     upload_by_button(&page, &example("box-3mm.stl"));
     let id = wait_converted(&page, None);
     assert_progress(&page, &conversion(&rig, &id));
@@ -400,16 +428,19 @@ fn gallery_hover_view_and_download() {
     );
     let id = items[0]["id"].as_str().expect("id").to_string();
     let card = format!("[data-testid=gallery-item][data-id=\"{id}\"]");
-    let (x, y) = page.rect(&card).center();
-    page.mouse_move(x, y);
     let view = format!("{card} [data-testid=gallery-view]");
-    page.wait_until(
-        &format!(
-            "(() => {{ const v = document.querySelector('{view}'); const s = getComputedStyle(v); \
-                  return s.visibility !== 'hidden' && s.opacity > 0.5 && v.getBoundingClientRect().width > 0; }})()"
-        ),
-        "the View button shows on hover",
+    let shown = format!(
+        "(() => {{ const v = document.querySelector('{view}'); const s = getComputedStyle(v.parentElement); \
+         return s.visibility !== 'hidden' && Number(s.opacity) > 0.9 && v.getBoundingClientRect().width > 0; }})()"
     );
+    let (x, y) = page.rect(&card).center();
+    assert_eq!(
+        page.eval(&shown),
+        Value::Bool(false),
+        "the View button is hidden until hovered"
+    );
+    page.mouse_move(x, y);
+    page.wait_until(&shown, "the View button shows on hover");
     page.screenshot("20-gallery-hover", None);
 
     page.click(&view);

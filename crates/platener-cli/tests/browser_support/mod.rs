@@ -10,6 +10,7 @@ pub mod pixels;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use base64::Engine as _;
 use serde_json::{Value, json};
 
 use cdp::Cdp;
@@ -71,6 +72,9 @@ impl Browser {
             "--mute-audio",
             "--hide-scrollbars",
             "--window-size=1280,720",
+            // Headless Chromium reports `(hover: none)` and no pointer; a desktop has a mouse
+            // (hover 2 = hover, pointer 4 = fine), so hover-only styles apply as for people.
+            "--blink-settings=primaryHoverType=2,availableHoverTypes=2,primaryPointerType=4,availablePointerTypes=4",
             "--remote-debugging-pipe",
         ]
         .iter()
@@ -202,10 +206,16 @@ impl Page<'_> {
     }
 
     /// Polls `js` every 50 ms until it is truthy; its value. Fails with `what`, the page's
-    /// state and its problems after `PATIENCE`.
+    /// state and its problems after `PATIENCE`, or at once when the page has a problem.
     pub fn wait_until(&self, js: &str, what: &str) -> Value {
         let start = Instant::now();
         loop {
+            let problems = self.problems();
+            assert!(
+                problems.is_empty(),
+                "while waiting for {what}: {problems:#?}; state {}",
+                self.state()
+            );
             let v = self.eval(js);
             if !matches!(v, Value::Null | Value::Bool(false)) && v != json!(0) && v != json!("") {
                 return v;
@@ -349,10 +359,15 @@ impl Page<'_> {
     pub fn screenshot(&self, name: &str, clip: Option<Rect>) -> Vec<u8> {
         let mut params = json!({ "format": "png", "captureBeyondViewport": false });
         if let Some(c) = clip {
-            params["clip"] = json!({ "x": c.x, "y": c.y, "width": c.width, "height": c.height, "scale": 1 });
+            // The clip is in document coordinates, the rectangle in the viewport's.
+            let scroll = self.eval("[window.scrollX, window.scrollY]");
+            let (sx, sy) = (scroll[0].as_f64().unwrap_or(0.0), scroll[1].as_f64().unwrap_or(0.0));
+            params["clip"] = json!({ "x": c.x + sx, "y": c.y + sy, "width": c.width, "height": c.height, "scale": 1 });
         }
         let r = self.call("Page.captureScreenshot", params);
-        let png = base64_decode(r["data"].as_str().expect("data"));
+        let png = base64::engine::general_purpose::STANDARD
+            .decode(r["data"].as_str().expect("data"))
+            .expect("base64");
         let dir = shots_dir();
         std::fs::create_dir_all(&dir).expect("shots dir");
         std::fs::write(dir.join(format!("{name}.png")), &png).expect("write screenshot");
@@ -414,27 +429,4 @@ fn problem(e: &Value) -> Option<String> {
         }
         _ => None,
     }
-}
-
-/// Standard base64 (the protocol's screenshots), without a crate for it.
-pub fn base64_decode(s: &str) -> Vec<u8> {
-    let value = |c: u8| match c {
-        b'A'..=b'Z' => Some(c - b'A'),
-        b'a'..=b'z' => Some(c - b'a' + 26),
-        b'0'..=b'9' => Some(c - b'0' + 52),
-        b'+' => Some(62),
-        b'/' => Some(63),
-        _ => None,
-    };
-    let mut out = Vec::with_capacity(s.len() * 3 / 4);
-    let (mut acc, mut bits) = (0u32, 0u32);
-    for v in s.bytes().filter_map(value) {
-        acc = (acc << 6) | u32::from(v);
-        bits += 6;
-        if bits >= 8 {
-            bits -= 8;
-            out.push((acc >> bits) as u8);
-        }
-    }
-    out
 }
