@@ -24,7 +24,7 @@ const VIEWS: [&str; 6] = ["model", "wireframe", "coplanar", "plates", "bent", "f
 struct Rig {
     browser: Browser,
     server: Server,
-    _data: tempfile::TempDir,
+    data: tempfile::TempDir,
 }
 
 impl Rig {
@@ -34,11 +34,7 @@ impl Rig {
         let data = tempfile::tempdir().expect("temp dir");
         let server = Server::start(data.path(), server_args, &[]);
         let browser = Browser::launch(&chromium);
-        Some(Rig {
-            browser,
-            server,
-            _data: data,
-        })
+        Some(Rig { browser, server, data })
     }
 
     fn url(&self, path: &str) -> String {
@@ -202,17 +198,60 @@ fn conversion(rig: &Rig, id: &str) -> Value {
     r.json()
 }
 
+/// A worker process of the test's own on the server's SQLite database, killed when dropped:
+/// started only once the page listens, so the page sees every step's event as it happens.
+struct Worker(std::process::Child);
+
+impl Worker {
+    fn start(data: &Path) -> Worker {
+        let url = format!("sqlite://{}", data.join("platener.sqlite").display());
+        let child = std::process::Command::new(env!("CARGO_BIN_EXE_platener"))
+            .args(["worker", "--database", &url, "--memory-mb", "0"])
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .expect("platener worker starts");
+        Worker(child)
+    }
+}
+
+impl Drop for Worker {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+/// Records every (step, state) the progress list shows, as it changes.
+const WATCH_PROGRESS: &str = "(() => { window.__progress = []; const list = document.querySelector('[data-testid=progress]'); \
+    new MutationObserver(() => { for (const li of list.querySelectorAll('[data-step]')) { \
+      const k = li.dataset.step + ':' + li.dataset.state; if (!window.__progress.includes(k)) window.__progress.push(k); } }) \
+    .observe(list, { subtree: true, childList: true, attributes: true, characterData: true }); })()";
+
 #[test]
 fn upload_button_progress_six_views_hover_and_settings_recut() {
-    let Some(rig) = Rig::start(&["--workers", "1", "--no-examples"]) else {
+    let Some(rig) = Rig::start(&["--workers", "0", "--no-examples"]) else {
         return;
     };
     let page = rig.open("/");
     page.screenshot("01-landing", None);
     assert_viewer_empty(&canvas_pixels(&page, "01-viewer-empty"));
+    page.eval(WATCH_PROGRESS);
     upload_by_button(&page, &example("box-3mm.stl"));
+    page.wait_until(
+        "window.platener.state.id && window.platener.state.status === 'queued'",
+        "the upload, queued",
+    );
+    page.screenshot("02-box-queued", None);
+    let _worker = Worker::start(rig.data.path());
     let id = wait_converted(&page, None);
     assert_progress(&page, &conversion(&rig, &id));
+    let seen = page.eval("window.__progress");
+    for k in ["read:started", "read:finished"] {
+        assert!(
+            seen.as_array().is_some_and(|a| a.iter().any(|x| x == k)),
+            "{k} never shown live: {seen}"
+        );
+    }
     page.screenshot("02-box-converted", None);
 
     for view in VIEWS {
