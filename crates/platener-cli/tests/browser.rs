@@ -375,8 +375,19 @@ fn drop_keyboard_download_dialog_test_strip_and_zip() {
     };
     let page = rig.open("/");
     let tray = example("tray-3mm.stl");
-    page.drop_file("body", &tray);
+    page.drag_over("body", &tray);
+    page.wait_until(
+        "!document.querySelector('[data-testid=drop-zone]').hidden && \
+         document.querySelector('[data-testid=drop-zone]').getBoundingClientRect().width > 600",
+        "the drop overlay while a file is dragged over the page",
+    );
+    page.screenshot("09-dragging-tray", None);
+    page.drop("body");
     let id = wait_converted(&page, None);
+    assert_eq!(
+        page.eval("document.querySelector('[data-testid=drop-zone]').hidden"),
+        Value::Bool(true)
+    );
     assert_eq!(conversion(&rig, &id)["model"]["name"], "tray-3mm.stl");
     settle(&page);
     page.screenshot("10-dropped-tray", None);

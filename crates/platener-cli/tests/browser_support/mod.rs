@@ -335,24 +335,31 @@ impl Page<'_> {
         );
     }
 
-    /// Drops a file on the element as a person dragging it from the desktop would: the file
-    /// is read from disk into a scratch `<input>` (never into JS source), then dragenter,
-    /// dragover and drop carry it in a `DataTransfer`.
-    pub fn drop_file(&self, selector: &str, file: &Path) {
+    /// Drags a file over the element as a person dragging it from the desktop would: the
+    /// file is read from disk by a scratch `<input>` (never into JS source) into a
+    /// `DataTransfer`, which dragenter and dragover carry; `drop` lets go of it.
+    pub fn drag_over(&self, selector: &str, file: &Path) {
         self.eval(
             "(() => { const i = document.createElement('input'); i.type = 'file'; i.id = '__drop_source'; \
              i.hidden = true; document.body.append(i); })()",
         );
         self.set_files("#__drop_source", &[file]);
-        let sel = serde_json::to_string(selector).expect("json");
         self.eval(&format!(
-            "(() => {{ const src = document.getElementById('__drop_source'); const dt = new DataTransfer(); \
-             dt.items.add(src.files[0]); src.remove(); \
-             const target = document.querySelector({sel}) || document.body; \
-             for (const type of ['dragenter', 'dragover', 'drop']) {{ \
-               const ev = new DragEvent(type, {{ bubbles: true, cancelable: true, dataTransfer: dt }}); \
-               target.dispatchEvent(ev); }} }})()"
+            "(() => {{ const src = document.getElementById('__drop_source'); window.__dragged = new DataTransfer(); \
+             window.__dragged.items.add(src.files[0]); src.remove(); {} }})()",
+            drag_events(selector, &["dragenter", "dragover"])
         ));
+    }
+
+    /// Drops what `drag_over` dragged onto the element.
+    pub fn drop(&self, selector: &str) {
+        self.eval(&format!("(() => {{ {} }})()", drag_events(selector, &["drop"])));
+    }
+
+    /// `drag_over` then `drop`.
+    pub fn drop_file(&self, selector: &str, file: &Path) {
+        self.drag_over(selector, file);
+        self.drop(selector);
     }
 
     /// A PNG screenshot of the viewport (or a clip of it) saved as `shots_dir()/name.png`.
@@ -392,6 +399,17 @@ impl Page<'_> {
         let p = self.problems();
         assert!(p.is_empty(), "{when}: {p:#?}");
     }
+}
+
+/// JS dispatching drag events of `window.__dragged` on the element (or the body).
+fn drag_events(selector: &str, kinds: &[&str]) -> String {
+    let sel = serde_json::to_string(selector).expect("json");
+    let kinds = serde_json::to_string(kinds).expect("json");
+    format!(
+        "const target = document.querySelector({sel}) || document.body; \
+         for (const type of {kinds}) target.dispatchEvent(new DragEvent(type, \
+           {{ bubbles: true, cancelable: true, dataTransfer: window.__dragged }}));"
+    )
 }
 
 /// One event as a problem, if it is one.
