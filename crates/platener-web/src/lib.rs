@@ -4,7 +4,8 @@
 //! - [`db`]: jobs, events and results in SQLite (default) or PostgreSQL.
 //! - [`worker`]: the worker process's loop: claim a job, run [`platener::convert_all`], store.
 //! - [`server`]: the axum server, its worker processes, the gallery's examples.
-//! - [`results`]: what a worker stores of a conversion (summary, ZIP, sheets, scenes).
+//! - [`results`]: what a worker stores of a conversion (summary, ZIP, sheets, scenes);
+//!   [`debug`]: every step's snapshot for the debug view, when asked for.
 //! - [`settings`], [`sniff`], [`ids`]: upload settings, formats by content, random ids and
 //!   hashed delete tokens.
 //!
@@ -12,6 +13,7 @@
 //! [`worker::run`] and does nothing else.
 
 pub mod db;
+pub mod debug;
 pub mod ids;
 pub mod results;
 pub mod server;

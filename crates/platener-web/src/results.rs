@@ -22,12 +22,17 @@ pub const PNG: &str = "image/png";
 pub const GLB: &str = "model/gltf-binary";
 
 /// How a finished conversion is recorded: `done` when a method converted, else `failed` with
-/// the first method's error (the reader's message for an unreadable model).
-pub fn finished(all: &Conversions) -> Finished {
+/// the first method's error (the reader's message for an unreadable model). With `debug`, the
+/// debug view's snapshots are stored too ([`crate::debug`]), also for a failed conversion:
+/// the steps that ran are what one debugs.
+pub fn finished(all: &Conversions, debug: bool) -> Finished {
     let summary = summary(all);
     let mut files = Vec::new();
     for m in &all.methods {
         files.extend(method_files(m));
+    }
+    if debug {
+        files.extend(crate::debug::files(all));
     }
     let (status, error) = match all.best {
         Some(_) => ("done", None),

@@ -7,7 +7,7 @@
 use platener::joints::JointStyle;
 use platener::method::MethodKind;
 use platener::plan::{Material, SheetSize};
-use platener::{Settings, Units};
+use platener::{Features, PlateMode, Settings, Units, Weld};
 use serde::{Deserialize, Serialize};
 
 /// The settings of one conversion, as in the conversion's `settings` field.
@@ -31,6 +31,15 @@ pub struct JobSettings {
     pub units: String,
     /// Scale factor after the unit.
     pub scale: f64,
+    /// Weld distance in mm; `None`: automatic, 0: exact duplicates only (the debug view's
+    /// slider).
+    pub weld: Option<f64>,
+    /// `all` (inherent and extruded plates) or `inherent` (inherent plates only).
+    pub plates: String,
+    /// One-sided features of plates: engrave, cut or ignore.
+    pub features: String,
+    /// Store every step's snapshot for the debug view (`/#/debug`).
+    pub debug: bool,
 }
 
 impl Default for JobSettings {
@@ -44,6 +53,10 @@ impl Default for JobSettings {
             joint: "auto".into(),
             units: "mm".into(),
             scale: 1.0,
+            weld: None,
+            plates: "all".into(),
+            features: "engrave".into(),
+            debug: false,
         }
     }
 }
@@ -71,7 +84,11 @@ impl JobSettings {
             "joint" => self.joint = value.trim().to_string(),
             "units" => self.units = value.trim().to_string(),
             "scale" => self.scale = number(value)?,
-            _ => return Err("unknown form field (expected model, thickness, material, method, kerf, sheet, joint, units, scale or name)".into()),
+            "weld" => self.weld = Some(number(value)?),
+            "plates" => self.plates = value.trim().to_string(),
+            "features" => self.features = value.trim().to_string(),
+            "debug" => self.debug = matches!(value.trim(), "true" | "1" | "on"),
+            _ => return Err("unknown form field (expected model, thickness, material, method, kerf, sheet, joint, units, scale, weld, plates, features, debug or name)".into()),
         }
         Ok(())
     }
@@ -107,6 +124,7 @@ impl JobSettings {
             _ => return Err("units must be mm, cm or in".into()),
         };
         settings.scale = self.scale;
+        self.debug_options(&mut settings)?;
         let methods = match self.method.as_str() {
             "all" => MethodKind::ALL.to_vec(),
             name => vec![
@@ -121,6 +139,26 @@ impl JobSettings {
         }
         settings.validate().map_err(|e| e.to_string())?;
         Ok((settings, methods))
+    }
+
+    /// The options the debug view re-runs with: weld distance, plate mode, features.
+    fn debug_options(&self, settings: &mut Settings) -> Result<(), String> {
+        settings.weld = match self.weld {
+            None => Weld::Auto,
+            Some(d) if d == 0.0 => Weld::Off,
+            Some(d) if d.is_finite() && (0.0..=10.0).contains(&d) => Weld::Distance(d),
+            Some(_) => return Err("weld must be a number of mm from 0 to 10".into()),
+        };
+        settings.plates.mode = match self.plates.as_str() {
+            "all" => PlateMode::InherentAndExtruded,
+            "inherent" => PlateMode::InherentOnly,
+            _ => return Err("plates must be all or inherent".into()),
+        };
+        settings.features = self
+            .features
+            .parse::<Features>()
+            .map_err(|_| "features must be engrave, cut or ignore".to_string())?;
+        Ok(())
     }
 
     /// These settings with the fields of a recut's JSON body applied over them.
@@ -138,7 +176,7 @@ impl JobSettings {
             merged[key] = v;
         }
         serde_json::from_value(merged).map_err(|_| {
-            "unknown setting or wrong type (settings: thicknesses, material, kerf, method, sheet, joint, units, scale)"
+            "unknown setting or wrong type (settings: thicknesses, material, kerf, method, sheet, joint, units, scale, weld, plates, features, debug)"
                 .to_string()
         })
     }
@@ -172,6 +210,29 @@ mod tests {
         assert_eq!(r.thicknesses, vec![5.0]);
         assert!(s.with_changes(&serde_json::json!({"colour": "red"})).is_err());
         assert!(s.set_field("kerf", "<script>", &mut seen).is_err());
+    }
+
+    #[test]
+    fn debug_options_reach_the_library() {
+        let mut s = JobSettings::default();
+        for (field, value) in [("weld", "0.05"), ("plates", "inherent"), ("features", "cut"), ("debug", "true")] {
+            s.set_field(field, value, &mut false).expect("a debug option");
+        }
+        assert!(s.debug);
+        let (lib, _) = s.to_library().expect("valid");
+        assert_eq!(lib.weld, Weld::Distance(0.05));
+        assert_eq!(lib.plates.mode, PlateMode::InherentOnly);
+        assert_eq!(lib.features, Features::Cut);
+        let off = s.with_changes(&serde_json::json!({"weld": 0.0})).expect("valid");
+        assert_eq!(off.to_library().expect("valid").0.weld, Weld::Off);
+        for bad in [json_of("weld", "11"), json_of("plates", "\"<i>\""), json_of("features", "\"etch\"")] {
+            let e = s.with_changes(&bad).expect("well typed").to_library().expect_err("refused");
+            assert!(!e.contains('<'), "{e}");
+        }
+    }
+
+    fn json_of(key: &str, value: &str) -> serde_json::Value {
+        serde_json::from_str(&format!("{{\"{key}\": {value}}}")).expect("json")
     }
 
     #[test]

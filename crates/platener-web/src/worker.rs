@@ -143,14 +143,14 @@ async fn convert_job(db: &Db, me: &str, job: Claimed, config: &WorkerConfig) -> 
         cancel.clone(),
     ));
     let outcome = match parse_settings(&job) {
-        Ok(request) => {
+        Ok((request, debug)) => {
             let (request, restart) = (request_with_limits(request, config), config.timeout.is_some());
             let all = run_observed(db, &job, request, &cancel, config.test_hooks).await?;
             let timed_out = all
                 .methods
                 .iter()
                 .any(|m| m.status == platener::convert::Status::TimedOut);
-            let finished = tokio::task::spawn_blocking(move || results::finished(&all))
+            let finished = tokio::task::spawn_blocking(move || results::finished(&all, debug))
                 .await
                 .map_err(|e| std::io::Error::other(e.to_string()))?;
             (finished, restart && timed_out)
@@ -170,18 +170,20 @@ fn request_with_limits(mut request: Request, config: &WorkerConfig) -> Request {
     request
 }
 
-/// The library request of a job, or why its stored settings are unusable.
-fn parse_settings(job: &Claimed) -> Result<Request, String> {
-    let settings: JobSettings = serde_json::from_str(&job.settings).map_err(|e| e.to_string())?;
-    let (settings, methods) = settings.to_library()?;
+/// The library request of a job and whether it stores debug snapshots, or why its stored
+/// settings are unusable.
+fn parse_settings(job: &Claimed) -> Result<(Request, bool), String> {
+    let job_settings: JobSettings = serde_json::from_str(&job.settings).map_err(|e| e.to_string())?;
+    let (settings, methods) = job_settings.to_library()?;
     let source = Source::Bytes {
         name: job.name.clone(),
         bytes: Arc::from(job.model.as_slice()),
     };
-    Ok(Request {
+    let request = Request {
         methods,
         ..Request::new(source, settings)
-    })
+    };
+    Ok((request, job_settings.debug))
 }
 
 fn bad_settings(message: &str) -> Finished {

@@ -44,6 +44,7 @@ pub mod cleanup;
 pub mod context;
 pub mod convert;
 pub mod coplanar;
+pub mod debug;
 pub mod error;
 pub mod export;
 pub mod inspect;

@@ -33,7 +33,7 @@ fn best_of(row: &JobRow) -> ApiResult<String> {
 }
 
 /// Serves one stored file of a job.
-async fn serve_file(app: &App, row: &JobRow, method: &str, file: &str) -> ApiResult<Response> {
+pub(super) async fn serve_file(app: &App, row: &JobRow, method: &str, file: &str) -> ApiResult<Response> {
     let (content_type, data) = app
         .db
         .result_file(&row.id, method, file)
@@ -71,7 +71,7 @@ pub async fn best_plan(State(app): State<Arc<App>>, Path(id): Path<String>) -> A
 }
 
 /// Methods and files a URL may name (anything else is 404 without a query).
-fn known_method(method: &str) -> ApiResult<()> {
+pub(super) fn known_method(method: &str) -> ApiResult<()> {
     if platener::method::MethodKind::ALL.iter().any(|m| m.name() == method) {
         Ok(())
     } else {

@@ -7,6 +7,7 @@
 
 mod api;
 mod assets;
+mod debug;
 mod error;
 mod events;
 mod examples;
@@ -207,6 +208,10 @@ fn router(app: Arc<App>) -> Router {
             get(files::sheet),
         )
         .route("/api/conversions/{id}/scenes/{file}", get(files::scene))
+        .route("/api/conversions/{id}/debug", get(debug::index))
+        .route("/api/conversions/{id}/debug/{method}/{file}", get(debug::step))
+        .route("/api/debug/models", get(debug::models))
+        .route("/api/debug/models/{file}", get(debug::model))
         .route("/api/gallery", get(misc::gallery))
         .route("/api/test-strip.svg", get(misc::test_strip_svg))
         .route("/api/test-strip.json", get(misc::test_strip_json))

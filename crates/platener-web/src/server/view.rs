@@ -81,6 +81,9 @@ fn links(id: &str, best: Option<&str>, files: &[(String, String)]) -> Value {
     let base = format!("/api/conversions/{id}");
     let mut methods: BTreeMap<&str, Value> = BTreeMap::new();
     for (method, file) in files {
+        if file.starts_with("debug/") {
+            continue;
+        }
         let entry = methods
             .entry(method)
             .or_insert_with(|| json!({"sheets": [], "previews": [], "scenes": {}}));
@@ -107,9 +110,11 @@ fn links(id: &str, best: Option<&str>, files: &[(String, String)]) -> Value {
     let scenes = best
         .and_then(|b| methods.get(b))
         .map_or_else(|| json!({}), |m| strip_method_query(&m["scenes"]));
+    let debug = files.iter().any(|(_, f)| f == crate::debug::INDEX);
     json!({
         "self": base,
         "events": format!("{base}/events"),
+        "debug": debug.then(|| format!("{base}/debug")),
         "plan": best.map(|_| format!("{base}/plan.zip")),
         "scenes": scenes,
         "methods": methods,

@@ -1,0 +1,340 @@
+//! Every step's snapshot of a conversion as bounded JSON, for the web service's debug view.
+//!
+//! The debug view shows what each step made: its time, warnings, a 3D scene and the snapshot
+//! as JSON. Snapshots can be large (a plate's outline of thousands of vertices, tens of
+//! thousands of planar groups), so the JSON is *bounded*: any array longer than
+//! [`ARRAY_LIMIT`] keeps its first elements and says how many there were. What a person
+//! debugging needs whole — plate ids, the shape pairs each plate came from, overlap and
+//! containment counts, connections with their joint kinds, part ids — is in a separate
+//! `summary` that is never shortened below [`LIST_LIMIT`] entries. Like `inspect`, this
+//! module only reads a finished [`State`]; it runs nothing.
+
+use serde::Serialize;
+use serde_json::{Value, json};
+
+use crate::context::Warning;
+use crate::pipeline::{State, StepId};
+use crate::plan::PlanInput;
+use crate::scene::View;
+
+/// Arrays in a snapshot longer than this are summarised.
+pub const ARRAY_LIMIT: usize = 24;
+/// The summary's lists (plates, connections, parts) keep at most this many entries.
+pub const LIST_LIMIT: usize = 5000;
+
+/// One step of a conversion as the debug view shows it.
+#[derive(Debug, Clone, Serialize)]
+pub struct StepDebug {
+    /// The step's name.
+    pub step: &'static str,
+    /// The step that ran before it (whose output is its input); `None` for `read`.
+    pub input: Option<&'static str>,
+    /// Wall time in milliseconds.
+    pub millis: f64,
+    /// Its warnings.
+    pub warnings: Vec<Warning>,
+    /// The scene that draws its output: its own view, else the nearest earlier step's
+    /// (cleanup and weld show the model, joints the plates, the cutting plan the parts).
+    pub view: Option<&'static str>,
+    /// Whether `view` draws this step's own snapshot.
+    pub view_exact: bool,
+    /// Ids and relations, whole: plates with their shape pairs, connections with joint kinds,
+    /// parts and joints, counts of what the bounded snapshot shortens.
+    pub summary: Value,
+    /// The snapshot, arrays longer than [`ARRAY_LIMIT`] summarised.
+    pub snapshot: Value,
+}
+
+/// The debug form of every step `state` ran, in order.
+pub fn steps(state: &State) -> Vec<StepDebug> {
+    let mut out: Vec<StepDebug> = Vec::new();
+    let mut last_view = None;
+    for record in &state.records {
+        let Some(step) = StepId::ALL.into_iter().find(|s| s.name() == record.name) else {
+            continue;
+        };
+        let own = view_of(step);
+        last_view = own.or(last_view);
+        out.push(StepDebug {
+            step: record.name,
+            input: out.last().map(|s| s.step),
+            millis: record.millis,
+            warnings: record.warnings.clone(),
+            view: last_view.map(View::name),
+            view_exact: own.is_some(),
+            summary: summary(state, step),
+            snapshot: snapshot(state, step).map_or(Value::Null, |v| bounded(v, ARRAY_LIMIT)),
+        });
+    }
+    out
+}
+
+/// The scene that draws `step`'s own snapshot, if there is one.
+pub fn view_of(step: StepId) -> Option<View> {
+    match step {
+        StepId::Read => Some(View::Model),
+        StepId::Mesh => Some(View::Wireframe),
+        StepId::Coplanar => Some(View::Coplanar),
+        StepId::Plates => Some(View::Plates),
+        StepId::Parts | StepId::Stacked => Some(View::Final),
+        _ => None,
+    }
+}
+
+/// `value` with every array longer than `limit` replaced by
+/// `{"count": n, "first": [its first limit / 2 elements]}`, recursively.
+pub fn bounded(value: Value, limit: usize) -> Value {
+    match value {
+        Value::Array(items) if items.len() > limit => {
+            let count = items.len();
+            let first: Vec<Value> = items.into_iter().take(limit / 2).map(|v| bounded(v, limit)).collect();
+            json!({"count": count, "first": first})
+        }
+        Value::Array(items) => Value::Array(items.into_iter().map(|v| bounded(v, limit)).collect()),
+        Value::Object(map) => Value::Object(map.into_iter().map(|(k, v)| (k, bounded(v, limit))).collect()),
+        v => v,
+    }
+}
+
+/// The snapshot `step` stored, as JSON (before bounding).
+fn snapshot(state: &State, step: StepId) -> Option<Value> {
+    fn to<T: Serialize>(s: Option<&std::sync::Arc<T>>) -> Option<Value> {
+        s.and_then(|s| serde_json::to_value(s.as_ref()).ok())
+    }
+    match step {
+        StepId::Read => to(state.read.as_ref()),
+        StepId::Cleanup => to(state.cleanup.as_ref()),
+        StepId::Weld => to(state.weld.as_ref()),
+        StepId::Mesh => to(state.mesh.as_ref()),
+        StepId::Coplanar => to(state.coplanar.as_ref()),
+        StepId::Shapes => to(state.shapes.as_ref()),
+        StepId::Plates => to(state.plates.as_ref()),
+        StepId::Joints => to(state.joints.as_ref()),
+        StepId::Stacked => to(state.stacked.as_ref()),
+        // The parts snapshot has no serde form: its summary lists it.
+        StepId::Parts => None,
+        StepId::Kerf => to(state.kerf.as_ref()),
+        StepId::Labels => to(state.labels.as_ref()),
+        StepId::Sheets => to(state.sheets.as_ref()),
+        StepId::Export => to(state.export.as_ref()),
+    }
+}
+
+/// One model of the debug view's test set.
+#[derive(Debug, Clone)]
+pub struct TestModel {
+    /// A name for URLs and files (letters, digits, `-`).
+    pub name: &'static str,
+    /// What it is and what it exercises.
+    pub label: &'static str,
+    /// Its triangles, in mm.
+    pub triangles: Vec<crate::read::Triangle>,
+}
+
+/// Small labelled models from [`crate::samples`], each exercising one part of the pipeline,
+/// for the debug view's isolated steps (the shipped examples come on top of these).
+pub fn test_set() -> Vec<TestModel> {
+    use crate::samples as s;
+    let model = |name, label, triangles| TestModel { name, label, triangles };
+    vec![
+        model("closed-box", "closed box 100x80x60, 3 mm walls: 6 plates, 12 corner joints", s::closed_box(100.0, 80.0, 60.0, 3.0)),
+        model("tray", "open tray 120x80x40, 3 mm walls: 5 plates", s::open_box(120.0, 80.0, 40.0, 3.0)),
+        model("shelf", "shelf (H profile): tee joints, tabs and slots", s::shelf(80.0, 120.0, 50.0, 60.0, 3.0)),
+        model("crossing-plates", "two plates crossing: a halved joint", s::crossing_plates(100.0, 3.0)),
+        model("roof", "gable roof at 40 degrees: a mitred ridge", s::roof(50.0, 40.0, 80.0, 3.0)),
+        model("star", "three arms meeting on one line", s::star(3, 40.0, 3.0, 50.0)),
+        model("table", "table: a top on two leg panels", s::table(120.0, 60.0, 70.0, 10.0, 3.0)),
+        model("phone-stand", "phone stand, back at 65 degrees", s::phone_stand()),
+        model("solid-block", "solid block 60x40x30: extruded plates only (empty with inherent only)",
+              s::cuboid(glam::DVec3::ZERO, glam::DVec3::new(60.0, 40.0, 30.0))),
+        model("rounded-box", "rounded box: curved faces for weld and coplanar", s::rounded_box(glam::DVec3::new(60.0, 40.0, 30.0), 5.0, 8)),
+        model("two-bodies", "sphere and torus: the stacked method's layers", s::two_bodies(10.0)),
+    ]
+}
+
+/// What [`StepDebug::summary`] holds for `step`.
+fn summary(state: &State, step: StepId) -> Value {
+    match step {
+        StepId::Read => state.read.as_ref().map_or(Value::Null, |m| {
+            json!({"triangles": m.triangles.len(), "solids": m.solids, "bounds": m.bounds})
+        }),
+        StepId::Cleanup => state.cleanup.as_ref().map_or(Value::Null, |c| {
+            json!({"triangles": c.triangles.len(), "degenerate_removed": c.degenerate_removed,
+                   "duplicates_removed": c.duplicates_removed})
+        }),
+        StepId::Weld => state.weld.as_ref().map_or(Value::Null, |w| {
+            json!({"vertices": w.vertices.len(), "triangles": w.triangles.len(), "distance": w.distance})
+        }),
+        StepId::Mesh => state.mesh.as_ref().map_or(Value::Null, |m| {
+            json!({"vertices": m.vertices.len(), "triangles": m.triangles.len(), "surface_area": m.surface_area})
+        }),
+        StepId::Coplanar => state
+            .coplanar
+            .as_ref()
+            .map_or(Value::Null, |g| json!({"groups": g.groups.len()})),
+        StepId::Shapes => state
+            .shapes
+            .as_ref()
+            .map_or(Value::Null, |s| json!({"shapes": s.shapes.len()})),
+        StepId::Plates => plates_summary(state),
+        StepId::Joints => joints_summary(state),
+        StepId::Parts | StepId::Stacked => state.parts.as_deref().map_or(Value::Null, parts_summary),
+        StepId::Kerf | StepId::Labels | StepId::Sheets | StepId::Export => cutting_summary(state),
+    }
+}
+
+/// Plates (ids 1-based, as the plates scene's `plate-N` nodes) with the shapes each was made
+/// from (an inherent plate's pair of opposite faces), and what overlap handling removed.
+fn plates_summary(state: &State) -> Value {
+    let Some(p) = state.plates.as_ref() else {
+        return Value::Null;
+    };
+    let plates: Vec<Value> = p
+        .plates
+        .iter()
+        .enumerate()
+        .take(LIST_LIMIT)
+        .map(|(i, plate)| {
+            json!({"id": i + 1, "kind": plate.kind, "thickness": plate.thickness,
+                   "area": plate.area, "shapes": plate.shapes})
+        })
+        .collect();
+    let pairs = p
+        .plates
+        .iter()
+        .filter(|plate| plate.kind == crate::plates::PlateKind::Inherent)
+        .count();
+    json!({
+        "plates": plates,
+        "count": p.plates.len(),
+        "pairs": pairs,
+        "contained_removed": p.contained_removed,
+        "trimmed": p.trimmed,
+        "rejoined": p.rejoined,
+        "corners_closed": p.corners_closed,
+        "features": p.features.len(),
+    })
+}
+
+/// Connections between plates (ids 1-based) with their joint kind and finger style.
+fn joints_summary(state: &State) -> Value {
+    let Some(j) = state.joints.as_ref() else {
+        return Value::Null;
+    };
+    let connections: Vec<Value> = j
+        .connections
+        .iter()
+        .take(LIST_LIMIT)
+        .map(|c| {
+            json!({"plates": [c.plates[0] + 1, c.plates[1] + 1], "kind": c.kind, "style": c.style,
+                   "angle_deg": c.angle_deg, "segments": c.segments, "label": c.label})
+        })
+        .collect();
+    json!({"connections": connections, "count": j.connections.len(), "keys": j.keys.len()})
+}
+
+/// Parts (ids as engraved and as the final scene's `part-ID` nodes) and their joints.
+fn parts_summary(input: &PlanInput) -> Value {
+    let parts: Vec<Value> = input
+        .parts
+        .iter()
+        .take(LIST_LIMIT)
+        .map(|p| {
+            json!({"id": p.id, "kind": p.kind, "thickness": p.thickness,
+                   "area": p.polygon.area(), "merged": p.merged})
+        })
+        .collect();
+    let joints: Vec<Value> = input
+        .joints
+        .iter()
+        .take(LIST_LIMIT)
+        .map(|j| json!({"parts": j.parts, "kind": j.kind, "angle_deg": j.angle_deg, "label": j.label}))
+        .collect();
+    json!({"parts": parts, "joints": joints, "count": input.parts.len(), "glued": input.glued.len()})
+}
+
+/// Counts of the cutting plan so far.
+fn cutting_summary(state: &State) -> Value {
+    json!({
+        "parts": state.parts.as_ref().map(|p| p.parts.len()),
+        "sheets": state.sheets.as_ref().map(|s| s.sheets.len()),
+        "files": state.export.as_ref().map(|e| e.files.len()),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::convert::{Request, convert_all, no_progress};
+    use crate::method::MethodKind;
+    use crate::{Cancel, Settings, Source, samples};
+
+    fn box_state(method: MethodKind) -> State {
+        let bytes = samples::to_binary_stl(&samples::closed_box(100.0, 80.0, 60.0, 3.0), "box");
+        let source = Source::Bytes {
+            name: "box.stl".into(),
+            bytes: Arc::from(bytes),
+        };
+        let request = Request {
+            methods: vec![method],
+            ..Request::new(source, Settings::default())
+        };
+        let all = convert_all(request, &Cancel::default(), no_progress());
+        all.methods[0].state.clone().expect("the box converts")
+    }
+
+    #[test]
+    fn a_box_has_six_plate_pairs_and_twelve_corner_joints() {
+        let steps = steps(&box_state(MethodKind::Plate));
+        let names: Vec<&str> = steps.iter().map(|s| s.step).collect();
+        assert_eq!(names, StepId::of_method(MethodKind::Plate).iter().map(|s| s.name()).collect::<Vec<_>>());
+        assert_eq!(steps[0].input, None);
+        assert_eq!(steps[1].input, Some("read"));
+        let plates = steps.iter().find(|s| s.step == "plates").expect("plates");
+        assert_eq!(plates.summary["count"], 6);
+        assert_eq!(plates.summary["pairs"], 6);
+        for p in plates.summary["plates"].as_array().expect("list") {
+            assert_eq!(p["shapes"].as_array().map(Vec::len), Some(2), "{p}");
+            assert_eq!(p["kind"], "inherent");
+        }
+        assert_eq!((plates.view, plates.view_exact), (Some("plates"), true));
+        let joints = steps.iter().find(|s| s.step == "joints").expect("joints");
+        assert_eq!(joints.summary["count"], 12);
+        let connections = joints.summary["connections"].as_array().expect("list");
+        assert!(connections.iter().all(|c| c["kind"] == "corner" && c["style"] == "finger"));
+        assert!(connections.iter().flat_map(|c| c["plates"].as_array().into_iter().flatten()).all(|id| (1..=6).contains(&id.as_u64().unwrap_or(0))));
+        assert_eq!((joints.view, joints.view_exact), (Some("plates"), false));
+        let parts = steps.iter().find(|s| s.step == "parts").expect("parts");
+        assert_eq!(parts.summary["count"], 6);
+        assert!(parts.summary["joints"].as_array().expect("joints").iter().all(|j| j["kind"] == "finger"));
+    }
+
+    #[test]
+    fn the_test_set_has_unique_url_names_and_closed_models() {
+        let set = test_set();
+        let mut names: Vec<&str> = set.iter().map(|m| m.name).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), set.len());
+        for m in &set {
+            assert!(m.name.chars().all(|c| c.is_ascii_lowercase() || c == '-'), "{}", m.name);
+            assert!(m.triangles.len() >= 12, "{}", m.name);
+        }
+    }
+
+    #[test]
+    fn long_arrays_are_summarised_and_short_ones_kept() {
+        let v = json!({"a": (0..100).collect::<Vec<_>>(), "b": [[1, 2], [3, 4]]});
+        let b = bounded(v, 10);
+        assert_eq!(b["a"]["count"], 100);
+        assert_eq!(b["a"]["first"], json!([0, 1, 2, 3, 4]));
+        assert_eq!(b["b"], json!([[1, 2], [3, 4]]));
+        let steps = steps(&box_state(MethodKind::Stacked));
+        let stacked = steps.iter().find(|s| s.step == "stacked").expect("stacked");
+        assert!(stacked.summary["count"].as_u64().is_some_and(|n| n > 0), "{}", stacked.summary);
+        let text = serde_json::to_string(&steps).expect("json");
+        assert!(text.len() < 2_000_000, "{} bytes", text.len());
+    }
+}
