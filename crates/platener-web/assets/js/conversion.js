@@ -5,7 +5,7 @@
 import * as api from './api.js';
 import { createViewer } from './viewer.js';
 import { createSheets } from './sheets.js';
-import { assemblyOrder, cutLengthMm, laserMinutes, SPEED_3MM } from './assembly.js';
+import { assemblyOrder } from './assembly.js';
 import * as progress from './progress.js';
 
 const $ = (id) => document.getElementById(id);
@@ -135,6 +135,12 @@ export function createConversionArea({ state, onGalleryChange }) {
   $('zoom-in').addEventListener('click', () => sheets.zoom(1.5));
   $('zoom-out').addEventListener('click', () => sheets.zoom(1 / 1.5));
   $('zoom-fit').addEventListener('click', () => sheets.zoom('fit'));
+  $('sheets').addEventListener('keydown', (e) => {
+    const factor = { '+': 1.5, '=': 1.5, '-': 1 / 1.5, 0: 'fit' }[e.key];
+    if (factor === undefined) return;
+    e.preventDefault();
+    sheets.zoom(factor);
+  });
 
   function emit(kind, data) {
     for (const f of listeners) f(kind, data);
@@ -233,25 +239,28 @@ export function createConversionArea({ state, onGalleryChange }) {
   async function loadPlanAndSheets(c) {
     const links = c.links.methods[c.best] || {};
     try {
-      [plan] = await Promise.all([api.getJson(links.plan_json), sheets.show(links.sheets || [])]);
-      showStats(c, plan);
+      const [p, report] = await Promise.all([api.getJson(links.plan_json), api.getJson(links.report_json), sheets.show(links.sheets || [])]);
+      plan = p;
+      showStats(c, report);
       if (state.loadedView === 'final') setupFinal();
     } catch (e) {
       progress.showError(`The sheets could not be shown: ${e.message}`);
     }
   }
 
-  function showStats(c, p) {
+  /** Score, counts, cut length and laser time (report.json's estimate at its stated speeds). */
+  function showStats(c, report) {
     const m = c && (c.methods || []).find((x) => x.method === c.best);
     const set = (k, v) => (document.querySelector(`#stats [data-stat="${k}"]`).textContent = v);
     set('score', m && m.score != null ? Number(m.score).toFixed(2) : '–');
     set('parts', m ? String(m.parts) : '–');
     set('sheets', m ? String(m.sheets) : '–');
-    const material = (p && p.settings && p.settings.material) || (c && c.settings.material) || 'wood';
-    set('cut', p ? `${(cutLengthMm(p) / 1000).toFixed(2)} m` : '–');
-    set('minutes', p ? `≈ ${laserMinutes(p, material).toFixed(1)} min` : '–');
-    $('speed-note').textContent = p
-      ? `Laser time assumes a 40 W CO₂ laser cutting 3 mm ${material} at ${SPEED_3MM[material] || SPEED_3MM.wood} mm/s (slower in proportion for thicker sheets), without travel and engraving.`
+    const r = report || {};
+    set('cut', r.cut_length != null ? `${(r.cut_length / 1000).toFixed(2)} m` : '–');
+    set('minutes', r.estimated_cutting_seconds != null ? `≈ ${(r.estimated_cutting_seconds / 60).toFixed(1)} min` : '–');
+    const s = r.settings || {};
+    $('speed-note').textContent = s.cut_speed
+      ? `Laser time: cutting at ${s.cut_speed} mm/s (3 mm plywood on a 40 W CO₂ laser) and engraving at ${s.engrave_speed} mm/s, without travel moves.`
       : '';
   }
 }

@@ -26,6 +26,9 @@ export function drawStrip(svg, strip, kerf, onPick) {
   svg.append(el('rect', { x: 0, y: 0, width: strip.width, height: strip.height, class: 'strip-sheet' }));
   if (strip.strip) svg.append(el('path', { d: pathOf(strip.strip), class: 'strip-outline' }));
   if (strip.spike) svg.append(el('path', { d: pathOf(strip.spike), class: 'strip-spike' }));
+  // The engraving (hole numbers and the kerf table), as the laser draws it.
+  const lines = (strip.engrave || []).map((l) => l.map(([x, y], i) => `${i ? 'L' : 'M'}${x} ${y}`).join(' '));
+  if (lines.length) svg.append(el('path', { d: lines.join(' '), class: 'strip-engrave' }));
   for (const hole of strip.holes) {
     const xs = (hole.ring || []).map((p) => p[0]);
     const ys = (hole.ring || []).map((p) => p[1]);
@@ -45,7 +48,7 @@ export function drawStrip(svg, strip, kerf, onPick) {
     // A generous invisible target around the hole: holes are only a few mm wide.
     g.append(el('rect', { x: x0 - 1.5, y: y0 - 1.5, width: x1 - x0 + 3, height: y1 - y0 + 8, class: 'strip-target' }));
     g.append(el('path', { d: pathOf(hole.ring), class: 'strip-hole-cut' }));
-    g.append(el('text', { x: (x0 + x1) / 2, y: y1 + 5, class: 'strip-number', 'text-anchor': 'middle' }, String(hole.number)));
+    if (!lines.length) g.append(el('text', { x: (x0 + x1) / 2, y: y1 + 5, class: 'strip-number', 'text-anchor': 'middle' }, String(hole.number)));
     g.append(el('title', {}, `Hole ${hole.number}: kerf ${hole.kerf.toFixed(3)} mm`));
     const pick = () => onPick(hole.kerf);
     g.addEventListener('click', pick);

@@ -23,10 +23,10 @@ function numbered(object) {
   return null;
 }
 
-/** Grid cell (1, 10 or 100 mm) that keeps a grid of `extentMm` under ~100 lines. */
+/** Grid cell (1, 10 or 100 mm) that keeps a grid of `extentMm` to ~60 lines or fewer. */
 export function gridCellMm(extentMm) {
-  if (extentMm <= 100) return 1;
-  if (extentMm <= 1000) return 10;
+  if (extentMm <= 40) return 1;
+  if (extentMm <= 400) return 10;
   return 100;
 }
 
@@ -107,8 +107,10 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     const grid = new THREE.GridHelper(cells * cell * MM, cells, 0x9aa3af, 0xd5d9df);
     const centre = box.getCenter(new THREE.Vector3());
     grid.position.set(centre.x, box.min.y, centre.z);
-    const axes = new THREE.AxesHelper(Math.max(size.x, size.y, size.z) * 0.6);
-    axes.position.set(box.min.x, box.min.y, box.min.z);
+    // The axes start at the grid's corner, beside the model rather than hidden inside it.
+    const half = (cells * cell * MM) / 2;
+    const axes = new THREE.AxesHelper(Math.max(size.x, size.y, size.z) * 0.5);
+    axes.position.set(centre.x - half, box.min.y, centre.z + half);
     helpers.add(grid, axes);
     helpers.userData.cellMm = cell;
   }
@@ -199,7 +201,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     state.exploded = Math.max(0, Math.min(1, Number(t) || 0));
     for (const { node, home, dir } of state.nodes.values()) {
       const parent = node.parent;
-      const world = parent.localToWorld(home.clone()).addScaledVector(dir, state.exploded * state.size * 0.6);
+      const world = parent.localToWorld(home.clone()).addScaledVector(dir, state.exploded * state.size * 0.3);
       node.position.copy(parent.worldToLocal(world));
     }
     requestRender();
@@ -260,7 +262,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
   canvas.addEventListener('pointermove', pick);
   canvas.addEventListener('pointerleave', () => setHovered(null));
 
-  // Keyboard: arrows turn, + and - zoom, f or Home frames the model.
+  // Keyboard: arrows turn, + and - zoom, f or Home frames the model, n and p step through parts.
   canvas.addEventListener('keydown', (e) => {
     const offset = camera.position.clone().sub(controls.target);
     const s = new THREE.Spherical().setFromVector3(offset);
@@ -274,7 +276,14 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
       '=': () => (s.radius *= 0.85),
       '-': () => (s.radius /= 0.85),
     };
-    if (e.key === 'f' || e.key === 'Home') {
+    if (e.key === 'n' || e.key === 'p') {
+      // Step through the parts from the keyboard, as hovering does with the pointer.
+      const numbers = state.order.filter((n) => state.nodes.get(n).node.visible);
+      if (!numbers.length) return;
+      const i = numbers.indexOf(hovered);
+      const next = numbers[(i + (e.key === 'n' ? 1 : numbers.length - 1 + (i < 0 ? 1 : 0))) % numbers.length];
+      setHovered({ number: next, kind: state.nodes.get(next).kind });
+    } else if (e.key === 'f' || e.key === 'Home') {
       frame();
     } else if (keys[e.key]) {
       keys[e.key]();

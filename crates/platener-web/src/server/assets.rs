@@ -20,7 +20,10 @@ struct Assets;
 
 /// One embedded file's bytes, if `path` names one (relative, `/`-separated, no `..`).
 pub fn file(path: &str) -> Option<std::borrow::Cow<'static, [u8]>> {
-    safe_path(path).then(|| Assets::get(path).map(|f| f.data)).flatten()
+    if !safe_path(path) {
+        return None;
+    }
+    Assets::get(path).map(|f| f.data)
 }
 
 /// A path that stays inside `assets/`: non-empty segments of ordinary names only. The

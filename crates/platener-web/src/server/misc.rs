@@ -175,6 +175,7 @@ pub async fn test_strip_json(
         "holes": holes,
         "strip": points(&s.strip.outer),
         "spike": points(&s.spike.outer),
+        "engrave": s.strip_engrave.iter().chain(&s.spike_engrave).map(Vec::as_slice).map(points).collect::<Vec<_>>(),
     })))
 }
 
