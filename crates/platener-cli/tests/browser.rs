@@ -279,20 +279,25 @@ fn upload_button_progress_six_views_hover_and_settings_recut() {
     assert_eq!(hot, serde_json::json!([part]), "the sheet marks the hovered part");
     page.screenshot("06-hover-page", None);
 
-    // A settings change re-cuts: a new conversion with the new material, the view kept.
+    // A settings change re-cuts: a new conversion with the new material, the view kept
+    // (plates, not the default final view).
+    show_view(&page, "plates", "07-before-recut");
+    let cursor = page.cursor();
     page.eval(
         "(() => { const s = document.querySelector('[data-testid=material]'); s.value = 'acrylic'; \
          s.dispatchEvent(new Event('change', { bubbles: true })); })()",
     );
     let recut = wait_converted(&page, Some(&id));
     assert_eq!(conversion(&rig, &recut)["settings"]["material"], "acrylic");
-    assert_eq!(page.state()["view"], "final", "the view is kept across a re-cut");
+    // The state keeps the old view's name until the new scene is asked for, so wait for it.
+    page.wait_response(cursor, &format!("/api/conversions/{recut}/scenes/plates.glb"));
     page.wait_until(
-        "window.platener.state.loadedView === 'final'",
-        "the final view of the re-cut",
+        "window.platener.state.loadedView === 'plates'",
+        "the plates view of the re-cut",
     );
+    assert_eq!(page.state()["view"], "plates", "the view is kept across a re-cut");
     settle(&page);
-    assert_view_rendered("final", &canvas_pixels(&page, "07-recut-acrylic"));
+    assert_view_rendered("plates", &canvas_pixels(&page, "08-recut-acrylic"));
     page.assert_no_problems("landing page, upload, views, hover, re-cut");
 }
 
