@@ -279,6 +279,26 @@ fn upload_button_progress_six_views_hover_and_settings_recut() {
     assert_eq!(hot, serde_json::json!([part]), "the sheet marks the hovered part");
     page.screenshot("06-hover-page", None);
 
+    // And the other way: hovering a part on the sheet lights it up in 3D.
+    let other = if part == 1 { 2 } else { 1 };
+    let (x, y) = page
+        .rect(&format!("[data-testid=sheet-part][data-part=\"{other}\"]"))
+        .center();
+    page.mouse_move(x, y);
+    page.wait_until(
+        &format!("window.platener.state.hovered === {other}"),
+        "the sheet's part hovered",
+    );
+    settle(&page);
+    let from_sheet = canvas_pixels(&page, "06-hover-from-sheet");
+    assert_eq!(page.state()["hovered"], other, "still the sheet's part");
+    let label = page.eval("document.querySelector('[data-testid=part-label]').textContent");
+    assert_eq!(label, format!("Part {other}"));
+    assert!(
+        from_sheet.changed_pixels(&before, 24) > 100,
+        "part {other} hovered on the sheet is not lit in 3D"
+    );
+
     // A settings change re-cuts: a new conversion with the new material, the view kept
     // (plates, not the default final view).
     show_view(&page, "plates", "07-before-recut");

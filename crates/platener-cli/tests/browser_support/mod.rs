@@ -255,13 +255,16 @@ impl Page<'_> {
         self.eval("JSON.parse(JSON.stringify((window.platener && window.platener.state) || null))")
     }
 
-    /// The box of the first element matching the CSS selector, scrolled into view.
+    /// The box of the first element matching the CSS selector, scrolled into view if it is
+    /// not wholly in it (scrolling under a resting mouse would hover something else).
     pub fn rect(&self, selector: &str) -> Rect {
         let sel = serde_json::to_string(selector).expect("json");
         let r = self.wait_until(
             &format!(
                 "(() => {{ const e = document.querySelector({sel}); if (!e) return null; \
-                 e.scrollIntoView({{block: 'center', inline: 'center'}}); const r = e.getBoundingClientRect(); \
+                 let r = e.getBoundingClientRect(); \
+                 if (r.top < 0 || r.left < 0 || r.bottom > innerHeight || r.right > innerWidth) {{ \
+                   e.scrollIntoView({{block: 'center', inline: 'center'}}); r = e.getBoundingClientRect(); }} \
                  return r.width > 0 && r.height > 0 ? [r.x, r.y, r.width, r.height] : null; }})()"
             ),
             &format!("{selector} visible"),
