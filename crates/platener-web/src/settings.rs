@@ -215,7 +215,12 @@ mod tests {
     #[test]
     fn debug_options_reach_the_library() {
         let mut s = JobSettings::default();
-        for (field, value) in [("weld", "0.05"), ("plates", "inherent"), ("features", "cut"), ("debug", "true")] {
+        for (field, value) in [
+            ("weld", "0.05"),
+            ("plates", "inherent"),
+            ("features", "cut"),
+            ("debug", "true"),
+        ] {
             s.set_field(field, value, &mut false).expect("a debug option");
         }
         assert!(s.debug);
@@ -225,8 +230,16 @@ mod tests {
         assert_eq!(lib.features, Features::Cut);
         let off = s.with_changes(&serde_json::json!({"weld": 0.0})).expect("valid");
         assert_eq!(off.to_library().expect("valid").0.weld, Weld::Off);
-        for bad in [json_of("weld", "11"), json_of("plates", "\"<i>\""), json_of("features", "\"etch\"")] {
-            let e = s.with_changes(&bad).expect("well typed").to_library().expect_err("refused");
+        for bad in [
+            json_of("weld", "11"),
+            json_of("plates", "\"<i>\""),
+            json_of("features", "\"etch\""),
+        ] {
+            let e = s
+                .with_changes(&bad)
+                .expect("well typed")
+                .to_library()
+                .expect_err("refused");
             assert!(!e.contains('<'), "{e}");
         }
     }

@@ -137,37 +137,75 @@ pub fn test_set() -> Vec<TestModel> {
     use crate::samples as s;
     let model = |name, label, triangles| TestModel { name, label, triangles };
     vec![
-        model("closed-box", "closed box 100x80x60, 3 mm walls: 6 plates, 12 corner joints", s::closed_box(100.0, 80.0, 60.0, 3.0)),
-        model("tray", "open tray 120x80x40, 3 mm walls: 5 plates", s::open_box(120.0, 80.0, 40.0, 3.0)),
-        model("shelf", "shelf (H profile): tee joints, tabs and slots", s::shelf(80.0, 120.0, 50.0, 60.0, 3.0)),
-        model("crossing-plates", "two plates crossing: a halved joint", s::crossing_plates(100.0, 3.0)),
-        model("roof", "gable roof at 40 degrees: a mitred ridge", s::roof(50.0, 40.0, 80.0, 3.0)),
+        model(
+            "closed-box",
+            "closed box 100x80x60, 3 mm walls: 6 plates, 12 corner joints",
+            s::closed_box(100.0, 80.0, 60.0, 3.0),
+        ),
+        model(
+            "tray",
+            "open tray 120x80x40, 3 mm walls: 5 plates",
+            s::open_box(120.0, 80.0, 40.0, 3.0),
+        ),
+        model(
+            "shelf",
+            "shelf (H profile): tee joints, tabs and slots",
+            s::shelf(80.0, 120.0, 50.0, 60.0, 3.0),
+        ),
+        model(
+            "crossing-plates",
+            "two plates crossing: a halved joint",
+            s::crossing_plates(100.0, 3.0),
+        ),
+        model(
+            "roof",
+            "gable roof at 40 degrees: a mitred ridge",
+            s::roof(50.0, 40.0, 80.0, 3.0),
+        ),
         model("star", "three arms meeting on one line", s::star(3, 40.0, 3.0, 50.0)),
-        model("table", "table: a top on two leg panels", s::table(120.0, 60.0, 70.0, 10.0, 3.0)),
+        model(
+            "table",
+            "table: a top on two leg panels",
+            s::table(120.0, 60.0, 70.0, 10.0, 3.0),
+        ),
         model("phone-stand", "phone stand, back at 65 degrees", s::phone_stand()),
-        model("solid-block", "solid block 60x40x30: extruded plates only (empty with inherent only)",
-              s::cuboid(glam::DVec3::ZERO, glam::DVec3::new(60.0, 40.0, 30.0))),
-        model("rounded-box", "rounded box: curved faces for weld and coplanar", s::rounded_box(glam::DVec3::new(60.0, 40.0, 30.0), 5.0, 8)),
-        model("two-bodies", "sphere and torus: the stacked method's layers", s::two_bodies(10.0)),
+        model(
+            "solid-block",
+            "solid block 60x40x30: extruded plates only (empty with inherent only)",
+            s::cuboid(glam::DVec3::ZERO, glam::DVec3::new(60.0, 40.0, 30.0)),
+        ),
+        model(
+            "rounded-box",
+            "rounded box: curved faces for weld and coplanar",
+            s::rounded_box(glam::DVec3::new(60.0, 40.0, 30.0), 5.0, 8),
+        ),
+        model(
+            "two-bodies",
+            "sphere and torus: the stacked method's layers",
+            s::two_bodies(10.0),
+        ),
     ]
 }
 
 /// What [`StepDebug::summary`] holds for `step`.
 fn summary(state: &State, step: StepId) -> Value {
     match step {
-        StepId::Read => state.read.as_ref().map_or(Value::Null, |m| {
-            json!({"triangles": m.triangles.len(), "solids": m.solids, "bounds": m.bounds})
-        }),
+        StepId::Read => state.read.as_ref().map_or(
+            Value::Null,
+            |m| json!({"triangles": m.triangles.len(), "solids": m.solids, "bounds": m.bounds}),
+        ),
         StepId::Cleanup => state.cleanup.as_ref().map_or(Value::Null, |c| {
             json!({"triangles": c.triangles.len(), "degenerate_removed": c.degenerate_removed,
                    "duplicates_removed": c.duplicates_removed})
         }),
-        StepId::Weld => state.weld.as_ref().map_or(Value::Null, |w| {
-            json!({"vertices": w.vertices.len(), "triangles": w.triangles.len(), "distance": w.distance})
-        }),
-        StepId::Mesh => state.mesh.as_ref().map_or(Value::Null, |m| {
-            json!({"vertices": m.vertices.len(), "triangles": m.triangles.len(), "surface_area": m.surface_area})
-        }),
+        StepId::Weld => state.weld.as_ref().map_or(
+            Value::Null,
+            |w| json!({"vertices": w.vertices.len(), "triangles": w.triangles.len(), "distance": w.distance}),
+        ),
+        StepId::Mesh => state.mesh.as_ref().map_or(
+            Value::Null,
+            |m| json!({"vertices": m.vertices.len(), "triangles": m.triangles.len(), "surface_area": m.surface_area}),
+        ),
         StepId::Coplanar => state
             .coplanar
             .as_ref()
@@ -289,7 +327,13 @@ mod tests {
     fn a_box_has_six_plate_pairs_and_twelve_corner_joints() {
         let steps = steps(&box_state(MethodKind::Plate));
         let names: Vec<&str> = steps.iter().map(|s| s.step).collect();
-        assert_eq!(names, StepId::of_method(MethodKind::Plate).iter().map(|s| s.name()).collect::<Vec<_>>());
+        assert_eq!(
+            names,
+            StepId::of_method(MethodKind::Plate)
+                .iter()
+                .map(|s| s.name())
+                .collect::<Vec<_>>()
+        );
         assert_eq!(steps[0].input, None);
         assert_eq!(steps[1].input, Some("read"));
         let plates = steps.iter().find(|s| s.step == "plates").expect("plates");
@@ -303,12 +347,27 @@ mod tests {
         let joints = steps.iter().find(|s| s.step == "joints").expect("joints");
         assert_eq!(joints.summary["count"], 12);
         let connections = joints.summary["connections"].as_array().expect("list");
-        assert!(connections.iter().all(|c| c["kind"] == "corner" && c["style"] == "finger"));
-        assert!(connections.iter().flat_map(|c| c["plates"].as_array().into_iter().flatten()).all(|id| (1..=6).contains(&id.as_u64().unwrap_or(0))));
+        assert!(
+            connections
+                .iter()
+                .all(|c| c["kind"] == "corner" && c["style"] == "finger")
+        );
+        assert!(
+            connections
+                .iter()
+                .flat_map(|c| c["plates"].as_array().into_iter().flatten())
+                .all(|id| (1..=6).contains(&id.as_u64().unwrap_or(0)))
+        );
         assert_eq!((joints.view, joints.view_exact), (Some("plates"), false));
         let parts = steps.iter().find(|s| s.step == "parts").expect("parts");
         assert_eq!(parts.summary["count"], 6);
-        assert!(parts.summary["joints"].as_array().expect("joints").iter().all(|j| j["kind"] == "finger"));
+        assert!(
+            parts.summary["joints"]
+                .as_array()
+                .expect("joints")
+                .iter()
+                .all(|j| j["kind"] == "finger")
+        );
     }
 
     #[test]
@@ -333,7 +392,11 @@ mod tests {
         assert_eq!(b["b"], json!([[1, 2], [3, 4]]));
         let steps = steps(&box_state(MethodKind::Stacked));
         let stacked = steps.iter().find(|s| s.step == "stacked").expect("stacked");
-        assert!(stacked.summary["count"].as_u64().is_some_and(|n| n > 0), "{}", stacked.summary);
+        assert!(
+            stacked.summary["count"].as_u64().is_some_and(|n| n > 0),
+            "{}",
+            stacked.summary
+        );
         let text = serde_json::to_string(&steps).expect("json");
         assert!(text.len() < 2_000_000, "{} bytes", text.len());
     }

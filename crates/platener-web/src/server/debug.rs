@@ -42,7 +42,11 @@ pub async fn index(State(app): State<Arc<App>>, Path(id): Path<String>) -> ApiRe
             continue;
         };
         let mut index: Value = serde_json::from_slice(&data).map_err(|_| ApiError::internal())?;
-        let has_scene = |view: &str| files.iter().any(|(m, f)| m == method && *f == format!("scenes/{view}.glb"));
+        let has_scene = |view: &str| {
+            files
+                .iter()
+                .any(|(m, f)| m == method && *f == format!("scenes/{view}.glb"))
+        };
         for step in index["steps"].as_array_mut().into_iter().flatten() {
             let name = step["step"].as_str().unwrap_or_default().to_string();
             step["json"] = json!(format!("{base}/debug/{method}/{name}.json"));
@@ -78,7 +82,8 @@ pub async fn step(
     serve_file(&app, &row, &method, &format!("debug/{step}.json")).await
 }
 
-/// `GET /api/debug/models`: the test set, samples first, then the examples.
+/// `GET /api/debug/models`: the test set, samples first, then the examples, and the steps
+/// each method runs (the step list of the isolated mode before anything ran).
 pub async fn models() -> Json<Value> {
     let samples = platener::debug::test_set().into_iter().map(|m| {
         json!({"name": m.name, "label": m.label, "kind": "sample",
@@ -89,12 +94,24 @@ pub async fn models() -> Json<Value> {
         json!({"name": name, "label": format!("example {file}"), "kind": "example",
                "url": format!("/api/debug/models/{name}.stl")})
     });
-    Json(json!({"models": samples.chain(examples).collect::<Vec<_>>()}))
+    let methods: serde_json::Map<String, Value> = platener::method::MethodKind::ALL
+        .iter()
+        .map(|m| {
+            let steps: Vec<&str> = platener::pipeline::StepId::of_method(*m)
+                .iter()
+                .map(|s| s.name())
+                .collect();
+            (m.name().to_string(), json!(steps))
+        })
+        .collect();
+    Json(json!({"models": samples.chain(examples).collect::<Vec<_>>(), "methods": methods}))
 }
 
 /// `GET /api/debug/models/{name}.stl`: a test model as binary STL.
 pub async fn model(Path(file): Path<String>) -> ApiResult<Response> {
-    let name = file.strip_suffix(".stl").ok_or_else(|| ApiError::not_found("test model"))?;
+    let name = file
+        .strip_suffix(".stl")
+        .ok_or_else(|| ApiError::not_found("test model"))?;
     let bytes = match platener::debug::test_set().into_iter().find(|m| m.name == name) {
         Some(m) => platener::samples::to_binary_stl(&m.triangles, m.name),
         None => EXAMPLES
