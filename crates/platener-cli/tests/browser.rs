@@ -669,3 +669,123 @@ fn measure_drop_to_first_view_and_orbit_fps() {
         );
     }
 }
+/// Waits for the debug view's conversion to be shown (its root's `data-status`).
+fn wait_debug_ready(page: &Page) {
+    page.wait_until(
+        "(() => { const r = document.getElementById('debug-root'); \
+         if (r.dataset.status === 'failed') throw new Error('debug: ' + document.querySelector('[data-testid=debug-error]').textContent); \
+         return r.dataset.status === 'ready'; })()",
+        "the debug view's conversion",
+    );
+    settle(page);
+}
+
+/// The debug view's snapshot panel: its JSON parses and names the step shown.
+fn debug_json(page: &Page, prefix: &str) -> Value {
+    let text = page.eval(&format!(
+        "document.querySelector('[data-testid={prefix}-json]').textContent"
+    ));
+    serde_json::from_str(text.as_str().expect("text"))
+        .unwrap_or_else(|e| panic!("{prefix}-json is not JSON ({e}): {text}"))
+}
+
+/// Clicks the output viewer on a grid until the side panel names a plate; its text.
+fn click_a_plate(page: &Page) -> String {
+    let canvas = page.rect(&tid("debug-viewer-output"));
+    for (i, j) in [(4, 4), (3, 4), (5, 4), (4, 3), (4, 5), (3, 3), (5, 5), (3, 5), (5, 3)] {
+        page.click_at(
+            canvas.x + canvas.width * f64::from(i) / 8.0,
+            canvas.y + canvas.height * f64::from(j) / 8.0,
+        );
+        settle(page);
+        let selected = page.eval("document.querySelector('[data-testid=debug-plate-info]').dataset.selected || ''");
+        if selected.as_str().is_some_and(|s| !s.is_empty()) {
+            let text = page.eval("document.querySelector('[data-testid=debug-plate-info]').textContent");
+            return text.as_str().unwrap_or_default().to_string();
+        }
+    }
+    panic!("no plate under the mouse in the debug output view");
+}
+
+#[test]
+fn debug_view_isolated_step_and_converting() {
+    let Some(rig) = Rig::start(&["--workers", "1", "--no-examples"]) else {
+        return;
+    };
+    let page = rig.browser.open(&rig.url("/#/debug"));
+    page.wait_until(
+        "document.querySelectorAll('[data-testid=debug-model] option').length > 0",
+        "the test set",
+    );
+    page.screenshot("40-debug-start", None);
+
+    // Isolated step: the plates step of a test model, its input and output side by side.
+    page.click(&tid("debug-run"));
+    wait_debug_ready(&page);
+    let out = debug_json(&page, "debug");
+    assert_eq!(out["step"], "plates", "{out}");
+    // The default test model is a closed box: six plates, six pairs, in the snapshot shown.
+    assert_eq!(out["summary"]["count"], 6, "{out}");
+    debug_json(&page, "debug-input");
+    let timing = page.eval("document.querySelector('[data-testid=debug-timing]').textContent");
+    assert!(timing.as_str().is_some_and(|t| t.contains("ms")), "{timing}");
+    let output =
+        Image::from_png(&page.screenshot("41-debug-plates-output", Some(page.rect(&tid("debug-viewer-output")))));
+    assert_view_rendered("plates", &output);
+    let input = Image::from_png(&page.screenshot("42-debug-plates-input", Some(page.rect(&tid("debug-viewer-input")))));
+    assert!(
+        input.share_unlike(input.background(), 8) > 0.02,
+        "the step's input is drawn"
+    );
+    // The render mode changes the drawing only: hidden leaves no palette colour.
+    page.eval(
+        "(() => { const s = document.querySelector('[data-testid=debug-render]'); s.value = 'hidden'; \
+         s.dispatchEvent(new Event('change', { bubbles: true })); })()",
+    );
+    settle(&page);
+    let hidden =
+        Image::from_png(&page.screenshot("43-debug-render-hidden", Some(page.rect(&tid("debug-viewer-output")))));
+    assert!(palette_share(&hidden).0 < 0.01, "hidden still draws the plates");
+    page.eval(
+        "(() => { const s = document.querySelector('[data-testid=debug-render]'); s.value = 'solid'; \
+         s.dispatchEvent(new Event('change', { bubbles: true })); })()",
+    );
+    settle(&page);
+    let info = click_a_plate(&page);
+    assert!(
+        info.contains("finger") && info.contains("connections"),
+        "plate info: {info}"
+    );
+    page.screenshot("44-debug-plate-info", None);
+
+    // Converting: the whole plate pipeline, any step chosen from the list.
+    page.eval(
+        "(() => { const s = document.querySelector('[data-testid=debug-mode]'); s.value = 'converting'; \
+         s.dispatchEvent(new Event('change', { bubbles: true })); })()",
+    );
+    page.click(&tid("debug-run"));
+    wait_debug_ready(&page);
+    let steps = page.wait_until(
+        "[...document.querySelectorAll('[data-testid=debug-steps] [data-step]')].map(b => b.dataset.step)",
+        "the step list",
+    );
+    for step in ["read", "plates", "joints", "parts", "sheets"] {
+        assert!(
+            steps.as_array().is_some_and(|a| a.iter().any(|s| s == step)),
+            "{step} in {steps}"
+        );
+    }
+    page.click("[data-testid=debug-steps] [data-step=joints]");
+    page.wait_until("window.platenerDebug.state.step === 'joints'", "the joints step");
+    page.wait_until(
+        "(() => { try { return JSON.parse(document.querySelector('[data-testid=debug-json]').textContent).step === 'joints'; } catch (_) { return false; } })()",
+        "the joints snapshot",
+    );
+    assert_eq!(
+        debug_json(&page, "debug")["summary"]["count"],
+        12,
+        "the box's 12 corner joints"
+    );
+    page.screenshot("45-debug-converting-joints", None);
+    page.assert_no_problems("debug view");
+}
