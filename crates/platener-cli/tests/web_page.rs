@@ -175,3 +175,44 @@ fn assets_revalidate_by_etag() {
     let other = server.request("GET", "/assets/js/app.js", &[("If-None-Match", "\"stale\"")], b"");
     assert_eq!((other.status, other.body.len()), (200, first.body.len()));
 }
+
+#[test]
+fn the_test_strip_json_holds_the_rings_the_page_draws() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let server = Server::start(dir.path(), &["--workers", "0", "--no-examples"], &[]);
+    let strip = server.get("/api/test-strip.json?thickness=4&material=acrylic").json();
+    let (w, h) = (
+        strip["width"].as_f64().expect("width"),
+        strip["height"].as_f64().expect("height"),
+    );
+    let inside = |p: &serde_json::Value| {
+        let (x, y) = (p[0].as_f64().expect("x"), p[1].as_f64().expect("y"));
+        (0.0..=w).contains(&x) && (0.0..=h).contains(&y)
+    };
+    for key in ["strip", "spike"] {
+        let ring = strip[key].as_array().expect(key);
+        assert!(ring.len() >= 4 && ring.iter().all(inside), "{key}: {ring:?}");
+    }
+    assert!(
+        strip["engrave"].as_array().is_some_and(|e| e.len() > 10),
+        "the numbers and table"
+    );
+    let holes = strip["holes"].as_array().expect("holes");
+    assert_eq!(holes.len(), 17);
+    let mut last_x = f64::MIN;
+    for hole in holes {
+        let ring = hole["ring"].as_array().expect("ring");
+        let xs: Vec<f64> = ring.iter().filter_map(|p| p[0].as_f64()).collect();
+        let ys: Vec<f64> = ring.iter().filter_map(|p| p[1].as_f64()).collect();
+        let span = |v: &[f64]| v.iter().copied().fold(f64::MIN, f64::max) - v.iter().copied().fold(f64::MAX, f64::min);
+        // The drawn ring is the hole: its width along the strip, thickness + 1 mm across.
+        assert!(
+            (span(&xs) - hole["width"].as_f64().expect("width")).abs() < 1e-9,
+            "{hole}"
+        );
+        assert!((span(&ys) - 5.0).abs() < 1e-9, "{hole}");
+        let x = xs.iter().copied().fold(f64::MAX, f64::min);
+        assert!(x > last_x, "left to right");
+        last_x = x;
+    }
+}

@@ -78,6 +78,7 @@ async function recut(changes) {
   status('Cutting again with the new settings…');
   try {
     const next = await recutModel(c.id, changes);
+    await area.open(next.id, { recut: true });
     location.hash = `#/c/${encodeURIComponent(next.id)}`;
   } catch (e) {
     showError(e.message);
@@ -171,7 +172,7 @@ function route() {
     const id = decodeURIComponent(m[1]);
     if (id !== state.id) {
       area.open(id);
-      document.querySelector('.convert').scrollIntoView({ block: 'start' });
+      window.scrollTo({ top: 0 });
     }
   } else if (hash === '#/' || hash === '#') {
     area.reset();

@@ -40,6 +40,7 @@ export function createConversionArea({ state, onGalleryChange }) {
   let plan = null;
   let stopEvents = () => {};
   let playTimer = null;
+  let keepCamera = false; // the next scene is a re-cut of the one shown: keep the camera
   const listeners = new Set();
   const sheets = createSheets($('sheets'), { onHover: (n) => hover(n, 'part', 'sheet') });
 
@@ -73,7 +74,8 @@ export function createConversionArea({ state, onGalleryChange }) {
     state.loadedView = null;
     hover(null, null, 'viewer');
     try {
-      await viewer.load(url);
+      await viewer.load(url, { keepCamera });
+      keepCamera = false;
       if (state.view !== view) return;
       state.loadedView = view;
       $('viewer-note').hidden = true;
@@ -163,6 +165,11 @@ export function createConversionArea({ state, onGalleryChange }) {
     plan = null;
     state.id = null;
     state.status = null;
+    state.loadedView = null;
+    state.hovered = null;
+    if (viewer) viewer.clear();
+    $('viewer-note').hidden = false;
+    $('part-label').textContent = '';
     progress.clearProgress();
     progress.status('No model yet.');
     sheets.clear();
@@ -174,8 +181,10 @@ export function createConversionArea({ state, onGalleryChange }) {
     $('warnings-box').hidden = true;
   }
 
-  async function openConversion(id) {
+  /** Opens conversion `id`; `recut`: it re-cuts the one shown, so the camera stays. */
+  async function openConversion(id, { recut = false } = {}) {
     reset();
+    keepCamera = recut;
     state.id = id;
     progress.status('Loading…');
     try {
@@ -199,10 +208,16 @@ export function createConversionArea({ state, onGalleryChange }) {
     else if (FINISHED.has(kind) || kind === 'lost') reload(id);
   }
 
+  /** After the last event (or a lost stream): the conversion as it is now. A stream lost
+   * while the job still runs (a restarting server) is followed again a moment later. */
   async function reload(id) {
     try {
       const c = await api.conversion(id);
-      if (state.id === id) await finished(c);
+      if (state.id !== id) return;
+      if (FINISHED.has(c.status)) return await finished(c);
+      setTimeout(() => {
+        if (state.id === id) stopEvents = api.events(id, (kind, data) => onEvent(id, kind, data));
+      }, 2000);
     } catch (e) {
       progress.showError(e.message);
     }

@@ -49,7 +49,11 @@ export function createSheets(container, { onHover = () => {} } = {}) {
   let current = null;
 
   function applyZoom() {
-    for (const svg of container.querySelectorAll('svg')) svg.style.width = `${Math.round(zoom * 100)}%`;
+    for (const svg of container.querySelectorAll('svg')) {
+      svg.style.width = `${Math.round(zoom * 100)}%`;
+      // At "fit" a tall sheet stays within the panel; zoomed in, it may grow.
+      svg.style.maxHeight = zoom > 1 ? 'none' : '';
+    }
   }
 
   function decorate(svg, sheetNumber) {
@@ -75,14 +79,26 @@ export function createSheets(container, { onHover = () => {} } = {}) {
     texts.forEach((text, i) => {
       const figure = document.createElement('figure');
       const svg = parseSvg(text);
+      const size = (svg.getAttribute('viewBox') || '').split(/[\s,]+/).slice(2).map(Number);
       decorate(svg, i + 1);
       const caption = document.createElement('figcaption');
-      caption.textContent = `Sheet ${i + 1}`;
+      caption.textContent = size.length === 2 ? `Sheet ${i + 1} (${size[0]} × ${size[1]} mm), cropped to its parts` : `Sheet ${i + 1}`;
       figure.append(svg, caption);
       container.append(figure);
+      cropToParts(svg);
     });
     applyZoom();
     current = null;
+  }
+
+  /** Shows the parts' area of a sheet (plus 5 mm), not the whole mostly empty sheet. */
+  function cropToParts(svg) {
+    try {
+      const b = svg.getBBox();
+      if (b.width > 0 && b.height > 0) svg.setAttribute('viewBox', `${b.x - 5} ${b.y - 5} ${b.width + 10} ${b.height + 10}`);
+    } catch (_) {
+      // Not rendered (a hidden panel): keep the whole sheet.
+    }
   }
 
   function highlight(n) {

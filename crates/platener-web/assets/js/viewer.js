@@ -40,7 +40,7 @@ function disposeTree(root) {
 
 /**
  * createViewer(canvas, { onHover(number|null, kind) }) → the viewer API of the page's contract:
- * load, setRender, highlight, explode, showUpTo, setOrder, frame, dispose, and `stats`
+ * load, setRender, highlight, explode, showUpTo, setOrder, frame, clear, dispose, and `stats`
  * (frames rendered, lastFrameMs: how long the last frame took).
  */
 export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, lastFrameMs: 0 } } = {}) {
@@ -130,7 +130,8 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     state.order = [...state.nodes.keys()].sort((a, b) => a - b);
   }
 
-  async function load(url) {
+  /** Loads a GLB; `keepCamera` keeps the camera where it is (a re-cut of the same model). */
+  async function load(url, { keepCamera = false } = {}) {
     const buffer = await getBuffer(url);
     const gltf = await new Promise((resolve, reject) => {
       new GLTFLoader().parse(buffer, '', resolve, (e) => reject(new Error(`The 3D scene cannot be read: ${e.message || e}`)));
@@ -151,7 +152,9 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     state.exploded = 0;
     state.shown = Infinity;
     setRender(state.render);
-    frame();
+    if (keepCamera && state.framed) requestRender();
+    else frame();
+    state.framed = true;
     return { parts: state.nodes.size };
   }
 
@@ -295,6 +298,19 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     e.preventDefault();
   });
 
+  /** Removes the model (the grid and axes stay). */
+  function clear() {
+    if (state.model) {
+      scene.remove(state.model);
+      disposeTree(state.model);
+    }
+    state.model = null;
+    state.nodes.clear();
+    state.order = [];
+    state.highlighted = null;
+    requestRender();
+  }
+
   function dispose() {
     state.disposed = true;
     observer.disconnect();
@@ -306,7 +322,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
 
   resize();
   return {
-    load, setRender, highlight, explode, showUpTo, setOrder, frame, dispose, stats,
+    load, setRender, highlight, explode, showUpTo, setOrder, frame, clear, dispose, stats,
     get parts() { return [...state.nodes.keys()]; },
     get gridCellMm() { return helpers.userData.cellMm || null; },
   };
