@@ -105,7 +105,22 @@ fn a_debug_box_stores_every_step_with_real_plate_pairs_and_joint_kinds() {
     assert_eq!(ids, [1, 2, 3, 4, 5, 6]);
     assert!(plates["snapshot"]["plates"].is_array(), "the snapshot itself, bounded");
 
-    let joints = get_json(&server, step(&index, "joints")["json"].as_str().expect("json link"));
+    check_joints_and_parts(&server, &index);
+
+    for bad in [
+        format!("/api/conversions/{id}/debug/plate/nosuchstep.json"),
+        format!("/api/conversions/{id}/debug/plate/plates.txt"),
+        format!("/api/conversions/{id}/debug/bent/plates.json"),
+        format!("/api/conversions/{id}/debug/stacked/plates.json"),
+        "/api/conversions/c_nosuchconversion/debug".to_string(),
+    ] {
+        server.get(&bad).assert_error(404, "not_found");
+    }
+}
+
+/// The box's joints (12 corner joints with finger style, four per plate) and parts.
+fn check_joints_and_parts(server: &Server, index: &Value) {
+    let joints = get_json(server, step(index, "joints")["json"].as_str().expect("json link"));
     assert_eq!(joints["summary"]["count"], 12);
     let connections = joints["summary"]["connections"].as_array().expect("connections");
     assert_eq!(connections.len(), 12);
@@ -129,19 +144,9 @@ fn a_debug_box_stores_every_step_with_real_plate_pairs_and_joint_kinds() {
             .count();
         assert_eq!(n, 4, "plate {plate}");
     }
-    let parts = get_json(&server, step(&index, "parts")["json"].as_str().expect("json link"));
+    let parts = get_json(server, step(index, "parts")["json"].as_str().expect("json link"));
     assert_eq!(parts["summary"]["count"], 6);
     assert_eq!(parts["summary"]["joints"].as_array().map(Vec::len), Some(12));
-
-    for bad in [
-        format!("/api/conversions/{id}/debug/plate/nosuchstep.json"),
-        format!("/api/conversions/{id}/debug/plate/plates.txt"),
-        format!("/api/conversions/{id}/debug/bent/plates.json"),
-        format!("/api/conversions/{id}/debug/stacked/plates.json"),
-        "/api/conversions/c_nosuchconversion/debug".to_string(),
-    ] {
-        server.get(&bad).assert_error(404, "not_found");
-    }
 }
 
 #[test]

@@ -145,7 +145,7 @@ impl JobSettings {
     fn debug_options(&self, settings: &mut Settings) -> Result<(), String> {
         settings.weld = match self.weld {
             None => Weld::Auto,
-            Some(d) if d == 0.0 => Weld::Off,
+            Some(0.0) => Weld::Off,
             Some(d) if d.is_finite() && (0.0..=10.0).contains(&d) => Weld::Distance(d),
             Some(_) => return Err("weld must be a number of mm from 0 to 10".into()),
         };

@@ -227,16 +227,10 @@ fn plates_summary(state: &State) -> Value {
     let Some(p) = state.plates.as_ref() else {
         return Value::Null;
     };
-    let plates: Vec<Value> = p
-        .plates
-        .iter()
-        .enumerate()
-        .take(LIST_LIMIT)
-        .map(|(i, plate)| {
-            json!({"id": i + 1, "kind": plate.kind, "thickness": plate.thickness,
-                   "area": plate.area, "shapes": plate.shapes})
-        })
-        .collect();
+    let plates = listed(&p.plates, |i, plate| {
+        json!({"id": i + 1, "kind": plate.kind, "thickness": plate.thickness,
+               "area": plate.area, "shapes": plate.shapes})
+    });
     let pairs = p
         .plates
         .iter()
@@ -259,36 +253,35 @@ fn joints_summary(state: &State) -> Value {
     let Some(j) = state.joints.as_ref() else {
         return Value::Null;
     };
-    let connections: Vec<Value> = j
-        .connections
-        .iter()
-        .take(LIST_LIMIT)
-        .map(|c| {
-            json!({"plates": [c.plates[0] + 1, c.plates[1] + 1], "kind": c.kind, "style": c.style,
-                   "angle_deg": c.angle_deg, "segments": c.segments, "label": c.label})
-        })
-        .collect();
+    let connections = listed(&j.connections, |_, c| {
+        json!({"plates": [c.plates[0] + 1, c.plates[1] + 1], "kind": c.kind, "style": c.style,
+               "angle_deg": c.angle_deg, "segments": c.segments, "label": c.label})
+    });
     json!({"connections": connections, "count": j.connections.len(), "keys": j.keys.len()})
 }
 
 /// Parts (ids as engraved and as the final scene's `part-ID` nodes) and their joints.
 fn parts_summary(input: &PlanInput) -> Value {
-    let parts: Vec<Value> = input
-        .parts
-        .iter()
-        .take(LIST_LIMIT)
-        .map(|p| {
-            json!({"id": p.id, "kind": p.kind, "thickness": p.thickness,
-                   "area": p.polygon.area(), "merged": p.merged})
-        })
-        .collect();
-    let joints: Vec<Value> = input
-        .joints
-        .iter()
-        .take(LIST_LIMIT)
-        .map(|j| json!({"parts": j.parts, "kind": j.kind, "angle_deg": j.angle_deg, "label": j.label}))
-        .collect();
+    let parts = listed(&input.parts, |_, p| {
+        json!({"id": p.id, "kind": p.kind, "thickness": p.thickness,
+               "area": p.polygon.area(), "merged": p.merged})
+    });
+    let joints = listed(
+        &input.joints,
+        |_, j| json!({"parts": j.parts, "kind": j.kind, "angle_deg": j.angle_deg, "label": j.label}),
+    );
     json!({"parts": parts, "joints": joints, "count": input.parts.len(), "glued": input.glued.len()})
+}
+
+/// The first [`LIST_LIMIT`] of `items` as JSON: a summary list stays whole for any model one
+/// would debug, and bounded for the rest.
+fn listed<T>(items: &[T], entry: impl Fn(usize, &T) -> Value) -> Vec<Value> {
+    items
+        .iter()
+        .take(LIST_LIMIT)
+        .enumerate()
+        .map(|(i, t)| entry(i, t))
+        .collect()
 }
 
 /// Counts of the cutting plan so far.

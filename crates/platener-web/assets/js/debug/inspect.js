@@ -65,7 +65,7 @@ export function plateLines(n, plates, joints) {
   lines.push(joints ? `${mine.length} connection${mine.length === 1 ? '' : 's'}` : 'no joints step in this run');
   for (const c of mine) {
     const other = c.plates[0] === n ? c.plates[1] : c.plates[0];
-    lines.push(`with plate ${other}: ${c.kind} joint, ${c.style} fingers, ${Math.round(c.angle_deg)}°, label ${c.label}`);
+    lines.push(`with plate ${other}: ${c.kind} joint, ${c.style} style, ${Math.round(c.angle_deg)}°, label ${c.label}`);
   }
   return lines;
 }

@@ -157,6 +157,7 @@ async function convert(ui, viewers) {
   const run = ++st.run;
   ui.error.hidden = true;
   ui.progress.replaceChildren();
+  ui.plateInfo.replaceChildren('Click a plate or part in the output view.');
   setStatus(ui, 'running', 'Converting in a worker…');
   try {
     const file = await chosenFile(ui);
@@ -166,7 +167,8 @@ async function convert(ui, viewers) {
     });
     st.id = c.id;
     const end = await finished(c.id, (d) => {
-      if (d.state === 'finished') ui.progress.append(el('li', { 'data-step': d.step }, `${d.step} ${Number(d.ms).toFixed(1)} ms`));
+      // A run superseded by a newer one (an option changed meanwhile) no longer draws.
+      if (d.state === 'finished' && run === st.run) ui.progress.append(el('li', { 'data-step': d.step }, `${d.step} ${Number(d.ms).toFixed(1)} ms`));
     });
     if (run !== st.run) return;
     const index = await debugIndex(c.id);
