@@ -12,7 +12,8 @@ mod web_support;
 
 use std::path::{Path, PathBuf};
 
-use browser_support::pixels::{Image, hue};
+use browser_support::models::million_triangle_box;
+use browser_support::pixels::{Image, assert_view_rendered, assert_viewer_empty, palette_share};
 use browser_support::{Browser, PATIENCE, Page, Rect, chromium};
 use serde_json::Value;
 use web_support::Server;
@@ -118,61 +119,6 @@ fn show_view(page: &Page, view: &str, shot: &str) -> Image {
 fn canvas_pixels(page: &Page, shot: &str) -> Image {
     let rect = page.rect(&tid("viewer"));
     Image::from_png(&page.screenshot(shot, Some(rect)))
-}
-
-/// The share of the canvas in the scenes' grey.
-fn grey_share(img: &Image) -> f64 {
-    img.pixels().filter(|p| is_scene_grey(*p)).count() as f64 / f64::from(img.width * img.height)
-}
-
-/// The share of the canvas in saturated colours, and how many 30° hue bins hold more than
-/// 200 pixels (several plates in their own palette colours).
-fn palette_share(img: &Image) -> (f64, usize) {
-    let mut bins = std::collections::BTreeMap::new();
-    for h in img.pixels().filter_map(hue) {
-        *bins.entry((h / 30.0) as u32).or_insert(0usize) += 1;
-    }
-    let coloured: usize = bins.values().sum();
-    let hues = bins.values().filter(|&&n| n > 200).count();
-    (coloured as f64 / f64::from(img.width * img.height), hues)
-}
-
-/// A view's pixels hold its model: not blank, and the view's colours. `model` and
-/// `wireframe` draw the mesh in the scene's grey; the others in palette colours, several.
-fn assert_view_rendered(view: &str, img: &Image) {
-    let drawn = img.share_unlike(img.background(), 8);
-    assert!(
-        drawn > 0.02,
-        "{view}: only {:.2} % of the canvas differs from its background",
-        drawn * 100.0
-    );
-    if matches!(view, "model" | "wireframe") {
-        let grey = grey_share(img);
-        assert!(grey > 0.01, "{view}: the model's grey covers {:.2} %", grey * 100.0);
-    } else {
-        let (share, hues) = palette_share(img);
-        assert!(
-            share > 0.02 && hues >= 2,
-            "{view}: palette colours {:.2} % in {hues} hues",
-            share * 100.0
-        );
-    }
-}
-
-/// The same checks fail on the viewer before any model is loaded (so they can fail).
-fn assert_viewer_empty(img: &Image) {
-    let (share, _) = palette_share(img);
-    assert!(grey_share(img) < 0.01 && share < 0.02, "the empty viewer looks drawn");
-}
-
-/// A pixel of the scenes' grey (#BBBBBB) as lit: neutral, and darker than anything the
-/// bluish grid blends to with the background, so a canvas with only the grid has none.
-fn is_scene_grey(p: [u8; 3]) -> bool {
-    let (max, min) = (
-        p.iter().max().copied().unwrap_or(0),
-        p.iter().min().copied().unwrap_or(0),
-    );
-    max - min <= 4 && max < 216 && min > 40
 }
 
 /// Moves the mouse over the canvas on a grid until a part is hovered; its number.
@@ -558,49 +504,6 @@ fn wait_gallery(rig: &Rig, n: usize) -> Vec<Value> {
         assert!(start.elapsed() < PATIENCE, "the examples did not finish: {g}");
         std::thread::sleep(std::time::Duration::from_millis(200));
     }
-}
-
-/// A closed box of about a million triangles (each face a fine grid), as binary STL: big
-/// enough to measure the viewer, still a box the plate method cuts.
-fn million_triangle_box(path: &Path) {
-    const N: usize = 289; // 6 faces × 289² cells × 2 = 1,002,252 triangles
-    let size = [100.0f32, 80.0, 60.0];
-    let mut tris: Vec<[[f32; 3]; 3]> = Vec::with_capacity(6 * N * N * 2);
-    for axis in 0..3 {
-        for side in [0.0f32, 1.0] {
-            let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
-            let at = |i: usize, j: usize| {
-                let mut p = [0.0f32; 3];
-                p[axis] = side * size[axis];
-                p[u] = size[u] * i as f32 / N as f32;
-                p[v] = size[v] * j as f32 / N as f32;
-                p
-            };
-            for i in 0..N {
-                for j in 0..N {
-                    let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-                    // Outward normals: the far side keeps u×v order, the near side flips it.
-                    if side > 0.5 {
-                        tris.extend([[a, b, c], [a, c, d]]);
-                    } else {
-                        tris.extend([[a, c, b], [a, d, c]]);
-                    }
-                }
-            }
-        }
-    }
-    let mut bytes = vec![0u8; 80];
-    bytes.extend((tris.len() as u32).to_le_bytes());
-    for t in &tris {
-        bytes.extend([0u8; 12]);
-        for p in t {
-            for c in p {
-                bytes.extend(c.to_le_bytes());
-            }
-        }
-        bytes.extend([0u8; 2]);
-    }
-    std::fs::write(path, bytes).expect("write the big STL");
 }
 
 /// Drops a model on a fresh landing page; milliseconds (page clock) from the drop until the

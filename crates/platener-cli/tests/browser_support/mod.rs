@@ -5,6 +5,7 @@
 #![allow(dead_code, reason = "each test uses a part")]
 
 pub mod cdp;
+pub mod models;
 pub mod pixels;
 
 use std::path::{Path, PathBuf};

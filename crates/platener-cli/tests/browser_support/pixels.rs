@@ -1,5 +1,5 @@
 //! Screenshots as pixels: what the tests check of a rendered WebGL canvas (not blank, the
-//! model's colour present, a highlight changed pixels).
+//! model's colour present, a highlight changed pixels), and the checks themselves.
 
 /// An RGBA image decoded from a PNG.
 pub struct Image {
@@ -53,17 +53,6 @@ impl Image {
         n as f64 / f64::from((self.width * self.height).max(1))
     }
 
-    /// The share of pixels whose hue is that of `colour` (within 20°), saturated enough to
-    /// tell: shading changes lightness, not hue, so a lit model keeps its hue.
-    pub fn share_of_hue(&self, colour: [u8; 3]) -> f64 {
-        let target = hue(colour).expect("a coloured reference");
-        let n = self
-            .pixels()
-            .filter(|p| hue(*p).is_some_and(|h| (h - target).abs().min(360.0 - (h - target).abs()) < 20.0))
-            .count();
-        n as f64 / f64::from((self.width * self.height).max(1))
-    }
-
     /// How many pixels differ (by more than `tolerance`) between two images of one size.
     pub fn changed_pixels(&self, other: &Image, tolerance: u8) -> usize {
         assert_eq!((self.width, self.height), (other.width, other.height), "same size");
@@ -98,9 +87,57 @@ pub fn hue([r, g, b]: [u8; 3]) -> Option<f64> {
     Some(h)
 }
 
-/// `#rrggbb` (or a three.js colour number) as RGB.
-pub fn parse_colour(hex: &str) -> [u8; 3] {
-    let h = hex.trim_start_matches('#').trim_start_matches("0x");
-    let v = u32::from_str_radix(h, 16).unwrap_or_else(|_| panic!("not a colour: {hex}"));
-    [(v >> 16) as u8, (v >> 8) as u8, v as u8]
+/// The share of the canvas in the scenes' grey.
+pub fn grey_share(img: &Image) -> f64 {
+    img.pixels().filter(|p| is_scene_grey(*p)).count() as f64 / f64::from(img.width * img.height)
+}
+
+/// The share of the canvas in saturated colours, and how many 30° hue bins hold more than
+/// 200 pixels (several plates in their own palette colours).
+pub fn palette_share(img: &Image) -> (f64, usize) {
+    let mut bins = std::collections::BTreeMap::new();
+    for h in img.pixels().filter_map(hue) {
+        *bins.entry((h / 30.0) as u32).or_insert(0usize) += 1;
+    }
+    let coloured: usize = bins.values().sum();
+    let hues = bins.values().filter(|&&n| n > 200).count();
+    (coloured as f64 / f64::from(img.width * img.height), hues)
+}
+
+/// A view's pixels hold its model: not blank, and the view's colours. `model` and
+/// `wireframe` draw the mesh in the scene's grey; the others in palette colours, several.
+pub fn assert_view_rendered(view: &str, img: &Image) {
+    let drawn = img.share_unlike(img.background(), 8);
+    assert!(
+        drawn > 0.02,
+        "{view}: only {:.2} % of the canvas differs from its background",
+        drawn * 100.0
+    );
+    if matches!(view, "model" | "wireframe") {
+        let grey = grey_share(img);
+        assert!(grey > 0.01, "{view}: the model's grey covers {:.2} %", grey * 100.0);
+    } else {
+        let (share, hues) = palette_share(img);
+        assert!(
+            share > 0.02 && hues >= 2,
+            "{view}: palette colours {:.2} % in {hues} hues",
+            share * 100.0
+        );
+    }
+}
+
+/// The same checks fail on the viewer before any model is loaded (so they can fail).
+pub fn assert_viewer_empty(img: &Image) {
+    let (share, _) = palette_share(img);
+    assert!(grey_share(img) < 0.01 && share < 0.02, "the empty viewer looks drawn");
+}
+
+/// A pixel of the scenes' grey (#BBBBBB) as lit: neutral, and darker than anything the
+/// bluish grid blends to with the background, so a canvas with only the grid has none.
+pub fn is_scene_grey(p: [u8; 3]) -> bool {
+    let (max, min) = (
+        p.iter().max().copied().unwrap_or(0),
+        p.iter().min().copied().unwrap_or(0),
+    );
+    max - min <= 4 && max < 216 && min > 40
 }
