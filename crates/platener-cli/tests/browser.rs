@@ -1,8 +1,10 @@
 //! The web page (issue 18) in Debian's Chromium, headless, against the real `platener serve`
 //! on 127.0.0.1 with a temp data dir: upload by the button and by a drop, progress, the six
-//! 3D views checked by their pixels, hover in 3D and on the sheet, re-cuts from the settings
-//! and the test strip, the ZIP download verified, the gallery, the debug view, the keyboard,
-//! and no console error or failed request anywhere. Screenshots go to target/browser-shots/.
+//! 3D views checked by their pixels, hover in 3D and on the sheet, the exploded view and the
+//! assembly player, publishing, re-cuts from the settings and the test strip, the strip's SVG
+//! and the ZIP downloads verified, the gallery (a finished conversion's steps per method), the
+//! phone-width layout, the debug view, the keyboard, and no console error or failed request
+//! anywhere. Screenshots go to target/browser-shots/.
 //!
 //! Without Chromium the tests say so and pass, unless PLATENER_REQUIRE_CHROMIUM=1 (CI).
 //! Every wait is bounded (`PATIENCE`); nothing asserts on speed.
@@ -244,27 +246,164 @@ fn upload_button_progress_six_views_hover_and_settings_recut() {
         from_sheet.changed_pixels(&before, 24) > 100,
         "part {other} hovered on the sheet is not lit in 3D"
     );
+    check_explode_and_player(&rig, &page, &id);
+    publish_and_see_in_gallery(&rig, &page, &id);
 
     // A settings change re-cuts: a new conversion with the new material, the view kept
     // (plates, not the default final view).
     show_view(&page, "plates", "07-before-recut");
-    let cursor = page.cursor();
+    page.eval("performance.setResourceTimingBufferSize(100000)");
     page.eval(
         "(() => { const s = document.querySelector('[data-testid=material]'); s.value = 'acrylic'; \
          s.dispatchEvent(new Event('change', { bubbles: true })); })()",
     );
     let recut = wait_converted(&page, Some(&id));
     assert_eq!(conversion(&rig, &recut)["settings"]["material"], "acrylic");
-    // The state keeps the old view's name until the new scene is asked for, so wait for it.
-    page.wait_response(cursor, &format!("/api/conversions/{recut}/scenes/plates.glb"));
-    page.wait_until(
-        "window.platener.state.loadedView === 'plates'",
+    // The first moment the state names the plates view loaded, the re-cut's own plates scene
+    // has been fetched (the old scene is never named as the re-cut's).
+    let scene = format!("/api/conversions/{recut}/scenes/plates.glb");
+    let fetched = page.wait_until(
+        &format!(
+            "window.platener.state.loadedView !== 'plates' ? null : \
+             [performance.getEntriesByType('resource').some(e => e.name.includes('{scene}'))]"
+        ),
         "the plates view of the re-cut",
     );
+    assert_eq!(fetched[0], true, "plates named loaded before {scene} was fetched");
     assert_eq!(page.state()["view"], "plates", "the view is kept across a re-cut");
     settle(&page);
     assert_view_rendered("plates", &canvas_pixels(&page, "08-recut-acrylic"));
     page.assert_no_problems("landing page, upload, views, hover, re-cut");
+}
+
+/// Sets a range input as dragging it does (its value, then an `input` event).
+fn set_range(page: &Page, id: &str, value: u32) {
+    page.eval(&format!(
+        "(() => {{ const r = document.querySelector('[data-testid={id}]'); r.value = '{value}'; \
+         r.dispatchEvent(new Event('input', {{ bubbles: true }})); }})()"
+    ));
+    settle(page);
+}
+
+/// Part number → centre (mm) from the viewer's state.
+fn part_centres(page: &Page) -> std::collections::BTreeMap<u64, [f64; 3]> {
+    let state = page.state();
+    let map = state["partCentres"].as_object().expect("partCentres");
+    map.iter()
+        .map(|(n, c)| {
+            let c: Vec<f64> = c.as_array().expect("xyz").iter().filter_map(Value::as_f64).collect();
+            (n.parse().expect("a number"), [c[0], c[1], c[2]])
+        })
+        .collect()
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt()
+}
+
+/// The exploded slider moves every part of the final view away from the others (the
+/// viewer's part centres, and the picture changes); the assembly player then shows k parts,
+/// in an order where each part after the first is joined (plan.json's joints) to one before.
+fn check_explode_and_player(rig: &Rig, page: &Page, id: &str) {
+    let assembled = show_view(page, "final", "13-final-assembled");
+    let home = part_centres(page);
+    let plan = plan_json(&rig.server.get(&format!("/api/conversions/{id}/plan.zip")).body);
+    let parts = plan["parts"].as_array().expect("parts").len();
+    assert_eq!(home.len(), parts, "one node per part of plan.json: {home:?}");
+    set_range(page, "explode", 100);
+    let exploded = canvas_pixels(page, "14-final-exploded");
+    assert_eq!(page.state()["exploded"], 1.0);
+    assert!(
+        exploded.changed_pixels(&assembled, 24) > 1000,
+        "exploding changes nothing on screen"
+    );
+    let apart = part_centres(page);
+    let centroid = |m: &std::collections::BTreeMap<u64, [f64; 3]>| {
+        let mut c = [0.0; 3];
+        for p in m.values() {
+            for i in 0..3 {
+                c[i] += p[i] / m.len() as f64;
+            }
+        }
+        c
+    };
+    let (c0, c1) = (centroid(&home), centroid(&apart));
+    for (n, p) in &home {
+        let q = apart[n];
+        assert!(distance(*p, q) > 5.0, "part {n} did not move: {p:?} → {q:?}");
+        assert!(
+            distance(q, c1) > distance(*p, c0) + 5.0,
+            "part {n} did not move away from the others: {p:?} → {q:?}"
+        );
+    }
+    set_range(page, "explode", 0);
+    assert_eq!(part_centres(page), home, "the slider at 0 puts the parts back");
+    check_player(page, &plan, &assembled);
+}
+
+/// Steps the assembly player from one part to all of them (see `check_explode_and_player`).
+fn check_player(page: &Page, plan: &Value, assembled: &Image) {
+    let joined: std::collections::HashSet<(u64, u64)> = plan["joints"]
+        .as_array()
+        .expect("joints")
+        .iter()
+        .filter_map(|j| Some((j["parts"][0].as_u64()?, j["parts"][1].as_u64()?)))
+        .flat_map(|(a, b)| [(a, b), (b, a)])
+        .collect();
+    assert!(!joined.is_empty(), "plan.json has joints");
+    let total = plan["parts"].as_array().expect("parts").len();
+    let mut shown: Vec<u64> = Vec::new();
+    for k in 1..=total {
+        page.click(&tid("player-step"));
+        settle(page);
+        let now: Vec<u64> = serde_json::from_value(page.state()["shownParts"].clone()).expect("numbers");
+        assert_eq!(now.len(), k, "step {k} shows {now:?}");
+        assert_eq!(now[..k - 1], shown[..], "step {k} keeps the parts shown before");
+        let new = now[k - 1];
+        assert!(
+            k == 1 || shown.iter().any(|&s| joined.contains(&(s, new))),
+            "part {new} (step {k}) is joined to none of {shown:?}"
+        );
+        if k == 1 {
+            let one = canvas_pixels(page, "15-player-one-part");
+            assert!(
+                one.changed_pixels(assembled, 24) > 1000,
+                "one part looks like all of them"
+            );
+        }
+        shown = now;
+    }
+    let all = canvas_pixels(page, "16-player-all-parts");
+    assert!(
+        all.changed_pixels(assembled, 24) < 200,
+        "after the last step the whole model shows"
+    );
+}
+
+/// Publishes the user's conversion: it appears in the gallery (the API's and the page's), its
+/// thumbnail loaded.
+fn publish_and_see_in_gallery(rig: &Rig, page: &Page, id: &str) {
+    page.click(&tid("publish"));
+    page.wait_until(
+        "document.querySelector('[data-testid=publish]').textContent === 'Published'",
+        "the Publish button answers",
+    );
+    let items = rig.server.get("/api/gallery?page=1").json();
+    assert!(
+        items["items"]
+            .as_array()
+            .is_some_and(|a| a.iter().any(|i| i["id"] == id)),
+        "{items}"
+    );
+    let img = format!("[data-testid=gallery-item][data-id=\"{id}\"] img");
+    page.rect(&img);
+    page.wait_until(
+        &format!(
+            "(() => {{ const i = document.querySelector('{img}'); return !!i && i.complete && i.naturalWidth > 0; }})()"
+        ),
+        "the published conversion's thumbnail",
+    );
+    page.screenshot("17-published", None);
 }
 
 /// Each step of the conversion appears in the progress list, finished, with its time.
@@ -391,8 +530,56 @@ fn drop_keyboard_download_dialog_test_strip_and_zip() {
         "the test strip",
     );
     page.screenshot("11-download-dialog", None);
+    download_strip_svg(&page);
     pick_kerf_and_download(&rig, &page, &id, &tray);
     page.assert_no_problems("drop, keyboard, download dialog, test strip, ZIP");
+}
+
+/// Width (mm, to 0.001) of a path written as `M x y L x y … Z`.
+fn path_width(d: &str) -> String {
+    let xs: Vec<f64> = d
+        .split(|c: char| c.is_ascii_alphabetic())
+        .filter_map(|pair| pair.split_whitespace().next()?.parse().ok())
+        .collect();
+    let (lo, hi) = xs.iter().fold((f64::MAX, f64::MIN), |(l, h), &x| (l.min(x), h.max(x)));
+    format!("{:.3}", hi - lo)
+}
+
+/// The dialog's "Download the test strip (SVG)" link: the file parses as SVG and its cut
+/// paths are the strip's outline and one hole per hole drawn in the page, of the same widths.
+fn download_strip_svg(page: &Page) {
+    let downloads = tempfile::tempdir().expect("downloads");
+    page.browser.download_to(downloads.path());
+    let cursor = page.browser.cdp.event_count();
+    page.click(&tid("test-strip-svg"));
+    let file = page.browser.wait_download(cursor, downloads.path());
+    let text = std::fs::read_to_string(&file).expect("the downloaded SVG");
+    let doc = roxmltree::Document::parse(&text).unwrap_or_else(|e| panic!("the strip SVG: {e}"));
+    assert_eq!(doc.root_element().tag_name().name(), "svg");
+    let strip = doc
+        .descendants()
+        .find(|n| n.attribute("id") == Some("part-1"))
+        .expect("the strip is part 1");
+    let mut cuts: Vec<String> = strip
+        .children()
+        .filter(|n| n.has_tag_name("path") && n.attribute("stroke") == Some("#ff0000"))
+        .map(|n| path_width(n.attribute("d").expect("d")))
+        .collect();
+    // The widest cut is the strip's outline; the rest are its holes.
+    cuts.sort_by(|a, b| a.parse::<f64>().unwrap_or(0.0).total_cmp(&b.parse().unwrap_or(0.0)));
+    cuts.pop();
+    let shown = page.eval(
+        "[...document.querySelectorAll('[data-testid=strip-hole] .strip-hole-cut')].map(p => p.getAttribute('d'))",
+    );
+    let mut holes: Vec<String> = shown
+        .as_array()
+        .expect("paths")
+        .iter()
+        .map(|d| path_width(d.as_str().expect("d")))
+        .collect();
+    holes.sort_by(|a, b| a.parse::<f64>().unwrap_or(0.0).total_cmp(&b.parse().unwrap_or(0.0)));
+    assert!(holes.len() > 3, "{holes:?}");
+    assert_eq!(cuts, holes, "the SVG's holes are the page's strip's");
 }
 
 /// Clicks a test-strip hole other than the chosen one: a re-cut whose plan.json has that
@@ -473,6 +660,7 @@ fn gallery_hover_view_and_download() {
     settle(&page);
     let shown = page.state()["loadedView"].as_str().expect("view").to_string();
     assert_view_rendered(&shown, &canvas_pixels(&page, "21-gallery-view"));
+    assert_method_steps(&rig, &page, &id);
     page.screenshot("22-gallery-view-page", None);
 
     page.goto(&rig.url("/#/"));
@@ -489,7 +677,102 @@ fn gallery_hover_view_and_download() {
     let zip = page.browser.wait_download(cursor, downloads.path());
     let name = items[0]["name"].as_str().expect("name");
     assert_verifies(&zip, &example(name));
-    page.assert_no_problems("gallery");
+    check_phone_layout(&page, &card);
+    page.assert_no_problems("gallery, phone width");
+}
+
+/// The (method, step) pairs finished in the conversion's event stream, which replays every
+/// event of a finished conversion and ends.
+fn method_steps_of_events(rig: &Rig, id: &str) -> Vec<(String, String)> {
+    let r = rig.server.get(&format!("/api/conversions/{id}/events"));
+    assert_eq!(r.status, 200);
+    let text = r.text();
+    let mut out: Vec<(String, String)> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("data:"))
+        .filter_map(|d| serde_json::from_str::<Value>(d.trim()).ok())
+        .filter(|d| d["state"] == "finished" && d["method"].is_string())
+        .map(|d| {
+            (
+                d["method"].as_str().unwrap_or_default().to_string(),
+                d["step"].as_str().unwrap_or_default().to_string(),
+            )
+        })
+        .collect();
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// A conversion opened after it finished lists each method's steps, with their times,
+/// exactly as its events name them.
+fn assert_method_steps(rig: &Rig, page: &Page, id: &str) {
+    let wanted = method_steps_of_events(rig, id);
+    assert!(wanted.len() > 3, "the events name the methods' steps: {wanted:?}");
+    let js = format!(
+        "(() => {{ const rows = [...document.querySelectorAll('[data-testid=progress] li[data-method]')]; \
+         return rows.length >= {} ? rows.map(li => [li.dataset.method, li.dataset.step, li.dataset.state, li.textContent]) : null; }})()",
+        wanted.len()
+    );
+    let rows = page.wait_until(&js, "each method's steps in the progress list");
+    let mut shown: Vec<(String, String)> = Vec::new();
+    for row in rows.as_array().expect("rows") {
+        assert_eq!(row[2], "finished", "{row}");
+        let text = row[3].as_str().unwrap_or_default();
+        assert!(text.contains(" ms") || text.contains(" s"), "no time: {row}");
+        shown.push((
+            row[0].as_str().unwrap_or_default().into(),
+            row[1].as_str().unwrap_or_default().into(),
+        ));
+    }
+    shown.sort();
+    assert_eq!(shown, wanted, "the methods' steps shown are the events'");
+}
+
+/// Neither the page nor the document scrolls sideways, and `selector` lies within the width.
+fn assert_fits_width(page: &Page, selector: &str, what: &str) {
+    let r = page.rect(selector);
+    let widths = page.eval("[innerWidth, document.documentElement.scrollWidth, document.body.scrollWidth]");
+    let w = |i: usize| widths[i].as_f64().expect("width");
+    assert!(w(1) <= w(0) && w(2) <= w(0), "{what}: horizontal overflow {widths}");
+    assert!(
+        r.x >= 0.0 && r.x + r.width <= w(0) + 0.5,
+        "{what}: {selector} outside the width ({r:?})"
+    );
+}
+
+/// At a phone's 375×740 the gallery cards and the download dialog show and work: no
+/// horizontal overflow, the ZIP link inside the screen, the dialog's controls clickable.
+fn check_phone_layout(page: &Page, card: &str) {
+    page.call(
+        "Emulation.setDeviceMetricsOverride",
+        serde_json::json!({ "width": 375, "height": 740, "deviceScaleFactor": 1, "mobile": false }),
+    );
+    page.wait_until("innerWidth === 375", "the phone width");
+    assert_fits_width(page, card, "the gallery");
+    assert_fits_width(page, &format!("{card} img"), "a card's thumbnail");
+    page.screenshot("23-phone-gallery", None);
+    let (x, y) = page.rect(card).center();
+    page.mouse_move(x, y);
+    page.click(&format!("{card} [data-testid=gallery-view]"));
+    page.wait_until("window.platener.state.loadedView", "the conversion at phone width");
+    assert_fits_width(page, &tid("viewer"), "the conversion");
+    page.click(&tid("download"));
+    page.wait_until(
+        "document.querySelector('[data-testid=download-dialog]').open",
+        "the download dialog at phone width",
+    );
+    // The strip keeps its size (its holes stay big enough to tap) and scrolls in its box.
+    for part in [tid("download-dialog"), tid("download-zip"), ".strip-box".to_string()] {
+        assert_fits_width(page, &part, "the download dialog");
+    }
+    // The dialog's controls are hit where they show: the ZIP link is the element there.
+    let (x, y) = page.rect(&tid("download-zip")).center();
+    let hit = page.eval(&format!(
+        "(() => {{ const e = document.elementFromPoint({x}, {y}); return !!e && !!e.closest('[data-testid=download-zip]'); }})()"
+    ));
+    assert_eq!(hit, Value::Bool(true), "the ZIP link is covered at phone width");
+    page.screenshot("24-phone-download", None);
 }
 
 /// Waits until the gallery API lists `n` finished items; they, newest first.

@@ -73,18 +73,33 @@ export function createConversionArea({ state, onGalleryChange }) {
     if (!viewer || !url) return;
     state.loadedView = null;
     hover(null, null, 'viewer');
+    const id = state.id;
     try {
-      await viewer.load(url, { keepCamera });
+      const loaded = await viewer.load(url, { keepCamera });
       keepCamera = false;
-      if (state.view !== view) return;
+      // Superseded (another view, or another conversion opened meanwhile): not ours to mark.
+      if (!loaded || state.view !== view || state.id !== id) return;
       state.loadedView = view;
       $('viewer-note').hidden = true;
+      noteSimplified(view, loaded.triangles);
       if (view === 'final') setupFinal();
       setViewButtons();
       emit('view', view);
     } catch (e) {
       progress.showError(`The ${view} view could not be shown: ${e.message}`);
     }
+  }
+
+  /** The server draws very large models simplified (a CPU renderer could not turn them):
+   * say so under the model view, with the counts, so nobody takes it for the model's detail. */
+  function noteSimplified(view, drawn) {
+    const read = current && current.model && current.model.triangles;
+    const simplified = view === 'model' && read > 0 && drawn < read;
+    const n = (x) => Math.round(x).toLocaleString('en');
+    $('simplified').textContent = simplified
+      ? `Simplified for viewing: ${n(drawn)} of the model's ${n(read)} triangles are drawn. The plan is made from all of them.`
+      : '';
+    $('simplified').hidden = !simplified;
   }
 
   /** Exploded view and assembly player for the final view, from plan.json's joints. */
@@ -170,6 +185,7 @@ export function createConversionArea({ state, onGalleryChange }) {
     if (viewer) viewer.clear();
     $('viewer-note').hidden = false;
     $('part-label').textContent = '';
+    $('simplified').hidden = true;
     progress.clearProgress();
     progress.status('No model yet.');
     sheets.clear();
@@ -226,8 +242,12 @@ export function createConversionArea({ state, onGalleryChange }) {
   async function finished(c) {
     current = c;
     state.status = c.status;
-    if (!document.querySelector('#progress li')) progress.finishedSteps(c);
-    else for (const m of c.methods || []) progress.methodEvent(m);
+    if (!document.querySelector('#progress li')) {
+      progress.finishedSteps(c);
+      replayMethodSteps(c.id);
+    } else {
+      for (const m of c.methods || []) progress.methodEvent(m);
+    }
     const err = progress.errorOf(c);
     progress.showError(err);
     showWarnings(progress.warningsOf(c));
@@ -243,6 +263,14 @@ export function createConversionArea({ state, onGalleryChange }) {
     $('share').href = `#/c/${encodeURIComponent(c.id)}`;
     await Promise.all([loadPlanAndSheets(c), showView(state.view || 'final')]);
     emit('finished', c);
+  }
+
+  /** A conversion opened after it ran: each method's steps with their times, from the event
+   * stream, which replays every event of a finished conversion and then closes. */
+  function replayMethodSteps(id) {
+    stopEvents = api.events(id, (kind, data) => {
+      if (state.id === id && kind === 'step' && data.method && data.state === 'finished') progress.stepEvent(data);
+    });
   }
 
   function showWarnings(list) {

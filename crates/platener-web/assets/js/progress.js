@@ -11,13 +11,18 @@ export function duration(ms) {
   return `${(ms / 1000).toFixed(1)} s`;
 }
 
-function item(key) {
+/** The list item of `key`, made if new: before the item of `beforeKey` when that is there
+ * (a method's steps replayed after its result line still read above it), else at the end. */
+function item(key, beforeKey) {
   const list = $('progress');
-  let li = list.querySelector(`li[data-key="${CSS.escape(key)}"]`);
+  const find = (k) => list.querySelector(`li[data-key="${CSS.escape(k)}"]`);
+  let li = find(key);
   if (!li) {
     li = document.createElement('li');
     li.dataset.key = key;
-    list.append(li);
+    const next = beforeKey && find(beforeKey);
+    if (next) next.before(li);
+    else list.append(li);
   }
   return li;
 }
@@ -34,8 +39,9 @@ export function status(text) {
 
 /** One `step` event: `{method, step, state, ms, warnings}`. */
 export function stepEvent(d) {
-  const li = item(`${d.method || ''}/${d.step}`);
+  const li = item(`${d.method || ''}/${d.step}`, d.method && `method/${d.method}`);
   li.dataset.step = d.step;
+  if (d.method) li.dataset.method = d.method;
   li.dataset.state = d.state;
   const who = d.method ? `${d.method} · ` : '';
   const extra = d.state === 'finished' ? ` ${duration(d.ms)}${d.warnings ? `, ${d.warnings} warning${d.warnings > 1 ? 's' : ''}` : ''}` : ' …';
@@ -54,7 +60,9 @@ export function methodEvent(d) {
     : `${d.method}: ${d.status}${d.error ? ` (${d.error.message || d.error})` : ''}`;
 }
 
-/** The steps of a finished conversion (for one opened after it ran). */
+/** The shared steps and each method's result of a finished conversion (for one opened after
+ * it ran); the methods' own steps are not in the conversion JSON: they come from the event
+ * stream's replay (`stepEvent`). */
 export function finishedSteps(c) {
   for (const s of c.steps || []) {
     stepEvent({ step: s.name, state: 'finished', ms: s.ms, warnings: (s.warnings || []).length });

@@ -70,6 +70,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     size: 0.1,
     pending: false,
     disposed: false,
+    generation: 0, // bumped by every load and clear: a load that finishes late is dropped
   };
 
   function requestRender() {
@@ -123,19 +124,39 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
       const m = NODE.exec(o.name || '');
       if (!m || state.nodes.has(Number(m[2]))) return;
       const c = new THREE.Box3().setFromObject(o).getCenter(new THREE.Vector3());
-      const dir = c.sub(centre);
+      const dir = c.clone().sub(centre);
       if (dir.lengthSq() < 1e-12) dir.set(0, 1, 0);
-      state.nodes.set(Number(m[2]), { node: o, kind: m[1], home: o.position.clone(), dir: dir.normalize() });
+      state.nodes.set(Number(m[2]), { node: o, kind: m[1], home: o.position.clone(), dir: dir.normalize(), centre: c });
     });
     state.order = [...state.nodes.keys()].sort((a, b) => a - b);
   }
 
-  /** Loads a GLB; `keepCamera` keeps the camera where it is (a re-cut of the same model). */
+  /** What the tests read from window.platener.state: each numbered node's centre in
+   * millimetres (as exploded), the explode amount, and the numbers shown, in assembly order. */
+  function report() {
+    const offset = state.exploded * state.size * 0.3;
+    const centres = {};
+    for (const [n, { centre, dir }] of state.nodes) {
+      centres[n] = centre.clone().addScaledVector(dir, offset).toArray().map((v) => Math.round(v / MM * 1000) / 1000);
+    }
+    stats.partCentres = centres;
+    stats.exploded = state.exploded;
+    stats.shownParts = state.order.filter((n) => state.nodes.get(n).node.visible);
+  }
+
+  /** Loads a GLB; `keepCamera` keeps the camera where it is (a re-cut of the same model).
+   * Resolves to null when a later load or clear superseded it (nothing of it is shown). */
   async function load(url, { keepCamera = false } = {}) {
+    const generation = ++state.generation;
     const buffer = await getBuffer(url);
     const gltf = await new Promise((resolve, reject) => {
       new GLTFLoader().parse(buffer, '', resolve, (e) => reject(new Error(`The 3D scene cannot be read: ${e.message || e}`)));
     });
+    // A newer load or a clear came while this one was on its way: its scene is stale.
+    if (generation !== state.generation) {
+      disposeTree(gltf.scene);
+      return null;
+    }
     if (state.model) {
       scene.remove(state.model);
       disposeTree(state.model);
@@ -151,11 +172,23 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     state.highlighted = null;
     state.exploded = 0;
     state.shown = Infinity;
+    report();
     setRender(state.render);
     if (keepCamera && state.framed) requestRender();
     else frame();
     state.framed = true;
-    return { parts: state.nodes.size };
+    return { parts: state.nodes.size, triangles: triangleCount(state.model) };
+  }
+
+  /** Triangles drawn (lines and points not counted): the page compares them with the model's. */
+  function triangleCount(root) {
+    let n = 0;
+    root.traverse((o) => {
+      if (!o.isMesh || o.isLine || o.isPoints) return;
+      const g = o.geometry;
+      n += (g.index ? g.index.count : g.attributes.position.count) / 3;
+    });
+    return n;
   }
 
   function materials(o) {
@@ -207,6 +240,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
       const world = parent.localToWorld(home.clone()).addScaledVector(dir, state.exploded * state.size * 0.3);
       node.position.copy(parent.worldToLocal(world));
     }
+    report();
     requestRender();
   }
 
@@ -215,6 +249,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     const known = numbers.filter((n) => state.nodes.has(n));
     const rest = [...state.nodes.keys()].filter((n) => !known.includes(n)).sort((a, b) => a - b);
     state.order = known.concat(rest);
+    report();
   }
 
   /** Shows the first k parts of the assembly order (Infinity: all). */
@@ -223,6 +258,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     state.order.forEach((n, i) => {
       state.nodes.get(n).node.visible = i < k;
     });
+    report();
     requestRender();
   }
 
@@ -300,6 +336,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
 
   /** Removes the model (the grid and axes stay). */
   function clear() {
+    state.generation += 1;
     if (state.model) {
       scene.remove(state.model);
       disposeTree(state.model);
@@ -308,6 +345,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     state.nodes.clear();
     state.order = [];
     state.highlighted = null;
+    report();
     requestRender();
   }
 
