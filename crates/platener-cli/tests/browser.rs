@@ -248,17 +248,21 @@ fn upload_button_progress_six_views_hover_and_settings_recut() {
     );
     check_explode_and_player(&rig, &page, &id);
     publish_and_see_in_gallery(&rig, &page, &id);
+    recut_keeps_view(&rig, &page, &id);
+    page.assert_no_problems("landing page, upload, views, hover, re-cut");
+}
 
-    // A settings change re-cuts: a new conversion with the new material, the view kept
-    // (plates, not the default final view).
-    show_view(&page, "plates", "07-before-recut");
+/// A settings change re-cuts: a new conversion with the new material, the view kept (plates,
+/// not the default final view), drawn from the re-cut's own scene.
+fn recut_keeps_view(rig: &Rig, page: &Page, id: &str) {
+    show_view(page, "plates", "07-before-recut");
     page.eval("performance.setResourceTimingBufferSize(100000)");
     page.eval(
         "(() => { const s = document.querySelector('[data-testid=material]'); s.value = 'acrylic'; \
          s.dispatchEvent(new Event('change', { bubbles: true })); })()",
     );
-    let recut = wait_converted(&page, Some(&id));
-    assert_eq!(conversion(&rig, &recut)["settings"]["material"], "acrylic");
+    let recut = wait_converted(page, Some(id));
+    assert_eq!(conversion(rig, &recut)["settings"]["material"], "acrylic");
     // The first moment the state names the plates view loaded, the re-cut's own plates scene
     // has been fetched (the old scene is never named as the re-cut's).
     let scene = format!("/api/conversions/{recut}/scenes/plates.glb");
@@ -271,9 +275,8 @@ fn upload_button_progress_six_views_hover_and_settings_recut() {
     );
     assert_eq!(fetched[0], true, "plates named loaded before {scene} was fetched");
     assert_eq!(page.state()["view"], "plates", "the view is kept across a re-cut");
-    settle(&page);
-    assert_view_rendered("plates", &canvas_pixels(&page, "08-recut-acrylic"));
-    page.assert_no_problems("landing page, upload, views, hover, re-cut");
+    settle(page);
+    assert_view_rendered("plates", &canvas_pixels(page, "08-recut-acrylic"));
 }
 
 /// Sets a range input as dragging it does (its value, then an `input` event).
@@ -849,6 +852,8 @@ fn measure_drop_to_first_view_and_orbit_fps() {
     println!("measure: million-box.stl (1,002,252 triangles): drop to first 3D view {ms:.0} ms");
     for view in ["model", "final"] {
         show_view(&page, view, &format!("30-million-{view}"));
+        let note = page.eval("document.querySelector('[data-testid=simplified]').textContent");
+        println!("measure: million-box.stl {view} view note: {note}");
         println!(
             "measure: million-box.stl {view} view: {:.1} fps while orbiting",
             orbit_fps(&page)

@@ -231,26 +231,6 @@ impl Page<'_> {
         }
     }
 
-    /// A cursor for `wait_response`: the number of events so far.
-    pub fn cursor(&self) -> usize {
-        self.browser.cdp.event_count()
-    }
-
-    /// Waits for this tab to receive a 200 answer whose URL contains `part`, after `cursor`.
-    pub fn wait_response(&self, cursor: usize, part: &str) {
-        self.browser
-            .cdp
-            .wait_event(cursor, PATIENCE, |e| {
-                e["method"] == "Network.responseReceived"
-                    && e["sessionId"] == self.session.as_str()
-                    && e["params"]["response"]["status"] == 200
-                    && e["params"]["response"]["url"]
-                        .as_str()
-                        .is_some_and(|u| u.contains(part))
-            })
-            .unwrap_or_else(|| panic!("no answer for {part}; problems {:?}", self.problems()));
-    }
-
     /// `window.platener.state` (the page's read-only view for tests), or null.
     pub fn state(&self) -> Value {
         self.eval("JSON.parse(JSON.stringify((window.platener && window.platener.state) || null))")

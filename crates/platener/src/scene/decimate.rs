@@ -11,8 +11,10 @@ use std::collections::{HashMap, HashSet};
 
 use glam::DVec3;
 
-/// The most triangles the `model` and `wireframe` views draw as they are.
-pub const TRIANGLE_LIMIT: usize = 500_000;
+/// The most triangles the `model` and `wireframe` views draw as they are. 200 000 rather than
+/// more: the web page's viewer must still turn smoothly where WebGL runs on the CPU
+/// (SwiftShader drew 500 000 at 2 frames a second while orbiting; docs/performance.md).
+pub const TRIANGLE_LIMIT: usize = 200_000;
 
 /// An indexed triangle mesh.
 pub(crate) type Indexed = (Vec<DVec3>, Vec<[u32; 3]>);
