@@ -124,20 +124,21 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
       const m = NODE.exec(o.name || '');
       if (!m || state.nodes.has(Number(m[2]))) return;
       const c = new THREE.Box3().setFromObject(o).getCenter(new THREE.Vector3());
-      const dir = c.clone().sub(centre);
+      const dir = c.sub(centre);
       if (dir.lengthSq() < 1e-12) dir.set(0, 1, 0);
-      state.nodes.set(Number(m[2]), { node: o, kind: m[1], home: o.position.clone(), dir: dir.normalize(), centre: c });
+      state.nodes.set(Number(m[2]), { node: o, kind: m[1], home: o.position.clone(), dir: dir.normalize() });
     });
     state.order = [...state.nodes.keys()].sort((a, b) => a - b);
   }
 
   /** What the tests read from window.platener.state: each numbered node's centre in
-   * millimetres (as exploded), the explode amount, and the numbers shown, in assembly order. */
+   * millimetres where the scene graph has it now (as exploded), the explode amount, and the
+   * numbers shown, in assembly order. */
   function report() {
-    const offset = state.exploded * state.size * 0.3;
     const centres = {};
-    for (const [n, { centre, dir }] of state.nodes) {
-      centres[n] = centre.clone().addScaledVector(dir, offset).toArray().map((v) => Math.round(v / MM * 1000) / 1000);
+    for (const [n, { node }] of state.nodes) {
+      const c = new THREE.Box3().setFromObject(node).getCenter(new THREE.Vector3());
+      centres[n] = c.toArray().map((v) => Math.round((v / MM) * 1000) / 1000);
     }
     stats.partCentres = centres;
     stats.exploded = state.exploded;
