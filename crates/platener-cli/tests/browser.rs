@@ -253,30 +253,59 @@ fn upload_button_progress_six_views_hover_and_settings_recut() {
 }
 
 /// A settings change re-cuts: a new conversion with the new material, the view kept (plates,
-/// not the default final view), drawn from the re-cut's own scene.
+/// not the default final view), drawn from the re-cut's own scene. The old conversion's plates
+/// scene is held back (paused by the protocol) until the re-cut's has been asked for: let
+/// through late, it is dropped, and no view is named loaded before the re-cut's is drawn.
 fn recut_keeps_view(rig: &Rig, page: &Page, id: &str) {
-    show_view(page, "plates", "07-before-recut");
-    page.eval("performance.setResourceTimingBufferSize(100000)");
+    show_view(page, "model", "07-before-recut");
+    page.call(
+        "Fetch.enable",
+        serde_json::json!({ "patterns": [{ "urlPattern": "*/scenes/plates.glb" }] }),
+    );
+    let cursor = page.browser.cdp.event_count();
+    page.click(&tid("view-plates"));
+    let old = paused_scene(page, cursor, id);
+    let dropped = page.state()["scenesDropped"].as_u64().expect("scenesDropped");
     page.eval(
         "(() => { const s = document.querySelector('[data-testid=material]'); s.value = 'acrylic'; \
          s.dispatchEvent(new Event('change', { bubbles: true })); })()",
     );
     let recut = wait_converted(page, Some(id));
     assert_eq!(conversion(rig, &recut)["settings"]["material"], "acrylic");
-    // The first moment the state names the plates view loaded, the re-cut's own plates scene
-    // has been fetched (the old scene is never named as the re-cut's).
-    let scene = format!("/api/conversions/{recut}/scenes/plates.glb");
-    let fetched = page.wait_until(
-        &format!(
-            "window.platener.state.loadedView !== 'plates' ? null : \
-             [performance.getEntriesByType('resource').some(e => e.name.includes('{scene}'))]"
-        ),
+    let new = paused_scene(page, cursor, &recut);
+    page.call("Fetch.continueRequest", serde_json::json!({ "requestId": old }));
+    page.wait_until(
+        &format!("window.platener.state.scenesDropped > {dropped}"),
+        "the old conversion's late scene dropped",
+    );
+    assert_eq!(
+        page.state()["loadedView"],
+        Value::Null,
+        "a view is named loaded while the re-cut's scene is still on its way"
+    );
+    page.call("Fetch.continueRequest", serde_json::json!({ "requestId": new }));
+    page.call("Fetch.disable", serde_json::json!({}));
+    page.wait_until(
+        "window.platener.state.loadedView === 'plates'",
         "the plates view of the re-cut",
     );
-    assert_eq!(fetched[0], true, "plates named loaded before {scene} was fetched");
     assert_eq!(page.state()["view"], "plates", "the view is kept across a re-cut");
     settle(page);
     assert_view_rendered("plates", &canvas_pixels(page, "08-recut-acrylic"));
+}
+
+/// Waits for the protocol to pause the request of conversion `id`'s plates scene; its id.
+fn paused_scene(page: &Page, cursor: usize, id: &str) -> Value {
+    let url = format!("/api/conversions/{id}/scenes/plates.glb");
+    let e = page
+        .browser
+        .cdp
+        .wait_event(cursor, PATIENCE, |e| {
+            e["method"] == "Fetch.requestPaused"
+                && e["params"]["request"]["url"].as_str().is_some_and(|u| u.contains(&url))
+        })
+        .unwrap_or_else(|| panic!("{url} never requested"));
+    e["params"]["requestId"].clone()
 }
 
 /// Sets a range input as dragging it does (its value, then an `input` event).
@@ -454,6 +483,17 @@ fn tab_order(page: &Page, presses: usize) -> Vec<String> {
     seen
 }
 
+/// Clicks the download link `selector`; the downloaded file (in a temp dir, returned too so
+/// the file lives as long as the caller keeps it).
+fn download(page: &Page, selector: &str) -> (tempfile::TempDir, PathBuf) {
+    let downloads = tempfile::tempdir().expect("downloads");
+    page.browser.download_to(downloads.path());
+    let cursor = page.browser.cdp.event_count();
+    page.click(selector);
+    let file = page.browser.wait_download(cursor, downloads.path());
+    (downloads, file)
+}
+
 /// The parsed plan.json of a plan ZIP.
 fn plan_json(zip: &[u8]) -> Value {
     use std::io::Read as _;
@@ -555,11 +595,7 @@ fn path_width(d: &str) -> String {
 /// The dialog's "Download the test strip (SVG)" link: the file parses as SVG and its cut
 /// paths are the strip's outline and one hole per hole drawn in the page, of the same widths.
 fn download_strip_svg(page: &Page) {
-    let downloads = tempfile::tempdir().expect("downloads");
-    page.browser.download_to(downloads.path());
-    let cursor = page.browser.cdp.event_count();
-    page.click(&tid("test-strip-svg"));
-    let file = page.browser.wait_download(cursor, downloads.path());
+    let (_downloads, file) = download(page, &tid("test-strip-svg"));
     let text = std::fs::read_to_string(&file).expect("the downloaded SVG");
     let doc = roxmltree::Document::parse(&text).unwrap_or_else(|e| panic!("the strip SVG: {e}"));
     assert_eq!(doc.root_element().tag_name().name(), "svg");
@@ -615,11 +651,7 @@ fn pick_kerf_and_download(rig: &Rig, page: &Page, id: &str, model: &Path) {
     );
     page.screenshot("12-kerf-picked", None);
 
-    let downloads = tempfile::tempdir().expect("downloads");
-    page.browser.download_to(downloads.path());
-    let cursor = page.browser.cdp.event_count();
-    page.click(&tid("download-zip"));
-    let zip = page.browser.wait_download(cursor, downloads.path());
+    let (_downloads, zip) = download(page, &tid("download-zip"));
     let plan = plan_json(&std::fs::read(&zip).expect("the downloaded ZIP"));
     assert_eq!(
         plan["settings"]["kerf"].as_f64(),
@@ -677,11 +709,7 @@ fn gallery_hover_view_and_download() {
     );
     let (x, y) = page.rect(&card).center();
     page.mouse_move(x, y);
-    let downloads = tempfile::tempdir().expect("downloads");
-    page.browser.download_to(downloads.path());
-    let cursor = page.browser.cdp.event_count();
-    page.click(&format!("{card} [data-testid=gallery-download]"));
-    let zip = page.browser.wait_download(cursor, downloads.path());
+    let (_downloads, zip) = download(&page, &format!("{card} [data-testid=gallery-download]"));
     let name = items[0]["name"].as_str().expect("name");
     assert_verifies(&zip, &example(name));
     check_phone_layout(&page, &card);
@@ -780,11 +808,7 @@ fn check_phone_layout(page: &Page, card: &str) {
     ));
     assert_eq!(hit, Value::Bool(true), "the ZIP link is covered at phone width");
     page.screenshot("24-phone-download", None);
-    let downloads = tempfile::tempdir().expect("downloads");
-    page.browser.download_to(downloads.path());
-    let cursor = page.browser.cdp.event_count();
-    page.click(&tid("download-zip"));
-    let zip = page.browser.wait_download(cursor, downloads.path());
+    let (_downloads, zip) = download(page, &tid("download-zip"));
     let plan = plan_json(&std::fs::read(&zip).expect("the ZIP downloaded at phone width"));
     assert!(plan["parts"].as_array().is_some_and(|p| !p.is_empty()), "{plan}");
 }

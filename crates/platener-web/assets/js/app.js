@@ -12,7 +12,7 @@ const $ = (id) => document.getElementById(id);
 
 const state = {
   id: null, status: null, view: 'final', loadedView: null, hovered: null,
-  frames: 0, lastFrameMs: 0, assembly: [], kerf: null, route: '#/',
+  frames: 0, lastFrameMs: 0, scenesDropped: 0, assembly: [], kerf: null, route: '#/',
 };
 Object.defineProperty(window, 'platener', {
   value: Object.freeze({ get state() { return JSON.parse(JSON.stringify(state)); } }),

@@ -156,6 +156,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     // A newer load or a clear came while this one was on its way: its scene is stale.
     if (generation !== state.generation) {
       disposeTree(gltf.scene);
+      stats.scenesDropped = (stats.scenesDropped || 0) + 1;
       return null;
     }
     if (state.model) {
