@@ -6,6 +6,7 @@
 //! ([`workers`]). Several servers may share one PostgreSQL database.
 
 mod api;
+mod cancel;
 mod error;
 mod events;
 mod examples;
@@ -198,6 +199,7 @@ fn router(app: Arc<App>) -> Router {
         .route("/api/conversions/{id}", get(api::show).delete(api::delete))
         .route("/api/conversions/{id}/recut", post(api::recut))
         .route("/api/conversions/{id}/publish", post(api::publish))
+        .route("/api/conversions/{id}/cancel", post(cancel::cancel))
         .route("/api/conversions/{id}/plan.zip", get(files::best_plan))
         .route("/api/conversions/{id}/methods/{method}/{file}", get(files::method_file))
         .route(
