@@ -280,7 +280,9 @@ fn survives_kill_9(backend: Backend) {
     let busy_after_kill = dead.iter().find(|j| j.id == busy).map(|j| j.status.clone());
 
     let server = start(dir.path(), &base, &db_args);
+    let restarted = Instant::now();
     let settled = settle(&db, jobs.len());
+    let settling = restarted.elapsed();
     stop.store(true, Ordering::SeqCst);
     let (looks, found) = watcher.join().expect("the watcher");
     assert!(looks > 10, "the watcher looked {looks} times");
@@ -299,6 +301,13 @@ fn survives_kill_9(backend: Backend) {
     if busy_after_kill.as_deref() == Some("running") {
         assert_eq!(killed.attempts, 2, "{busy} ran again after its worker was killed");
     }
+    eprintln!(
+        "{backend:?}: {} jobs done; at the kill {:?}; the killed worker's job was {busy_after_kill:?} \
+         and took {} attempts; settled {settling:.1?} after the restart; {looks} looks at the database",
+        jobs.len(),
+        counts(&dead),
+        killed.attempts,
+    );
 }
 
 #[test]
@@ -366,12 +375,15 @@ fn cancels(backend: Backend) {
     assert_eq!(c["methods"], serde_json::json!([]), "no results stored: {c}");
     let plan = server.get(&format!("/api/conversions/{slow}/plan.zip"));
     assert_eq!(plan.status, 409, "{}", plan.text());
-    let streamed = kinds(&server, &slow);
-    assert_eq!(streamed.last().map(String::as_str), Some("cancelled"), "{streamed:?}");
-    assert_eq!(streamed.iter().filter(|k| *k == "cancelled").count(), 1, "{streamed:?}");
-    let jobs = JobDb::open(&url).snapshot();
-    let stored = jobs.iter().find(|j| j.id == slow).expect("the cancelled job");
-    assert!(stored.files.is_empty() && stored.summary.is_none(), "{stored:?}");
+    // Read from the database first: an event after the last would keep the stream open.
+    let db = JobDb::open(&url);
+    let stored: Vec<String> = db.events(&slow).into_iter().map(|(_, k, _)| k).collect();
+    assert_eq!(stored.last().map(String::as_str), Some("cancelled"), "{stored:?}");
+    assert_eq!(stored.iter().filter(|k| *k == "cancelled").count(), 1, "{stored:?}");
+    assert_eq!(kinds(&server, &slow), stored);
+    let jobs = db.snapshot();
+    let job = jobs.iter().find(|j| j.id == slow).expect("the cancelled job");
+    assert!(job.files.is_empty() && job.summary.is_none(), "{job:?}");
 
     cancel(&server, &after, Some(&after_token)).assert_error(409, "already_ended");
     cancel(&server, &slow, Some(&slow_token)).assert_error(409, "already_ended");
