@@ -145,7 +145,7 @@ async fn convert_job(db: &Db, me: &str, job: Claimed, config: &WorkerConfig) -> 
     let outcome = match parse_settings(&job) {
         Ok((request, debug)) => {
             let (request, restart) = (request_with_limits(request, config), config.timeout.is_some());
-            let all = run_observed(db, &job, request, &cancel, config.test_hooks).await?;
+            let all = run_observed(db, me, &job, request, &cancel, config.test_hooks).await?;
             let timed_out = all
                 .methods
                 .iter()
@@ -160,7 +160,7 @@ async fn convert_job(db: &Db, me: &str, job: Claimed, config: &WorkerConfig) -> 
     heartbeat.abort();
     let stored = db.finish(&job.id, me, &outcome.0).await?;
     if !stored {
-        tracing::warn!(job = %job.id, "the job was taken from this worker; its results are dropped");
+        tracing::warn!(job = %job.id, "the job was cancelled, deleted or taken from this worker; its results are dropped");
     }
     Ok(!outcome.1)
 }
@@ -198,9 +198,11 @@ fn bad_settings(message: &str) -> Finished {
 }
 
 /// Runs `convert_all` on a blocking thread while its events are appended to the database in
-/// order; returns when both are done.
+/// order; returns when both are done. A progress write that finds the job no longer `me`'s
+/// (cancelled, deleted, taken by another worker) cancels the conversion.
 async fn run_observed(
     db: &Db,
+    me: &str,
     job: &Claimed,
     request: Request,
     cancel: &Cancel,
@@ -212,10 +214,15 @@ async fn run_observed(
         let _ = sender.send(Some(event_json(event)));
     });
     let appender = {
-        let (db, id) = (db.clone(), job.id.clone());
+        let (db, id, me, lost) = (db.clone(), job.id.clone(), me.to_string(), cancel.clone());
         tokio::spawn(async move {
+            let mut held = true;
             while let Some(Some((kind, data))) = rx.recv().await {
-                db.append_event(&id, kind, &data).await?;
+                if held && !db.append_progress(&id, &me, kind, &data).await? {
+                    // Cancelled, deleted or given to another worker: stop converting.
+                    held = false;
+                    lost.cancel();
+                }
             }
             Ok::<(), DbError>(())
         })
@@ -276,7 +283,7 @@ fn event_json(event: Event<'_>) -> (&'static str, String) {
 }
 
 /// Extends the job's lease every quarter lease; cancels the conversion when the lease was
-/// lost (the job was given to another worker or deleted).
+/// lost (the job was cancelled, deleted or given to another worker).
 async fn heartbeat(db: Db, id: String, me: String, lease_ms: i64, cancel: Cancel) {
     let period = Duration::from_millis(u64::try_from(lease_ms / 4).unwrap_or(1000).max(100));
     loop {

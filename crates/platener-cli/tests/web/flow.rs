@@ -7,22 +7,13 @@ use std::path::Path;
 
 use serde_json::{Value, json};
 
+use crate::web_support::plans::{all_links, zip_parts};
 use crate::web_support::{Backend, Server, events, example_box};
 
 /// The name the flow uploads the box under: markup, an entity, both quotes.
 pub const HOSTILE: &str = "<img src=x onerror=alert(1)>&\"'.stl";
 /// What the server keeps of it (`api::safe_stem`).
 pub const REDUCED: &str = "img_src_x_onerror_alert_1.stl";
-
-/// Every `/api/…` link in a conversion's `links`, depth first.
-fn all_links(v: &Value, out: &mut Vec<String>) {
-    match v {
-        Value::String(s) if s.starts_with("/api/") => out.push(s.clone()),
-        Value::Array(a) => a.iter().for_each(|x| all_links(x, out)),
-        Value::Object(o) => o.values().for_each(|x| all_links(x, out)),
-        _ => {}
-    }
-}
 
 /// A ZIP's entries: (name, content).
 fn zip_entries(zip: &[u8]) -> Vec<(String, Vec<u8>)> {
@@ -35,17 +26,6 @@ fn zip_entries(zip: &[u8]) -> Vec<(String, Vec<u8>)> {
             (entry.name().expect("a UTF-8 entry name").to_string(), data)
         })
         .collect()
-}
-
-/// The parts in a ZIP's plan.json.
-fn zip_parts(zip: &[u8]) -> usize {
-    let entries = zip_entries(zip);
-    let (_, plan) = entries
-        .iter()
-        .find(|(n, _)| n == "plan.json")
-        .expect("plan.json in the ZIP");
-    let plan: Value = serde_json::from_slice(plan).expect("JSON");
-    plan["parts"].as_array().expect("parts").len()
 }
 
 /// Text a hostile name would leave behind if it were not reduced.

@@ -7,14 +7,16 @@
 pub mod dialect;
 mod feed;
 mod rows;
+mod transitions;
 
 use std::time::{SystemTime, UNIX_EPOCH};
 
-use sqlx::any::{AnyPoolOptions, AnyRow};
+use sqlx::any::AnyPoolOptions;
 use sqlx::{AnyPool, Row};
 
 pub use dialect::Dialect;
 pub use rows::{Claimed, EventRow, Finished, GalleryRow, JobRow, NewJob, ResultFile};
+pub use transitions::Cancelled;
 
 /// What went wrong with the database.
 #[derive(Debug, thiserror::Error)]
@@ -167,68 +169,11 @@ impl Db {
         Ok(done.rows_affected())
     }
 
-    /// Jobs whose lease ran out: their worker died or hung. After `max_attempts` attempts a
-    /// job fails with a message saying so; before, it returns to the queue. Returns the ids of
-    /// the jobs requeued and failed.
-    pub async fn reap(&self, max_attempts: i64) -> Result<(Vec<String>, Vec<String>)> {
-        let now = now_ms();
-        let message = format!(
-            "the worker converting this model stopped {max_attempts} times (it crashed, ran out of memory or \
-             was killed); the model was not converted"
-        );
-        let error = serde_json::json!({"code": "worker_died", "message": message}).to_string();
-        let failed: Vec<AnyRow> = sqlx::query(
-            "UPDATE jobs SET status = 'failed', finished = $1, error = $2, lease_until = NULL \
-             WHERE status = 'running' AND lease_until < $1 AND attempts >= $3 RETURNING id",
-        )
-        .bind(now)
-        .bind(&error)
-        .bind(max_attempts)
-        .fetch_all(&self.pool)
-        .await?;
-        let requeued: Vec<AnyRow> = sqlx::query(
-            "UPDATE jobs SET status = 'queued', worker = NULL, lease_until = NULL \
-             WHERE status = 'running' AND lease_until < $1 RETURNING id",
-        )
-        .bind(now)
-        .fetch_all(&self.pool)
-        .await?;
-        let ids = |rows: Vec<AnyRow>| -> Result<Vec<String>> {
-            let mut ids: Vec<String> = rows
-                .iter()
-                .map(|r| r.try_get("id"))
-                .collect::<std::result::Result<_, _>>()?;
-            ids.sort();
-            Ok(ids)
-        };
-        let (requeued, failed) = (ids(requeued)?, ids(failed)?);
-        for id in &failed {
-            self.append_event(id, "failed", &error).await?;
-        }
-        for id in &requeued {
-            self.append_event(
-                id,
-                "retry",
-                r#"{"reason":"the worker stopped; the job is queued again"}"#,
-            )
-            .await?;
-        }
-        Ok((requeued, failed))
-    }
-
-    /// Appends a progress event to a job's list; returns its sequence number (from 1).
+    /// Appends an event to a job's list without checking who holds the job (workers use
+    /// [`Db::append_progress`]); returns its sequence number (from 1).
     pub async fn append_event(&self, id: &str, kind: &str, data: &str) -> Result<i64> {
-        let row = sqlx::query(
-            "INSERT INTO events (job_id, seq, kind, data) \
-             SELECT $1, COALESCE(MAX(seq), 0) + 1, $2, $3 FROM events WHERE job_id = $1 RETURNING seq",
-        )
-        .bind(id)
-        .bind(kind)
-        .bind(data)
-        .fetch_one(&self.pool)
-        .await?;
-        self.notify_event(&self.pool, id).await?;
-        Ok(row.try_get("seq")?)
+        let mut conn = self.pool.acquire().await?;
+        self.insert_event(&mut conn, id, kind, data).await
     }
 
     /// A job's events after sequence number `after`, in order (at most `limit`).
@@ -279,16 +224,7 @@ impl Db {
                 .execute(&mut *tx)
                 .await?;
         }
-        sqlx::query(
-            "INSERT INTO events (job_id, seq, kind, data) \
-             SELECT $1, COALESCE(MAX(seq), 0) + 1, $2, $3 FROM events WHERE job_id = $1",
-        )
-        .bind(id)
-        .bind(&outcome.status)
-        .bind(&outcome.event)
-        .execute(&mut *tx)
-        .await?;
-        self.notify_event(&mut *tx, id).await?;
+        self.insert_event(&mut tx, id, &outcome.status, &outcome.event).await?;
         tx.commit().await?;
         Ok(true)
     }

@@ -225,7 +225,7 @@ pub async fn show(State(app): State<Arc<App>>, Path(id): Path<String>) -> ApiRes
 }
 
 /// Checks the `Authorization: Bearer` token against the job's stored hash.
-fn authorize(headers: &HeaderMap, row: &JobRow) -> ApiResult<()> {
+pub(super) fn authorize(headers: &HeaderMap, row: &JobRow) -> ApiResult<()> {
     let token = headers
         .get(header::AUTHORIZATION)
         .and_then(|v| v.to_str().ok())

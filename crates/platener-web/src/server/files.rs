@@ -26,6 +26,9 @@ fn best_of(row: &JobRow) -> ApiResult<String> {
         None if matches!(row.status.as_str(), "queued" | "running") => Err(ApiError::not_ready(
             "the conversion has not finished yet; follow its events",
         )),
+        None if row.status == "cancelled" => Err(ApiError::not_ready(
+            "this conversion was cancelled before it finished, so there is no plan; upload the model again",
+        )),
         None => Err(ApiError::not_ready(
             "no method converted this model, so there is no plan",
         )),

@@ -8,6 +8,7 @@
 
 mod api;
 mod assets;
+mod cancel;
 mod debug;
 mod error;
 mod events;
@@ -210,6 +211,7 @@ fn router(app: Arc<App>) -> Router {
         .route("/api/conversions/{id}", get(api::show).delete(api::delete))
         .route("/api/conversions/{id}/recut", post(api::recut))
         .route("/api/conversions/{id}/publish", post(api::publish))
+        .route("/api/conversions/{id}/cancel", post(cancel::cancel))
         .route("/api/conversions/{id}/plan.zip", get(files::best_plan))
         .route("/api/conversions/{id}/methods/{method}/{file}", get(files::method_file))
         .route(

@@ -198,6 +198,9 @@ pub(crate) struct Subscription {
     feed: watch::Receiver<Feed>,
     next: usize,
     stopping: watch::Receiver<bool>,
+    /// A last event (done, failed, cancelled) was handed out: nothing may follow it, even
+    /// if a stale writer ever appended something after it.
+    ended: bool,
 }
 
 impl Subscription {
@@ -207,6 +210,7 @@ impl Subscription {
             feed,
             next: 0,
             stopping,
+            ended: false,
         }
     }
 
@@ -214,10 +218,14 @@ impl Subscription {
     /// was deleted, or the server is stopping.
     pub(crate) async fn next(&mut self) -> Option<EventRow> {
         loop {
+            if self.ended {
+                return None;
+            }
             {
                 let feed = self.feed.borrow_and_update();
                 if let Some(event) = feed.events.get(self.next) {
                     self.next += 1;
+                    self.ended = is_last(&event.kind);
                     return Some(event.clone());
                 }
                 if feed.closed() || *self.stopping.borrow() {
