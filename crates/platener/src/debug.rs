@@ -248,7 +248,8 @@ fn plates_summary(state: &State) -> Value {
     })
 }
 
-/// Connections between plates (ids 1-based) with their joint kind and finger style.
+/// Connections between plates (ids 1-based) with their joint kind and finger style, and per
+/// joint the plate that claimed its ends (the regions themselves are in the snapshot).
 fn joints_summary(state: &State) -> Value {
     let Some(j) = state.joints.as_ref() else {
         return Value::Null;
@@ -257,7 +258,11 @@ fn joints_summary(state: &State) -> Value {
         json!({"plates": [c.plates[0] + 1, c.plates[1] + 1], "kind": c.kind, "style": c.style,
                "angle_deg": c.angle_deg, "segments": c.segments, "label": c.label})
     });
-    json!({"connections": connections, "count": j.connections.len(), "keys": j.keys.len()})
+    let claims = listed(
+        &j.regions,
+        |_, r| json!({"label": r.label, "plates": [r.plates[0] + 1, r.plates[1] + 1], "claimed_by": r.claimed_by + 1}),
+    );
+    json!({"connections": connections, "count": j.connections.len(), "keys": j.keys.len(), "claims": claims})
 }
 
 /// Parts (ids as engraved and as the final scene's `part-ID` nodes) and their joints.
@@ -360,6 +365,52 @@ mod tests {
                 .expect("joints")
                 .iter()
                 .all(|j| j["kind"] == "finger")
+        );
+    }
+
+    /// The box's joint regions, straight from the joints snapshot (the debug JSON's source).
+    #[test]
+    fn a_box_has_twelve_joint_regions_inside_their_plates_each_claimed_by_one_of_its_plates() {
+        let state = box_state(MethodKind::Plate);
+        let joints = state.joints.as_ref().expect("joints");
+        assert_eq!(joints.regions.len(), 12);
+        for r in &joints.regions {
+            assert!(r.plates.contains(&r.claimed_by), "{r:?}");
+            for (side, region) in r.polygons.iter().enumerate() {
+                let plate = r.plates[side] as usize;
+                let area = region.area();
+                assert!(area > 1.0, "joint {} on plate {plate}: area {area}", r.label);
+                let outline = std::slice::from_ref(&joints.outlines[plate]);
+                let (lo, hi) = joints.outlines[plate].bounds();
+                let outside =
+                    platener_geom::boolean::difference(std::slice::from_ref(region), outline).expect("difference");
+                let inside = area - platener_geom::polygon::total_area(&outside);
+                assert!(
+                    inside > 0.3 * area,
+                    "joint {} on plate {plate}: {inside} of {area} inside",
+                    r.label
+                );
+                let (rlo, rhi) = region.bounds();
+                assert!(
+                    rlo.cmpge(lo - 1e-6).all() && rhi.cmple(hi + 1e-6).all(),
+                    "joint {} on plate {plate}",
+                    r.label
+                );
+            }
+        }
+        let steps = steps(&state);
+        let summary = &steps.iter().find(|s| s.step == "joints").expect("joints").summary;
+        let claims = summary["claims"].as_array().expect("claims");
+        assert_eq!(claims.len(), 12);
+        for c in claims {
+            assert!(c["plates"].as_array().expect("pair").contains(&c["claimed_by"]), "{c}");
+        }
+        let snapshot = &steps.iter().find(|s| s.step == "joints").expect("joints").snapshot;
+        assert_eq!(snapshot["regions"].as_array().map(Vec::len), Some(12));
+        assert!(
+            snapshot["regions"][0]["polygons"][1]["outer"].is_array(),
+            "{}",
+            snapshot["regions"][0]
         );
     }
 
