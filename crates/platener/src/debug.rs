@@ -245,7 +245,19 @@ fn plates_summary(state: &State) -> Value {
         "rejoined": p.rejoined,
         "corners_closed": p.corners_closed,
         "features": p.features.len(),
+        "overlaps": listed(&p.overlaps, |_, o| overlap_summary(&p.plates, o)),
     })
+}
+
+/// One resolved overlap with its plates as ids: those (1-based) made from the shapes it names.
+/// A trimmed plate split in pieces has several; one later rejoined or grown has none.
+fn overlap_summary(plates: &[crate::plates::Plate], o: &crate::plates::Overlap) -> Value {
+    let ids = |shapes: &[u32]| -> Vec<usize> {
+        let found = plates.iter().enumerate().filter(|(_, p)| p.shapes == shapes);
+        found.map(|(i, _)| i + 1).collect()
+    };
+    json!({"trimmed": ids(&o.trimmed), "by": ids(&o.by), "trimmed_shapes": o.trimmed,
+           "by_shapes": o.by, "area": o.area})
 }
 
 /// Connections between plates (ids 1-based) with their joint kind and finger style, and per
@@ -308,7 +320,11 @@ mod tests {
     use crate::{Cancel, Settings, Source, samples};
 
     fn box_state(method: MethodKind) -> State {
-        let bytes = samples::to_binary_stl(&samples::closed_box(100.0, 80.0, 60.0, 3.0), "box");
+        state_of(&samples::closed_box(100.0, 80.0, 60.0, 3.0), method)
+    }
+
+    fn state_of(triangles: &[crate::read::Triangle], method: MethodKind) -> State {
+        let bytes = samples::to_binary_stl(triangles, "box");
         let source = Source::Bytes {
             name: "box.stl".into(),
             bytes: Arc::from(bytes),
@@ -412,6 +428,40 @@ mod tests {
             "{}",
             snapshot["regions"][0]
         );
+    }
+
+    /// A solid block's six faces extruded inwards overlap along every edge: each trimmed plate
+    /// lost area to a plate ranked above it, and the debug summary names both by plate ids.
+    #[test]
+    fn a_solid_block_lists_the_overlaps_trimming_resolved_with_both_plates() {
+        let block = samples::cuboid(glam::DVec3::ZERO, glam::DVec3::new(60.0, 40.0, 30.0));
+        let state = state_of(&block, MethodKind::Plate);
+        let plates = state.plates.as_ref().expect("plates");
+        let lost: Vec<&crate::plates::Overlap> = plates.overlaps.iter().filter(|o| o.area > 1.0).collect();
+        assert!(plates.trimmed > 0);
+        assert!(
+            lost.len() >= plates.trimmed,
+            "{} overlaps, {} trimmed",
+            lost.len(),
+            plates.trimmed
+        );
+        for o in &lost {
+            assert_ne!(o.trimmed, o.by);
+            let claimed = platener_geom::polygon::total_area(&o.claimed);
+            assert!(claimed >= o.area - 1e-6, "{claimed} < {}", o.area);
+        }
+        let steps = steps(&state);
+        let summary = &steps.iter().find(|s| s.step == "plates").expect("plates").summary;
+        let listed = summary["overlaps"].as_array().expect("overlaps");
+        assert_eq!(listed.len(), plates.overlaps.len());
+        for o in listed.iter().filter(|o| o["area"].as_f64().is_some_and(|a| a > 1.0)) {
+            for side in ["trimmed", "by"] {
+                let ids = o[side].as_array().expect("ids");
+                assert_eq!(ids.len(), 1, "{o}");
+                assert!((1..=6).contains(&ids[0].as_u64().unwrap_or(0)), "{o}");
+            }
+            assert_ne!(o["trimmed"], o["by"]);
+        }
     }
 
     #[test]
