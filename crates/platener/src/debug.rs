@@ -245,10 +245,23 @@ fn plates_summary(state: &State) -> Value {
         "rejoined": p.rejoined,
         "corners_closed": p.corners_closed,
         "features": p.features.len(),
+        "overlaps": listed(&p.overlaps, |_, o| overlap_summary(&p.plates, o)),
     })
 }
 
-/// Connections between plates (ids 1-based) with their joint kind and finger style.
+/// One resolved overlap with its plates as ids: those (1-based) made from the shapes it names.
+/// A trimmed plate split in pieces has several; one later rejoined or grown has none.
+fn overlap_summary(plates: &[crate::plates::Plate], o: &crate::plates::Overlap) -> Value {
+    let ids = |shapes: &[u32]| -> Vec<usize> {
+        let found = plates.iter().enumerate().filter(|(_, p)| p.shapes == shapes);
+        found.map(|(i, _)| i + 1).collect()
+    };
+    json!({"trimmed": ids(&o.trimmed), "by": ids(&o.by), "trimmed_shapes": o.trimmed,
+           "by_shapes": o.by, "area": o.area})
+}
+
+/// Connections between plates (ids 1-based) with their joint kind and finger style, and per
+/// joint the plate that claimed its ends (the regions themselves are in the snapshot).
 fn joints_summary(state: &State) -> Value {
     let Some(j) = state.joints.as_ref() else {
         return Value::Null;
@@ -257,7 +270,11 @@ fn joints_summary(state: &State) -> Value {
         json!({"plates": [c.plates[0] + 1, c.plates[1] + 1], "kind": c.kind, "style": c.style,
                "angle_deg": c.angle_deg, "segments": c.segments, "label": c.label})
     });
-    json!({"connections": connections, "count": j.connections.len(), "keys": j.keys.len()})
+    let claims = listed(
+        &j.regions,
+        |_, r| json!({"label": r.label, "plates": [r.plates[0] + 1, r.plates[1] + 1], "claimed_by": r.claimed_by + 1}),
+    );
+    json!({"connections": connections, "count": j.connections.len(), "keys": j.keys.len(), "claims": claims})
 }
 
 /// Parts (ids as engraved and as the final scene's `part-ID` nodes) and their joints.
@@ -303,7 +320,11 @@ mod tests {
     use crate::{Cancel, Settings, Source, samples};
 
     fn box_state(method: MethodKind) -> State {
-        let bytes = samples::to_binary_stl(&samples::closed_box(100.0, 80.0, 60.0, 3.0), "box");
+        state_of(&samples::closed_box(100.0, 80.0, 60.0, 3.0), method)
+    }
+
+    fn state_of(triangles: &[crate::read::Triangle], method: MethodKind) -> State {
+        let bytes = samples::to_binary_stl(triangles, "box");
         let source = Source::Bytes {
             name: "box.stl".into(),
             bytes: Arc::from(bytes),
@@ -361,6 +382,86 @@ mod tests {
                 .iter()
                 .all(|j| j["kind"] == "finger")
         );
+    }
+
+    /// The box's joint regions, straight from the joints snapshot (the debug JSON's source).
+    #[test]
+    fn a_box_has_twelve_joint_regions_inside_their_plates_each_claimed_by_one_of_its_plates() {
+        let state = box_state(MethodKind::Plate);
+        let joints = state.joints.as_ref().expect("joints");
+        assert_eq!(joints.regions.len(), 12);
+        for r in &joints.regions {
+            assert!(r.plates.contains(&r.claimed_by), "{r:?}");
+            for (side, region) in r.polygons.iter().enumerate() {
+                let plate = r.plates[side] as usize;
+                let area = region.area();
+                assert!(area > 1.0, "joint {} on plate {plate}: area {area}", r.label);
+                let outline = std::slice::from_ref(&joints.outlines[plate]);
+                let (lo, hi) = joints.outlines[plate].bounds();
+                let outside =
+                    platener_geom::boolean::difference(std::slice::from_ref(region), outline).expect("difference");
+                let inside = area - platener_geom::polygon::total_area(&outside);
+                assert!(
+                    inside > 0.3 * area,
+                    "joint {} on plate {plate}: {inside} of {area} inside",
+                    r.label
+                );
+                let (rlo, rhi) = region.bounds();
+                assert!(
+                    rlo.cmpge(lo - 1e-6).all() && rhi.cmple(hi + 1e-6).all(),
+                    "joint {} on plate {plate}",
+                    r.label
+                );
+            }
+        }
+        let steps = steps(&state);
+        let summary = &steps.iter().find(|s| s.step == "joints").expect("joints").summary;
+        let claims = summary["claims"].as_array().expect("claims");
+        assert_eq!(claims.len(), 12);
+        for c in claims {
+            assert!(c["plates"].as_array().expect("pair").contains(&c["claimed_by"]), "{c}");
+        }
+        let snapshot = &steps.iter().find(|s| s.step == "joints").expect("joints").snapshot;
+        assert_eq!(snapshot["regions"].as_array().map(Vec::len), Some(12));
+        assert!(
+            snapshot["regions"][0]["polygons"][1]["outer"].is_array(),
+            "{}",
+            snapshot["regions"][0]
+        );
+    }
+
+    /// A solid block's six faces extruded inwards overlap along every edge: each trimmed plate
+    /// lost area to a plate ranked above it, and the debug summary names both by plate ids.
+    #[test]
+    fn a_solid_block_lists_the_overlaps_trimming_resolved_with_both_plates() {
+        let block = samples::cuboid(glam::DVec3::ZERO, glam::DVec3::new(60.0, 40.0, 30.0));
+        let state = state_of(&block, MethodKind::Plate);
+        let plates = state.plates.as_ref().expect("plates");
+        let lost: Vec<&crate::plates::Overlap> = plates.overlaps.iter().filter(|o| o.area > 1.0).collect();
+        assert!(plates.trimmed > 0);
+        assert!(
+            lost.len() >= plates.trimmed,
+            "{} overlaps, {} trimmed",
+            lost.len(),
+            plates.trimmed
+        );
+        for o in &lost {
+            assert_ne!(o.trimmed, o.by);
+            let claimed = platener_geom::polygon::total_area(&o.claimed);
+            assert!(claimed >= o.area - 1e-6, "{claimed} < {}", o.area);
+        }
+        let steps = steps(&state);
+        let summary = &steps.iter().find(|s| s.step == "plates").expect("plates").summary;
+        let listed = summary["overlaps"].as_array().expect("overlaps");
+        assert_eq!(listed.len(), plates.overlaps.len());
+        for o in listed.iter().filter(|o| o["area"].as_f64().is_some_and(|a| a > 1.0)) {
+            for side in ["trimmed", "by"] {
+                let ids = o[side].as_array().expect("ids");
+                assert_eq!(ids.len(), 1, "{o}");
+                assert!((1..=6).contains(&ids[0].as_u64().unwrap_or(0)), "{o}");
+            }
+            assert_ne!(o["trimmed"], o["by"]);
+        }
     }
 
     #[test]

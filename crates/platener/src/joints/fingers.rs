@@ -204,6 +204,24 @@ fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: Joi
     Plan::of(segments)
 }
 
+/// The plate that owns segment `s` of connection `r` under `plan` (the other gives it up).
+fn segment_owner(r: &Region, plan: Plan, s: usize) -> usize {
+    match (&r.junction, r.kind) {
+        (Some(j), _) => j.owner(s, r.a, r.b),
+        (None, ConnectionKind::Corner) => [r.a, r.b][(s + plan.b_first as usize) % 2],
+        (None, ConnectionKind::Tee) => {
+            let through = r.through.unwrap_or(r.a);
+            let ending = if through == r.a { r.b } else { r.a };
+            [through, ending][s % 2]
+        }
+        (None, ConnectionKind::Cross) => {
+            let low = r.slot_low.unwrap_or(r.b);
+            let high = if low == r.a { r.b } else { r.a };
+            [high, low][s.min(1)]
+        }
+    }
+}
+
 /// The fingers, tabs and slots of one connection under `plan`.
 fn cut(plates: &[Plate], r: &Region, plan: Plan, style: JointStyle) -> Result<Cut, GridError> {
     let (pa, pb) = (&plates[r.a], &plates[r.b]);
@@ -229,20 +247,7 @@ fn cut(plates: &[Plate], r: &Region, plan: Plan, style: JointStyle) -> Result<Cu
     let dovetail = (style == JointStyle::Dovetail && r.kind != ConnectionKind::Cross).then(|| Dovetail::new(plates, r));
     let male = dovetailed(r);
     for s in 0..segments {
-        let owner = match (&r.junction, r.kind) {
-            (Some(j), _) => j.owner(s, r.a, r.b),
-            (None, ConnectionKind::Corner) => [r.a, r.b][(s + plan.b_first as usize) % 2],
-            (None, ConnectionKind::Tee) => {
-                let through = r.through.unwrap_or(r.a);
-                let ending = if through == r.a { r.b } else { r.a };
-                [through, ending][s % 2]
-            }
-            (None, ConnectionKind::Cross) => {
-                let low = r.slot_low.unwrap_or(r.b);
-                let high = if low == r.a { r.b } else { r.a };
-                [high, low][s.min(1)]
-            }
-        };
+        let owner = segment_owner(r, plan, s);
         let (a0, a1) = (range.0 + step * s as f64, range.0 + step * (s + 1) as f64);
         // The first and last segments reach past the range (the region's ends).
         let s0 = if s == 0 { a0 - 1e3 } else { a0 };
@@ -699,8 +704,26 @@ impl<'a> Cutting<'a> {
             connections,
             edges,
             keys: self.keys(&labels),
+            regions: self.regions(&labels),
         };
         Ok((joints, warnings))
+    }
+
+    /// Each labelled joint's region on both plates and the plate that claimed its ends (the
+    /// first segment's owner, or the keeper of a butt joint), for the debug view.
+    fn regions(&self, labels: &[Option<u32>]) -> Vec<super::JointRegion> {
+        let joints = self.used.iter().zip(&self.plans).zip(labels);
+        joints
+            .filter_map(|((r, plan), label)| {
+                let claimed = plan.keeper.unwrap_or_else(|| segment_owner(r, *plan, 0));
+                Some(super::JointRegion {
+                    label: (*label)?,
+                    plates: [r.a as u32, r.b as u32],
+                    polygons: [r.in_a.clone(), r.in_b.clone()],
+                    claimed_by: claimed as u32,
+                })
+            })
+            .collect()
     }
 
     /// Warnings for the places left unjoined and for each labelled joint that adapted.

@@ -131,6 +131,24 @@ pub struct Joints {
     pub edges: Vec<Vec<(u32, [DVec2; 2])>>,
     /// Extra parts: the keys of dovetail joints.
     pub keys: Vec<Key>,
+    /// Per labelled connection, where its joint lies on each plate and who kept the ends: a
+    /// record for the debug view only (the plan and its report do not read it).
+    pub regions: Vec<JointRegion>,
+}
+
+/// Where one connection's fingers, tabs or slots go on its two plates, and which plate
+/// claimed the material at its ends (the corner volume both plates reach into).
+#[derive(Debug, Clone, Serialize)]
+pub struct JointRegion {
+    /// The connection's label.
+    pub label: u32,
+    /// The plates, as in [`Connection::plates`].
+    pub plates: [u32; 2],
+    /// The joint region in each plate's frame (the same order as `plates`).
+    pub polygons: [Polygon; 2],
+    /// The plate that owns the joint's end segments (a corner's outer fingers, the through
+    /// plate of a T, the plate that keeps the whole region at a butt joint).
+    pub claimed_by: u32,
 }
 
 /// A key of a dovetail joint: a small part cut from the dovetailed plate's sheet that fills
@@ -202,6 +220,7 @@ fn drop_unmet(plates: &[Plate], joints: &mut Joints) -> Vec<String> {
     }
     joints.connections.retain(|c| !dropped.contains(&c.label));
     joints.keys.retain(|k| !dropped.contains(&k.label));
+    joints.regions.retain(|r| !dropped.contains(&r.label));
     for e in &mut joints.edges {
         e.retain(|(label, _)| !dropped.contains(label));
     }
@@ -211,6 +230,9 @@ fn drop_unmet(plates: &[Plate], joints: &mut Joints) -> Vec<String> {
     }
     for k in &mut joints.keys {
         k.label = renumber(k.label);
+    }
+    for r in &mut joints.regions {
+        r.label = renumber(r.label);
     }
     for e in &mut joints.edges {
         for (label, _) in e.iter_mut() {

@@ -116,6 +116,24 @@ pub struct Plates {
     /// Features on one face of a plate (engraved or embossed text, pockets, standoffs), plate
     /// by plate; empty unless `--features engrave`.
     pub features: Vec<Feature>,
+    /// Each overlap trimming resolved, in the order it did: a record for the debug view only
+    /// (the plan and its report do not read it).
+    pub overlaps: Vec<Overlap>,
+}
+
+/// One overlap between two plates and how it was resolved: the lower-ranked plate gave up
+/// the columns of its outline that meet the higher-ranked plate's volume. Plates are named
+/// by the shapes they were made from, since trimming and rejoining renumber them after.
+#[derive(Debug, Clone, Serialize)]
+pub struct Overlap {
+    /// The shapes of the plate that gave way.
+    pub trimmed: Vec<u32>,
+    /// The shapes of the plate that kept the shared volume.
+    pub by: Vec<u32>,
+    /// The area the trimmed plate lost to it, mm².
+    pub area: f64,
+    /// What it gave up, in the trimmed plate's frame.
+    pub claimed: Vec<Polygon>,
 }
 
 /// Whether a laser can sensibly cut this outline at this thickness: big enough, and on
@@ -162,8 +180,9 @@ pub fn find_plates(shapes: &Shapes, mesh: &Mesh, center: DVec3, settings: &Setti
         .map(|(s, rest)| (s.area - polygon::total_area(rest)).max(0.0))
         .collect();
     let clearance = 1e-3;
-    let (plates, contained, trimmed) = overlap::resolve(found.plates, ps.min_area, clearance)?;
-    let (mut plates, rejoined) = rejoin::rejoin(plates, ps.parallel_angle_deg.to_radians(), clearance)?;
+    let resolved = overlap::resolve(found.plates, ps.min_area, clearance)?;
+    let (contained, trimmed) = (resolved.contained, resolved.trimmed);
+    let (mut plates, rejoined) = rejoin::rejoin(resolved.plates, ps.parallel_angle_deg.to_radians(), clearance)?;
     plates.sort_by(|a, b| {
         (a.kind == PlateKind::Extruded)
             .cmp(&(b.kind == PlateKind::Extruded))
@@ -186,6 +205,7 @@ pub fn find_plates(shapes: &Shapes, mesh: &Mesh, center: DVec3, settings: &Setti
         rejoined,
         corners_closed: 0,
         features,
+        overlaps: resolved.overlaps,
     })
 }
 

@@ -8,18 +8,25 @@
 use platener_geom::GridError;
 use platener_geom::boolean::difference;
 
-use super::{Plate, PlateKind, cuttable};
+use platener_geom::polygon::total_area;
+
+use super::{Overlap, Plate, PlateKind, cuttable};
 
 fn boxes_overlap(a: &(glam::DVec3, glam::DVec3), b: &(glam::DVec3, glam::DVec3), eps: f64) -> bool {
     (a.0 - b.1).cmplt(glam::DVec3::splat(-eps)).all() && (b.0 - a.1).cmplt(glam::DVec3::splat(-eps)).all()
 }
 
-/// Returns the plates kept, how many were contained, how many were trimmed.
-pub(super) fn resolve(
-    mut plates: Vec<Plate>,
-    min_area: f64,
-    clearance: f64,
-) -> Result<(Vec<Plate>, usize, usize), GridError> {
+/// What [`resolve`] found: the plates kept, how many were contained, how many were trimmed,
+/// and each overlap it resolved.
+pub(super) struct Resolved {
+    pub plates: Vec<Plate>,
+    pub contained: usize,
+    pub trimmed: usize,
+    pub overlaps: Vec<Overlap>,
+}
+
+/// Resolves the overlaps between `plates` (see the module's doc).
+pub(super) fn resolve(mut plates: Vec<Plate>, min_area: f64, clearance: f64) -> Result<Resolved, GridError> {
     plates.sort_by(|a, b| {
         (a.kind == PlateKind::Extruded)
             .cmp(&(b.kind == PlateKind::Extruded))
@@ -28,6 +35,7 @@ pub(super) fn resolve(
     let mut kept: Vec<Plate> = Vec::with_capacity(plates.len());
     let mut boxes = Vec::with_capacity(plates.len());
     let (mut contained, mut trimmed) = (0, 0);
+    let mut overlaps = Vec::new();
     for plate in plates {
         let bounds = plate.bounds();
         let mut outline = vec![plate.polygon.clone()];
@@ -39,8 +47,15 @@ pub(super) fn resolve(
             }
             let claimed = slab.columns_meeting(&other.slab(), clearance)?;
             if claimed.iter().any(|p| p.area() > 0.0) {
+                let before = total_area(&outline);
                 outline = difference(&outline, &claimed)?;
                 cut = true;
+                overlaps.push(Overlap {
+                    trimmed: plate.shapes.clone(),
+                    by: other.shapes.clone(),
+                    area: before - total_area(&outline),
+                    claimed,
+                });
             }
         }
         if !cut {
@@ -67,5 +82,10 @@ pub(super) fn resolve(
             kept.push(p);
         }
     }
-    Ok((kept, contained, trimmed))
+    Ok(Resolved {
+        plates: kept,
+        contained,
+        trimmed,
+        overlaps,
+    })
 }
