@@ -274,8 +274,15 @@ export function createConversionArea({ state, onGalleryChange }) {
   }
 
   function showWarnings(list) {
-    $('warnings').replaceChildren(...list.map((w) => Object.assign(document.createElement('li'), { textContent: w })));
-    $('warnings-title').textContent = `${list.length} warning${list.length === 1 ? '' : 's'}`;
+    $('warnings').replaceChildren(
+      ...list.map((w) => Object.assign(document.createElement('li'), { textContent: w.line, className: w.shown ? '' : 'other-method' })),
+    );
+    const shown = list.filter((w) => w.shown).length;
+    const others = list.length - shown;
+    const plural = (n) => `${n} warning${n === 1 ? '' : 's'}`;
+    $('warnings-title').textContent = others
+      ? `${plural(shown)} for this plan, ${others} more from other methods`
+      : plural(shown);
     $('warnings-box').hidden = list.length === 0;
   }
 
