@@ -75,4 +75,4 @@ pub use error::{Error, Result};
 pub use pipeline::State;
 pub use platener_geom::glam;
 pub use read::Source;
-pub use settings::{Features, PlateMode, PlateSettings, Settings, Units, Weld};
+pub use settings::{Bending, Features, PlateMode, PlateSettings, Settings, Units, Weld};

@@ -150,6 +150,64 @@ impl std::str::FromStr for Features {
     }
 }
 
+/// Whether and how the plate method merges neighbouring plates into bent parts: `--bend`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Bending {
+    /// The style that suits the material (living hinges in wood, perforations in cardboard,
+    /// scores in paper, heat lines in acrylic), at the angles it can bend (the default).
+    #[default]
+    Auto,
+    /// No bent parts: finger joints everywhere.
+    None,
+    /// This style for every bend the style can make.
+    Style(crate::plan::BendStyle),
+}
+
+impl Bending {
+    /// The style bends are made in for `material`, or `None` when bending is off.
+    pub fn style(self, material: crate::plan::Material) -> Option<crate::plan::BendStyle> {
+        use crate::plan::{BendStyle, Material};
+        match self {
+            Bending::None => None,
+            Bending::Style(style) => Some(style),
+            Bending::Auto => Some(match material {
+                Material::Wood => BendStyle::LivingHinge,
+                Material::Cardboard => BendStyle::Perforation,
+                Material::Paper => BendStyle::Score,
+                Material::Acrylic => BendStyle::Heat,
+            }),
+        }
+    }
+}
+
+impl std::str::FromStr for Bending {
+    type Err = Error;
+
+    /// `auto`, `none`, `living-hinge`, `perforation`, `score` or `heat`, as `--bend` takes it.
+    fn from_str(s: &str) -> Result<Self> {
+        use crate::plan::BendStyle;
+        let styles = [
+            BendStyle::LivingHinge,
+            BendStyle::Perforation,
+            BendStyle::Score,
+            BendStyle::Heat,
+        ];
+        match s.trim().to_ascii_lowercase().as_str() {
+            "auto" => Ok(Bending::Auto),
+            "none" => Ok(Bending::None),
+            other => styles
+                .into_iter()
+                .find(|st| st.name() == other)
+                .map(Bending::Style)
+                .ok_or_else(|| Error::Setting {
+                    name: "bend",
+                    message: format!("{s:?} is none of auto, none, living-hinge, perforation, score, heat"),
+                }),
+        }
+    }
+}
+
 /// Settings of the stacked method (layers joined by shafts); docs/stacked.md explains them.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StackedSettings {
@@ -213,6 +271,8 @@ pub struct Settings {
     pub stacked: StackedSettings,
     /// Joints of the plate method (finger width, style; the style defaults by material).
     pub joints: crate::joints::JointSettings,
+    /// Bent parts of the plate method (`--bend`).
+    pub bending: Bending,
     /// Kerf, labels, sheets and export of the cutting plan.
     pub cut: crate::plan::CutSettings,
 }
@@ -230,6 +290,7 @@ impl Default for Settings {
             features: Features::Engrave,
             stacked: StackedSettings::default(),
             joints: crate::joints::JointSettings::default(),
+            bending: Bending::Auto,
             cut: crate::plan::CutSettings::default(),
         }
     }

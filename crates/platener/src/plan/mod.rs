@@ -17,7 +17,7 @@ use serde::Serialize;
 
 pub use error::PlanError;
 pub use format::{Glue, Method, Plan, PlanJoint, PlanPart, PlanSettings, PlanSheet, PlanSource, SheetPlacement};
-pub use part::{EdgeLabel, Joint, JointKind, Mark, MarkKind, MarkSide, Part, PartKind};
+pub use part::{Bend, BendStyle, EdgeLabel, Joint, JointKind, Mark, MarkKind, MarkSide, Part, PartKind, Segment};
 pub use settings::{CutSettings, LabelMode, MAX_KERF, Material, SettingValue, SheetSize};
 
 /// The model the parts were made from, for plan.json's `source`.

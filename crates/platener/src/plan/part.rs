@@ -22,14 +22,17 @@ pub enum PartKind {
     Shaft,
 }
 
-/// What a mark drawn on a part is, as in plan.json's `marks[].kind`. Marks are engraved
-/// (blue), never cut through.
+/// What a mark drawn on a part is, as in plan.json's `marks[].kind`. `Cut` marks are cut
+/// through without removing material (red); the others are engraved (blue).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum MarkKind {
-    /// A bend line or living-hinge score.
+    /// Cut through but removing nothing: living-hinge slits, perforation dashes (plan.json's
+    /// `cut`, drawn red like the outline; kerf compensation leaves them as they are).
+    Cut,
+    /// A bend line to fold or heat along (plan.json's `score`).
     Bend,
-    /// Any other engraving.
+    /// Any other engraving (plan.json's `score`).
     Engrave,
     /// The outline of a feature on one face of a plate (engraved or embossed text, a pocket,
     /// a standoff's footprint), scored, not cut through (plan.json's `score`).
@@ -93,6 +96,65 @@ pub struct Part {
     pub edge_labels: Vec<EdgeLabel>,
     /// For bent parts: the ids of the plates merged into it (plan.json's `merged`).
     pub merged: Vec<u32>,
+    /// For bent parts: the flat pieces between bend zones, each placed in the model by its
+    /// own frame (plan.json's `segments`; the first one's frame is `frame`). Empty otherwise.
+    pub segments: Vec<Segment>,
+    /// For bent parts: where and how the flat part is bent (plan.json's `bends`).
+    pub bends: Vec<Bend>,
+}
+
+/// How a bent part is made to bend along a bend line (plan.json's `bends[].style`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BendStyle {
+    /// Rows of staggered slits whose links twist (wood, MDF): a bend zone of some width.
+    LivingHinge,
+    /// A dashed cut to fold along (cardboard).
+    Perforation,
+    /// A scored line to fold along (thin paper).
+    Score,
+    /// An engraved guide line; the part is bent over a heater along it (acrylic).
+    Heat,
+}
+
+impl BendStyle {
+    /// The name used in plan.json and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            BendStyle::LivingHinge => "living-hinge",
+            BendStyle::Perforation => "perforation",
+            BendStyle::Score => "score",
+            BendStyle::Heat => "heat",
+        }
+    }
+}
+
+/// One flat piece of a bent part: a region of the part's flat shape and the rigid frame that
+/// places it in the model (local z from 0 to the thickness, as for a plate).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Segment {
+    /// The region, in the part's own 2D frame.
+    pub polygon: Polygon,
+    /// Where that region sits in the model.
+    pub frame: Frame,
+}
+
+/// One bend of a bent part, in the part's own 2D frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bend {
+    /// The bend line (the middle of the bend zone), end to end across the part.
+    pub line: [DVec2; 2],
+    /// The angle the two sides enclose once bent, degrees (180 = flat).
+    pub angle_deg: f64,
+    /// How the material is made to bend.
+    pub style: BendStyle,
+    /// Width of the bend zone on the flat part, mm, centred on `line`: the strip that curves
+    /// (plan.json extension `bends[].width`; the neutral axis' arc length, so the flat
+    /// length includes the bend allowance).
+    pub width: f64,
+    /// The indices of the two segments it joins, into [`Part::segments`] (plan.json
+    /// extension `bends[].segments`).
+    pub segments: [usize; 2],
 }
 
 impl Part {
@@ -107,6 +169,8 @@ impl Part {
             marks: Vec::new(),
             edge_labels: Vec::new(),
             merged: Vec::new(),
+            segments: Vec::new(),
+            bends: Vec::new(),
         }
     }
 }
@@ -129,6 +193,9 @@ pub enum JointKind {
     Bend,
     /// Stacked layers on a shaft.
     Shaft,
+    /// The seam of a bent part closed by a glue flap (paper and card): `parts` names the
+    /// bent part twice (plan.json extension).
+    Flap,
 }
 
 /// A connection between two parts.

@@ -72,6 +72,8 @@ fn layer_parts(
                 marks,
                 edge_labels: Vec::new(),
                 merged: Vec::new(),
+                segments: Vec::new(),
+                bends: Vec::new(),
             };
             if !make_room_for_number(&mut part, cut) {
                 let slots = boolean::difference(
@@ -198,6 +200,8 @@ fn shaft_parts(
             marks: marks.unwrap_or_default(),
             edge_labels: Vec::new(),
             merged: Vec::new(),
+            segments: Vec::new(),
+            bends: Vec::new(),
         };
         make_room_for_number(&mut part, cut);
         parts.push(part);

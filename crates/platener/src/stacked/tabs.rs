@@ -199,6 +199,8 @@ mod tests {
             marks: Vec::new(),
             edge_labels: Vec::new(),
             merged: Vec::new(),
+            segments: Vec::new(),
+            bends: Vec::new(),
         }
     }
 
