@@ -84,6 +84,8 @@ pub fn build_plan(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting: &
                 sheet: nesting.placements[i],
                 marks,
                 merged: part.merged.clone(),
+                segments: Vec::new(),
+                bends: Vec::new(),
             }
         })
         .collect();

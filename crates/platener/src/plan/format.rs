@@ -1,4 +1,4 @@
-//! plan.json, version 1, exactly as in the contract `shared/spec/plan-format.md`.
+//! plan.json, version 2, exactly as in the contract `shared/spec/plan-format.md`.
 //!
 //! Third-party programs rebuild the assembly from this file, so every field of the spec is
 //! here under the spec's name, and nothing is renamed for Rust's sake. All lengths in mm.
@@ -15,7 +15,7 @@ use super::settings::{CutSettings, SettingValue};
 /// The value of `format`.
 pub const FORMAT: &str = "platener-plan";
 /// The value of `version`.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 /// Which conversion method made the parts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -124,6 +124,40 @@ pub struct PlanPart {
     /// For bent parts only: the plates merged into this part.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub merged: Vec<u32>,
+    /// For bent parts only (version 2): the flat pieces between bend zones.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub segments: Vec<PlanSegment>,
+    /// For bent parts only (version 2): the bends.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bends: Vec<PlanBend>,
+}
+
+/// `parts[].segments[]` (version 2): a flat region of a bent part and where it sits.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PlanSegment {
+    /// Outer contour in the part's frame, counter-clockwise, not closed.
+    pub outline: Vec<DVec2>,
+    /// Holes, each clockwise, not closed.
+    pub holes: Vec<Vec<DVec2>>,
+    /// Rows of `[R | t]`, as the part's `transform`.
+    pub transform: [[f64; 4]; 3],
+}
+
+/// `parts[].bends[]` (version 2): a bend line of a bent part.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PlanBend {
+    /// The line, two points in the part's frame.
+    pub line: [DVec2; 2],
+    /// The angle the two sides enclose once bent, degrees.
+    pub angle: f64,
+    /// How the material is made to bend there.
+    pub style: super::part::BendStyle,
+    /// Extension: the width of the bend zone on the flat part, centred on `line`, mm.
+    #[serde(default)]
+    pub width: f64,
+    /// Extension: the indices (into `segments`) of the two segments the bend joins.
+    #[serde(default)]
+    pub segments: [usize; 2],
 }
 
 /// `parts[].sheet`: sheet point = R(rotation) · (x, y) + (`x`, `y`), rotation in degrees.

@@ -16,7 +16,9 @@ use glam::DVec3;
 use serde::Serialize;
 
 pub use error::PlanError;
-pub use format::{Glue, Method, Plan, PlanJoint, PlanPart, PlanSettings, PlanSheet, PlanSource, SheetPlacement};
+pub use format::{
+    Glue, Method, Plan, PlanBend, PlanJoint, PlanPart, PlanSegment, PlanSettings, PlanSheet, PlanSource, SheetPlacement,
+};
 pub use part::{Bend, BendStyle, EdgeLabel, Joint, JointKind, Mark, MarkKind, MarkSide, Part, PartKind, Segment};
 pub use settings::{CutSettings, LabelMode, MAX_KERF, Material, SettingValue, SheetSize};
 
