@@ -13,6 +13,7 @@
 //! | [`slab`] | plates and parts as extruded polygons: where one meets another's volume, points in or near one |
 //! | [`boxes`] | which pairs of 3D boxes come near each other (a sweep along x) |
 //! | [`frame`] | rigid 3D ↔ 2D frames of planes |
+//! | [`rigid`] | rigid motions of the plane (bent parts laid flat) |
 //! | [`rng`] | the one seeded random generator (SplitMix64) |
 //! | [`triangulate`] | triangles covering a polygon with holes (i_triangle), for 3D scenes |
 //! | [`dedup`] | finding equal items among millions (sorted fingerprints) |
@@ -31,6 +32,7 @@ pub mod necks;
 pub mod offset;
 pub mod plane_fit;
 pub mod polygon;
+pub mod rigid;
 pub mod rng;
 pub mod slab;
 pub mod tolerance;

@@ -76,6 +76,7 @@ pub fn view_of(step: StepId) -> Option<View> {
         StepId::Mesh => Some(View::Wireframe),
         StepId::Coplanar => Some(View::Coplanar),
         StepId::Plates => Some(View::Plates),
+        StepId::Bends => Some(View::Bent),
         StepId::Parts | StepId::Stacked => Some(View::Final),
         _ => None,
     }
@@ -109,6 +110,7 @@ fn snapshot(state: &State, step: StepId) -> Option<Value> {
         StepId::Coplanar => to(state.coplanar.as_ref()),
         StepId::Shapes => to(state.shapes.as_ref()),
         StepId::Plates => to(state.plates.as_ref()),
+        StepId::Bends => to(state.bends.as_ref()),
         StepId::Joints => to(state.joints.as_ref()),
         StepId::Stacked => to(state.stacked.as_ref()),
         // The parts snapshot has no serde form: its summary lists it.
@@ -215,6 +217,7 @@ fn summary(state: &State, step: StepId) -> Value {
             .as_ref()
             .map_or(Value::Null, |s| json!({"shapes": s.shapes.len()})),
         StepId::Plates => plates_summary(state),
+        StepId::Bends => bends_summary(state),
         StepId::Joints => joints_summary(state),
         StepId::Parts | StepId::Stacked => state.parts.as_deref().map_or(Value::Null, parts_summary),
         StepId::Kerf | StepId::Labels | StepId::Sheets | StepId::Export => cutting_summary(state),
@@ -262,6 +265,23 @@ fn overlap_summary(plates: &[crate::plates::Plate], o: &crate::plates::Overlap) 
 
 /// Connections between plates (ids 1-based) with their joint kind and finger style, and per
 /// joint the plate that claimed its ends (the regions themselves are in the snapshot).
+/// The bent parts: their plates (numbered as in the plates step), bends and seams, and the
+/// candidates that stayed joints.
+fn bends_summary(state: &State) -> Value {
+    let Some(b) = state.bends.as_ref() else {
+        return Value::Null;
+    };
+    let parts = listed(&b.parts, |_, p| {
+        let plates: Vec<u32> = p.members.iter().map(|m| m.plate + 1).collect();
+        json!({"plates": plates, "bends": p.bends.len(), "seams": p.seams.len()})
+    });
+    let refused = listed(
+        &b.refused,
+        |_, r| json!({"plates": [r.plates[0] + 1, r.plates[1] + 1], "reason": r.reason}),
+    );
+    json!({"style": b.style, "parts": parts, "count": b.parts.len(), "candidates": b.candidates, "refused": refused})
+}
+
 fn joints_summary(state: &State) -> Value {
     let Some(j) = state.joints.as_ref() else {
         return Value::Null;

@@ -181,7 +181,18 @@ impl Joints {
 /// Computes the joints of `plates` (straight fingers where the settings name no style), with
 /// what the user should know (a joint that had to adapt, a plate that would fall apart…).
 pub fn compute(plates: &[Plate], settings: &JointSettings) -> Result<(Joints, Vec<String>), GridError> {
-    let regions = connect::find(plates, settings)?;
+    compute_except(plates, settings, &std::collections::BTreeSet::new())
+}
+
+/// [`compute`], leaving the plate pairs in `unjointed` (lower index first) without a joint:
+/// the bends of bent parts, which are one sheet there.
+pub fn compute_except(
+    plates: &[Plate],
+    settings: &JointSettings,
+    unjointed: &std::collections::BTreeSet<(u32, u32)>,
+) -> Result<(Joints, Vec<String>), GridError> {
+    let mut regions = connect::find(plates, settings)?;
+    regions.retain(|r| !unjointed.contains(&(r.a.min(r.b) as u32, r.a.max(r.b) as u32)));
     let (mut joints, mut warnings) =
         fingers::apply(plates, regions, settings, settings.style.unwrap_or(JointStyle::Finger))?;
     warnings.extend(drop_unmet(plates, &mut joints));
@@ -243,16 +254,22 @@ fn drop_unmet(plates: &[Plate], joints: &mut Joints) -> Vec<String> {
 }
 
 /// Step `joints`: the plate graph and the joints along it, in the style the user chose or
-/// the one that holds in the material.
-pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Result<Joints> {
+/// the one that holds in the material; bends of bent parts get none.
+pub fn run(
+    plates: &Plates,
+    bends: Option<&crate::bends::Bends>,
+    settings: &Settings,
+    cx: &mut StepContext<'_>,
+) -> Result<Joints> {
     cx.check_cancel()?;
     let chosen = &settings.joints;
     let joint_settings = JointSettings {
         style: Some(chosen.style.unwrap_or(JointStyle::for_material(settings.cut.material))),
         ..chosen.clone()
     };
-    let (joints, warnings) =
-        compute(&plates.plates, &joint_settings).map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?;
+    let unjointed = bends.map(crate::bends::Bends::unjointed).unwrap_or_default();
+    let (joints, warnings) = compute_except(&plates.plates, &joint_settings, &unjointed)
+        .map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?;
     for w in warnings {
         cx.warn(WarningKind::Joints, w);
     }

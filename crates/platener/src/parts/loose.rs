@@ -6,6 +6,7 @@
 //! a warning naming it; a larger plate no joint holds is kept (it may be a body of its own)
 //! and named in a warning too.
 
+use crate::bends::Bends;
 use crate::context::{StepContext, WarningKind};
 use crate::joints::Joints;
 use crate::plates::Plates;
@@ -15,12 +16,27 @@ pub(crate) const FRAGMENT_SHARE: f64 = 0.1;
 
 /// The part id of each plate (numbered from 1 in plate order, skipping dropped fragments),
 /// `None` for a dropped one; warns about every plate no joint holds.
-pub(super) fn part_ids(plates: &Plates, joints: Option<&Joints>, cx: &mut StepContext<'_>) -> Vec<Option<u32>> {
-    let held = held(plates, joints);
+/// The plates of one bent part share its id (its first plate's).
+pub(super) fn part_ids(
+    plates: &Plates,
+    joints: Option<&Joints>,
+    bends: Option<&Bends>,
+    cx: &mut StepContext<'_>,
+) -> Vec<Option<u32>> {
+    let mut held = held(plates, joints);
+    let bent_of = |i: usize| bends.and_then(|b| b.member_of(i)).map(|(k, _)| k);
+    let mut bent_ids: std::collections::BTreeMap<usize, u32> = std::collections::BTreeMap::new();
+    for (i, h) in held.iter_mut().enumerate() {
+        *h |= bent_of(i).is_some();
+    }
     let largest = plates.plates.iter().map(|p| p.area).fold(0.0, f64::max);
     let mut next = 0;
     let mut ids = Vec::with_capacity(plates.plates.len());
     for (i, p) in plates.plates.iter().enumerate() {
+        if let Some(id) = bent_of(i).and_then(|k| bent_ids.get(&k)) {
+            ids.push(Some(*id));
+            continue;
+        }
         let (lo, hi) = p.polygon.bounds();
         let size = format!("{:.1} × {:.1} mm", hi.x - lo.x, hi.y - lo.y);
         if !held[i] && p.area < FRAGMENT_SHARE * largest {
@@ -35,6 +51,9 @@ pub(super) fn part_ids(plates: &Plates, joints: Option<&Joints>, cx: &mut StepCo
             continue;
         }
         next += 1;
+        if let Some(k) = bent_of(i) {
+            bent_ids.insert(k, next);
+        }
         if !held[i] {
             cx.warn_part(
                 WarningKind::Joints,

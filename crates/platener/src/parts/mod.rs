@@ -6,19 +6,22 @@
 //! ([`loose`]). Outlines that joints left invalid are repaired ([`clean`]); necks the joints
 //! left narrower than twice the thickness are reported ([`necks`]).
 
+mod bent;
 pub mod clean;
 mod loose;
 pub mod necks;
 
 use std::collections::BTreeMap;
 
-use crate::context::StepContext;
+use crate::bends::Bends;
+use crate::context::{StepContext, WarningKind};
+use crate::error::{Error, ModelProblem, Result};
 use crate::joints::{Connection, ConnectionKind, JointStyle, Joints};
 use platener_geom::Polygon;
 use platener_geom::boolean::intersection;
 
 use crate::plan::{
-    EdgeLabel, Joint, JointKind, Mark, MarkKind, MarkSide, Method, Part, PlanInput, SettingValue, SourceInfo,
+    BendStyle, EdgeLabel, Joint, JointKind, Mark, MarkKind, MarkSide, Method, Part, PlanInput, SettingValue, SourceInfo,
 };
 use crate::plates::{Feature, Plates, Side};
 use crate::read::Model;
@@ -29,17 +32,23 @@ use crate::weld::Welded;
 pub fn run(
     model: &Model,
     plates: &Plates,
-    joints: Option<&Joints>,
+    (joints, bends): (Option<&Joints>, Option<&Bends>),
     welded: &Welded,
     settings: &Settings,
     cx: &mut StepContext<'_>,
-) -> PlanInput {
-    let ids = loose::part_ids(plates, joints, cx);
+) -> Result<PlanInput> {
+    let ids = loose::part_ids(plates, joints, bends, cx);
     let mut parts = plate_parts(plates, joints, &ids);
+    if let Some(b) = bends {
+        bent_parts(plates, joints, b, &ids, &mut parts, cx)?;
+    }
     let mut connections: Vec<Joint> =
         joints.map_or(Vec::new(), |j| j.connections.iter().map(|c| joint(c, &ids)).collect());
     if let Some(j) = joints {
         add_keys(plates, j, &ids, &mut parts, &mut connections);
+    }
+    if let Some(b) = bends {
+        add_bends(b, &ids, &mut parts, &mut connections);
     }
     let mut method_settings = BTreeMap::new();
     method_settings.insert(
@@ -70,17 +79,110 @@ pub fn run(
     clean::clean_input(&mut input, cx);
     let plate_of: BTreeMap<u32, usize> = ids.iter().enumerate().filter_map(|(i, id)| Some(((*id)?, i))).collect();
     necks::warn_necks(&input.parts, plates, &plate_of, cx);
-    input
+    Ok(input)
 }
 
-/// One part per plate kept, numbered by `ids`, with its jointed outline and the connection
+/// Replaces the first plate of each bent part by the bent part (the other plates made no
+/// part: they share its id).
+fn bent_parts(
+    plates: &Plates,
+    joints: Option<&Joints>,
+    bends: &Bends,
+    ids: &[Option<u32>],
+    parts: &mut [Part],
+    cx: &mut StepContext<'_>,
+) -> Result<()> {
+    let Some(style) = bends.style else {
+        return Ok(());
+    };
+    for b in &bends.parts {
+        let first = b.members[0].plate as usize;
+        let id = id_of(ids, first as u32);
+        let outlines: Vec<&Polygon> = b
+            .members
+            .iter()
+            .map(|m| {
+                joints.map_or(&plates.plates[m.plate as usize].polygon, |j| {
+                    &j.outlines[m.plate as usize]
+                })
+            })
+            .collect();
+        let labels: Vec<Vec<_>> = b
+            .members
+            .iter()
+            .map(|m| joints.map_or(Vec::new(), |j| j.edges[m.plate as usize].clone()))
+            .collect();
+        let marks_of = |plate: u32, outline: &Polygon| feature_marks(&plates.features, plate, outline);
+        let (part, pieces) = bent::part(id, b, plates, &outlines, &labels, &marks_of, style)
+            .map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?;
+        if pieces > 1 {
+            cx.warn_part(
+                WarningKind::Joints,
+                Some(id),
+                format!("bent part {id} fell apart into {pieces} pieces when laid flat; only the largest is cut"),
+            );
+        }
+        if let Some(slot) = parts.iter_mut().find(|p| p.id == id) {
+            *slot = part;
+        }
+    }
+    Ok(())
+}
+
+/// The bends as joints of kind `bend` between the merged plates, numbered after every part
+/// (so a plate id never names a part), and each bent part's `merged`; a glued seam is a
+/// `flap` joint naming its part twice. Their labels follow the connections'.
+fn add_bends(bends: &Bends, ids: &[Option<u32>], parts: &mut [Part], connections: &mut Vec<Joint>) {
+    let mut next_plate = parts.iter().map(|p| p.id).max().unwrap_or(0);
+    let mut label = connections.iter().map(|c| c.label).max().unwrap_or(0);
+    let flaps = matches!(bends.style, Some(BendStyle::Perforation | BendStyle::Score));
+    for b in &bends.parts {
+        let id = id_of(ids, b.members[0].plate);
+        let merged: Vec<u32> = b
+            .members
+            .iter()
+            .map(|_| {
+                next_plate += 1;
+                next_plate
+            })
+            .collect();
+        for bend in &b.bends {
+            label += 1;
+            connections.push(Joint {
+                parts: bend.members.map(|m| merged[m]),
+                kind: JointKind::Bend,
+                angle_deg: bend.enclosed_deg,
+                label,
+            });
+        }
+        if flaps {
+            for seam in &b.seams {
+                label += 1;
+                connections.push(Joint {
+                    parts: [id, id],
+                    kind: JointKind::Flap,
+                    angle_deg: seam.meeting.enclosed.to_degrees(),
+                    label,
+                });
+            }
+        }
+        if let Some(part) = parts.iter_mut().find(|p| p.id == id) {
+            part.merged = merged;
+        }
+    }
+}
+
+/// One part per plate kept (per bent part: its first plate, replaced later), numbered by `ids`, with its jointed outline and the connection
 /// numbers of its edges.
 fn plate_parts(plates: &Plates, joints: Option<&Joints>, ids: &[Option<u32>]) -> Vec<Part> {
+    let mut seen = std::collections::BTreeSet::new();
     plates
         .plates
         .iter()
         .enumerate()
         .filter_map(|(i, p)| Some((i, p, ids[i]?)))
+        // The plates of a bent part share an id: the first stands for the part.
+        .filter(|&(_, _, id)| seen.insert(id))
         .map(|(i, p, id)| {
             let outline = joints.map_or(&p.polygon, |j| &j.outlines[i]);
             let mut part = Part::plate(id, p.thickness, outline.clone(), p.frame);

@@ -17,7 +17,9 @@ use std::time::Instant;
 
 use crate::error::{Error, Result};
 use crate::settings::Settings;
-use crate::{cleanup, coplanar, export, joints, kerf, labels, mesh, plan, plates, read, shapes, sheets, stacked, weld};
+use crate::{
+    bends, cleanup, coplanar, export, joints, kerf, labels, mesh, plan, plates, read, shapes, sheets, stacked, weld,
+};
 
 pub use crate::context::{Cancel, StepContext, StepRecord, Warning, WarningKind};
 pub use crate::read::Source;
@@ -47,6 +49,8 @@ pub struct State {
     pub shapes: Option<Arc<shapes::Shapes>>,
     /// Step `plates`.
     pub plates: Option<Arc<plates::Plates>>,
+    /// Step `bends`.
+    pub bends: Option<Arc<bends::Bends>>,
     /// Step `joints`.
     pub joints: Option<Arc<joints::Joints>>,
     /// Step `stacked`: layers and shafts of the stacked method.
@@ -77,6 +81,7 @@ impl State {
             coplanar: None,
             shapes: None,
             plates: None,
+            bends: None,
             joints: None,
             stacked: None,
             parts: None,

@@ -8,7 +8,7 @@ use crate::context::StepContext;
 use crate::error::Result;
 use crate::method::MethodKind;
 use crate::{
-    cleanup, coplanar, export, joints, kerf, labels, mesh, parts, plates, read, shapes, sheets, stacked, weld,
+    bends, cleanup, coplanar, export, joints, kerf, labels, mesh, parts, plates, read, shapes, sheets, stacked, weld,
 };
 
 /// Every pipeline step, named as in report.json and as the module it lives in.
@@ -28,6 +28,8 @@ pub enum StepId {
     Shapes,
     /// [`plates`]: the plates.
     Plates,
+    /// [`bends`]: plates merged into bent parts.
+    Bends,
     /// [`joints`]: the joints between plates.
     Joints,
     /// [`parts`]: plates as parts to cut (plate method).
@@ -54,10 +56,20 @@ pub const FOUNDATION: [StepId; 6] = [
     StepId::Shapes,
 ];
 
-/// The foundation steps, then plate finding and joints.
-pub const PLATE: [StepId; 8] = {
+/// The foundation steps, then plate finding, bent parts and joints.
+pub const PLATE: [StepId; 9] = {
     let f = FOUNDATION;
-    [f[0], f[1], f[2], f[3], f[4], f[5], StepId::Plates, StepId::Joints]
+    [
+        f[0],
+        f[1],
+        f[2],
+        f[3],
+        f[4],
+        f[5],
+        StepId::Plates,
+        StepId::Bends,
+        StepId::Joints,
+    ]
 };
 
 /// The cutting-plan steps: they start from the `parts` snapshot, whichever method made it.
@@ -65,7 +77,7 @@ pub const CUTTING_PLAN: [StepId; 4] = [StepId::Kerf, StepId::Labels, StepId::She
 
 impl StepId {
     /// Every step, in pipeline order.
-    pub const ALL: [StepId; 14] = {
+    pub const ALL: [StepId; 15] = {
         let (p, c) = (PLATE, CUTTING_PLAN);
         [
             p[0],
@@ -76,6 +88,7 @@ impl StepId {
             p[5],
             p[6],
             p[7],
+            p[8],
             StepId::Parts,
             StepId::Stacked,
             c[0],
@@ -95,6 +108,7 @@ impl StepId {
             StepId::Coplanar => "coplanar",
             StepId::Shapes => "shapes",
             StepId::Plates => "plates",
+            StepId::Bends => "bends",
             StepId::Joints => "joints",
             StepId::Parts => "parts",
             StepId::Stacked => "stacked",
@@ -145,11 +159,16 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
             let model = need(&state.read, name, "read")?;
             state.plates = Some(Arc::new(plates::run(shapes, mesh, model, &s, cx)?));
         }
-        StepId::Joints => state.joints = Some(Arc::new(joints::run(need(&state.plates, name, "plates")?, &s, cx)?)),
+        StepId::Bends => state.bends = Some(Arc::new(bends::run(need(&state.plates, name, "plates")?, &s, cx)?)),
+        StepId::Joints => {
+            let plates = need(&state.plates, name, "plates")?;
+            state.joints = Some(Arc::new(joints::run(plates, state.bends.as_deref(), &s, cx)?));
+        }
         StepId::Parts => {
             let (model, plates) = (need(&state.read, name, "read")?, need(&state.plates, name, "plates")?);
             let welded = need(&state.weld, name, "weld")?;
-            let input = parts::run(model, plates, state.joints.as_deref(), welded, &s, cx);
+            let made = (state.joints.as_deref(), state.bends.as_deref());
+            let input = parts::run(model, plates, made, welded, &s, cx)?;
             state.parts = Some(Arc::new(input));
         }
         StepId::Stacked => {

@@ -1,0 +1,349 @@
+//! Step `bends` of the plate method (the thesis' bent plates, chapter 10): neighbouring
+//! plates that meet at a shallow enough angle become one part, cut flat and bent.
+//!
+//! 1. [`find`]: pairs of plates of one thickness that both end at the line where their
+//!    mid-planes meet are candidates; the turn the sheet makes there must be one the bend
+//!    style can make ([`zone`]: living hinges need room and round the corner a little, folds
+//!    and heat bends are tight).
+//! 2. [`grow`]: the easiest bends first, each joins two groups of plates into one flat layout
+//!    by [`unfold`]ing one into the other's plane about the bend line (the bend deduction
+//!    moves it back so the bent part closes to the model's size), unless the developed
+//!    shapes would overlap or the part would not fit on a sheet. A candidate inside one group
+//!    is a seam: the ring is cut open there and a joint closes it. Several orders are tried;
+//!    the layout with fewer, larger parts wins.
+//!
+//! The snapshot says which plates form each bent part, where each lies on the flat, its bend
+//! lines and seams; the `joints` step leaves bends (and glued seams) without fingers and
+//! the `parts` step merges the jointed plates into one part.
+
+mod find;
+mod grow;
+#[cfg(test)]
+mod tests;
+mod unfold;
+pub mod zone;
+
+use glam::DVec2;
+use platener_geom::GridError;
+use serde::Serialize;
+
+use crate::context::{StepContext, WarningKind};
+use crate::error::{Error, ModelProblem, Result};
+use crate::plan::{BendStyle, Material, SheetSize};
+use crate::plates::{Plate, Plates};
+use crate::settings::{Bending, Settings};
+
+pub use find::Candidate;
+pub use grow::HalfPlane;
+pub use unfold::Member;
+pub use zone::Zone;
+
+/// Member `b` laid into `a`'s flat across `c` as a sharp fold (no bend zone): where a flap
+/// on `a`'s edge at the seam `c` lands when folded onto `b`.
+pub fn fold_sharp(a: &Member, b: &Member, c: &Candidate, thickness: f64) -> Member {
+    unfold::develop(a, b, c, thickness, 0.0)
+}
+
+/// The largest turn bends are made at when the style is chosen by material (`--bend auto`):
+/// up to it finger joints get long and fragile, beyond it they hold better than a bend.
+pub const AUTO_MAX_TURN_DEG: f64 = 60.5;
+
+/// The largest turn any style makes: sharper corners are joints.
+pub const MAX_TURN_DEG: f64 = 90.5;
+
+/// The snapshot of step `bends`.
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct Bends {
+    /// The style bends are made in; `None` when bending is off.
+    pub style: Option<BendStyle>,
+    /// The bent parts (two plates or more each), by their lowest plate.
+    pub parts: Vec<BentPart>,
+    /// Candidate connections considered.
+    pub candidates: usize,
+    /// Candidates that stayed joints, and why.
+    pub refused: Vec<Refusal>,
+}
+
+/// A candidate that stayed a joint.
+#[derive(Debug, Clone, Serialize)]
+pub struct Refusal {
+    /// The plates (indices into the plates snapshot).
+    pub plates: [u32; 2],
+    /// Why.
+    pub reason: String,
+}
+
+/// Plates merged into one part, laid out flat.
+#[derive(Debug, Clone, Serialize)]
+pub struct BentPart {
+    /// The plates, ascending; the first one's flat frame is the part's.
+    pub members: Vec<Member>,
+    /// Per member: where it is cut at its bend lines (its shape is the half-planes' common
+    /// part of its plate).
+    pub cuts: Vec<Vec<HalfPlane>>,
+    /// The bends.
+    pub bends: Vec<BendLine>,
+    /// The seams: where a ring of plates is cut open; a joint closes them.
+    pub seams: Vec<Seam>,
+}
+
+/// One bend of a bent part.
+#[derive(Debug, Clone, Serialize)]
+pub struct BendLine {
+    /// The two members (indices into [`BentPart::members`]).
+    pub members: [usize; 2],
+    /// The angle the plates enclose, degrees.
+    pub enclosed_deg: f64,
+    /// The bend zone.
+    pub zone: Zone,
+    /// The middle of the zone on the flat part, across the whole joint.
+    pub line: [DVec2; 2],
+    /// Per member: where its flat segment begins (the zone's edge on its side), in the model.
+    pub tangents: [HalfPlane; 2],
+}
+
+/// A seam of a bent part.
+#[derive(Debug, Clone, Serialize)]
+pub struct Seam {
+    /// The two members (indices into [`BentPart::members`]).
+    pub members: [usize; 2],
+    /// How the plates meet there.
+    pub meeting: Candidate,
+}
+
+impl Bends {
+    /// The bent part holding plate `p` and its member index there, if any.
+    pub fn member_of(&self, p: usize) -> Option<(usize, usize)> {
+        self.parts
+            .iter()
+            .enumerate()
+            .find_map(|(k, part)| part.members.iter().position(|m| m.plate as usize == p).map(|i| (k, i)))
+    }
+
+    /// The plate pairs (lower first) that need no joint: the bends, and with paper and card
+    /// the seams (a glue flap closes them).
+    pub fn unjointed(&self) -> std::collections::BTreeSet<(u32, u32)> {
+        let flaps = matches!(self.style, Some(BendStyle::Perforation | BendStyle::Score));
+        let mut pairs = std::collections::BTreeSet::new();
+        for part in &self.parts {
+            let pair = |[i, j]: [usize; 2]| {
+                let (a, b) = (part.members[i].plate, part.members[j].plate);
+                (a.min(b), a.max(b))
+            };
+            pairs.extend(part.bends.iter().map(|b| pair(b.members)));
+            if flaps {
+                pairs.extend(part.seams.iter().map(|s| pair(s.members)));
+            }
+        }
+        pairs
+    }
+}
+
+/// Step `bends`: the bent parts of the plates, in the style `--bend` asks for.
+pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Result<Bends> {
+    cx.check_cancel()?;
+    let material = settings.cut.material;
+    let margin = 2.0 * settings.cut.margin;
+    let sheet = match settings.cut.sheet {
+        SheetSize::Fixed { width, height } => (width - margin, height - margin),
+        SheetSize::Fit => (f64::INFINITY, f64::INFINITY),
+    };
+    let bends = compute(&plates.plates, settings.bending, material, sheet)
+        .map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?;
+    if !bends.parts.is_empty() {
+        let merged: usize = bends.parts.iter().map(|p| p.members.len()).sum();
+        cx.warn(
+            WarningKind::Joints,
+            format!(
+                "{merged} plates are merged into {} bent part(s) ({}); `--bend none` keeps them as jointed plates",
+                bends.parts.len(),
+                bends.style.map_or("", BendStyle::name)
+            ),
+        );
+    }
+    Ok(bends)
+}
+
+/// The bent parts of `plates` made with `bending` in `material`, each fitting a sheet of
+/// `sheet` (width, height) mm.
+pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f64, f64)) -> Result<Bends, GridError> {
+    let Some(style) = bending.style(material) else {
+        return Ok(Bends::default());
+    };
+    let max_turn = if bending == Bending::Auto {
+        AUTO_MAX_TURN_DEG
+    } else {
+        MAX_TURN_DEG
+    };
+    let candidates = find::candidates(plates, max_turn.to_radians());
+    let zones: Vec<_> = candidates.iter().map(|c| zone_of(c, plates, style, material)).collect();
+    let mut best: Option<grow::Layout> = None;
+    for order in orders(&candidates, plates) {
+        let layout = grow::Layout::new(plates, &candidates, &zones, sheet).grow(&order)?;
+        if best.as_ref().is_none_or(|b| layout.quality() < b.quality()) {
+            best = Some(layout);
+        }
+    }
+    let layout = best.expect("at least one order is tried");
+    Ok(Bends {
+        style: Some(style),
+        parts: parts_of(&layout, &candidates, &zones),
+        candidates: candidates.len(),
+        refused: layout
+            .refused
+            .iter()
+            .map(|(ci, reason)| Refusal {
+                plates: candidates[*ci].plates.map(|p| p as u32),
+                reason: reason.clone(),
+            })
+            .collect(),
+    })
+}
+
+/// The zone of candidate `c`, if its turn can be bent faithfully: the zone fits in each
+/// plate's half (a plate may bend on both sides) and rounds the model's corner by at most
+/// a sheet thickness.
+fn zone_of(c: &Candidate, plates: &[Plate], style: BendStyle, material: Material) -> Result<Zone, String> {
+    let t = plates[c.plates[0]].thickness;
+    let room = c.depth[0].min(c.depth[1]);
+    let zone = zone::design(style, material, t, c.turn(), room)?;
+    if zone.corner_gap() > t {
+        return Err(format!(
+            "a {} bend of {:.0}° would round the corner by {:.1} mm",
+            style.name(),
+            c.turn().to_degrees(),
+            zone.corner_gap()
+        ));
+    }
+    Ok(zone)
+}
+
+/// The orders in which candidates are tried: the easiest bends first (smallest turn, then
+/// longest), the longest first, and outward from the largest plate.
+fn orders(candidates: &[Candidate], plates: &[Plate]) -> Vec<Vec<usize>> {
+    let mut easiest: Vec<usize> = (0..candidates.len()).collect();
+    easiest.sort_by(|&i, &j| {
+        let (a, b) = (&candidates[i], &candidates[j]);
+        (a.turn() - b.turn())
+            .abs()
+            .gt(&1e-6)
+            .then(|| a.turn().total_cmp(&b.turn()))
+            .unwrap_or(std::cmp::Ordering::Equal)
+            .then(b.length().total_cmp(&a.length()))
+            .then(i.cmp(&j))
+    });
+    let mut longest: Vec<usize> = (0..candidates.len()).collect();
+    longest.sort_by(|&i, &j| {
+        candidates[j]
+            .length()
+            .total_cmp(&candidates[i].length())
+            .then(i.cmp(&j))
+    });
+    vec![easiest.clone(), longest, outward(&easiest, candidates, plates)]
+}
+
+/// The candidates in breadth-first order from the largest plate (then from the largest
+/// plate not reached), each plate's candidates in `easiest` order.
+fn outward(easiest: &[usize], candidates: &[Candidate], plates: &[Plate]) -> Vec<usize> {
+    let mut by_area: Vec<usize> = (0..plates.len()).collect();
+    by_area.sort_by(|&a, &b| plates[b].area.total_cmp(&plates[a].area).then(a.cmp(&b)));
+    let mut reached = vec![false; plates.len()];
+    let mut taken = vec![false; candidates.len()];
+    let mut order = Vec::with_capacity(candidates.len());
+    for seed in by_area {
+        if reached[seed] {
+            continue;
+        }
+        reached[seed] = true;
+        let mut queue = std::collections::VecDeque::from([seed]);
+        while let Some(p) = queue.pop_front() {
+            for &ci in easiest {
+                let c = &candidates[ci];
+                if taken[ci] || !c.plates.contains(&p) {
+                    continue;
+                }
+                taken[ci] = true;
+                order.push(ci);
+                let other = c.plates[1 - c.side_of(p)];
+                if !reached[other] {
+                    reached[other] = true;
+                    queue.push_back(other);
+                }
+            }
+        }
+    }
+    order
+}
+
+/// The bent parts of a grown layout: its groups of two plates or more.
+fn parts_of(layout: &grow::Layout, candidates: &[Candidate], zones: &[Result<Zone, String>]) -> Vec<BentPart> {
+    let mut parts = Vec::new();
+    let mut groups: Vec<Vec<usize>> = layout.groups.iter().filter(|g| g.len() > 1).cloned().collect();
+    for g in &mut groups {
+        g.sort_unstable();
+    }
+    groups.sort();
+    for group in groups {
+        let index = |p: usize| group.binary_search(&p).expect("a member of the group");
+        let members: Vec<Member> = group.iter().map(|&p| layout.members[p].clone()).collect();
+        let cuts = group.iter().map(|&p| layout.cuts[p].clone()).collect();
+        let bends = layout
+            .bends
+            .iter()
+            .filter(|(ci, _)| group.binary_search(&candidates[*ci].plates[0]).is_ok())
+            .map(|&(ci, parent)| {
+                let c = &candidates[ci];
+                let zone = *zones[ci].as_ref().expect("a bend has a zone");
+                bend_line(
+                    c,
+                    zone,
+                    parent,
+                    &layout.members[parent],
+                    [index(c.plates[0]), index(c.plates[1])],
+                )
+            })
+            .collect();
+        let bent: std::collections::BTreeSet<usize> = layout.bends.iter().map(|(ci, _)| *ci).collect();
+        let seams = candidates
+            .iter()
+            .enumerate()
+            .filter(|(ci, c)| !bent.contains(ci) && c.plates.iter().all(|p| group.binary_search(p).is_ok()))
+            .map(|(_, c)| Seam {
+                members: c.plates.map(index),
+                meeting: c.clone(),
+            })
+            .collect();
+        parts.push(BentPart {
+            members,
+            cuts,
+            bends,
+            seams,
+        });
+    }
+    parts
+}
+
+/// The bend of candidate `c` in the flat part: its middle line (the zone starts a setback
+/// from the sharp corner on the `parent`'s side, which the deduction did not move) and where
+/// each side's segment begins.
+fn bend_line(c: &Candidate, zone: Zone, parent: usize, pm: &Member, members: [usize; 2]) -> BendLine {
+    let t_half = |side: usize| HalfPlane {
+        point: c.point + c.into[side] * zone.setback(),
+        axis: c.axis,
+        into: c.into[side],
+    };
+    let into = c.into[c.side_of(parent)];
+    let centre = c.point + into * (zone.setback() - zone.width / 2.0);
+    let reach = (
+        c.span.0 - c.depth[0].max(c.depth[1]),
+        c.span.1 + c.depth[0].max(c.depth[1]),
+    );
+    let flat = |along: f64| pm.place.apply(pm.frame.to_2d(centre + c.axis * along));
+    BendLine {
+        members,
+        enclosed_deg: c.enclosed.to_degrees(),
+        zone,
+        line: [flat(reach.0), flat(reach.1)],
+        tangents: [t_half(0), t_half(1)],
+    }
+}

@@ -1,0 +1,163 @@
+//! Bent parts: the jointed outlines of a bent part's plates laid out flat (as the `bends`
+//! step placed them) and united into one part, with its segments, bend lines and bend marks,
+//! and for paper and card a glue flap on each seam.
+
+use glam::DVec2;
+use platener_geom::GridError;
+use platener_geom::boolean::union_all;
+use platener_geom::polygon::Polygon;
+
+use crate::bends::{BentPart, HalfPlane, Member, Seam};
+use crate::plan::{Bend, BendStyle, EdgeLabel, Mark, Part, PartKind, Segment};
+use crate::plates::Plates;
+
+/// The bent part `bent` as part `id`: `outlines` are the plates' outlines with their joints,
+/// `labels` their jointed edges (per plate, in its frame), `marks_of` a plate's own marks
+/// (features) in its frame. Also says how many pieces the flat shape fell into (one, unless
+/// joints cut a plate apart near a bend).
+pub(super) fn part(
+    id: u32,
+    bent: &BentPart,
+    plates: &Plates,
+    outlines: &[&Polygon],
+    labels: &[Vec<(u32, [DVec2; 2])>],
+    marks_of: &dyn Fn(u32, &Polygon) -> Vec<Mark>,
+    style: BendStyle,
+) -> Result<(Part, usize), GridError> {
+    let t = plates.plates[bent.members[0].plate as usize].thickness;
+    let flaps = matches!(style, BendStyle::Perforation | BendStyle::Score);
+    let mut pieces = Vec::new();
+    let mut developed = Vec::new();
+    for (i, m) in bent.members.iter().enumerate() {
+        let mut cuts = bent.cuts[i].clone();
+        if flaps {
+            cuts.extend(bent.seams.iter().filter_map(|s| seam_cut(s, i)));
+        }
+        let mut shape = vec![m.local(outlines[i])];
+        for h in &cuts {
+            shape = h.cut(m, t, &shape)?;
+        }
+        let flat: Vec<Polygon> = shape.iter().map(|p| m.place.apply_polygon(p)).collect();
+        pieces.extend(flat.iter().cloned());
+        developed.push(flat);
+    }
+    let mut extra_segments = Vec::new();
+    if flaps {
+        for seam in &bent.seams {
+            let (flap, segment) = flap(seam, &bent.members, t);
+            pieces.push(flap);
+            extra_segments.push(segment);
+        }
+    }
+    let mut united = union_all(&pieces)?;
+    united.sort_by(|a, b| b.area().total_cmp(&a.area()));
+    let count = united.len();
+    let polygon = united.into_iter().next().unwrap_or_default();
+    let mut segments = Vec::with_capacity(bent.members.len());
+    for (i, m) in bent.members.iter().enumerate() {
+        segments.push(segment(bent, i, m, &developed[i], t)?);
+    }
+    segments.extend(extra_segments);
+    let bends = bent
+        .bends
+        .iter()
+        .map(|b| Bend {
+            line: clip_line(b.line, &polygon),
+            angle_deg: b.enclosed_deg,
+            style,
+            width: b.zone.width,
+            segments: b.members,
+        })
+        .collect();
+    let mut part = Part::plate(id, t, polygon, bent.members[0].flat_frame());
+    part.kind = PartKind::Bent;
+    part.segments = segments;
+    part.bends = bends;
+    for (i, m) in bent.members.iter().enumerate() {
+        let local = |q: DVec2| if m.flipped { DVec2::new(q.x, -q.y) } else { q };
+        let to_flat = |q: DVec2| m.place.apply(local(q));
+        part.edge_labels
+            .extend(labels[i].iter().map(|&(connection, [a, b])| EdgeLabel {
+                connection,
+                segment: [to_flat(a), to_flat(b)],
+            }));
+        part.marks
+            .extend(marks_of(m.plate, outlines[i]).into_iter().map(|mut mark| {
+                mark.path = mark.path.iter().map(|q| to_flat(*q)).collect();
+                mark
+            }));
+    }
+    Ok((part, count))
+}
+
+/// Member `i`'s flat segment: its developed shape beyond the zone edge of each of its bends.
+fn segment(bent: &BentPart, i: usize, m: &Member, developed: &[Polygon], t: f64) -> Result<Segment, GridError> {
+    let mut local: Vec<Polygon> = developed.iter().map(|p| m.place.inverse().apply_polygon(p)).collect();
+    for b in bent.bends.iter().filter(|b| b.members.contains(&i)) {
+        let side = usize::from(b.members[1] == i);
+        local = b.tangents[side].cut(m, t, &local)?;
+    }
+    local.sort_by(|a, b| b.area().total_cmp(&a.area()));
+    let polygon = local
+        .into_iter()
+        .next()
+        .map(|p| m.place.apply_polygon(&p))
+        .unwrap_or_default();
+    Ok(Segment {
+        polygon,
+        frame: m.flat_frame(),
+    })
+}
+
+/// The cut of member `i` at a seam it is on (paper and card: both sides end at the line
+/// and a flap joins them).
+fn seam_cut(seam: &Seam, i: usize) -> Option<HalfPlane> {
+    let side = seam.members.iter().position(|&k| k == i)?;
+    let c = &seam.meeting;
+    Some(HalfPlane {
+        point: c.point,
+        axis: c.axis,
+        into: c.into[side],
+    })
+}
+
+/// The glue flap of a seam: a trapezoid on the first member's edge, folded along the seam to
+/// lie against the inside of the second member's face; as a flat polygon and a segment.
+fn flap(seam: &Seam, members: &[Member], t: f64) -> (Polygon, Segment) {
+    let c = &seam.meeting;
+    let (a, b) = (&members[seam.members[0]], &members[seam.members[1]]);
+    let out = -c.into[0];
+    let len = c.span.1 - c.span.0;
+    let h = (0.25 * len).clamp(4.0 * t, 12.0).min(len / 3.0);
+    let at = |along: f64, across: f64| a.to_flat(t, c.point + c.axis * along + out * across);
+    let mut polygon = Polygon::new(vec![
+        at(c.span.0, -0.01),
+        at(c.span.1, -0.01),
+        at(c.span.1 - h, h),
+        at(c.span.0 + h, h),
+    ]);
+    polygon.normalize_orientation();
+    // The flap folds like a sharp bend onto b's plane, then steps a thickness to its inside.
+    let folded = crate::bends::fold_sharp(a, b, c, t);
+    let inside = c.into[0].dot(folded.frame.n);
+    let frame = folded.flat_frame().shifted(if inside >= 0.0 { t } else { -t });
+    let segment = Segment {
+        polygon: polygon.clone(),
+        frame,
+    };
+    (polygon, segment)
+}
+
+/// The part of the infinite line through `line` that crosses `polygon`'s bounds (a bend
+/// line drawn end to end across the part).
+fn clip_line(line: [DVec2; 2], polygon: &Polygon) -> [DVec2; 2] {
+    let d = (line[1] - line[0]).normalize_or_zero();
+    let along: Vec<f64> = polygon.outer.iter().map(|q| (*q - line[0]).dot(d)).collect();
+    let (lo, hi) = along
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(l, h), x| (l.min(*x), h.max(*x)));
+    if lo > hi {
+        return line;
+    }
+    [line[0] + d * lo, line[0] + d * hi]
+}
