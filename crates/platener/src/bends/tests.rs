@@ -171,3 +171,110 @@ fn a_box_keeps_its_finger_joints() {
     assert!(state.bends.as_ref().unwrap().parts.is_empty());
     assert_eq!(state.parts.as_ref().unwrap().parts.len(), 6);
 }
+
+mod chains {
+    //! Random chains of facets: a strip of trapezoids sharing edges, folded in space by
+    //! random turns about those edges, as plates of 3 mm.
+
+    use super::*;
+    use crate::plan::{BendStyle, Material};
+    use crate::plates::{Plate, PlateKind};
+    use platener_geom::{Frame, Polygon, polygon::total_area};
+    use proptest::prelude::*;
+
+    const T: f64 = 3.0;
+
+    /// The strip's facets in the flat (each a CCW quad) and the chain folded: one plate per
+    /// facet whose mid-plane holds the folded facet.
+    fn chain(widths: &[f64], tapers: &[f64], turns: &[f64]) -> (Vec<Polygon>, Vec<Plate>) {
+        let mut flat = Vec::new();
+        let (mut b0, mut b1) = (DVec2::new(0.0, 0.0), DVec2::new(0.0, 60.0));
+        for (w, taper) in widths.iter().zip(tapers) {
+            let d = (b1 - b0).perp().normalize() * -1.0;
+            let (c0, c1) = (b0 + d * *w + (b1 - b0).normalize() * *taper, b1 + d * *w);
+            let mut p = Polygon::new(vec![b0, c0, c1, b1]);
+            p.normalize_orientation();
+            flat.push(p);
+            (b0, b1) = (c0, c1);
+        }
+        // Fold: each facet's motion is its predecessor's, then a turn about their edge.
+        let mut motion = glam::DAffine3::IDENTITY;
+        let mut plates = Vec::new();
+        for (k, f) in flat.iter().enumerate() {
+            if k > 0 {
+                let e0 = &flat[k - 1].outer;
+                let shared: Vec<DVec2> = f.outer.iter().filter(|q| e0.iter().any(|r| (**q - *r).length() < 1e-9)).copied().collect();
+                let (a, b) = (shared[0].extend(0.0), shared[1].extend(0.0));
+                let axis = (b - a).normalize();
+                let turn = glam::DAffine3::from_translation(a)
+                    * glam::DAffine3::from_axis_angle(axis, turns[k - 1])
+                    * glam::DAffine3::from_translation(-a);
+                motion = motion * turn;
+            }
+            let origin = motion.transform_point3(DVec3::new(0.0, 0.0, -T / 2.0));
+            let frame = Frame {
+                origin,
+                u: motion.transform_vector3(DVec3::X),
+                v: motion.transform_vector3(DVec3::Y),
+                n: motion.transform_vector3(DVec3::Z),
+            };
+            plates.push(Plate {
+                kind: PlateKind::Inherent,
+                thickness: T,
+                frame,
+                area: f.area(),
+                polygon: f.clone(),
+                shapes: vec![k as u32],
+            });
+        }
+        (flat, plates)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 24, .. ProptestConfig::default() })]
+        #[test]
+        fn developing_and_folding_back_returns_every_facet_and_nothing_overlaps(
+            widths in prop::collection::vec(20.0f64..60.0, 2..7),
+            tapers in prop::collection::vec(-4.0f64..4.0, 7),
+            turns in prop::collection::vec(prop_oneof![-1.2f64..-0.1, 0.1f64..1.2], 7),
+        ) {
+            let (_, plates) = chain(&widths, &tapers, &turns);
+            let bends = crate::bends::compute(
+                &plates, crate::Bending::Style(BendStyle::Heat), Material::Acrylic, (1e4, 1e4),
+            ).expect("on the grid");
+            prop_assert_eq!(bends.parts.len(), 1, "{:?}", bends.refused);
+            let part = &bends.parts[0];
+            prop_assert_eq!(part.members.len(), plates.len());
+            // Folding back: a facet's corners, laid flat and placed by the member's flat
+            // frame, are where they were in the model.
+            for m in &part.members {
+                let plate = &plates[m.plate as usize];
+                let frame = m.flat_frame();
+                for q in &plate.polygon.outer {
+                    let model = plate.frame.to_model(q.extend(T / 2.0));
+                    let flat = m.to_flat(T, model);
+                    let back = frame.to_model(flat.extend(T / 2.0));
+                    prop_assert!((back - model).length() < 0.01);
+                }
+            }
+            // Laid flat, the facets only overlap by the bend deductions along their edges.
+            let developed: Vec<Polygon> = part.members.iter().map(|m| {
+                m.place.apply_polygon(&m.local(&plates[m.plate as usize].polygon))
+            }).collect();
+            let union = platener_geom::boolean::union_all(&developed).expect("grid");
+            prop_assert_eq!(union.len(), 1);
+            for i in 0..developed.len() {
+                for j in i + 1..developed.len() {
+                    let shared = platener_geom::boolean::intersection(
+                        std::slice::from_ref(&developed[i]), std::slice::from_ref(&developed[j]),
+                    ).expect("grid");
+                    let bend = part.bends.iter().find(|b| b.members.contains(&i) && b.members.contains(&j));
+                    // Neighbours overlap by a strip one bend deduction wide along their edge.
+                    let allowed = bend.map_or(0.01, |b| b.zone.deduction() * (70.0 + 10.0 * b.zone.deduction()) + 0.05);
+                    let overlap = total_area(&shared);
+                    prop_assert!(overlap <= allowed, "{} and {} overlap by {} > {}", i, j, overlap, allowed);
+                }
+            }
+        }
+    }
+}
