@@ -24,6 +24,8 @@ use crate::plates::Plates;
 pub fn joint_necks(parts: &[Part], plates: &Plates, plate_of: &BTreeMap<u32, usize>) -> Vec<(u32, Vec<Neck>)> {
     parts
         .par_iter()
+        // A bent part's flat shape is no plate's: its necks are not the joints' doing.
+        .filter(|part| part.kind != crate::plan::PartKind::Bent)
         .filter_map(|part| {
             let before: &Polygon = &plates.plates.get(*plate_of.get(&part.id)?)?.polygon;
             let width = 2.0 * part.thickness;

@@ -8,7 +8,7 @@
 //! | `wireframe` | [`wireframe`] | its edges, as lines |
 //! | `coplanar` | [`coplanar`] | each planar group in its own colour |
 //! | `plates` | [`plates`] | each plate a closed slab in its own colour |
-//! | `bent` | [`bent`] | plates coloured by their bent part (as `plates` for now) |
+//! | `bent` | [`bent`] | plates coloured by their bent part |
 //! | `final` | [`assembly`] | every part as cut, placed by its transform (`assembly.glb`) |
 //!
 //! The conventions are plan-format.md's ("The 3D scene"): positions in mm under one root node

@@ -9,6 +9,7 @@ use super::glb::{GlbBuilder, Mode};
 use super::palette::Colour;
 use super::{Scene, SceneError};
 use crate::plan::Part;
+use crate::bends::Bends;
 use crate::plates::Plates;
 
 /// The `plates` view: one node `plate-N` (N from 1, in the snapshot's order) per plate, each
@@ -22,12 +23,34 @@ pub fn plates(plates: &Plates) -> Result<Scene, SceneError> {
     Scene::finish(glb, "plates", Vec::new())
 }
 
-/// The `bent` view: plates coloured by the bent part they belong to. No method merges plates
-/// into bent parts yet, so each plate is its own part and the view equals `plates`.
-pub fn bent(plates_snapshot: &Plates) -> Result<Scene, SceneError> {
-    let mut scene = plates(plates_snapshot)?;
-    scene.notes.push("no bent parts yet: each plate is its own part".into());
-    Ok(scene)
+/// The `bent` view: one node `plate-N` per plate, as in `plates`, coloured by the bent part
+/// it belongs to (every plate of one bent part in one colour); plates that stay flat parts
+/// take the colours after them.
+pub fn bent(plates_snapshot: &Plates, bends: Option<&Bends>) -> Result<Scene, SceneError> {
+    let mut glb = GlbBuilder::default();
+    let bent_parts = bends.map_or(0, |b| b.parts.len());
+    let mut flat = bent_parts;
+    for (i, p) in plates_snapshot.plates.iter().enumerate() {
+        let colour = match bends.and_then(|b| b.member_of(i)) {
+            Some((k, _)) => k,
+            None => {
+                flat += 1;
+                flat - 1
+            }
+        };
+        let name = format!("plate-{}", i + 1);
+        solid(&mut glb, &name, &p.polygon, p.thickness, &p.frame, Colour::nth(colour))?;
+    }
+    let note = match bends {
+        None => "bent parts were not computed (the bends step did not run)".to_string(),
+        Some(b) if b.style.is_none() => "bending is off (--bend none): every plate is its own part".to_string(),
+        Some(b) => format!(
+            "{} bent part(s) from {} plates; each bent part in one colour",
+            b.parts.len(),
+            b.parts.iter().map(|p| p.members.len()).sum::<usize>()
+        ),
+    };
+    Scene::finish(glb, "bent", vec![note])
 }
 
 /// The `final` view, also the plan's `assembly.glb`: one node `part-ID` per part (ascending
