@@ -275,7 +275,7 @@ fn plan_json_has_every_field_of_the_spec() {
         ]
     );
     assert_eq!(v["format"], "platener-plan");
-    assert_eq!(v["version"], 1);
+    assert_eq!(v["version"], 2);
     assert_eq!(v["method"], "plate");
     assert_eq!(
         keys(&v["source"]),

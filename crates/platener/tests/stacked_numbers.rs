@@ -142,7 +142,7 @@ fn assert_neighbour_reference(name: &str, c: &State, id: u32, on: u32) {
         .marks
         .iter()
         .filter(|m| {
-            m.kind == MarkKind::Engrave
+            m.kind == MarkKind::Score
                 && m.path
                     .iter()
                     .all(|p| a.outline.contains(*p) || a.outline.boundary_distance(*p) < 1e-3)

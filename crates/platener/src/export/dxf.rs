@@ -1,5 +1,5 @@
 //! DXF sheets for laser software that prefers DXF: R2000, `$INSUNITS` = 4 (mm), closed
-//! LWPOLYLINEs on layer CUT (red), engraving as open LWPOLYLINEs on layer ENGRAVE (blue).
+//! LWPOLYLINEs on layer CUT (red) with the parts' slits as open ones, engraving as open LWPOLYLINEs on layer ENGRAVE (blue).
 //!
 //! DXF's y axis points up, the SVG's down: y is written as `height − y`, so the sheet looks the
 //! same in both (this flips the drawing's coordinates, not the parts: both views show the sheet
@@ -73,6 +73,9 @@ pub fn sheet_dxf(height: f64, groups: &[SvgGroup], file: &str) -> Result<Vec<u8>
         for ring in &g.cut {
             drawing.add_entity(polyline(ring, true, CUT_LAYER, height));
         }
+        for slit in &g.slits {
+            drawing.add_entity(polyline(slit, false, CUT_LAYER, height));
+        }
         for line in &g.engrave {
             drawing.add_entity(polyline(line, false, ENGRAVE_LAYER, height));
         }
@@ -119,6 +122,7 @@ mod tests {
         let g = SvgGroup {
             id: "part-1".into(),
             cut: vec![vec![DVec2::new(1.0, 1.0), DVec2::new(11.0, 1.0), DVec2::new(11.0, 6.0)]],
+            slits: vec![vec![DVec2::new(4.0, 2.0), DVec2::new(4.0, 5.0)]],
             engrave: vec![vec![DVec2::new(2.0, 2.0), DVec2::new(3.0, 3.0)]],
         };
         let a = sheet_dxf(400.0, std::slice::from_ref(&g), "t.dxf").expect("writes");
@@ -128,9 +132,12 @@ mod tests {
         assert!(text.contains("$INSUNITS\r\n 70\r\n     4") || text.contains("$INSUNITS\n 70\n     4"));
         assert!(text.contains("AC1015"), "R2000");
         let back = read_polylines(&a, 400.0).expect("reads");
-        assert_eq!(back.len(), 2);
+        assert_eq!(back.len(), 3);
         assert_eq!((back[0].layer.as_str(), back[0].closed), (CUT_LAYER, true));
         assert_eq!(back[0].points, g.cut[0]);
-        assert_eq!((back[1].layer.as_str(), back[1].closed), (ENGRAVE_LAYER, false));
+        // A slit is cut, open, as drawn.
+        assert_eq!((back[1].layer.as_str(), back[1].closed), (CUT_LAYER, false));
+        assert_eq!(back[1].points, g.slits[0]);
+        assert_eq!((back[2].layer.as_str(), back[2].closed), (ENGRAVE_LAYER, false));
     }
 }

@@ -91,6 +91,7 @@ pub fn legend_group(lines: &[String], width: f64, height: f64, parts: &[SvgGroup
     Some(SvgGroup {
         id: LEGEND_ID.into(),
         cut: Vec::new(),
+        slits: Vec::new(),
         engrave,
     })
 }
@@ -140,6 +141,7 @@ mod tests {
                 DVec2::new(x + s, y + s),
                 DVec2::new(x, y + s),
             ]],
+            slits: Vec::new(),
             engrave: Vec::new(),
         }
     }

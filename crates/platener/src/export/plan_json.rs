@@ -5,11 +5,14 @@ use std::collections::BTreeMap;
 use glam::DVec2;
 
 use super::svg::{SvgGroup, num};
-use crate::kerf::CutPaths;
+use platener_geom::Polygon;
+
+use crate::kerf::{CutPaths, open_ring};
 use crate::labels::Labels;
 use crate::plan::format::{FORMAT, VERSION};
 use crate::plan::{
-    Plan, PlanInput, PlanJoint, PlanPart, PlanSettings, PlanSheet, PlanSource, SettingValue, SheetPlacement,
+    Bend, MarkKind, Plan, PlanBend, PlanInput, PlanJoint, PlanPart, PlanSegment, PlanSettings, PlanSheet, PlanSource,
+    Segment, SettingValue, SheetPlacement,
 };
 use crate::sheets::Nesting;
 
@@ -84,8 +87,8 @@ pub fn build_plan(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting: &
                 sheet: nesting.placements[i],
                 marks,
                 merged: part.merged.clone(),
-                segments: Vec::new(),
-                bends: Vec::new(),
+                segments: part.segments.iter().map(plan_segment).collect(),
+                bends: part.bends.iter().map(plan_bend).collect(),
             }
         })
         .collect();
@@ -133,6 +136,32 @@ pub fn build_plan(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting: &
     }
 }
 
+/// A bent part's segment as in plan.json: rings as the outline's (outer counter-clockwise,
+/// holes clockwise, not closed) and the frame as transform rows.
+fn plan_segment(segment: &Segment) -> PlanSegment {
+    let mut polygon = Polygon {
+        outer: open_ring(&segment.polygon.outer),
+        holes: segment.polygon.holes.iter().map(|h| open_ring(h)).collect(),
+    };
+    polygon.normalize_orientation();
+    PlanSegment {
+        outline: polygon.outer,
+        holes: polygon.holes,
+        transform: segment.frame.matrix(),
+    }
+}
+
+/// A bent part's bend as in plan.json.
+fn plan_bend(bend: &Bend) -> PlanBend {
+    PlanBend {
+        line: bend.line,
+        angle: bend.angle_deg,
+        style: bend.style,
+        width: bend.width,
+        segments: bend.segments,
+    }
+}
+
 fn moved(points: &[DVec2], p: &SheetPlacement) -> Vec<DVec2> {
     points.iter().map(|q| p.apply(*q)).collect()
 }
@@ -143,16 +172,22 @@ pub fn sheet_groups(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting:
     let mut groups: Vec<Vec<(u32, SvgGroup)>> = vec![Vec::new(); nesting.sheets.len()];
     for (i, part) in input.parts.iter().enumerate() {
         let p = &nesting.placements[i];
-        let c = &cut.parts[i].cut;
+        let c = &cut.parts[i];
+        // Cut marks come from the kerf step's slits (red); every other mark is engraved.
         let engrave = part
             .marks
             .iter()
             .chain(&labels.parts[i].marks)
+            .filter(|m| m.kind != MarkKind::Cut)
             .map(|m| moved(&m.path, p))
             .collect();
         let g = SvgGroup {
             id: format!("part-{}", part.id),
-            cut: std::iter::once(&c.outer).chain(&c.holes).map(|r| moved(r, p)).collect(),
+            cut: std::iter::once(&c.cut.outer)
+                .chain(&c.cut.holes)
+                .map(|r| moved(r, p))
+                .collect(),
+            slits: c.slits.iter().map(|l| moved(l, p)).collect(),
             engrave,
         };
         groups[p.index as usize].push((part.id, g));

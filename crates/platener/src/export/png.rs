@@ -45,6 +45,7 @@ mod tests {
                 DVec2::new(100.0, 10.0),
                 DVec2::new(100.0, 50.0),
             ]],
+            slits: vec![],
             engrave: vec![],
         };
         let png = render_png(&sheet_svg(600.0, 400.0, &[g], &style), "p.png").expect("renders");
@@ -53,5 +54,34 @@ mod tests {
         let w = u32::from_be_bytes([png[16], png[17], png[18], png[19]]);
         let h = u32::from_be_bytes([png[20], png[21], png[22], png[23]]);
         assert_eq!((w, h), (1200, 800));
+    }
+
+    #[test]
+    fn a_slit_is_drawn_red_in_the_preview() {
+        let style = SvgStyle {
+            cut_width: 2.0,
+            engrave_width: 0.5,
+            preview: true,
+        };
+        // A vertical slit at x = 300 mm in a part spanning 100..500 mm: 2 pixels per mm.
+        let g = SvgGroup {
+            id: "part-1".into(),
+            cut: vec![vec![
+                DVec2::new(100.0, 100.0),
+                DVec2::new(500.0, 100.0),
+                DVec2::new(500.0, 300.0),
+                DVec2::new(100.0, 300.0),
+            ]],
+            slits: vec![vec![DVec2::new(300.0, 150.0), DVec2::new(300.0, 250.0)]],
+            engrave: vec![],
+        };
+        let png = render_png(&sheet_svg(600.0, 400.0, &[g], &style), "p.png").expect("renders");
+        let pixmap = resvg::tiny_skia::Pixmap::decode_png(&png).expect("decodes");
+        let red = |x: u32, y: u32| {
+            let c = pixmap.pixel(x, y).expect("on the image");
+            (c.red(), c.green(), c.blue()) == (255, 0, 0)
+        };
+        assert!(red(600, 400), "on the slit");
+        assert!(!red(640, 400), "beside it, the part's fill");
     }
 }

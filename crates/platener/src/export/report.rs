@@ -94,10 +94,13 @@ fn length(points: &[glam::DVec2], closed: bool) -> f64 {
     }
 }
 
-/// Lengths of cut paths and engraving over all sheets, mm.
+/// Lengths of cut paths (rings and slits: the laser cuts both) and engraving over all
+/// sheets, mm.
 pub fn lengths(groups: &[Vec<SvgGroup>]) -> (f64, f64) {
     let all = groups.iter().flatten();
-    let cut = all.clone().flat_map(|g| &g.cut).map(|r| length(r, true)).sum();
+    let rings: f64 = all.clone().flat_map(|g| &g.cut).map(|r| length(r, true)).sum();
+    let slits: f64 = all.clone().flat_map(|g| &g.slits).map(|l| length(l, false)).sum();
+    let cut = rings + slits;
     let engrave = all.flat_map(|g| &g.engrave).map(|l| length(l, false)).sum();
     (cut, engrave)
 }

@@ -22,6 +22,9 @@ pub struct SvgGroup {
     pub id: String,
     /// Closed rings to cut, sheet coordinates.
     pub cut: Vec<Vec<DVec2>>,
+    /// Open polylines to cut (the part's `cut` marks: hinge slits, perforation dashes), sheet
+    /// coordinates; drawn like the rings, red hairlines, but not closed.
+    pub slits: Vec<Vec<DVec2>>,
     /// Open polylines to engrave, sheet coordinates.
     pub engrave: Vec<Vec<DVec2>>,
 }
@@ -98,11 +101,12 @@ pub fn sheet_svg(width: f64, height: f64, groups: &[SvgGroup], style: &SvgStyle)
                 d.join(" ")
             );
         }
-        for ring in &g.cut {
+        let rings = g.cut.iter().map(|r| (r, true));
+        for (path, closed) in rings.chain(g.slits.iter().map(|l| (l, false))) {
             let _ = writeln!(
                 s,
                 "<path d=\"{}\" fill=\"none\" stroke=\"{CUT_COLOR}\" stroke-width=\"{}\"/>",
-                path_data(ring, true),
+                path_data(path, closed),
                 num(style.cut_width)
             );
         }
@@ -137,11 +141,28 @@ mod tests {
         let g = SvgGroup {
             id: "part-1".into(),
             cut: vec![vec![DVec2::ZERO, DVec2::X, DVec2::ONE]],
+            slits: Vec::new(),
             engrave: vec![vec![DVec2::ZERO, DVec2::Y]],
         };
         let svg = sheet_svg(600.0, 400.0, &[g], &SvgStyle::CUT);
         assert!(svg.contains("width=\"600mm\" height=\"400mm\" viewBox=\"0 0 600 400\""));
         assert_eq!(svg.matches(CUT_COLOR).count(), 1);
         assert!(svg.contains("<path d=\"M0 0 L1 0 L1 1 Z\""));
+    }
+
+    #[test]
+    fn slits_are_open_red_hairlines_inside_their_part() {
+        let g = SvgGroup {
+            id: "part-4".into(),
+            cut: vec![vec![DVec2::ZERO, DVec2::new(10.0, 0.0), DVec2::splat(10.0)]],
+            slits: vec![vec![DVec2::new(2.0, 1.0), DVec2::new(2.0, 5.5)]],
+            engrave: Vec::new(),
+        };
+        let svg = sheet_svg(600.0, 400.0, &[g], &SvgStyle::CUT);
+        let red = format!("<path d=\"M2 1 L2 5.5\" fill=\"none\" stroke=\"{CUT_COLOR}\" stroke-width=\"0.0254\"/>");
+        let at = svg.find(&red).expect("the slit is a red open hairline");
+        let group = svg.find("<g id=\"part-4\">").expect("group");
+        assert!(group < at && at < svg.find("</g>").expect("end"), "inside its group");
+        assert_eq!(svg.matches(CUT_COLOR).count(), 2);
     }
 }

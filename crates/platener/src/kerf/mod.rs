@@ -24,7 +24,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::context::{StepContext, Warning, WarningKind};
-use crate::plan::{Part, PlanError, PlanInput};
+use crate::plan::{MarkKind, Part, PlanError, PlanInput};
 
 /// One part's cut path.
 #[derive(Debug, Clone, Serialize)]
@@ -35,6 +35,11 @@ pub struct CutPart {
     pub nominal: Polygon,
     /// The cut path: `nominal` offset outward by `kerf / 2`, same orientations.
     pub cut: Polygon,
+    /// The part's `cut` marks (hinge slits, perforation dashes), open paths exactly as drawn:
+    /// a slit removes no material, so there is no edge to move by half the kerf, and it is no
+    /// hole (it encloses nothing), so it is neither offset nor dropped as narrower than the
+    /// kerf. Empty for parts without cut marks.
+    pub slits: Vec<Vec<DVec2>>,
 }
 
 /// The snapshot of step `kerf`: one cut path per part, in the input's part order.
@@ -97,6 +102,15 @@ pub fn open_ring(ring: &[DVec2]) -> Ring {
     out
 }
 
+/// The paths of `part`'s `cut` marks, in mark order, as they are ([`CutPart::slits`]).
+pub fn slits(part: &Part) -> Vec<Vec<DVec2>> {
+    part.marks
+        .iter()
+        .filter(|m| m.kind == MarkKind::Cut)
+        .map(|m| m.path.clone())
+        .collect()
+}
+
 /// Cut paths of all `parts` for `kerf` mm, with a warning for each part whose holes close
 /// (narrower than the kerf).
 pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<(CutPaths, Vec<Warning>), PlanError> {
@@ -126,6 +140,7 @@ pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<(CutPaths, Vec<Warning>), 
                     id: part.id,
                     nominal,
                     cut,
+                    slits: slits(part),
                 },
                 warning,
             ))

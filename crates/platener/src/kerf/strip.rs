@@ -187,11 +187,13 @@ impl TestStrip {
             SvgGroup {
                 id: "part-1".into(),
                 cut: rings(&self.strip),
+                slits: Vec::new(),
                 engrave: self.strip_engrave.clone(),
             },
             SvgGroup {
                 id: "part-2".into(),
                 cut: rings(&self.spike),
+                slits: Vec::new(),
                 engrave: self.spike_engrave.clone(),
             },
         ];

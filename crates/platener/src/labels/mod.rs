@@ -4,9 +4,10 @@
 //! the point deepest inside it; every jointed edge carries `#` and its connection number, small,
 //! next to the edge on the inside of the part, on both parts of the joint, so the user finds
 //! which edge meets which. A label is shrunk (down to [`MIN_SIZE`]) or moved until its box,
-//! grown by a clearance, lies inside the part minus its holes and clear of marks and other
-//! labels; when nothing fits it is skipped with a warning. Labels are engraved (blue) with the
-//! built-in stroke [`font`], so no font is needed on the user's machine.
+//! grown by a clearance, lies inside the part minus its holes and clear of marks (cut slits
+//! too), other labels and a bent part's bend zones (the strip that curves); when nothing fits
+//! it is skipped with a warning. Labels are engraved (blue) with the built-in stroke [`font`],
+//! so no font is needed on the user's machine.
 
 pub mod font;
 mod place;
@@ -19,7 +20,9 @@ pub use place::{MIN_SIZE, TextBox, clearance};
 use place::{Room, up_of};
 
 use crate::context::{StepContext, Warning, WarningKind};
-use crate::plan::{EdgeLabel, LabelMode, Mark, MarkKind, Part, PlanInput};
+use platener_geom::Polygon;
+
+use crate::plan::{Bend, EdgeLabel, LabelMode, Mark, MarkKind, Part, PlanInput};
 
 /// Sizes tried for part numbers, mm, largest first.
 const PART_SIZES: [f64; 8] = [8.0, 6.0, 5.0, 4.0, 3.0, 2.5, 2.0, MIN_SIZE];
@@ -120,10 +123,8 @@ pub fn id_ranges(ids: &[u32]) -> String {
 
 /// The labels of one part cut with `kerf` mm.
 pub fn label_part(part: &Part, mode: LabelMode, kerf: f64) -> (PartLabels, Vec<Warning>) {
-    let mut polygon = part.polygon.clone();
-    polygon.normalize_orientation();
-    let mark_paths: Vec<Vec<DVec2>> = part.marks.iter().map(|m| m.path.clone()).collect();
-    let mut room = Room::new(&polygon, &mark_paths, kerf);
+    let polygon = normalized(part);
+    let mut room = room_of(part, &polygon, kerf);
     let mut boxes = Vec::new();
     let mut warnings = Vec::new();
     let mut warn = |message: String| {
@@ -177,6 +178,35 @@ pub fn label_part(part: &Part, mode: LabelMode, kerf: f64) -> (PartLabels, Vec<W
     )
 }
 
+/// `part`'s shape, outer ring counter-clockwise and holes clockwise, as [`Room`] wants it.
+fn normalized(part: &Part) -> Polygon {
+    let mut polygon = part.polygon.clone();
+    polygon.normalize_orientation();
+    polygon
+}
+
+/// Where labels may go on `part` (its `polygon`, normalised): clear of all its marks (cut
+/// slits included) and of its bend zones.
+fn room_of<'a>(part: &Part, polygon: &'a Polygon, kerf: f64) -> Room<'a> {
+    let mark_paths: Vec<Vec<DVec2>> = part.marks.iter().map(|m| m.path.clone()).collect();
+    let mut room = Room::new(polygon, &mark_paths, kerf);
+    let (lo, hi) = polygon.bounds();
+    for bend in &part.bends {
+        room.block(bend_zone(bend, lo.distance(hi)));
+    }
+    room
+}
+
+/// The bend zone of `bend` (the strip of its width centred on its line) as a quadrilateral,
+/// its line extended by `reach` at both ends so the strip crosses the whole part.
+pub fn bend_zone(bend: &Bend, reach: f64) -> [DVec2; 4] {
+    let [a, b] = bend.line;
+    let along = (b - a).try_normalize().unwrap_or(DVec2::X);
+    let across = along.perp() * (bend.width / 2.0);
+    let (a, b) = (a - along * reach, b + along * reach);
+    [a - across, b - across, b + across, a + across]
+}
+
 /// A baseline direction that reads left to right on screen (or upwards when vertical).
 fn readable(d: DVec2) -> DVec2 {
     if d.x > 1e-9 || (d.x.abs() <= 1e-9 && d.y < 0.0) {
@@ -187,7 +217,7 @@ fn readable(d: DVec2) -> DVec2 {
 }
 
 /// The part number at the deepest points, horizontal, upright or along the longest edge.
-fn place_number(room: &Room<'_>, polygon: &platener_geom::Polygon, id: u32) -> Option<TextBox> {
+fn place_number(room: &Room<'_>, polygon: &Polygon, id: u32) -> Option<TextBox> {
     let text = id.to_string();
     let longest = {
         let r = &polygon.outer;
@@ -223,10 +253,8 @@ fn place_number(room: &Room<'_>, polygon: &platener_geom::Polygon, id: u32) -> O
 /// part's marks: a reference to another part engraved where it belongs (a stacked layer's
 /// number on the layer it rests on).
 pub fn place_near(part: &Part, text: &str, target: DVec2, kerf: f64) -> Option<TextBox> {
-    let mut polygon = part.polygon.clone();
-    polygon.normalize_orientation();
-    let mark_paths: Vec<Vec<DVec2>> = part.marks.iter().map(|m| m.path.clone()).collect();
-    let room = Room::new(&polygon, &mark_paths, kerf);
+    let polygon = normalized(part);
+    let room = room_of(part, &polygon, kerf);
     [3.0, 2.5, 2.0, MIN_SIZE].into_iter().find_map(|size| {
         let mut centers = room.inner_points(size / 2.0 + room.clearance(size));
         centers.sort_by(|a, b| {

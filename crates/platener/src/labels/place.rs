@@ -119,6 +119,12 @@ impl<'a> Room<'a> {
         self.taken.push(label.corners(0.0));
     }
 
+    /// Keeps every label clear of the convex quadrilateral `area` (a bent part's bend zone:
+    /// text engraved there would be stretched over the hinge, or cut by its slits).
+    pub fn block(&mut self, area: [DVec2; 4]) {
+        self.taken.push(area);
+    }
+
     /// Up to `n` well-separated points deep inside the polygon, deepest first, with their
     /// distance to the boundary (a sampled pole of inaccessibility, 24 × 24 grid).
     pub fn deep_points(&self, n: usize) -> Vec<(DVec2, f64)> {

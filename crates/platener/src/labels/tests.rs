@@ -121,6 +121,66 @@ proptest! {
     }
 }
 
+/// A 90 × 30 part bent along x = `at` with a zone `width` wide (no marks, so only the zone
+/// can keep the labels off it).
+fn bent(at: f64, width: f64) -> Part {
+    let mut p = part(6, Polygon::new(rect(0.0, 0.0, 90.0, 30.0)));
+    p.kind = crate::plan::PartKind::Bent;
+    p.bends = vec![Bend {
+        line: [DVec2::new(at, 0.0), DVec2::new(at, 30.0)],
+        angle_deg: 90.0,
+        style: crate::plan::BendStyle::LivingHinge,
+        width,
+        segments: [0, 1],
+    }];
+    p
+}
+
+/// The smallest distance of `b`'s corners to the vertical line x = `at`, signed by side: the
+/// box is clear of the zone when all corners lie on one side at least half the width away.
+fn clear_of_zone(b: &TextBox, at: f64, width: f64) -> bool {
+    let xs = b.corners(0.0).map(|c| c.x - at);
+    xs.iter().all(|x| *x >= width / 2.0) || xs.iter().all(|x| *x <= -width / 2.0)
+}
+
+#[test]
+fn a_part_number_keeps_out_of_the_bend_zone() {
+    // Without the bend the number sits at the first deepest point; the zone goes there.
+    let flat = part(6, Polygon::new(rect(0.0, 0.0, 90.0, 30.0)));
+    let (free, _) = label_part(&flat, LabelMode::Parts, KERF);
+    let c = free.boxes[0].corners(0.0);
+    let at = (c[0].x + c[2].x) / 2.0;
+    assert!(!clear_of_zone(&free.boxes[0], at, 12.0), "{:?}", free.boxes);
+    let p = bent(at, 12.0);
+    let (l, warnings) = label_part(&p, LabelMode::Parts, KERF);
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert_eq!(l.boxes.len(), 1);
+    assert!(clear_of_zone(&l.boxes[0], at, 12.0), "{:?}", l.boxes);
+    assert_inside(&p, &l);
+    // The zone's quadrilateral is the strip: 12 wide, crossing the whole part.
+    let zone = bend_zone(&p.bends[0], 100.0);
+    assert!(
+        zone.iter()
+            .all(|c| ((c.x - at).abs() - 6.0).abs() < 1e-12 && (c.y < 0.0 || c.y > 30.0))
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    /// Wherever the bend and however wide its zone, no label lands in it.
+    #[test]
+    fn labels_never_land_in_a_bend_zone(at in 5.0..85.0f64, width in 1.0..20.0f64) {
+        let mut p = bent(at, width);
+        p.edge_labels = vec![EdgeLabel { connection: 4, segment: [DVec2::new(0.0, 0.0), DVec2::new(90.0, 0.0)] }];
+        let (l, _) = label_part(&p, LabelMode::Edges, KERF);
+        prop_assert!(!l.boxes.is_empty(), "at least one side has room for the number");
+        for b in &l.boxes {
+            prop_assert!(clear_of_zone(b, at, width), "{:?}", b);
+        }
+    }
+}
+
 #[test]
 fn parts_without_room_for_their_number_make_one_warning() {
     assert_eq!(super::id_ranges(&[3, 5, 6, 7, 9, 12, 13]), "3, 5–7, 9, 12–13");

@@ -119,7 +119,8 @@ pub struct PlanPart {
     pub transform: [[f64; 4]; 3],
     /// Where the part sits on its sheet.
     pub sheet: SheetPlacement,
-    /// Engraved marks in the part's frame (bend lines, labels).
+    /// Marks in the part's frame: `cut` (slits, cut through, red), `score` (bend lines and
+    /// other engraving, blue) and `label`.
     pub marks: Vec<Mark>,
     /// For bent parts only: the plates merged into this part.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

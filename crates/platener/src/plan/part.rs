@@ -22,20 +22,20 @@ pub enum PartKind {
     Shaft,
 }
 
-/// What a mark drawn on a part is, as in plan.json's `marks[].kind`. `Cut` marks are cut
-/// through without removing material (red); the others are engraved (blue).
+/// What a mark drawn on a part is, as in plan.json's `marks[].kind`: only `cut`, `score` and
+/// `label` (the spec's three). `Cut` marks are cut through without removing material (red);
+/// the others are engraved (blue).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum MarkKind {
     /// Cut through but removing nothing: living-hinge slits, perforation dashes (plan.json's
     /// `cut`, drawn red like the outline; kerf compensation leaves them as they are).
     Cut,
-    /// A bend line to fold or heat along (plan.json's `score`).
-    Bend,
-    /// Any other engraving (plan.json's `score`).
-    Engrave,
-    /// The outline of a feature on one face of a plate (engraved or embossed text, a pocket,
-    /// a standoff's footprint), scored, not cut through (plan.json's `score`).
+    /// Engraved or scored, not cut through: a bend line to fold or heat along, the outline of
+    /// a feature on one face (engraved or embossed text, a pocket, a standoff's footprint), a
+    /// stacked layer's outline on the layer below (plan.json's `score`). Plans written before
+    /// version 2 also called these `engrave` or `bend`; both still read as `score`.
+    #[serde(alias = "engrave", alias = "bend")]
     Score,
     /// Text and numbers (made by the `labels` step).
     Label,

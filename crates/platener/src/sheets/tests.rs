@@ -146,6 +146,7 @@ fn shapes_jagua_cannot_take_are_refused_not_passed_on() {
             id: 7,
             nominal: parts[0].polygon.clone(),
             cut: Polygon::default(),
+            slits: Vec::new(),
         }],
     };
     match nest(&parts, &cut, &settings, &|| false) {

@@ -114,7 +114,7 @@ fn draw(text: &str, size: f64, center: DVec2, along: DVec2, arrow: DVec2) -> Vec
     let (tail, tip) = (q - arrow * (cell / 2.0), q + arrow * (cell / 2.0));
     let barb = tip - arrow * (cell / 3.0) + arrow.perp() * (cell / 3.0);
     let mut marks = vec![Mark {
-        kind: MarkKind::Engrave,
+        kind: MarkKind::Score,
         path: vec![tail, tip, barb],
         side: None,
     }];

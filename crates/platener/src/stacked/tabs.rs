@@ -114,7 +114,7 @@ pub(crate) fn reference_marks(
     let outline: Vec<Mark> = overlap
         .iter()
         .map(|p| Mark {
-            kind: MarkKind::Engrave,
+            kind: MarkKind::Score,
             path: closed(&p.outer),
             side: None,
         })
