@@ -995,7 +995,7 @@ fn debug_view_isolated_step_and_converting() {
         "[...document.querySelectorAll('[data-testid=debug-steps] [data-step]')].map(b => b.dataset.step)",
         "the step list",
     );
-    for step in ["read", "plates", "joints", "parts", "sheets"] {
+    for step in ["read", "plates", "bends", "joints", "parts", "sheets"] {
         assert!(
             steps.as_array().is_some_and(|a| a.iter().any(|s| s == step)),
             "{step} in {steps}"

@@ -10,8 +10,8 @@ use serde_json::{Value, json};
 use web_support::{Server, example_box};
 
 const PLATE_STEPS: [&str; 13] = [
-    "read", "cleanup", "weld", "mesh", "coplanar", "shapes", "plates", "joints", "parts", "kerf", "labels", "sheets",
-    "export",
+    "read", "cleanup", "weld", "mesh", "coplanar", "shapes", "plates", "bends", "joints", "parts", "kerf", "labels",
+    "sheets", "export",
 ];
 
 fn start() -> (tempfile::TempDir, Server) {

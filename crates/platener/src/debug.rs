@@ -392,7 +392,7 @@ mod tests {
                 .flat_map(|c| c["plates"].as_array().into_iter().flatten())
                 .all(|id| (1..=6).contains(&id.as_u64().unwrap_or(0)))
         );
-        assert_eq!((joints.view, joints.view_exact), (Some("plates"), false));
+        assert_eq!((joints.view, joints.view_exact), (Some("bent"), false));
         let parts = steps.iter().find(|s| s.step == "parts").expect("parts");
         assert_eq!(parts.summary["count"], 6);
         assert!(

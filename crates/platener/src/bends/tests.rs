@@ -203,7 +203,12 @@ mod chains {
         for (k, f) in flat.iter().enumerate() {
             if k > 0 {
                 let e0 = &flat[k - 1].outer;
-                let shared: Vec<DVec2> = f.outer.iter().filter(|q| e0.iter().any(|r| (**q - *r).length() < 1e-9)).copied().collect();
+                let shared: Vec<DVec2> = f
+                    .outer
+                    .iter()
+                    .filter(|q| e0.iter().any(|r| (**q - *r).length() < 1e-9))
+                    .copied()
+                    .collect();
                 let (a, b) = (shared[0].extend(0.0), shared[1].extend(0.0));
                 let axis = (b - a).normalize();
                 let turn = glam::DAffine3::from_translation(a)

@@ -15,8 +15,8 @@ fn the_box_becomes_a_zip_with_six_parts_on_sheets() {
     assert_eq!(
         names,
         [
-            "read", "cleanup", "weld", "mesh", "coplanar", "shapes", "plates", "joints", "parts", "kerf", "labels",
-            "sheets", "export"
+            "read", "cleanup", "weld", "mesh", "coplanar", "shapes", "plates", "bends", "joints", "parts", "kerf",
+            "labels", "sheets", "export"
         ]
     );
     // The ZIP holds plan.json, which lists the same six parts.

@@ -19,7 +19,10 @@ impl State {
                 scene::coplanar(mesh, groups)
             }
             View::Plates => scene::plates(self.plates.as_ref().ok_or_else(|| need("plates"))?),
-            View::Bent => scene::bent(self.plates.as_ref().ok_or_else(|| need("plates"))?, self.bends.as_deref()),
+            View::Bent => scene::bent(
+                self.plates.as_ref().ok_or_else(|| need("plates"))?,
+                self.bends.as_deref(),
+            ),
             View::Final => scene::assembly(&self.parts.as_ref().ok_or_else(|| need("parts"))?.parts),
         }
     }

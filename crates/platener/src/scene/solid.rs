@@ -8,8 +8,8 @@ use super::extrude::slab_mesh;
 use super::glb::{GlbBuilder, Mode};
 use super::palette::Colour;
 use super::{Scene, SceneError};
-use crate::plan::Part;
 use crate::bends::Bends;
+use crate::plan::Part;
 use crate::plates::Plates;
 
 /// The `plates` view: one node `plate-N` (N from 1, in the snapshot's order) per plate, each
