@@ -145,6 +145,7 @@ fn events_name_every_step_and_method_in_order() {
             "plate:coplanar",
             "plate:shapes",
             "plate:plates",
+            "plate:bends",
             "plate:joints",
             "plate:parts",
             "plate:kerf",
