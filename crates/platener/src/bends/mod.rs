@@ -201,11 +201,11 @@ pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f
 }
 
 /// The zone of candidate `c`, if its turn can be bent faithfully: the zone fits in each
-/// plate's half (a plate may bend on both sides) and rounds the model's corner by at most
-/// a sheet thickness.
+/// plate's half (a plate may bend on both sides) with a fifth of it left flat, and rounds
+/// the model's corner by at most a sheet thickness.
 fn zone_of(c: &Candidate, plates: &[Plate], style: BendStyle, material: Material) -> Result<Zone, String> {
     let t = plates[c.plates[0]].thickness;
-    let room = c.depth[0].min(c.depth[1]);
+    let room = 0.8 * c.depth[0].min(c.depth[1]);
     let zone = zone::design(style, material, t, c.turn(), room)?;
     if zone.corner_gap() > t {
         return Err(format!(
