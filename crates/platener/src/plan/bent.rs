@@ -363,3 +363,56 @@ impl Zone {
         self.turn
     }
 }
+
+/// A bent strip for tests, examples and benchmarks: segments of `lengths` (mm, along the flat
+/// x axis) and `wide` mm across, joined by bend zones of `zone` mm turning by `turns_deg`
+/// (positive: towards the first segment's normal), all bend axes parallel to the model's y.
+/// The first segment lies on z = 0..thickness from x = 0, heading +x. The frames are found by
+/// walking the neutral axis in the xz plane (not by [`Zone`]), so they check it.
+pub fn sample_strip(id: u32, thickness: f64, wide: f64, lengths: &[f64], turns_deg: &[f64], zone: f64) -> Part {
+    use super::part::{BendStyle, Segment};
+    use platener_geom::polygon::rect;
+    let (mut at, mut heading, mut x) = (DVec2::new(0.0, thickness / 2.0), 0.0_f64, 0.0);
+    let (mut segments, mut bends) = (Vec::new(), Vec::new());
+    for (k, &length) in lengths.iter().enumerate() {
+        let (s, c) = heading.sin_cos();
+        let (u, n) = (DVec3::new(c, 0.0, s), DVec3::new(-s, 0.0, c));
+        let mid = DVec3::new(at.x, 0.0, at.y);
+        let frame = Frame {
+            origin: mid - u * x - n * (thickness / 2.0),
+            u,
+            v: DVec3::Y,
+            n,
+        };
+        segments.push(Segment {
+            polygon: Polygon::new(rect(x, 0.0, x + length, wide)),
+            frame,
+        });
+        at += DVec2::new(c, s) * length;
+        x += length;
+        let Some(&turn_deg) = turns_deg.get(k) else { break };
+        let turn = turn_deg.to_radians();
+        let radius = zone / turn.abs();
+        let side = DVec2::new(-s, c) * (radius * turn.signum());
+        let centre = at + side;
+        heading += turn;
+        at = centre - DVec2::new(-heading.sin(), heading.cos()) * (radius * turn.signum());
+        bends.push(Bend {
+            line: [DVec2::new(x + zone / 2.0, 0.0), DVec2::new(x + zone / 2.0, wide)],
+            angle_deg: 180.0 - turn_deg.abs(),
+            style: BendStyle::LivingHinge,
+            width: zone,
+            segments: [k, k + 1],
+        });
+        x += zone;
+    }
+    let mut part = Part::plate(id, thickness, Polygon::new(rect(0.0, 0.0, x, wide)), segments[0].frame);
+    part.kind = PartKind::Bent;
+    part.segments = segments;
+    part.bends = bends;
+    part
+}
+
+#[cfg(test)]
+#[path = "bent_tests.rs"]
+mod tests;
