@@ -323,7 +323,14 @@ fn bent_parts_draw_as_closed_curved_strips_in_the_final_view() {
     let parts = vec![
         sample_strip(1, 3.0, 30.0, &[40.0, 40.0], &[90.0], 10.0),
         sample_strip(2, 3.0, 30.0, &[40.0, 30.0, 20.0, 40.0], &[90.0, 45.0, 45.0], 10.0),
-        sample_strip(3, 3.0, 30.0, &[40.0, 40.0, 40.0 - r + 1.5, 41.5 + r], &[90.0, 90.0, 90.0], 10.0),
+        sample_strip(
+            3,
+            3.0,
+            30.0,
+            &[40.0, 40.0, 40.0 - r + 1.5, 41.5 + r],
+            &[90.0, 90.0, 90.0],
+            10.0,
+        ),
     ];
     let scene = platener::scene::assembly(&parts).expect("draws");
     let l = check_view(View::Final, &scene, &parts);
@@ -331,7 +338,10 @@ fn bent_parts_draw_as_closed_curved_strips_in_the_final_view() {
     let want = DVec3::new(40.0 + r + 1.5, 30.0, 1.5 + r + 40.0);
     // glTF positions are f32 (about 1e-5 mm here); the slices' corners stray from the arc by
     // their sagitta (0.005 mm).
-    assert!(lo.abs().max_element() < 0.01 && (hi - want).abs().max_element() < 0.01, "{lo} {hi}");
+    assert!(
+        lo.abs().max_element() < 0.01 && (hi - want).abs().max_element() < 0.01,
+        "{lo} {hi}"
+    );
     if let Some(script) = validator() {
         let out = tempfile::tempdir().expect("temp dir");
         let file = out.path().join("bent-final.glb");

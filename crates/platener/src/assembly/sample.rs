@@ -14,11 +14,7 @@ const SHIFT: f64 = 0.207_106_781_186_547_5;
 
 /// The sampling step: a third of the thinnest part, at most 1 mm.
 pub(super) fn step_for(solids: &[Solid]) -> f64 {
-    solids
-        .iter()
-        .map(|s| s.thickness / 3.0)
-        .fold(1.0, f64::min)
-        .max(0.05)
+    solids.iter().map(|s| s.thickness / 3.0).fold(1.0, f64::min).max(0.05)
 }
 
 /// Whether the boxes of `a` and `b`, `a`'s grown by `grow`, overlap.

@@ -235,7 +235,9 @@ impl Zone {
             message: message.into(),
         };
         let [p0, p1] = bend.line;
-        let along = (p1 - p0).try_normalize().ok_or_else(|| bad("has a line of no length"))?;
+        let along = (p1 - p0)
+            .try_normalize()
+            .ok_or_else(|| bad("has a line of no length"))?;
         if !(bend.width.is_finite() && bend.width > 0.0) {
             return Err(bad("has no positive width"));
         }

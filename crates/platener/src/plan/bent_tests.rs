@@ -39,7 +39,10 @@ fn worst_gap(pieces: &[Slab]) -> f64 {
     let mut worst: f64 = 0.0;
     for pair in order.windows(2) {
         let (end, start) = (pair[0].polygon.bounds().1.x, pair[1].polygon.bounds().0.x);
-        assert!((end - start).abs() < 1e-3, "flat pieces {end} and {start} do not share an edge");
+        assert!(
+            (end - start).abs() < 1e-3,
+            "flat pieces {end} and {start} do not share an edge"
+        );
         for y in [0.0, WIDE / 2.0, WIDE] {
             let q = DVec3::new(end, y, T / 2.0);
             worst = worst.max(pair[0].frame.to_model(q).distance(pair[1].frame.to_model(q)));
@@ -68,7 +71,11 @@ fn the_l_is_its_segments_and_slices_meeting_edge_to_edge() {
     let gap = worst_gap(&pieces);
     assert!(gap <= 0.01, "consecutive pieces {gap} mm apart");
     let want = part.polygon.area() * T;
-    assert!((volume(&pieces) - want).abs() <= 0.01 * want, "{} vs {want}", volume(&pieces));
+    assert!(
+        (volume(&pieces) - want).abs() <= 0.01 * want,
+        "{} vs {want}",
+        volume(&pieces)
+    );
     // The L: horizontal arm on z = 0..3 from x = 0, vertical arm's outer face at
     // x = 40 + R + 1.5, rising to 1.5 + R + 40 (the neutral axis' arc ends there).
     let r = radius_90();
@@ -125,7 +132,12 @@ fn segments_that_disagree_with_their_bend_are_an_error() {
     let mut part = l_part();
     part.segments[1].frame.origin.x += 0.2;
     match part.pieces() {
-        Err(BentError::Mismatch { bend: 0, segment: 1, distance, .. }) => assert!(distance > 0.15, "{distance}"),
+        Err(BentError::Mismatch {
+            bend: 0,
+            segment: 1,
+            distance,
+            ..
+        }) => assert!(distance > 0.15, "{distance}"),
         other => panic!("{other:?}"),
     }
     let mut part = l_part();

@@ -61,13 +61,9 @@ fn bent_mesh(part: &Part) -> Result<MeshData, SceneError> {
     for piece in &pieces {
         let (positions, triangles) = extrude(&piece.polygon, piece.thickness)?;
         let base = u32::try_from(data.positions.len()).map_err(|_| SceneError::TooLarge { what: "a part".into() })?;
-        data.positions.extend(
-            positions
-                .iter()
-                .map(|q| part.frame.to_local(piece.frame.to_model(*q))),
-        );
-        data.indices
-            .extend(triangles.into_iter().flatten().map(|i| i + base));
+        data.positions
+            .extend(positions.iter().map(|q| part.frame.to_local(piece.frame.to_model(*q))));
+        data.indices.extend(triangles.into_iter().flatten().map(|i| i + base));
     }
     Ok(data)
 }
