@@ -253,14 +253,21 @@ impl Zone {
         if si * sj >= 0.0 {
             return Err(bad("does not lie between the segments it joins"));
         }
-        let across = along.perp() * sj.signum();
-        let start = segments[i].1;
-        let turn = (180.0 - bend.angle_deg).to_radians();
+        let flat = Self {
+            origin: p0,
+            along,
+            across: along.perp() * sj.signum(),
+            width: bend.width,
+            turn: (180.0 - bend.angle_deg).to_radians(),
+            start: segments[i].1,
+            axis_point: DVec3::ZERO,
+            axis: DVec3::ZERO,
+        };
         let mut best: Option<(f64, Zone)> = None;
         // The part turns towards one side of segment i: the one that puts the zone's end
         // where segment j's frame says it is.
         for sense in [1.0, -1.0] {
-            let zone = Self::towards(p0, along, across, bend.width, turn, start, thickness, sense);
+            let zone = flat.towards(thickness, sense);
             let miss = zone.mismatch(&segments[j].1, thickness);
             if best.as_ref().is_none_or(|(m, _)| miss < *m) {
                 best = Some((miss, zone));
@@ -278,32 +285,21 @@ impl Zone {
         Ok(zone)
     }
 
-    /// The zone turning towards `sense` × segment i's normal.
-    #[allow(clippy::too_many_arguments)]
-    fn towards(
-        origin: DVec2,
-        along: DVec2,
-        across: DVec2,
-        width: f64,
-        turn: f64,
-        start: Frame,
-        thickness: f64,
-        sense: f64,
-    ) -> Self {
-        let w = start.u * across.x + start.v * across.y;
-        let edge = start.to_model((origin - across * (width / 2.0)).extend(thickness / 2.0));
-        let radius = if turn > 0.0 { width / turn } else { 0.0 };
+    /// The zone turning towards `sense` × segment i's normal (its flat fields kept).
+    fn towards(self, thickness: f64, sense: f64) -> Self {
+        let w = self.start.u * self.across.x + self.start.v * self.across.y;
+        let edge = (self.origin - self.across * (self.width / 2.0)).extend(thickness / 2.0);
         Self {
-            origin,
-            along,
-            across,
-            width,
-            turn,
-            start,
-            axis_point: edge + start.n * (sense * radius),
+            axis_point: self.start.to_model(edge) + self.start.n * (sense * self.radius()),
             // (w × n) × w = n: turning about w × n takes w towards n.
-            axis: w.cross(start.n) * sense,
+            axis: w.cross(self.start.n) * sense,
+            ..self
         }
+    }
+
+    /// The neutral axis' radius, mm (0 for a flat "bend").
+    fn radius(&self) -> f64 {
+        if self.turn > 0.0 { self.width / self.turn } else { 0.0 }
     }
 
     /// How far (mm) the zone's end lies from segment j's `end` frame: the largest distance
@@ -342,7 +338,7 @@ impl Zone {
     /// The slices' ranges of u: equal slices, each turning at most 5° and straying from the
     /// arc by at most [`MAX_SAGITTA`].
     pub fn slices(&self) -> Vec<(f64, f64)> {
-        let radius = if self.turn > 0.0 { self.width / self.turn } else { 0.0 };
+        let radius = self.radius();
         // Sagitta of a slice turning d: radius · d² / 8.
         let by_sagitta = self.turn * (radius / (8.0 * MAX_SAGITTA)).sqrt();
         let n = ((self.turn / MAX_SLICE_TURN).max(by_sagitta).ceil() as usize).clamp(1, MAX_SLICES);
