@@ -22,6 +22,9 @@ pub(crate) struct Solid {
     pub(crate) id: u32,
     /// The rigid pieces, local → model (one for a flat part).
     pub(crate) pieces: Vec<Slab>,
+    /// Each piece's model box: a bent part has many pieces, and most sample points are far
+    /// from most of them.
+    boxes: Vec<(DVec3, DVec3)>,
     /// The part's thickness, mm.
     pub(crate) thickness: f64,
     /// Model-space box of the volume.
@@ -55,7 +58,8 @@ impl Solid {
     }
 
     fn from_pieces(id: u32, thickness: f64, pieces: Vec<Slab>) -> Self {
-        let (lo, hi) = pieces.iter().map(Slab::model_bounds).fold(
+        let boxes: Vec<(DVec3, DVec3)> = pieces.iter().map(Slab::model_bounds).collect();
+        let (lo, hi) = boxes.iter().copied().fold(
             (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
             |(lo, hi), (a, b)| (lo.min(a), hi.max(b)),
         );
@@ -63,6 +67,7 @@ impl Solid {
             id,
             volume: pieces.iter().map(Slab::volume).sum(),
             pieces,
+            boxes,
             thickness,
             lo,
             hi,
@@ -76,16 +81,30 @@ impl Solid {
 
     /// Whether the box of the volume, grown by `reach`, holds `p` (a cheap first test).
     pub(crate) fn near_box(&self, p: DVec3, reach: f64) -> bool {
-        p.cmpge(self.lo - reach).all() && p.cmple(self.hi + reach).all()
+        in_box(p, (self.lo, self.hi), reach)
     }
 
     /// Whether the model point `p` is inside some piece (see [`Slab::contains`]).
     pub(crate) fn contains(&self, p: DVec3) -> bool {
-        self.pieces.iter().any(|s| s.contains(p))
+        self.near_pieces(p, 0.0).any(|s| s.contains(p))
     }
 
     /// Whether the model point `p` is within `reach` of some piece (see [`Slab::within`]).
     pub(crate) fn within(&self, p: DVec3, reach: f64) -> bool {
-        self.near_box(p, reach) && self.pieces.iter().any(|s| s.within(p, reach))
+        self.near_box(p, reach) && self.near_pieces(p, reach).any(|s| s.within(p, reach))
     }
+
+    /// The pieces whose box, grown by `reach`, holds `p`.
+    fn near_pieces(&self, p: DVec3, reach: f64) -> impl Iterator<Item = &Slab> {
+        self.pieces
+            .iter()
+            .zip(&self.boxes)
+            .filter(move |(_, b)| in_box(p, **b, reach))
+            .map(|(s, _)| s)
+    }
+}
+
+/// Whether the box `(lo, hi)` grown by `reach` holds `p`.
+fn in_box(p: DVec3, (lo, hi): (DVec3, DVec3), reach: f64) -> bool {
+    p.cmpge(lo - reach).all() && p.cmple(hi + reach).all()
 }
