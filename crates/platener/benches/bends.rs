@@ -12,12 +12,13 @@ use platener::plan::{BendStyle, Material};
 use platener::plates::{Plate, PlateKind};
 use platener_geom::{Frame, Polygon};
 
-/// One plate per facet of a vase: ring k at height 4k mm with radius 80 + 15·sin(k/8) mm.
+/// One plate per facet of a vase: ring k at height 12k mm with radius 250 + 40·sin(k/8) mm,
+/// so that even at 100 × 100 facets each is about 15 × 12 mm, room for a 3 mm hinge.
 fn vase(sides: usize, rings: usize) -> Vec<Plate> {
     let t = 3.0;
     let at = |s: usize, k: usize| {
-        let z = 4.0 * k as f64;
-        let r = 80.0 + 15.0 * (k as f64 / 8.0).sin();
+        let z = 12.0 * k as f64;
+        let r = 250.0 + 40.0 * (k as f64 / 8.0).sin();
         let a = std::f64::consts::TAU * s as f64 / sides as f64;
         DVec3::new(r * a.cos(), r * a.sin(), z)
     };

@@ -86,7 +86,8 @@ fn check_view(v: View, scene: &Scene, parts: &[Part]) -> Loaded {
 }
 
 /// Each part node: volume = polygon area × thickness within 0.1 %; model-space bounds = the
-/// part's corners at z = 0 and z = thickness mapped by its frame (plan.json's transform),
+/// corners of the part's pieces (a flat part is one, placed by plan.json's transform; a bent
+/// part's segments and bend slices each by their own frame) at z = 0 and z = thickness,
 /// within 1e-6 of the largest coordinate (f32 positions and rotations keep about 1e-7).
 fn assert_parts(l: &Loaded, parts: &[Part]) {
     let mut parts: Vec<&Part> = parts.iter().collect();
@@ -102,11 +103,14 @@ fn assert_parts(l: &Loaded, parts: &[Part]) {
             n.name
         );
         let (lo, hi) = bounds(n.world());
-        let corners = p
-            .polygon
-            .outer
-            .iter()
-            .flat_map(|q| [0.0, p.thickness].map(|z| p.frame.to_model(q.extend(z))));
+        // Every piece's corners: a bent part's segments and bend slices, a flat part itself.
+        let pieces = p.pieces().unwrap_or_else(|e| panic!("{}: {e}", n.name));
+        let corners = pieces.iter().flat_map(|s| {
+            s.polygon
+                .outer
+                .iter()
+                .flat_map(|q| [0.0, s.thickness].map(|z| s.frame.to_model(q.extend(z))))
+        });
         let (elo, ehi) = bounds(corners);
         let size = (ehi - elo).length().max(elo.abs().max(ehi.abs()).max_element());
         let err = (lo - elo).abs().max((hi - ehi).abs()).max_element();
@@ -312,6 +316,43 @@ fn the_khronos_validator_finds_no_errors() {
         }
     }
     assert_valid(&script, &files);
+}
+
+/// Bent parts (an L, a U of three bends, a ring) in `final`: each node closed and outward,
+/// of the flat shape's volume, within the bounds of its pieces; the L's box is the L's; the
+/// Khronos validator accepts the file.
+#[test]
+fn bent_parts_draw_as_closed_curved_strips_in_the_final_view() {
+    use platener::plan::bent::sample_strip;
+    let r = 10.0 / std::f64::consts::FRAC_PI_2;
+    let parts = vec![
+        sample_strip(1, 3.0, 30.0, &[40.0, 40.0], &[90.0], 10.0),
+        sample_strip(2, 3.0, 30.0, &[40.0, 30.0, 20.0, 40.0], &[90.0, 45.0, 45.0], 10.0),
+        sample_strip(
+            3,
+            3.0,
+            30.0,
+            &[40.0, 40.0, 40.0 - r + 1.5, 41.5 + r],
+            &[90.0, 90.0, 90.0],
+            10.0,
+        ),
+    ];
+    let scene = platener::scene::assembly(&parts).expect("draws");
+    let l = check_view(View::Final, &scene, &parts);
+    let (lo, hi) = bounds(l.nodes[0].world());
+    let want = DVec3::new(40.0 + r + 1.5, 30.0, 1.5 + r + 40.0);
+    // glTF positions are f32 (about 1e-5 mm here); the slices' corners stray from the arc by
+    // their sagitta (0.005 mm).
+    assert!(
+        lo.abs().max_element() < 0.01 && (hi - want).abs().max_element() < 0.01,
+        "{lo} {hi}"
+    );
+    if let Some(script) = validator() {
+        let out = tempfile::tempdir().expect("temp dir");
+        let file = out.path().join("bent-final.glb");
+        std::fs::write(&file, &scene.glb).expect("write");
+        assert_valid(&script, &[file]);
+    }
 }
 
 #[test]

@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use super::{Solid, UnionFind, sample};
 use crate::mesh::Mesh;
-use crate::plan::{JointKind, Plan};
+use crate::plan::{JointKind, Plan, PlanJoint};
 
 /// Model surface within half the thickest part's thickness plus this (mm) of a part counts as
 /// covered: a wall cut from a sheet sits at most half a sheet from the face it stands for, and
@@ -133,8 +133,17 @@ pub fn analyse(plan: &Plan, model: Option<&Mesh>) -> Analysis {
     }
 }
 
+/// Whether `joint` is a bend between plates merged into one bent part of the plan.
+fn merged_plates(plan: &Plan, joint: &PlanJoint) -> bool {
+    joint.kind == JointKind::Bend
+        && plan
+            .parts
+            .iter()
+            .any(|p| joint.parts.iter().all(|id| p.merged.contains(id)))
+}
+
 /// The groups of parts the joints that meet hold together, and the joints whose parts do not
-/// meet (or name a part the plan does not have).
+/// meet (or name a part the plan does not have; bends between merged plates excepted).
 fn held_together(
     plan: &Plan,
     solids: &[Solid],
@@ -146,9 +155,17 @@ fn held_together(
     let mut not_meeting = Vec::new();
     for j in &plan.joints {
         let (Some(a), Some(b)) = (index(j.parts[0]), index(j.parts[1])) else {
-            not_meeting.push(j.label);
+            // A bend joint names the plates merged into a bent part, not parts: the part is
+            // one piece already, so it joins nothing.
+            if !merged_plates(plan, j) {
+                not_meeting.push(j.label);
+            }
             continue;
         };
+        if a == b {
+            // A seam (finger or flap) closing a bent part on itself: nothing to join.
+            continue;
+        }
         // Sampled inside each part in turn: a slot opening onto one part's edge may only be
         // seen from the other.
         let (sa, sb) = (&solids[a], &solids[b]);

@@ -4,6 +4,7 @@
 //! the contact area.
 
 use glam::{DVec2, DVec3};
+use platener_geom::slab::Slab;
 
 use super::{Inside, Interference, Solid};
 use crate::mesh::Mesh;
@@ -13,11 +14,7 @@ const SHIFT: f64 = 0.207_106_781_186_547_5;
 
 /// The sampling step: a third of the thinnest part, at most 1 mm.
 pub(super) fn step_for(solids: &[Solid]) -> f64 {
-    solids
-        .iter()
-        .map(|s| s.slab.thickness / 3.0)
-        .fold(1.0, f64::min)
-        .max(0.05)
+    solids.iter().map(|s| s.thickness / 3.0).fold(1.0, f64::min).max(0.05)
 }
 
 /// Whether the boxes of `a` and `b`, `a`'s grown by `grow`, overlap.
@@ -25,16 +22,26 @@ pub(super) fn overlap(a: &Solid, b: &Solid, grow: f64) -> bool {
     (a.lo - DVec3::splat(grow)).cmple(b.hi).all() && (b.lo - DVec3::splat(grow)).cmple(a.hi).all()
 }
 
-/// Cell centres of a part's volume (in the model), with the volume each stands for.
+/// Cell centres of a part's volume (in the model), with the volume each stands for: every
+/// piece's cells, all of one volume (the pieces share the part's thickness).
 pub(crate) fn cells(s: &Solid, step: f64) -> (Vec<DVec3>, f64) {
-    let (lo, hi) = s.slab.polygon.bounds();
-    let layers = ((s.slab.thickness / step).ceil() as usize).max(1);
-    let dz = s.slab.thickness / layers as f64;
+    let layers = ((s.thickness / step).ceil() as usize).max(1);
+    let dz = s.thickness / layers as f64;
+    let mut out = Vec::new();
+    for piece in &s.pieces {
+        piece_cells(piece, step, layers, &mut out);
+    }
+    (out, step * step * dz)
+}
+
+/// The cell centres of one piece, `layers` through its thickness.
+fn piece_cells(piece: &Slab, step: f64, layers: usize, out: &mut Vec<DVec3>) {
+    let (lo, hi) = piece.polygon.bounds();
+    let dz = piece.thickness / layers as f64;
     let (nx, ny) = (
         ((hi.x - lo.x) / step).ceil() as usize,
         ((hi.y - lo.y) / step).ceil() as usize,
     );
-    let mut out = Vec::new();
     for i in 0..=nx {
         for j in 0..=ny {
             // Centres shifted by an irrational fraction of a step: never exactly on a face of
@@ -43,15 +50,14 @@ pub(crate) fn cells(s: &Solid, step: f64) -> (Vec<DVec3>, f64) {
                 lo.x + (i as f64 + 0.5 + SHIFT) * step,
                 lo.y + (j as f64 + 0.5 - SHIFT) * step,
             );
-            if !s.slab.polygon.contains(q) {
+            if !piece.polygon.contains(q) {
                 continue;
             }
             for k in 0..layers {
-                out.push(s.slab.frame.to_model(DVec3::new(q.x, q.y, (k as f64 + 0.5) * dz)));
+                out.push(piece.frame.to_model(DVec3::new(q.x, q.y, (k as f64 + 0.5) * dz)));
             }
         }
     }
-    (out, step * step * dz)
 }
 
 /// Every pair of parts that shares volume, with the volume; `cells[i]` are part i's cell

@@ -4,6 +4,7 @@
 //! [`Part`]s and [`Joint`]s, the model they came from and the [`CutSettings`]. It is the
 //! pipeline's `parts` snapshot. [`format`] is plan.json itself, written by the `export` step.
 
+pub mod bent;
 mod error;
 pub mod format;
 mod part;
@@ -15,6 +16,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use glam::DVec3;
 use serde::Serialize;
 
+pub use bent::BentError;
 pub use error::PlanError;
 pub use format::{
     Glue, Method, Plan, PlanBend, PlanJoint, PlanPart, PlanSegment, PlanSettings, PlanSheet, PlanSource, SheetPlacement,

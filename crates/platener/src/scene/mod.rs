@@ -132,6 +132,9 @@ pub enum SceneError {
         /// Why its outline is off the grid.
         error: platener_geom::GridError,
     },
+    /// A bent part whose segments and bends disagree, so it cannot be bent (input's fault).
+    #[error("cannot bend a part: {0}")]
+    Bends(String),
     /// More than a GLB holds (4 GiB, 2^32 vertices): the input is too large.
     #[error("{what} is too large for a GLB file")]
     TooLarge {

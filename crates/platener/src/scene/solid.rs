@@ -4,8 +4,8 @@
 
 use platener_geom::{Frame, Polygon};
 
-use super::extrude::slab_mesh;
-use super::glb::{GlbBuilder, Mode};
+use super::extrude::{extrude, slab_mesh};
+use super::glb::{GlbBuilder, MeshData, Mode};
 use super::palette::Colour;
 use super::{Scene, SceneError};
 use crate::bends::Bends;
@@ -55,23 +55,40 @@ pub fn bent(plates_snapshot: &Plates, bends: Option<&Bends>) -> Result<Scene, Sc
 
 /// The `final` view, also the plan's `assembly.glb`: one node `part-ID` per part (ascending
 /// id), its nominal polygon (joints, slots and holes included) extruded from local z = 0 to
-/// its thickness and placed by its frame; colours by id.
+/// its thickness and placed by its frame; colours by id. A bent part's node holds its pieces
+/// ([`Part::pieces`]: the segments flat, the bend zones' slices forming the curved strip),
+/// each a closed solid, in the part's frame.
 pub fn assembly(parts: &[Part]) -> Result<Scene, SceneError> {
     let mut order: Vec<&Part> = parts.iter().collect();
     order.sort_by_key(|p| p.id);
     let mut glb = GlbBuilder::default();
     for p in order {
         let colour = Colour::nth(p.id.saturating_sub(1) as usize);
-        solid(
-            &mut glb,
-            &format!("part-{}", p.id),
-            &p.polygon,
-            p.thickness,
-            &p.frame,
-            colour,
-        )?;
+        let name = format!("part-{}", p.id);
+        if p.segments.is_empty() {
+            solid(&mut glb, &name, &p.polygon, p.thickness, &p.frame, colour)?;
+            continue;
+        }
+        let data = bent_mesh(p).map_err(|e| e.about(&name))?;
+        let mesh = glb.mesh(&name, &data, Mode::Triangles, colour, false)?;
+        glb.node(&name, mesh, Some(&p.frame));
     }
     Scene::finish(glb, "assembly", Vec::new())
+}
+
+/// A bent part's pieces extruded and carried into the part's own frame (the node's transform
+/// is the part's frame, as for every part).
+fn bent_mesh(part: &Part) -> Result<MeshData, SceneError> {
+    let pieces = part.pieces().map_err(|e| SceneError::Bends(e.to_string()))?;
+    let mut data = MeshData::default();
+    for piece in &pieces {
+        let (positions, triangles) = extrude(&piece.polygon, piece.thickness)?;
+        let base = u32::try_from(data.positions.len()).map_err(|_| SceneError::TooLarge { what: "a part".into() })?;
+        data.positions
+            .extend(positions.iter().map(|q| part.frame.to_local(piece.frame.to_model(*q))));
+        data.indices.extend(triangles.into_iter().flatten().map(|i| i + base));
+    }
+    Ok(data)
 }
 
 /// Adds one slab node; a polygon with no area gets a node without a mesh.

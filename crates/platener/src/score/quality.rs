@@ -71,7 +71,7 @@ pub fn measure(mesh: &Mesh, plan: &Plan, reach: f64) -> QualityScore {
             angles.push(JointAngle {
                 label: j.label,
                 parts: j.parts,
-                plan: line_angle(solids[a].slab.frame.n, solids[b].slab.frame.n),
+                plan: line_angle(solids[a].frame().n, solids[b].frame().n),
                 model: line_angle(ma, mb),
             });
         }
@@ -116,7 +116,7 @@ fn model_normals(mesh: &Mesh, solids: &[Solid], reach: f64) -> Vec<Option<DVec3>
     surface_samples(mesh, reach, |p, w, f| {
         let n = mesh.normals[f];
         for (s, sum) in solids.iter().zip(sums.iter_mut()) {
-            let d = n.dot(s.slab.frame.n);
+            let d = n.dot(s.frame().n);
             if d.abs() >= facing && s.within(p, reach) {
                 *sum += n * d.signum() * w;
             }

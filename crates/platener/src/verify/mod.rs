@@ -1,6 +1,7 @@
 //! `platener verify`: rebuilds the assembly from plan.json and checks it before anyone cuts.
 //!
-//! Each part is its outline extruded by its thickness and moved by its transform. The
+//! Each part is its outline extruded by its thickness and moved by its transform; a bent
+//! part is the union of its segments and its bend zones' slices ([`crate::plan::bent`]). The
 //! measuring is the one [`analyse`] of the assembly that `convert` and the score read too
 //! (deterministic sampling; the accuracy follows the sampling step). A plan fails
 //! ([`Check`]) when
@@ -10,7 +11,8 @@
 //! - a joint's parts do not meet,
 //! - (with the model) the parts cover less than [`MIN_COVERAGE`] of the model's surface,
 //! - an outline is invalid ([`outline_findings`]),
-//! - a part lies outside its sheet or is larger than it.
+//! - a part lies outside its sheet or is larger than it,
+//! - a bent part's segments and bends disagree ([`crate::plan::bent`]).
 //!
 //! Each failure names the parts it concerns. [`check`] turns an analysis already made (as
 //! `convert` makes it for every plan) into a verdict without measuring again.
@@ -50,6 +52,8 @@ pub enum Check {
     Outline,
     /// A part outside its sheet or larger than it.
     Sheet,
+    /// A bent part whose segments and bends disagree (it cannot be bent as drawn).
+    Bends,
 }
 
 /// One reason a plan fails, with the parts it concerns.
@@ -186,6 +190,7 @@ pub fn check(plan: &Plan, analysis: &Analysis, min_coverage: f64) -> Verificatio
         }
     }
     failures.extend(sheet::findings(plan));
+    failures.extend(bend_failures(plan));
     Verification {
         parts: analysis.parts,
         parts_volume: analysis.parts_volume,
@@ -262,6 +267,21 @@ fn groups_failure(analysis: &Analysis) -> Option<Failure> {
 }
 
 /// Joints whose parts do not meet, naming the joints and their parts.
+/// Bent parts whose segments and bends cannot be rebuilt in 3D (the analysis then measured
+/// them flat).
+fn bend_failures(plan: &Plan) -> Vec<Failure> {
+    plan.parts
+        .iter()
+        .filter_map(|part| {
+            part.pieces().err().map(|e| Failure {
+                check: Check::Bends,
+                parts: vec![part.id],
+                message: e.to_string(),
+            })
+        })
+        .collect()
+}
+
 fn joints_failure(plan: &Plan, analysis: &Analysis) -> Option<Failure> {
     if analysis.joints_not_meeting.is_empty() {
         return None;
