@@ -264,7 +264,10 @@ mod tests {
         let r = s.with_changes(&serde_json::json!({"bend": "none"})).expect("valid");
         assert_eq!(r.to_library().expect("valid").0.bending, Bending::None);
         let heat = s.with_changes(&serde_json::json!({"bend": "heat"})).expect("valid");
-        assert_eq!(heat.to_library().expect("valid").0.bending, Bending::Style(BendStyle::Heat));
+        assert_eq!(
+            heat.to_library().expect("valid").0.bending,
+            Bending::Style(BendStyle::Heat)
+        );
         for bad in [json_of("bend", "\"<fold>\""), json_of("bend", "\"\"")] {
             let e = s
                 .with_changes(&bad)

@@ -546,7 +546,11 @@ fn sweep_outline(outline: &[DVec2], profile: &[DVec2], closed: bool) -> Vec<Tria
     for k in 0..bands {
         for i in 0..n {
             let (a, b, c, d) = (at(i, k), at(i + 1, k), at(i + 1, k + 1), at(i, k + 1));
-            out.extend([[a, b, c], [a, c, d]].into_iter().filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]));
+            out.extend(
+                [[a, b, c], [a, c, d]]
+                    .into_iter()
+                    .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]),
+            );
         }
     }
     out
@@ -605,7 +609,10 @@ fn tray_on(outline: &[DVec2], height: f64, wall: f64) -> Vec<Triangle> {
 /// model: one strip bent `n` times and closed by a seam.
 pub fn tube(n: usize, outer_radius: f64, height: f64, wall: f64) -> Vec<Triangle> {
     let apothem = outer_radius * (std::f64::consts::PI / n as f64).cos();
-    assert!(wall > 0.0 && wall < apothem && height > 0.0, "a tube wall thinner than its apothem");
+    assert!(
+        wall > 0.0 && wall < apothem && height > 0.0,
+        "a tube wall thinner than its apothem"
+    );
     let profile = [
         DVec2::new(-wall, 0.0),
         DVec2::new(0.0, 0.0),
@@ -619,7 +626,10 @@ pub fn tube(n: usize, outer_radius: f64, height: f64, wall: f64) -> Vec<Triangle
 /// first on +x) `height` tall on a bottom `wall` thick, open at the top; the wall is `wall`
 /// thick perpendicular to each facet. A bent-plate model whose strip is jointed to a bottom.
 pub fn cup(n: usize, radius: f64, height: f64, wall: f64) -> Vec<Triangle> {
-    assert!(wall < radius * (std::f64::consts::PI / n as f64).cos(), "a cup wall thinner than its apothem");
+    assert!(
+        wall < radius * (std::f64::consts::PI / n as f64).cos(),
+        "a cup wall thinner than its apothem"
+    );
     tray_on(&regular_outline(n, radius), height, wall)
 }
 

@@ -54,7 +54,12 @@ fn assert_close(got: f64, want: f64, rel: f64, what: &str) {
 
 fn assert_box(tris: &[Triangle], lo: DVec3, hi: DVec3, name: &str) {
     let (l, h) = bounds(tris);
-    for (g, w) in l.to_array().into_iter().zip(lo.to_array()).chain(h.to_array().into_iter().zip(hi.to_array())) {
+    for (g, w) in l
+        .to_array()
+        .into_iter()
+        .zip(lo.to_array())
+        .chain(h.to_array().into_iter().zip(hi.to_array()))
+    {
         assert_close(g, w, 1e-9, &format!("{name} bounds"));
     }
 }
@@ -104,7 +109,12 @@ fn check_tube(n: usize, r: f64, h: f64, wall: f64) {
     assert_eq!(tris.len(), 8 * n, "{name}");
     assert_watertight(&tris, &name);
     let a = r * (PI / n as f64).cos();
-    assert_close(volume(&tris), h * (ngon_area(n, a) - ngon_area(n, a - wall)), 1e-6, &name);
+    assert_close(
+        volume(&tris),
+        h * (ngon_area(n, a) - ngon_area(n, a - wall)),
+        1e-6,
+        &name,
+    );
     let (lo, hi) = ngon_box(n, r, h);
     assert_box(&tris, lo, hi, &name);
     assert_walls(&tris, wall, &name);
@@ -183,7 +193,7 @@ fn cone_shell_develops_into_less_than_a_turn() {
         .map(|t| (t[1] - t[0]).cross(t[2] - t[0]).normalize())
         .find(|n| n.z > 1e-6 && n.z < 0.999)
         .expect("a slanted outer face");
-    assert_close(n0.z, (a / (apex * apex + a * a).sqrt()), 1e-9, "lean of the facets");
+    assert_close(n0.z, a / (apex * apex + a * a).sqrt(), 1e-9, "lean of the facets");
 }
 
 #[test]
