@@ -310,6 +310,10 @@ impl LabelsArg {
     }
 }
 
+fn parse_bend(s: &str) -> Result<platener::Bending, String> {
+    s.parse::<platener::Bending>().map_err(|e| e.to_string())
+}
+
 fn parse_sheet(s: &str) -> Result<SheetSize, String> {
     s.parse::<SheetSize>().map_err(|e| e.to_string())
 }
@@ -368,6 +372,19 @@ pub struct ConvertArgs {
     /// Which labels to engrave.
     #[arg(long, value_enum, default_value = "edges")]
     pub labels: LabelsArg,
+    /// Plate method: how plates that meet at an edge become one bent part instead of two
+    /// jointed ones. `living-hinge`: rows of slits that let wood flex; `perforation`: dashed
+    /// cuts, for cardboard; `score`: an engraved line to fold paper along; `heat`: an engraved
+    /// line to bend acrylic along over a heater; `none`: no bends, joints everywhere; `auto`
+    /// (default): chosen by the material (wood → living hinge, cardboard → perforation, paper
+    /// → score, acrylic → heat).
+    #[arg(
+        long,
+        value_name = "auto|none|living-hinge|perforation|score|heat",
+        default_value = "auto",
+        value_parser = parse_bend
+    )]
+    pub bend: platener::Bending,
     /// Skip (and list) model files larger than this many MB (10^6 bytes).
     #[arg(long, value_name = "MB", value_parser = parse_non_negative)]
     pub max_filesize: Option<f64>,
@@ -390,4 +407,49 @@ pub struct ConvertArgs {
     /// Model options.
     #[command(flatten)]
     pub model_args: ModelArgs,
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser as _;
+    use platener::Bending;
+    use platener::plan::BendStyle;
+
+    use super::{Cli, Command};
+
+    fn bend_of(extra: &[&str]) -> Result<Bending, clap::Error> {
+        let args = ["platener", "convert", "m.stl", "-o", "out"].iter().chain(extra);
+        match Cli::try_parse_from(args)?.command {
+            Command::Convert(c) => Ok(c.bend),
+            other => panic!("parsed as {other:?}"),
+        }
+    }
+
+    #[test]
+    fn bend_takes_every_style_and_defaults_to_auto() {
+        assert_eq!(bend_of(&[]).expect("valid"), Bending::Auto);
+        assert_eq!(bend_of(&["--bend", "none"]).expect("valid"), Bending::None);
+        for (name, style) in [
+            ("living-hinge", BendStyle::LivingHinge),
+            ("perforation", BendStyle::Perforation),
+            ("score", BendStyle::Score),
+            ("heat", BendStyle::Heat),
+        ] {
+            assert_eq!(bend_of(&["--bend", name]).expect("valid"), Bending::Style(style));
+        }
+        let e = bend_of(&["--bend", "fold"]).expect_err("unknown style").to_string();
+        assert!(e.contains("--bend") && e.contains("living-hinge"), "{e}");
+    }
+
+    #[test]
+    fn bend_reaches_the_library_settings() {
+        let Command::Convert(c) = Cli::try_parse_from(["platener", "convert", "m.stl", "-o", "o", "--bend", "score"])
+            .expect("valid")
+            .command
+        else {
+            panic!("not convert")
+        };
+        let settings = crate::convert::settings(&c).expect("valid settings");
+        assert_eq!(settings.bending, Bending::Style(BendStyle::Score));
+    }
 }

@@ -50,6 +50,7 @@ pub fn settings(args: &ConvertArgs) -> anyhow::Result<Settings> {
     settings.cut.kerf = args.kerf;
     settings.cut.labels = args.labels.mode();
     settings.cut.sheet = args.sheet;
+    settings.bending = args.bend;
     settings.validate()?;
     Ok(settings)
 }

@@ -7,7 +7,7 @@
 use platener::joints::JointStyle;
 use platener::method::MethodKind;
 use platener::plan::{Material, SheetSize};
-use platener::{Features, PlateMode, Settings, Units, Weld};
+use platener::{Bending, Features, PlateMode, Settings, Units, Weld};
 use serde::{Deserialize, Serialize};
 
 /// The settings of one conversion, as in the conversion's `settings` field.
@@ -40,6 +40,8 @@ pub struct JobSettings {
     pub features: String,
     /// Store every step's snapshot for the debug view (`/#/debug`).
     pub debug: bool,
+    /// Bent parts: auto, none, living-hinge, perforation, score, heat (`--bend`).
+    pub bend: String,
 }
 
 impl Default for JobSettings {
@@ -57,6 +59,7 @@ impl Default for JobSettings {
             plates: "all".into(),
             features: "engrave".into(),
             debug: false,
+            bend: "auto".into(),
         }
     }
 }
@@ -88,7 +91,8 @@ impl JobSettings {
             "plates" => self.plates = value.trim().to_string(),
             "features" => self.features = value.trim().to_string(),
             "debug" => self.debug = matches!(value.trim(), "true" | "1" | "on"),
-            _ => return Err("unknown form field (expected model, thickness, material, method, kerf, sheet, joint, units, scale, weld, plates, features, debug or name)".into()),
+            "bend" => self.bend = value.trim().to_string(),
+            _ => return Err("unknown form field (expected model, thickness, material, method, kerf, sheet, joint, units, scale, weld, plates, features, bend, debug or name)".into()),
         }
         Ok(())
     }
@@ -124,6 +128,10 @@ impl JobSettings {
             _ => return Err("units must be mm, cm or in".into()),
         };
         settings.scale = self.scale;
+        settings.bending = self
+            .bend
+            .parse::<Bending>()
+            .map_err(|_| "bend must be auto, none, living-hinge, perforation, score or heat".to_string())?;
         self.debug_options(&mut settings)?;
         let methods = match self.method.as_str() {
             "all" => MethodKind::ALL.to_vec(),
@@ -176,7 +184,7 @@ impl JobSettings {
             merged[key] = v;
         }
         serde_json::from_value(merged).map_err(|_| {
-            "unknown setting or wrong type (settings: thicknesses, material, kerf, method, sheet, joint, units, scale, weld, plates, features, debug)"
+            "unknown setting or wrong type (settings: thicknesses, material, kerf, method, sheet, joint, units, scale, weld, plates, features, bend, debug)"
                 .to_string()
         })
     }
@@ -242,6 +250,36 @@ mod tests {
                 .expect_err("refused");
             assert!(!e.contains('<'), "{e}");
         }
+    }
+
+    #[test]
+    fn bend_reaches_the_library_and_bad_styles_are_refused() {
+        use platener::plan::BendStyle;
+        let mut s = JobSettings::default();
+        s.set_field("bend", "living-hinge", &mut false).expect("a form field");
+        assert_eq!(
+            s.to_library().expect("valid").0.bending,
+            Bending::Style(BendStyle::LivingHinge)
+        );
+        let r = s.with_changes(&serde_json::json!({"bend": "none"})).expect("valid");
+        assert_eq!(r.to_library().expect("valid").0.bending, Bending::None);
+        let heat = s.with_changes(&serde_json::json!({"bend": "heat"})).expect("valid");
+        assert_eq!(
+            heat.to_library().expect("valid").0.bending,
+            Bending::Style(BendStyle::Heat)
+        );
+        for bad in [json_of("bend", "\"<fold>\""), json_of("bend", "\"\"")] {
+            let e = s
+                .with_changes(&bad)
+                .expect("well typed")
+                .to_library()
+                .expect_err("refused");
+            assert!(e.starts_with("bend must be") && !e.contains('<'), "{e}");
+        }
+        assert!(s.with_changes(&json_of("bend", "3")).is_err(), "bend is text");
+        let mut form = JobSettings::default();
+        form.set_field("bend", "<b>crease</b>", &mut false).expect("text");
+        assert!(form.to_library().expect_err("refused").starts_with("bend must be"));
     }
 
     fn json_of(key: &str, value: &str) -> serde_json::Value {

@@ -500,6 +500,210 @@ pub fn star(arms: usize, arm_len: f64, t: f64, depth: f64) -> Vec<Triangle> {
     along_z(&star_profile(arms, arm_len, t), depth)
 }
 
+/// The corners of a regular `n`-gon of circumradius `radius` around the origin, the first on
+/// +x, counter-clockwise.
+fn regular_outline(n: usize, radius: f64) -> Vec<DVec2> {
+    assert!(n >= 3, "a polygon has at least 3 sides");
+    (0..n)
+        .map(|i| {
+            let (s, c) = (std::f64::consts::TAU * i as f64 / n as f64).sin_cos();
+            DVec2::new(c, s) * radius
+        })
+        .collect()
+}
+
+/// For each corner of the convex counter-clockwise `outline`, the vector that moves it by one
+/// unit perpendicular to BOTH its edges (outwards): `outline[i] + d·miter[i]` is the corner of
+/// the outline offset by `d`. Offsetting along it keeps every wall exactly `d` thick measured
+/// perpendicular to its facet, which is what a sheet of that thickness bent there would give.
+fn outline_miters(outline: &[DVec2]) -> Vec<DVec2> {
+    let n = outline.len();
+    let normal = |i: usize| {
+        let e = outline[(i + 1) % n] - outline[i];
+        DVec2::new(e.y, -e.x).normalize()
+    };
+    (0..n)
+        .map(|i| {
+            let (a, b) = (normal((i + n - 1) % n), normal(i));
+            (a + b) / (1.0 + a.dot(b))
+        })
+        .collect()
+}
+
+/// The outline swept around itself: `profile` points are (outward offset of the outline in
+/// mm, height z) and each profile edge `k → k + 1` becomes a band of quads round the outline.
+/// A counter-clockwise profile (the solid on its left, offset pointing right) gives outward
+/// faces. With `closed`, the last profile point joins the first (a ring, open at both ends of
+/// the outline's axis); otherwise the profile's ends must be closed by caps
+/// ([`outline_cap`]). Triangles whose corners coincide (a profile point whose offset collapses
+/// the outline to one point) are left out, so the surface stays closed and conforming.
+fn sweep_outline(outline: &[DVec2], profile: &[DVec2], closed: bool) -> Vec<Triangle> {
+    let miters = outline_miters(outline);
+    let (n, m) = (outline.len(), profile.len());
+    let at = |i: usize, k: usize| offset_point(outline[i % n], miters[i % n], profile[k % m]);
+    let mut out = Vec::with_capacity(2 * n * m);
+    let bands = if closed { m } else { m - 1 };
+    for k in 0..bands {
+        for i in 0..n {
+            let (a, b, c, d) = (at(i, k), at(i + 1, k), at(i + 1, k + 1), at(i, k + 1));
+            out.extend(
+                [[a, b, c], [a, c, d]]
+                    .into_iter()
+                    .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]),
+            );
+        }
+    }
+    out
+}
+
+/// One corner of an offset outline in 3D: `corner + offset·miter` at height `z`, given as the
+/// profile point (offset, z). A collapsed corner lands on exactly the same point for every
+/// corner (0·miter adds +0.0), which [`sweep_outline`] relies on.
+fn offset_point(corner: DVec2, miter: DVec2, profile: DVec2) -> DVec3 {
+    let p = corner + miter * profile.x;
+    DVec3::new(p.x, p.y, profile.y)
+}
+
+/// The flat cap filling the outline offset by `profile.x` at height `profile.y`, facing up
+/// (`up`) or down; its corners are exactly [`sweep_outline`]'s, so the two close each other.
+fn outline_cap(outline: &[DVec2], profile: DVec2, up: bool) -> Vec<Triangle> {
+    let miters = outline_miters(outline);
+    let points: Vec<DVec3> = outline
+        .iter()
+        .zip(&miters)
+        .map(|(&c, &m)| offset_point(c, m, profile))
+        .collect();
+    let flat: Vec<DVec2> = points.iter().map(|p| p.truncate()).collect();
+    triangulate(&flat)
+        .into_iter()
+        .map(|[a, b, c]| {
+            if up {
+                [points[a], points[b], points[c]]
+            } else {
+                [points[a], points[c], points[b]]
+            }
+        })
+        .collect()
+}
+
+/// An open tray on `outline` (convex, counter-clockwise): walls `wall` thick measured
+/// perpendicular to each facet, from z = 0 to `height`, on a floor `wall` thick.
+fn tray_on(outline: &[DVec2], height: f64, wall: f64) -> Vec<Triangle> {
+    assert!(wall > 0.0 && height > wall, "a tray is taller than its floor is thick");
+    let profile = [
+        DVec2::new(0.0, 0.0),
+        DVec2::new(0.0, height),
+        DVec2::new(-wall, height),
+        DVec2::new(-wall, wall),
+    ];
+    let mut out = sweep_outline(outline, &profile, false);
+    out.extend(outline_cap(outline, profile[0], false));
+    out.extend(outline_cap(outline, profile[3], true));
+    out
+}
+
+/// A tube: an `n`-sided prism ring around the z axis from z = 0 to `height`, open at both
+/// ends. `outer_radius` is the outer corners' circumradius (the first corner on +x); the wall
+/// is `wall` thick perpendicular to each facet, so the inner apothem is the outer apothem
+/// `outer_radius·cos(π/n)` minus `wall`. Volume `height·n·tan(π/n)·(a_o² − a_i²)`. A bent-plate
+/// model: one strip bent `n` times and closed by a seam.
+pub fn tube(n: usize, outer_radius: f64, height: f64, wall: f64) -> Vec<Triangle> {
+    let apothem = outer_radius * (std::f64::consts::PI / n as f64).cos();
+    assert!(
+        wall > 0.0 && wall < apothem && height > 0.0,
+        "a tube wall thinner than its apothem"
+    );
+    let profile = [
+        DVec2::new(-wall, 0.0),
+        DVec2::new(0.0, 0.0),
+        DVec2::new(0.0, height),
+        DVec2::new(-wall, height),
+    ];
+    sweep_outline(&regular_outline(n, outer_radius), &profile, true)
+}
+
+/// A cup: an `n`-sided wall (outer corners on a circle of `radius` around the z axis, the
+/// first on +x) `height` tall on a bottom `wall` thick, open at the top; the wall is `wall`
+/// thick perpendicular to each facet. A bent-plate model whose strip is jointed to a bottom.
+pub fn cup(n: usize, radius: f64, height: f64, wall: f64) -> Vec<Triangle> {
+    assert!(
+        wall < radius * (std::f64::consts::PI / n as f64).cos(),
+        "a cup wall thinner than its apothem"
+    );
+    tray_on(&regular_outline(n, radius), height, wall)
+}
+
+/// An open tray `w × d × h` (outer corner at the origin) with walls and bottom `wall` thick,
+/// whose four vertical corners are rounded: each outer corner is `corner_facets` facets whose
+/// corners lie on a circle of `corner_radius`, and the walls are `wall` thick perpendicular to
+/// every facet. A bent-plate model: one strip bent at every corner facet.
+pub fn rounded_tray(w: f64, d: f64, h: f64, corner_radius: f64, corner_facets: usize, wall: f64) -> Vec<Triangle> {
+    let (r, f) = (corner_radius, corner_facets.max(1));
+    let step = std::f64::consts::FRAC_PI_2 / f as f64;
+    // Inner facets shrink by wall·tan(step/2) at each end: below r·cos(step/2) they stay.
+    assert!(
+        2.0 * r < w.min(d) && wall < r * (step / 2.0).cos(),
+        "corners fit the tray and keep their facets inside"
+    );
+    let centres = [
+        DVec2::new(w - r, r),
+        DVec2::new(w - r, d - r),
+        DVec2::new(r, d - r),
+        DVec2::new(r, r),
+    ];
+    let mut outline = Vec::with_capacity(4 * (f + 1));
+    for (c, centre) in centres.into_iter().enumerate() {
+        let start = -std::f64::consts::FRAC_PI_2 + c as f64 * std::f64::consts::FRAC_PI_2;
+        for j in 0..=f {
+            let (s, co) = (start + j as f64 * step).sin_cos();
+            outline.push(centre + DVec2::new(co, s) * r);
+        }
+    }
+    tray_on(&outline, h, wall)
+}
+
+/// An open truncated `n`-sided cone shell around the z axis (no caps): outer corners on a
+/// circle of `r_bottom` at z = 0 and `r_top` at z = `height` (the first on +x), the wall
+/// `wall` thick perpendicular to each facet, its ends cut level.
+///
+/// Its development (the outer facets unrolled about their apex) is an annular sector of
+/// `n·2·atan(a_b·tan(π/n) / √(H² + a_b²))` where `a_b = r_bottom·cos(π/n)` is the bottom
+/// apothem and `H = height·r_bottom / (r_bottom − r_top)` the apex height; for a round cone
+/// that is `360°·sin(half angle)`. For n = 24, r 60 → 35, height 50: a_b = 59.49, H = 120,
+/// √(H² + a_b²) = 133.9, 24 × 2·atan(59.49·0.1317/133.9) = 160°, well under 360°, so the
+/// shell unrolls into one flat part.
+pub fn cone_shell(n: usize, r_bottom: f64, r_top: f64, height: f64, wall: f64) -> Vec<Triangle> {
+    let cos = (std::f64::consts::PI / n as f64).cos();
+    let (a_b, a_t) = (r_bottom * cos, r_top * cos);
+    // Offsetting the slanted facet by `wall` along its normal moves it `wall·slant/height`
+    // horizontally.
+    let shift = wall * (height * height + (a_b - a_t).powi(2)).sqrt() / height;
+    assert!(
+        height > 0.0 && wall > 0.0 && shift < a_b.min(a_t),
+        "a cone shell wall thinner than its apothems"
+    );
+    let profile = [
+        DVec2::new(-shift, 0.0),
+        DVec2::new(0.0, 0.0),
+        DVec2::new(a_t - a_b, height),
+        DVec2::new(a_t - a_b - shift, height),
+    ];
+    sweep_outline(&regular_outline(n, r_bottom), &profile, true)
+}
+
+/// The bent-plate samples of issue 19 (file name, triangles), as `examples/bent_samples.rs`
+/// writes them for the before/after figures.
+pub fn bent_samples() -> Vec<(&'static str, Vec<Triangle>)> {
+    vec![
+        ("tube6.stl", tube(6, 50.0, 60.0, 3.0)),
+        ("tube12.stl", tube(12, 50.0, 60.0, 3.0)),
+        ("tube24.stl", tube(24, 50.0, 60.0, 3.0)),
+        ("cup16.stl", cup(16, 40.0, 50.0, 3.0)),
+        ("rounded_tray.stl", rounded_tray(120.0, 80.0, 40.0, 15.0, 6, 3.0)),
+        ("cone24.stl", cone_shell(24, 60.0, 35.0, 50.0, 1.5)),
+    ]
+}
+
 /// The variable that makes a missing corpus a failure instead of a skip (CI sets it).
 pub const REQUIRE_CORPUS: &str = "PLATENER_REQUIRE_CORPUS";
 

@@ -1,0 +1,21 @@
+//! Writes the bent-plate samples of issue 19 (`platener::samples::bent_samples`) as binary
+//! STL into a folder, for converting them by hand: the before/after figures of bent plates.
+//!
+//! `cargo run -p platener --example bent_samples -- /tmp/bentsamples`
+
+use std::path::PathBuf;
+
+use platener::samples;
+
+fn main() -> std::io::Result<()> {
+    let dir = std::env::args_os()
+        .nth(1)
+        .map_or_else(|| PathBuf::from("bentsamples"), PathBuf::from);
+    std::fs::create_dir_all(&dir)?;
+    for (name, triangles) in samples::bent_samples() {
+        let header = format!("platener bent-plate sample {name}");
+        std::fs::write(dir.join(name), samples::to_binary_stl(&triangles, &header))?;
+        println!("wrote {} ({} triangles)", dir.join(name).display(), triangles.len());
+    }
+    Ok(())
+}
