@@ -699,7 +699,7 @@ pub fn bent_samples() -> Vec<(&'static str, Vec<Triangle>)> {
         ("tube12.stl", tube(12, 50.0, 60.0, 3.0)),
         ("tube24.stl", tube(24, 50.0, 60.0, 3.0)),
         ("cup16.stl", cup(16, 40.0, 50.0, 3.0)),
-        ("rounded_tray.stl", rounded_tray(120.0, 80.0, 40.0, 15.0, 6, 3.0)),
+        ("rounded_tray.stl", rounded_tray(160.0, 100.0, 40.0, 35.0, 4, 3.0)),
         ("cone24.stl", cone_shell(24, 60.0, 35.0, 50.0, 1.5)),
     ]
 }

@@ -362,3 +362,42 @@ fn a_point_of_the_model_lands_where_a_viewer_expects_it() {
     let p = q * (DVec3::new(10.0, 20.0, 30.0) * 0.001);
     assert!((p - DVec3::new(0.010, 0.030, -0.020)).length() < 1e-12);
 }
+
+/// The material index of each child of the root, by node name.
+fn materials(glb: &[u8]) -> Vec<(String, Option<usize>)> {
+    let g = gltf::Gltf::from_slice(glb).expect("a valid GLB");
+    let scene = g.default_scene().expect("a default scene");
+    let root = scene.nodes().next().expect("a root");
+    root.children()
+        .map(|n| {
+            let material = n
+                .mesh()
+                .and_then(|m| m.primitives().next())
+                .and_then(|p| p.material().index());
+            (n.name().unwrap_or_default().to_string(), material)
+        })
+        .collect()
+}
+
+#[test]
+fn the_bent_view_colours_a_tube_as_one_part_and_a_box_plate_by_plate() {
+    let tube = Source::Triangles {
+        name: "tube".into(),
+        triangles: std::sync::Arc::new(platener::samples::tube(12, 50.0, 60.0, 3.0)),
+    };
+    let state = convert(MethodKind::Plate, tube, Settings::default(), &Cancel::default()).expect("tube");
+    let nodes = materials(&view(&state, View::Bent).glb);
+    assert_eq!(nodes.len(), 12);
+    assert!(nodes.iter().all(|(_, m)| m.is_some() && *m == nodes[0].1), "{nodes:?}");
+    let plates = materials(&view(&state, View::Plates).glb);
+    let distinct: std::collections::BTreeSet<_> = plates.iter().map(|(_, m)| *m).collect();
+    assert!(distinct.len() > 1, "the plates view keeps a colour per plate");
+    let boxed = run(MethodKind::Plate, &examples()[0]).expect("example");
+    let nodes = materials(&view(&boxed, View::Bent).glb);
+    let distinct: std::collections::BTreeSet<_> = nodes.iter().map(|(_, m)| *m).collect();
+    assert_eq!(
+        distinct.len(),
+        nodes.len(),
+        "a box has no bent parts: one colour per plate"
+    );
+}

@@ -115,7 +115,9 @@ struct End {
 
 /// Whether the plate lies on one side of the line (crossing it by at most `2t`, as plates
 /// reach to the outer face of a corner) and has an edge within `2t` of it (plates found from
-/// faces may stop short of a corner by about a thickness); if so, where and how deep.
+/// faces may stop short of a corner by about a thickness), and reaches at least `3t` from it
+/// (a narrower strip is all bend zone and finger, and joints cut it apart); if so, where and
+/// how deep.
 fn end_at(frame: &Frame, polygon: &Polygon, point: DVec3, axis: DVec3, t: f64) -> Option<End> {
     let origin = frame.to_2d(point);
     let dir = DVec2::new(frame.u.dot(axis), frame.v.dot(axis)).normalize();
@@ -128,7 +130,7 @@ fn end_at(frame: &Frame, polygon: &Polygon, point: DVec3, axis: DVec3, t: f64) -
     let sign = if hi >= -lo { 1.0 } else { -1.0 };
     let (near, far, depth) = if sign > 0.0 { (lo, -lo, hi) } else { (-hi, hi, -lo) };
     let band = 2.0 * t;
-    if far > band || near > band || depth < 2.0 * t {
+    if far > band || near > band || depth < 3.0 * t {
         return None;
     }
     let along = |q: DVec2| (frame.to_model_2d(q) - point).dot(axis);

@@ -5,50 +5,8 @@ use glam::{DVec2, DVec3};
 
 use crate::pipeline::{self, State, StepId};
 use crate::read::Triangle;
+use crate::samples::tube;
 use crate::settings::Settings;
-
-/// An n-sided tube ring (open ends), the wall `wall` thick across each facet.
-pub(crate) fn tube(n: usize, radius: f64, height: f64, wall: f64) -> Vec<Triangle> {
-    let apothem = radius * (std::f64::consts::PI / n as f64).cos();
-    let inner = radius * (apothem - wall) / apothem;
-    let at = |r: f64, k: usize, z: f64| {
-        let a = std::f64::consts::TAU * k as f64 / n as f64;
-        DVec3::new(r * a.cos(), r * a.sin(), z)
-    };
-    let mut out = Vec::new();
-    let mut quad = |a: DVec3, b: DVec3, c: DVec3, d: DVec3| {
-        out.push([a, b, c]);
-        out.push([a, c, d]);
-    };
-    for k in 0..n {
-        let j = k + 1;
-        quad(
-            at(radius, k, 0.0),
-            at(radius, j, 0.0),
-            at(radius, j, height),
-            at(radius, k, height),
-        );
-        quad(
-            at(inner, j, 0.0),
-            at(inner, k, 0.0),
-            at(inner, k, height),
-            at(inner, j, height),
-        );
-        quad(
-            at(radius, k, height),
-            at(radius, j, height),
-            at(inner, j, height),
-            at(inner, k, height),
-        );
-        quad(
-            at(inner, k, 0.0),
-            at(inner, j, 0.0),
-            at(radius, j, 0.0),
-            at(radius, k, 0.0),
-        );
-    }
-    out
-}
 
 pub(crate) fn run_plate(triangles: Vec<Triangle>, settings: Settings) -> State {
     let mut state = State::new(

@@ -4,7 +4,7 @@
 
 use glam::DVec2;
 use platener_geom::GridError;
-use platener_geom::boolean::union_all;
+use platener_geom::boolean::{difference, union, union_all};
 use platener_geom::polygon::Polygon;
 
 use crate::bends::{BentPart, HalfPlane, Member, Seam};
@@ -33,7 +33,11 @@ pub(super) fn part(
         if flaps {
             cuts.extend(bent.seams.iter().filter_map(|s| seam_cut(s, i)));
         }
+        let own = m.local(&plates.plates[m.plate as usize].polygon);
         let mut shape = vec![m.local(outlines[i])];
+        for h in &cuts {
+            shape = union(&shape, &reach_to_line(h, m, t, &own)?)?;
+        }
         for h in &cuts {
             shape = h.cut(m, t, &shape)?;
         }
@@ -88,6 +92,32 @@ pub(super) fn part(
             }));
     }
     Ok((part, count))
+}
+
+/// The gap between a plate (`own`, in the member's frame) and a line it is cut at: plate
+/// finding may have trimmed it up to a couple of thicknesses short of the line where its
+/// neighbour's slab was, and the flat part must be whole across the bend. The hull of its
+/// corners near the line and their feet on the line, less the plate itself (so notches that
+/// joints cut near the line stay open).
+fn reach_to_line(h: &HalfPlane, m: &Member, t: f64, own: &Polygon) -> Result<Vec<Polygon>, GridError> {
+    let mid = m.mid(t);
+    let origin = mid.to_2d(h.point);
+    let into = DVec2::new(mid.u.dot(h.into), mid.v.dot(h.into)).normalize();
+    let mut points = Vec::new();
+    for q in &own.outer {
+        let s = (*q - origin).dot(into);
+        if s.abs() <= 2.0 * t {
+            points.extend([*q, *q - into * s]);
+        }
+    }
+    if points.len() < 3 {
+        return Ok(Vec::new());
+    }
+    let hull = Polygon::new(platener_geom::polygon::convex_hull(&points));
+    if hull.area() <= 0.0 {
+        return Ok(Vec::new());
+    }
+    difference(std::slice::from_ref(&hull), std::slice::from_ref(own))
 }
 
 /// Member `i`'s flat segment: its developed shape beyond the zone edge of each of its bends.

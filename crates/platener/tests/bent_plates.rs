@@ -1,0 +1,115 @@
+//! Bent plates (issue 19) on the samples: tubes, a cup, a rounded tray and a card cone become
+//! few bent parts, and each plan rebuilds its model (verify with the model).
+
+use platener::convert::convert;
+use platener::method::MethodKind;
+use platener::plan::{BendStyle, JointKind, Material, PartKind, Plan};
+use platener::read::Triangle;
+use platener::verify::{Verification, verify};
+use platener::{Cancel, Settings, Source, State, samples};
+
+fn convert_sample(model: Vec<Triangle>, material: Material, t: f64) -> State {
+    let mut settings = Settings {
+        thicknesses: vec![t],
+        ..Settings::default()
+    };
+    settings.cut.material = material;
+    convert(
+        MethodKind::Plate,
+        Source::triangles("m", model),
+        settings,
+        &Cancel::default(),
+    )
+    .expect("converts")
+}
+
+/// The plan and its verification against the model; asserts it rebuilds the model: no
+/// failure, at least 95 % of the parts' volume inside it, 90 % of its surface covered.
+fn rebuilt(state: &State) -> (Plan, Verification) {
+    let plan = state.export.as_ref().expect("exported").plan.clone();
+    let v = verify(&plan, state.mesh.as_deref());
+    assert!(v.passed(), "{:?}", v.problems);
+    let inside = v.volume_inside.expect("measured");
+    let covered = v.surface_covered.expect("measured");
+    assert!(inside >= 0.95, "volume inside {inside}");
+    assert!(covered >= 0.90, "surface covered {covered}");
+    assert!(v.interference_share < 0.01, "interference {}", v.interference_share);
+    (plan, v)
+}
+
+fn bends_of(plan: &Plan) -> Vec<(BendStyle, f64)> {
+    plan.parts
+        .iter()
+        .flat_map(|p| p.bends.iter().map(|b| (b.style, b.angle)))
+        .collect()
+}
+
+#[test]
+fn tubes_of_6_12_and_24_sides_are_one_living_hinge_part_with_a_finger_seam() {
+    for n in [6usize, 12, 24] {
+        let state = convert_sample(samples::tube(n, 50.0, 60.0, 3.0), Material::Wood, 3.0);
+        let (plan, v) = rebuilt(&state);
+        assert_eq!(plan.parts.len(), 1, "{n} sides");
+        let part = &plan.parts[0];
+        assert_eq!(part.kind, PartKind::Bent);
+        assert_eq!(part.segments.len(), n);
+        assert_eq!(part.merged.len(), n);
+        let bends = bends_of(&plan);
+        assert_eq!(bends.len(), n - 1);
+        let enclosed = 180.0 - 360.0 / n as f64;
+        assert!(
+            bends
+                .iter()
+                .all(|(s, a)| *s == BendStyle::LivingHinge && (a - enclosed).abs() < 0.5),
+            "{bends:?}"
+        );
+        let seam: Vec<_> = plan.joints.iter().filter(|j| j.parts == [part.id, part.id]).collect();
+        assert_eq!(seam.len(), 1, "{n} sides: one seam");
+        assert_eq!(seam[0].kind, JointKind::Finger);
+        assert_eq!(plan.joints.iter().filter(|j| j.kind == JointKind::Bend).count(), n - 1);
+        assert_eq!(v.groups, 1);
+    }
+}
+
+#[test]
+fn a_cup_is_its_wall_and_its_bottom() {
+    let state = convert_sample(samples::cup(16, 40.0, 50.0, 3.0), Material::Wood, 3.0);
+    let (plan, v) = rebuilt(&state);
+    let kinds: Vec<PartKind> = plan.parts.iter().map(|p| p.kind).collect();
+    assert_eq!(plan.parts.len(), 2, "{kinds:?}");
+    assert_eq!(kinds.iter().filter(|k| **k == PartKind::Bent).count(), 1);
+    assert_eq!(v.groups, 1, "the wall holds on the bottom");
+}
+
+#[test]
+fn a_rounded_tray_is_its_bottom_and_one_wrap() {
+    let state = convert_sample(
+        samples::rounded_tray(160.0, 100.0, 40.0, 35.0, 4, 3.0),
+        Material::Wood,
+        3.0,
+    );
+    let (plan, v) = rebuilt(&state);
+    assert_eq!(
+        plan.parts.len(),
+        2,
+        "{:?}",
+        plan.parts.iter().map(|p| (p.kind, p.merged.len())).collect::<Vec<_>>()
+    );
+    assert_eq!(v.groups, 1);
+}
+
+#[test]
+fn a_card_cone_is_one_part_with_perforated_folds_and_a_seam_flap() {
+    let state = convert_sample(samples::cone_shell(24, 60.0, 35.0, 50.0, 1.5), Material::Cardboard, 1.5);
+    let (plan, _) = rebuilt(&state);
+    assert_eq!(plan.parts.len(), 1);
+    let part = &plan.parts[0];
+    let bends = bends_of(&plan);
+    assert_eq!(bends.len(), 23);
+    assert!(bends.iter().all(|(s, _)| *s == BendStyle::Perforation));
+    // 24 facets and the flap.
+    assert_eq!(part.segments.len(), 25);
+    let flaps: Vec<_> = plan.joints.iter().filter(|j| j.kind == JointKind::Flap).collect();
+    assert_eq!(flaps.len(), 1);
+    assert_eq!(flaps[0].parts, [part.id, part.id]);
+}
