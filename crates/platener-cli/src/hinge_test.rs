@@ -31,12 +31,15 @@ pub fn render(s: &Swatch, file: &str) -> String {
         d.thickness,
         s.material.name()
     );
+    let corner = if d.corner_gap().is_finite() {
+        format!(", inside the model's corner by {:.2} mm", d.corner_gap())
+    } else {
+        String::new()
+    };
     let _ = writeln!(
         out,
-        "zone {:.2} mm wide (flat), neutral radius {:.2} mm, inside the model's corner by {:.2} mm",
-        d.zone_width,
-        d.neutral_radius,
-        d.corner_gap()
+        "zone {:.2} mm wide (flat), neutral radius {:.2} mm{corner}",
+        d.zone_width, d.neutral_radius
     );
     match d.style {
         BendStyle::LivingHinge => {

@@ -34,16 +34,23 @@ fn red_slits(svg: &str) -> Vec<[(f64, f64); 2]> {
         .collect()
 }
 
+/// Runs `hinge-test ARGS -o out` successfully and returns what it printed.
+fn swatch(args: &[&str], out: &std::path::Path) -> String {
+    let assert = platener()
+        .arg("hinge-test")
+        .args(args)
+        .arg("-o")
+        .arg(out)
+        .assert()
+        .success();
+    String::from_utf8_lossy(&assert.get_output().stdout).to_string()
+}
+
 #[test]
 fn a_wood_swatch_is_written_at_true_size_with_its_slits() {
     let dir = tempfile::tempdir().expect("temp dir");
     let out = dir.path().join("hinge.svg");
-    let assert = platener()
-        .args(["hinge-test", "-t", "3", "-m", "wood", "-o"])
-        .arg(&out)
-        .assert()
-        .success();
-    let stdout = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
+    let stdout = swatch(&["-t", "3", "-m", "wood"], &out);
     assert!(stdout.contains("23 links 3.00 × 12.00 mm in 24 rows"), "{stdout}");
     let svg = std::fs::read_to_string(&out).expect("svg written");
     let (w, h, view) = size(&svg);
@@ -69,12 +76,7 @@ fn a_wood_swatch_is_written_at_true_size_with_its_slits() {
 fn a_card_swatch_takes_the_material_style() {
     let dir = tempfile::tempdir().expect("temp dir");
     let out = dir.path().join("card.svg");
-    let assert = platener()
-        .args(["hinge-test", "-t", "1.5", "-m", "cardboard", "--angle", "60", "-o"])
-        .arg(&out)
-        .assert()
-        .success();
-    let stdout = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
+    let stdout = swatch(&["-t", "1.5", "-m", "cardboard", "--angle", "60"], &out);
     assert!(stdout.contains("a perforation bend of 60.0°"), "{stdout}");
     let svg = std::fs::read_to_string(&out).expect("svg written");
     let dashes = red_slits(&svg);

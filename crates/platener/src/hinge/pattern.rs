@@ -93,7 +93,7 @@ fn dashes(
     let (lo, hi) = axes.extent(inner);
     let period = design.period();
     let mut out = Vec::new();
-    if inner.is_empty() || !(period > 0.0) {
+    if inner.is_empty() || period.is_nan() || period <= 0.0 {
         return out;
     }
     for (d, phase) in rows {

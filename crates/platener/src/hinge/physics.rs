@@ -141,8 +141,12 @@ pub struct BendDesign {
 impl BendDesign {
     /// How far the bent arc stays inside the sharp corner of the model, mm:
     /// `R · (1 / cos(Θ/2) − 1)`, the distance from the arc's middle to where the two flat
-    /// sides' mid-planes meet.
+    /// sides' mid-planes meet. Infinite for a U-turn (180°): its sides are parallel and meet
+    /// nowhere.
     pub fn corner_gap(&self) -> f64 {
+        if self.turn >= PI - 1e-9 {
+            return f64::INFINITY;
+        }
         self.neutral_radius * (1.0 / (self.turn / 2.0).cos() - 1.0)
     }
 

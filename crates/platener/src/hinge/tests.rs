@@ -12,6 +12,11 @@ use super::swatch::hinge_swatch;
 use super::*;
 use crate::plan::{BendStyle, Mark, MarkKind, Material};
 
+/// The design of a right-angle bend with no limit on its width.
+fn unlimited(style: BendStyle, material: Material, t: f64) -> BendDesign {
+    design(style, material, t, FRAC_PI_2, f64::INFINITY).expect("the style suits the material")
+}
+
 fn hinge(t: f64, turn: f64) -> BendDesign {
     design(BendStyle::LivingHinge, Material::Wood, t, turn, f64::INFINITY).expect("wood bends")
 }
@@ -93,32 +98,25 @@ fn a_tight_zone_takes_narrower_links_or_says_how_wide_it_must_be() {
 #[test]
 fn bad_inputs_are_typed_errors() {
     let d = |style, material, t, turn| design(style, material, t, turn, f64::INFINITY);
+    let kind = |r: Result<BendDesign, HingeError>| match r {
+        Err(HingeError::Invalid { .. }) => "invalid",
+        Err(HingeError::Unsuitable { .. }) => "unsuitable",
+        Err(HingeError::TooSharp { .. }) => "too sharp",
+        other => panic!("expected a refusal, got {other:?}"),
+    };
     for t in [0.0, -1.0, f64::NAN, f64::INFINITY, 51.0] {
-        assert!(matches!(
-            d(BendStyle::LivingHinge, Material::Wood, t, 1.0),
-            Err(HingeError::Invalid { .. })
-        ));
+        assert_eq!(kind(d(BendStyle::LivingHinge, Material::Wood, t, 1.0)), "invalid");
     }
-    assert!(matches!(
-        d(BendStyle::LivingHinge, Material::Wood, 3.0, 0.0),
-        Err(HingeError::Invalid { .. })
-    ));
-    assert!(matches!(
-        d(BendStyle::LivingHinge, Material::Paper, 0.3, 1.0),
-        Err(HingeError::Unsuitable { .. })
-    ));
-    assert!(matches!(
-        d(BendStyle::Heat, Material::Wood, 3.0, 1.0),
-        Err(HingeError::Unsuitable { .. })
-    ));
-    assert!(matches!(
-        d(BendStyle::Score, Material::Cardboard, 2.0, 1.0),
-        Err(HingeError::Unsuitable { .. })
-    ));
-    assert!(matches!(
-        d(BendStyle::Heat, Material::Acrylic, 3.0, 2.0),
-        Err(HingeError::TooSharp { .. })
-    ));
+    let cases = [
+        (BendStyle::LivingHinge, Material::Wood, 3.0, 0.0, "invalid"),
+        (BendStyle::LivingHinge, Material::Paper, 0.3, 1.0, "unsuitable"),
+        (BendStyle::Heat, Material::Wood, 3.0, 1.0, "unsuitable"),
+        (BendStyle::Score, Material::Cardboard, 2.0, 1.0, "unsuitable"),
+        (BendStyle::Heat, Material::Acrylic, 3.0, 2.0, "too sharp"),
+    ];
+    for (style, material, t, turn, expected) in cases {
+        assert_eq!(kind(d(style, material, t, turn)), expected, "{style:?} {material:?}");
+    }
     assert!(design(BendStyle::LivingHinge, Material::Wood, 3.0, 1.0, f64::NAN).is_err());
     assert_eq!(max_turn(BendStyle::LivingHinge, Material::Wood, 3.0), PI);
     assert_eq!(max_turn(BendStyle::Perforation, Material::Wood, 3.0), 0.0);
@@ -126,20 +124,14 @@ fn bad_inputs_are_typed_errors() {
 
 #[test]
 fn folds_and_heat_bends_have_their_radius_and_one_line() {
-    let p = design(
-        BendStyle::Perforation,
-        Material::Cardboard,
-        1.5,
-        FRAC_PI_2,
-        f64::INFINITY,
-    )
-    .expect("card");
+    let p = unlimited(BendStyle::Perforation, Material::Cardboard, 1.5);
     assert!((p.neutral_radius - 0.75).abs() < 1e-12 && (p.zone_width - 0.75 * FRAC_PI_2).abs() < 1e-12);
     assert_eq!((p.rows, p.links, p.slit_length, p.bridge), (1, 0, 4.5, 1.5));
-    let h = design(BendStyle::Heat, Material::Acrylic, 3.0, FRAC_PI_2, f64::INFINITY).expect("acrylic");
+    let h = unlimited(BendStyle::Heat, Material::Acrylic, 3.0);
     assert!((h.neutral_radius - 4.5).abs() < 1e-12);
     // R·(1/cos 45° − 1) = R·(√2 − 1).
     assert!((h.corner_gap() - 4.5 * (2f64.sqrt() - 1.0)).abs() < 1e-12);
+    assert_eq!(hinge(3.0, PI).corner_gap(), f64::INFINITY, "a U-turn has no corner");
     assert!(matches!(
         design(BendStyle::Heat, Material::Acrylic, 3.0, FRAC_PI_2, 1.0),
         Err(HingeError::TooWide { .. })
@@ -234,14 +226,7 @@ fn neighbouring_rows_are_offset_by_half_a_period() {
 fn perforations_dash_the_line_and_scores_span_the_part() {
     let clip = Polygon::new(rect(0.0, 0.0, 50.0, 30.0));
     let line = [DVec2::new(25.0, 0.0), DVec2::new(25.0, 30.0)];
-    let p = design(
-        BendStyle::Perforation,
-        Material::Cardboard,
-        1.5,
-        FRAC_PI_2,
-        f64::INFINITY,
-    )
-    .expect("card");
+    let p = unlimited(BendStyle::Perforation, Material::Cardboard, 1.5);
     let dashes = marks(&p, line, &clip).expect("dashes");
     assert!(dashes.len() >= 4);
     let cut: f64 = dashes.iter().map(|m| m.path[0].distance(m.path[1])).sum();
@@ -257,7 +242,7 @@ fn perforations_dash_the_line_and_scores_span_the_part() {
         cut > 0.6 * 27.0 && cut <= 27.0 + 1e-6,
         "dash/tie = 3:1 of the 27 mm inside: {cut}"
     );
-    let s = design(BendStyle::Score, Material::Paper, 0.3, FRAC_PI_2, f64::INFINITY).expect("paper");
+    let s = unlimited(BendStyle::Score, Material::Paper, 0.3);
     let score = marks(&s, line, &clip).expect("score");
     assert_eq!(score.len(), 1);
     assert_eq!(score[0].kind, MarkKind::Score);
