@@ -51,6 +51,14 @@ pub enum Command {
         after_help = "Examples:\n  platener test-strip -t 3 -o strip.svg\n  platener test-strip -t 4 --material acrylic -o strip.svg"
     )]
     TestStrip(TestStripArgs),
+    /// Draws a bend swatch: a strip with two flat ends and one designed bend (living-hinge
+    /// slits, a perforation, a score or a heat line) at true size, with its figures engraved,
+    /// to check that the material bends as designed before cutting a whole part.
+    #[command(
+        name = "hinge-test",
+        after_help = "Examples:\n  platener hinge-test -t 3 -m wood -o hinge.svg\n  platener hinge-test -t 1.5 -m cardboard --angle 60\n  platener hinge-test -t 3 -m acrylic --bend living-hinge"
+    )]
+    HingeTest(HingeTestArgs),
     /// Rebuilds the assembly from a cutting plan and checks it: parts that intersect, parts
     /// that fall apart, joints whose parts do not meet, invalid outlines, parts outside or
     /// larger than their sheet, and (with the model) how much of the model the parts
@@ -169,6 +177,35 @@ pub struct TestStripArgs {
     /// Where to write the SVG.
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
+}
+
+/// `platener hinge-test`.
+#[derive(Debug, Args)]
+pub struct HingeTestArgs {
+    /// Sheet thickness in mm.
+    #[arg(short = 't', long = "thickness")]
+    pub thickness: f64,
+    /// The material.
+    #[arg(short = 'm', long, value_enum, default_value = "wood")]
+    pub material: MaterialArg,
+    /// The bend style: auto (the material's: wood → living-hinge, cardboard → perforation,
+    /// paper → score, acrylic → heat), living-hinge, perforation, score or heat.
+    #[arg(long, default_value = "auto", value_parser = parse_bend_style)]
+    pub bend: platener::Bending,
+    /// How far the bend turns, degrees (90 = a square corner, 180 = a U-turn).
+    #[arg(long, default_value_t = 90.0)]
+    pub angle: f64,
+    /// Where to write the SVG.
+    #[arg(short = 'o', long = "output", default_value = "hinge-test.svg")]
+    pub output: PathBuf,
+}
+
+/// `--bend` of hinge-test: a style or `auto`; `none` would draw no bend.
+fn parse_bend_style(s: &str) -> Result<platener::Bending, String> {
+    match s.parse::<platener::Bending>().map_err(|e| e.to_string())? {
+        platener::Bending::None => Err("a swatch needs a bend style, not none".into()),
+        bending => Ok(bending),
+    }
 }
 
 /// The unit of a model file's numbers.

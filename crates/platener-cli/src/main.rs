@@ -9,6 +9,7 @@ mod batch;
 mod completions;
 mod convert;
 mod fault;
+mod hinge_test;
 mod inputs;
 mod inspect;
 mod progress;
@@ -28,6 +29,7 @@ fn main() -> ExitCode {
         args::Command::Convert(a) => convert::run(&a),
         args::Command::Inspect(a) => inspect::run(&a).map(|()| 0),
         args::Command::TestStrip(a) => test_strip::run(&a).map(|()| 0),
+        args::Command::HingeTest(a) => hinge_test::run(&a).map(|()| 0),
         args::Command::Verify(a) => verify::run(&a),
         args::Command::Scene(a) => scene::run(&a).map(|()| 0),
         args::Command::Serve(a) => web::serve(&a).map(|()| 0),

@@ -49,6 +49,7 @@ pub mod coplanar;
 pub mod debug;
 pub mod error;
 pub mod export;
+pub mod hinge;
 pub mod inspect;
 pub mod joints;
 pub mod kerf;

@@ -1,0 +1,113 @@
+//! `platener hinge-test` driven through the real binary: the SVG it writes is measured.
+
+use assert_cmd::Command;
+
+fn platener() -> Command {
+    Command::cargo_bin("platener").expect("binary built")
+}
+
+/// The `width`, `height` and viewBox numbers of the SVG's root.
+fn size(svg: &str) -> (f64, f64, String) {
+    let attr = |name: &str| {
+        let start = svg.find(&format!("{name}=\"")).expect(name) + name.len() + 2;
+        svg[start..start + svg[start..].find('"').expect("end")].to_string()
+    };
+    let w: f64 = attr("width").trim_end_matches("mm").parse().expect("width");
+    let h: f64 = attr("height").trim_end_matches("mm").parse().expect("height");
+    (w, h, attr("viewBox"))
+}
+
+/// The red open paths (two points each) of the SVG: the slits.
+fn red_slits(svg: &str) -> Vec<[(f64, f64); 2]> {
+    svg.split("<path ")
+        .skip(1)
+        .filter(|p| p.contains("stroke=\"#ff0000\"") && !p.contains(" Z\""))
+        .map(|p| {
+            let d = &p[p.find("d=\"").expect("d") + 3..];
+            let nums: Vec<f64> = d[..d.find('"').expect("end of d")]
+                .split_whitespace()
+                .map(|t| t.trim_start_matches(['M', 'L']).parse().expect("number"))
+                .collect();
+            assert_eq!(nums.len(), 4, "a slit is one straight cut");
+            [(nums[0], nums[1]), (nums[2], nums[3])]
+        })
+        .collect()
+}
+
+/// Runs `hinge-test ARGS -o out` successfully and returns what it printed.
+fn swatch(args: &[&str], out: &std::path::Path) -> String {
+    let assert = platener()
+        .arg("hinge-test")
+        .args(args)
+        .arg("-o")
+        .arg(out)
+        .assert()
+        .success();
+    String::from_utf8_lossy(&assert.get_output().stdout).to_string()
+}
+
+#[test]
+fn a_wood_swatch_is_written_at_true_size_with_its_slits() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("hinge.svg");
+    let stdout = swatch(&["-t", "3", "-m", "wood"], &out);
+    assert!(stdout.contains("23 links 3.00 × 12.00 mm in 24 rows"), "{stdout}");
+    let svg = std::fs::read_to_string(&out).expect("svg written");
+    let (w, h, view) = size(&svg);
+    assert_eq!(view, format!("0 0 {w} {h}"));
+    // Two 30 mm ends (at least) around a 23 × 3.2 mm zone, 5 mm margins.
+    assert!(w >= 10.0 + 60.0 + 73.6 - 1e-9 && h >= 50.0, "{w} × {h}");
+    let slits = red_slits(&svg);
+    assert!(slits.len() > 48, "{} slits", slits.len());
+    // Slits run across the strip (vertical), inside it, on 24 distinct rows 3.2 mm apart.
+    let mut xs: Vec<f64> = slits.iter().map(|s| s[0].0).collect();
+    xs.sort_by(f64::total_cmp);
+    xs.dedup_by(|a, b| (*a - *b).abs() < 1e-3);
+    assert_eq!(xs.len(), 24);
+    assert!(xs.windows(2).all(|p| (p[1] - p[0] - 3.2).abs() < 1e-3));
+    for s in &slits {
+        assert!((s[0].0 - s[1].0).abs() < 1e-9);
+        assert!(s.iter().all(|p| p.1 > 5.0 && p.1 < h - 5.0));
+    }
+    assert!(svg.contains("stroke=\"#0000ff\""), "engraved legend");
+}
+
+#[test]
+fn a_card_swatch_takes_the_material_style() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("card.svg");
+    let stdout = swatch(&["-t", "1.5", "-m", "cardboard", "--angle", "60"], &out);
+    assert!(stdout.contains("a perforation bend of 60.0°"), "{stdout}");
+    let svg = std::fs::read_to_string(&out).expect("svg written");
+    let dashes = red_slits(&svg);
+    assert!(dashes.len() >= 5 && dashes.iter().all(|s| (s[0].0 - dashes[0][0].0).abs() < 1e-9));
+}
+
+#[test]
+fn bad_thickness_style_or_material_is_refused() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("never.svg");
+    let refused = |args: &[&str], message: &str| {
+        let assert = platener()
+            .arg("hinge-test")
+            .args(args)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .code(1);
+        let stderr = String::from_utf8_lossy(&assert.get_output().stderr).to_string();
+        assert!(stderr.contains(message), "{stderr}");
+    };
+    refused(&["--thickness=-3"], "thickness must be a positive finite number");
+    refused(
+        &["-t", "3", "-m", "wood", "--bend", "heat"],
+        "a heat bend does not work in 3 mm wood",
+    );
+    refused(&["-t", "3", "--angle", "200"], "turns at most 180.0°");
+    platener()
+        .args(["hinge-test", "-t", "3", "-m", "stone", "-o"])
+        .arg(&out)
+        .assert()
+        .code(2);
+    assert!(!out.exists());
+}
