@@ -7,8 +7,8 @@ fn main() {
         .expect("a sample")
         .1;
     let mut s = platener::Settings::default();
-    if std::env::args().nth(2).as_deref() == Some("none") {
-        s.bending = platener::Bending::None;
+    if let Some(b) = std::env::args().nth(2) {
+        s.bending = b.parse().expect("a --bend value");
     }
     if which.starts_with("cone") {
         s.thicknesses = vec![1.5];

@@ -48,9 +48,6 @@ pub fn fold_sharp(a: &Member, b: &Member, c: &Candidate, thickness: f64) -> Memb
 /// up to it finger joints get long and fragile, beyond it they hold better than a bend.
 pub const AUTO_MAX_TURN_DEG: f64 = 60.5;
 
-/// The largest turn any style makes: sharper corners are joints.
-pub const MAX_TURN_DEG: f64 = 90.5;
-
 /// The snapshot of step `bends`.
 #[derive(Debug, Clone, Serialize, Default)]
 pub struct Bends {
@@ -150,6 +147,20 @@ pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Re
     };
     let bends = compute(&plates.plates, settings.bending, material, sheet)
         .map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?;
+    for (k, part) in bends.parts.iter().enumerate() {
+        let t = plates.plates[part.members[0].plate as usize].thickness;
+        let round = part.bends.iter().map(|b| b.zone.corner_gap()).fold(0.0, f64::max);
+        if round > t {
+            cx.warn(
+                WarningKind::Joints,
+                format!(
+                    "bent part {} (of plates {}): its bends round the model's corners by up to {round:.1} mm",
+                    k + 1,
+                    plate_list(part)
+                ),
+            );
+        }
+    }
     if !bends.parts.is_empty() {
         let merged: usize = bends.parts.iter().map(|p| p.members.len()).sum();
         cx.warn(
@@ -164,19 +175,27 @@ pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Re
     Ok(bends)
 }
 
+/// The plates of a bent part, numbered as in the plates step, for messages.
+fn plate_list(part: &BentPart) -> String {
+    let ids: Vec<String> = part.members.iter().map(|m| (m.plate + 1).to_string()).collect();
+    ids.join(", ")
+}
+
 /// The bent parts of `plates` made with `bending` in `material`, each fitting a sheet of
 /// `sheet` (width, height) mm.
 pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f64, f64)) -> Result<Bends, GridError> {
     let Some(style) = bending.style(material) else {
         return Ok(Bends::default());
     };
+    let t = plates.first().map_or(3.0, |p| p.thickness);
+    let physical = crate::hinge::max_turn(style, material, t) + 0.5f64.to_radians();
     let max_turn = if bending == Bending::Auto {
-        AUTO_MAX_TURN_DEG
+        physical.min(AUTO_MAX_TURN_DEG.to_radians())
     } else {
-        MAX_TURN_DEG
+        physical
     };
-    let candidates = find::candidates(plates, max_turn.to_radians());
-    let zones: Vec<_> = candidates.iter().map(|c| zone_of(c, plates, style, material)).collect();
+    let candidates = find::candidates(plates, max_turn);
+    let zones: Vec<_> = candidates.iter().map(|c| zone_of(c, plates, style, material, bending == Bending::Auto)).collect();
     let mut best: Option<grow::Layout> = None;
     for order in orders(&candidates, plates) {
         let layout = grow::Layout::new(plates, &candidates, &zones, sheet).grow(&order)?;
@@ -200,22 +219,13 @@ pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f
     })
 }
 
-/// The zone of candidate `c`, if its turn can be bent faithfully: the zone fits in each
-/// plate's half (a plate may bend on both sides) with a fifth of it left flat, and rounds
-/// the model's corner by at most a sheet thickness.
-fn zone_of(c: &Candidate, plates: &[Plate], style: BendStyle, material: Material) -> Result<Zone, String> {
+/// The zone of candidate `c`: it fits in each plate's half (a plate may bend on both sides)
+/// with a fifth of it left flat; `strict` (the style chosen by material), it also keeps to
+/// the model's corner (see [`zone::design`]).
+fn zone_of(c: &Candidate, plates: &[Plate], style: BendStyle, material: Material, strict: bool) -> Result<Zone, String> {
     let t = plates[c.plates[0]].thickness;
-    let room = 0.8 * c.depth[0].min(c.depth[1]);
-    let zone = zone::design(style, material, t, c.turn(), room)?;
-    if zone.corner_gap() > t {
-        return Err(format!(
-            "a {} bend of {:.0}° would round the corner by {:.1} mm",
-            style.name(),
-            c.turn().to_degrees(),
-            zone.corner_gap()
-        ));
-    }
-    Ok(zone)
+    let depth = c.depth[0].min(c.depth[1]);
+    zone::design(style, material, (t, depth), c.turn(), 0.8 * depth, strict)
 }
 
 /// The orders in which candidates are tried: the easiest bends first (smallest turn, then

@@ -6,9 +6,11 @@
 //! corner of the model's plates would have 2·R·tan(φ/2) of mid-plane between the two
 //! tangent lines: developing the sharp corner and then moving the far plate back by the
 //! difference (the bend deduction) gives a flat part that closes to the model's size.
+//! The zone's width and pattern come from [`crate::hinge`] (living-hinge physics, folds).
 
 use serde::Serialize;
 
+use crate::hinge::{BendDesign, HingeError, design as hinge_design};
 use crate::plan::{BendStyle, Material};
 
 /// The zone of one bend.
@@ -22,6 +24,8 @@ pub struct Zone {
     pub width: f64,
     /// Radius of the neutral arc, mm.
     pub radius: f64,
+    /// The hinge or fold that makes it (links, slits, dashes).
+    pub design: BendDesign,
 }
 
 impl Zone {
@@ -41,33 +45,64 @@ impl Zone {
     }
 }
 
-/// The zone of a bend of `turn` radians in `style`, at most `max_width` wide on the flat, or
-/// why there is none.
+/// The widest zone of a turn whose arc passes at most `gap` inside the sharp corner.
+fn width_for_gap(turn: f64, gap: f64) -> f64 {
+    let sec = 1.0 / (turn / 2.0).cos() - 1.0;
+    if sec <= 0.0 { f64::INFINITY } else { gap * turn / sec }
+}
+
+/// The widest zone of a turn whose material bulging out of the model stays under 4 % of the
+/// neighbouring plates' (`t` thick, `depth` deep): at the inner face the arc of radius
+/// ρ = R − t/2 leaves the sharp corner by a crescent of area ρ²·(tan(φ/2) − φ/2), which is
+/// material where the model has none.
+fn width_for_bulge(turn: f64, t: f64, depth: f64) -> f64 {
+    let lune = (turn / 2.0).tan() - turn / 2.0;
+    if lune <= 0.0 {
+        return f64::INFINITY;
+    }
+    turn * (t / 2.0 + (0.04 * t * depth / lune).sqrt())
+}
+
+/// The zone of a bend of `turn` radians in `style` between plates `depth` deep, at most
+/// `max_width` wide on the flat, or why there is none. The widest hinge (strongest links)
+/// whose bulge out of the model stays small is taken; else the narrowest hinge there is, if
+/// it rounds the model's corner by at most a thickness, or (`strict` off: a style the user
+/// asked for) if it fits at all.
 pub(crate) fn design(
     style: BendStyle,
     material: Material,
-    thickness: f64,
+    (thickness, depth): (f64, f64),
     turn: f64,
     max_width: f64,
+    strict: bool,
 ) -> Result<Zone, String> {
-    let _ = material;
-    let radius = match style {
-        BendStyle::LivingHinge => {
-            let square = (0.676 * turn * 86.6 / 4.0).ceil() * (thickness + 0.2);
-            let narrow = (0.676 * turn * 86.6 / 4.0 / 1.45).ceil() * (thickness / 2.0 + 0.2);
-            let width = if square <= max_width { square } else { narrow };
-            if width > max_width {
-                return Err(format!("a living hinge needs {width:.1} mm, {max_width:.1} mm fit"));
-            }
-            width / turn
-        }
-        BendStyle::Perforation | BendStyle::Score => thickness / 2.0,
-        BendStyle::Heat => 1.5 * thickness,
-    };
-    Ok(Zone {
+    let zone = |design: BendDesign| Zone {
         style,
         turn,
-        width: radius * turn,
-        radius,
-    })
+        width: design.zone_width,
+        radius: design.neutral_radius,
+        design,
+    };
+    let attempt = |limit: f64| hinge_design(style, material, thickness, turn, limit);
+    let narrowest = match attempt(max_width.min(width_for_bulge(turn, thickness, depth))) {
+        Ok(design) => return Ok(zone(design)),
+        Err(HingeError::TooWide { needed, .. }) => needed,
+        Err(e) => return Err(e.to_string()),
+    };
+    let allowed = if strict {
+        max_width.min(width_for_gap(turn, thickness))
+    } else {
+        max_width
+    };
+    if narrowest > allowed {
+        let why = if strict && narrowest <= max_width {
+            " without rounding the model's corner by more than a thickness"
+        } else {
+            ""
+        };
+        return Err(format!(
+            "the bend zone would be {narrowest:.1} mm wide, only {allowed:.1} mm fit{why}"
+        ));
+    }
+    attempt(narrowest + 1e-9).map(zone).map_err(|e| e.to_string())
 }

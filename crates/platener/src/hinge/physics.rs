@@ -110,7 +110,7 @@ impl MaterialData {
 }
 
 /// One designed bend zone: its width on the flat part and, for a living hinge, its slits.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct BendDesign {
     /// How it bends.
     pub style: BendStyle,

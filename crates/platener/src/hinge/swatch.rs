@@ -5,14 +5,13 @@
 //! ([`super::marks`]) across it and an engraved legend (style, angle, links, link size, zone
 //! width, radius) on the left end. Sheet coordinates, mm, y down, as the kerf test strip.
 
-use std::fmt::Write as _;
 
 use glam::DVec2;
 use platener_geom::Polygon;
 use platener_geom::polygon::rect;
 
 use super::{BendDesign, HingeError, design, marks};
-use crate::export::svg::{CUT_COLOR, HAIRLINE, SvgGroup, SvgStyle, num, sheet_svg};
+use crate::export::svg::{SvgGroup, SvgStyle, num, sheet_svg};
 use crate::labels::font::{place_text, text_width};
 use crate::plan::{BendStyle, Mark, MarkKind, Material};
 
@@ -134,20 +133,14 @@ impl Swatch {
         let group = SvgGroup {
             id: "part-1".into(),
             cut: vec![self.strip.outer.clone()],
+            slits: self
+                .marks
+                .iter()
+                .filter(|m| m.kind == MarkKind::Cut)
+                .map(|m| m.path.clone())
+                .collect(),
             engrave,
         };
-        let svg = sheet_svg(self.width, self.height, &[group], &SvgStyle::CUT);
-        // Slits are open cut paths, which the sheet writer's groups (closed rings) do not hold.
-        let mut slits = String::new();
-        for m in self.marks.iter().filter(|m| m.kind == MarkKind::Cut) {
-            let d: Vec<String> = m.path.iter().map(|p| format!("{} {}", num(p.x), num(p.y))).collect();
-            let _ = writeln!(
-                slits,
-                "<path d=\"M{}\" fill=\"none\" stroke=\"{CUT_COLOR}\" stroke-width=\"{}\"/>",
-                d.join(" L"),
-                num(HAIRLINE)
-            );
-        }
-        svg.replacen("</g>\n", &format!("{slits}</g>\n"), 1)
+        sheet_svg(self.width, self.height, &[group], &SvgStyle::CUT)
     }
 }

@@ -13,8 +13,9 @@ use crate::plates::Plates;
 
 /// The bent part `bent` as part `id`: `outlines` are the plates' outlines with their joints,
 /// `labels` their jointed edges (per plate, in its frame), `marks_of` a plate's own marks
-/// (features) in its frame. Also says how many pieces the flat shape fell into (one, unless
-/// joints cut a plate apart near a bend).
+/// (features) in its frame. Also says what went wrong on the way: the flat shape falling
+/// into pieces (joints cutting a plate apart near a bend), a bend whose marks could not be
+/// drawn.
 pub(super) fn part(
     id: u32,
     bent: &BentPart,
@@ -23,7 +24,7 @@ pub(super) fn part(
     labels: &[Vec<(u32, [DVec2; 2])>],
     marks_of: &dyn Fn(u32, &Polygon) -> Vec<Mark>,
     style: BendStyle,
-) -> Result<(Part, usize), GridError> {
+) -> Result<(Part, Vec<String>), GridError> {
     let t = plates.plates[bent.members[0].plate as usize].thickness;
     let flaps = matches!(style, BendStyle::Perforation | BendStyle::Score);
     let mut pieces = Vec::new();
@@ -55,7 +56,13 @@ pub(super) fn part(
     }
     let mut united = union_all(&pieces)?;
     united.sort_by(|a, b| b.area().total_cmp(&a.area()));
-    let count = united.len();
+    let mut notes = Vec::new();
+    if united.len() > 1 {
+        notes.push(format!(
+            "bent part {id} fell apart into {} pieces when laid flat; only the largest is cut",
+            united.len()
+        ));
+    }
     let polygon = united.into_iter().next().unwrap_or_default();
     let mut segments = Vec::with_capacity(bent.members.len());
     for (i, m) in bent.members.iter().enumerate() {
@@ -73,7 +80,15 @@ pub(super) fn part(
             segments: b.members,
         })
         .collect();
+    let mut marks = Vec::new();
+    for (k, b) in bent.bends.iter().enumerate() {
+        match crate::hinge::marks(&b.zone.design, clip_line(b.line, &polygon), &polygon) {
+            Ok(m) => marks.extend(m),
+            Err(e) => notes.push(format!("bent part {id}: bend {} has no marks: {e}", k + 1)),
+        }
+    }
     let mut part = Part::plate(id, t, polygon, bent.members[0].flat_frame());
+    part.marks = marks;
     part.kind = PartKind::Bent;
     part.segments = segments;
     part.bends = bends;
@@ -91,7 +106,7 @@ pub(super) fn part(
                 mark
             }));
     }
-    Ok((part, count))
+    Ok((part, notes))
 }
 
 /// The gap between a plate (`own`, in the member's frame) and a line it is cut at: plate

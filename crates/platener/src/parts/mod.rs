@@ -113,14 +113,10 @@ fn bent_parts(
             .map(|m| joints.map_or(Vec::new(), |j| j.edges[m.plate as usize].clone()))
             .collect();
         let marks_of = |plate: u32, outline: &Polygon| feature_marks(&plates.features, plate, outline);
-        let (part, pieces) = bent::part(id, b, plates, &outlines, &labels, &marks_of, style)
+        let (part, notes) = bent::part(id, b, plates, &outlines, &labels, &marks_of, style)
             .map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?;
-        if pieces > 1 {
-            cx.warn_part(
-                WarningKind::Joints,
-                Some(id),
-                format!("bent part {id} fell apart into {pieces} pieces when laid flat; only the largest is cut"),
-            );
+        for note in notes {
+            cx.warn_part(WarningKind::Joints, Some(id), note);
         }
         if let Some(slot) = parts.iter_mut().find(|p| p.id == id) {
             *slot = part;
