@@ -1,11 +1,21 @@
 //! Prints what the bends step made of a sample (a debugging aid).
 fn main() {
     let which = std::env::args().nth(1).unwrap_or_default();
-    let model = platener::samples::bent_samples()
-        .into_iter()
-        .find(|(n, _)| n.starts_with(&which))
-        .expect("a sample")
-        .1;
+    let source = if which == "ball" {
+        platener::Source::triangles(
+            "ball",
+            platener::samples::sphere(platener::glam::DVec3::ZERO, 40.0, 12, 8),
+        )
+    } else if which.ends_with(".stl") {
+        platener::Source::File(which.clone().into())
+    } else {
+        let model = platener::samples::bent_samples()
+            .into_iter()
+            .find(|(n, _)| n.starts_with(&which))
+            .expect("a sample")
+            .1;
+        platener::Source::triangles("m", model)
+    };
     let mut s = platener::Settings::default();
     if let Some(b) = std::env::args().nth(2) {
         s.bending = b.parse().expect("a --bend value");
@@ -16,7 +26,7 @@ fn main() {
     }
     let state = platener::convert::convert(
         platener::method::MethodKind::Plate,
-        platener::Source::triangles("m", model),
+        source,
         s,
         &platener::Cancel::default(),
     )

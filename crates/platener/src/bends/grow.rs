@@ -49,6 +49,9 @@ impl HalfPlane {
 
     /// `shapes` (in `member`'s frame coordinates) cut to the kept half.
     pub fn cut(&self, member: &Member, thickness: f64, shapes: &[Polygon]) -> Result<Vec<Polygon>, GridError> {
+        if shapes.iter().all(|p| p.outer.is_empty()) {
+            return Ok(Vec::new());
+        }
         let keep = self.quad(&member.mid(thickness), shapes);
         intersection(shapes, std::slice::from_ref(&keep))
     }
@@ -65,6 +68,8 @@ pub(crate) struct Layout<'a> {
     pub group: Vec<usize>,
     pub groups: Vec<Vec<usize>>,
     pub cuts: Vec<Vec<HalfPlane>>,
+    /// Per plate: where its flat segment begins at each of its bends (the zone's edge).
+    tangents: Vec<Vec<HalfPlane>>,
     /// Each plate's developed shape (cut at its bend lines) on its group's flat.
     flat: Vec<Vec<Polygon>>,
     /// The candidates made bends, in the order taken, with the plate that stayed in place
@@ -95,6 +100,7 @@ impl<'a> Layout<'a> {
             group: (0..n).collect(),
             groups: (0..n).map(|i| vec![i]).collect(),
             cuts: vec![Vec::new(); n],
+            tangents: vec![Vec::new(); n],
             flat: plates.iter().map(|p| vec![p.polygon.clone()]).collect(),
             bends: Vec::new(),
             refused: Vec::new(),
@@ -167,6 +173,19 @@ impl<'a> Layout<'a> {
             into: c.into[c.side_of(plate)],
         };
         let (hp, hc) = (cut(parent), cut(child));
+        let tangent = |h: HalfPlane| HalfPlane {
+            point: h.point + h.into * zone.setback(),
+            ..h
+        };
+        let (tp, tc) = (tangent(hp), tangent(hc));
+        for (p, m, t_new) in [(parent, &self.members[parent], tp), (child, &members[k], tc)] {
+            if !self.keeps_a_segment(p, m, t_new)? {
+                return Ok(Err(format!(
+                    "plate {} would be all bend zone, with no flat segment left",
+                    p + 1
+                )));
+            }
+        }
         let parent_shape = self.developed(parent, &self.members[parent], &[hp])?;
         shapes[k] = self.developed(child, &members[k], &[hc])?;
         let strip = self.strip(&self.members[parent], c, parent, t, zone.deduction());
@@ -197,6 +216,8 @@ impl<'a> Layout<'a> {
         self.flat[parent] = parent_shape;
         self.cuts[parent].push(hp);
         self.cuts[child].push(hc);
+        self.tangents[parent].push(tp);
+        self.tangents[child].push(tc);
         let (gp, gc) = (self.group[parent], self.group[child]);
         for ((p, m), s) in moving.iter().zip(members).zip(shapes) {
             self.members[*p] = m;
@@ -207,6 +228,18 @@ impl<'a> Layout<'a> {
         self.groups[gp].extend(moved);
         self.bends.push((ci, parent));
         Ok(Ok(()))
+    }
+
+    /// Whether plate `p` keeps a flat segment of at least a fifth of its area beyond the zone
+    /// edges of its bends and `more`: a plate that is all bend zone has no rigid piece to
+    /// place it by.
+    fn keeps_a_segment(&self, p: usize, member: &Member, more: HalfPlane) -> Result<bool, GridError> {
+        let plate = &self.plates[p];
+        let mut shape = vec![member.local(&plate.polygon)];
+        for h in self.tangents[p].iter().chain([&more]) {
+            shape = h.cut(member, plate.thickness, &shape)?;
+        }
+        Ok(total_area(&shape) >= 0.2 * plate.area)
     }
 
     /// Plate `p`'s shape cut at its bend lines and `more`, on the flat of `member`.

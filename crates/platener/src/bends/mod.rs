@@ -93,7 +93,7 @@ pub struct BendLine {
     pub enclosed_deg: f64,
     /// The bend zone.
     pub zone: Zone,
-    /// The middle of the zone on the flat part, across the whole joint.
+    /// The middle of the zone on the flat part, where both plates reach the line.
     pub line: [DVec2; 2],
     /// Per member: where its flat segment begins (the zone's edge on its side), in the model.
     pub tangents: [HalfPlane; 2],
@@ -195,7 +195,10 @@ pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f
         physical
     };
     let candidates = find::candidates(plates, max_turn);
-    let zones: Vec<_> = candidates.iter().map(|c| zone_of(c, plates, style, material, bending == Bending::Auto)).collect();
+    let zones: Vec<_> = candidates
+        .iter()
+        .map(|c| zone_of(c, plates, style, material, bending == Bending::Auto))
+        .collect();
     let mut best: Option<grow::Layout> = None;
     for order in orders(&candidates, plates) {
         let layout = grow::Layout::new(plates, &candidates, &zones, sheet).grow(&order)?;
@@ -222,7 +225,13 @@ pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f
 /// The zone of candidate `c`: it fits in each plate's half (a plate may bend on both sides)
 /// with a fifth of it left flat; `strict` (the style chosen by material), it also keeps to
 /// the model's corner (see [`zone::design`]).
-fn zone_of(c: &Candidate, plates: &[Plate], style: BendStyle, material: Material, strict: bool) -> Result<Zone, String> {
+fn zone_of(
+    c: &Candidate,
+    plates: &[Plate],
+    style: BendStyle,
+    material: Material,
+    strict: bool,
+) -> Result<Zone, String> {
     let t = plates[c.plates[0]].thickness;
     let depth = c.depth[0].min(c.depth[1]);
     zone::design(style, material, (t, depth), c.turn(), 0.8 * depth, strict)
@@ -344,16 +353,12 @@ fn bend_line(c: &Candidate, zone: Zone, parent: usize, pm: &Member, members: [us
     };
     let into = c.into[c.side_of(parent)];
     let centre = c.point + into * (zone.setback() - zone.width / 2.0);
-    let reach = (
-        c.span.0 - c.depth[0].max(c.depth[1]),
-        c.span.1 + c.depth[0].max(c.depth[1]),
-    );
     let flat = |along: f64| pm.place.apply(pm.frame.to_2d(centre + c.axis * along));
     BendLine {
         members,
         enclosed_deg: c.enclosed.to_degrees(),
         zone,
-        line: [flat(reach.0), flat(reach.1)],
+        line: [flat(c.span.0), flat(c.span.1)],
         tangents: [t_half(0), t_half(1)],
     }
 }

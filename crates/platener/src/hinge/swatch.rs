@@ -5,7 +5,6 @@
 //! ([`super::marks`]) across it and an engraved legend (style, angle, links, link size, zone
 //! width, radius) on the left end. Sheet coordinates, mm, y down, as the kerf test strip.
 
-
 use glam::DVec2;
 use platener_geom::Polygon;
 use platener_geom::polygon::rect;

@@ -54,7 +54,9 @@ pub(super) fn part(
             extra_segments.push(segment);
         }
     }
-    let mut united = union_all(&pieces)?;
+    // Plates laid side by side meet along lines and at corners where their jointed outlines
+    // only touch; closing by a tenth of the thickness makes one clean outline of them.
+    let mut united = platener_geom::offset::closing(&union_all(&pieces)?, 0.1 * t)?;
     united.sort_by(|a, b| b.area().total_cmp(&a.area()));
     let mut notes = Vec::new();
     if united.len() > 1 {
@@ -66,14 +68,14 @@ pub(super) fn part(
     let polygon = united.into_iter().next().unwrap_or_default();
     let mut segments = Vec::with_capacity(bent.members.len());
     for (i, m) in bent.members.iter().enumerate() {
-        segments.push(segment(bent, i, m, &developed[i], t)?);
+        segments.push(segment(bent, i, m, (&developed[i], &polygon), t)?);
     }
     segments.extend(extra_segments);
     let bends = bent
         .bends
         .iter()
         .map(|b| Bend {
-            line: clip_line(b.line, &polygon),
+            line: b.line,
             angle_deg: b.enclosed_deg,
             style,
             width: b.zone.width,
@@ -82,7 +84,7 @@ pub(super) fn part(
         .collect();
     let mut marks = Vec::new();
     for (k, b) in bent.bends.iter().enumerate() {
-        match crate::hinge::marks(&b.zone.design, clip_line(b.line, &polygon), &polygon) {
+        match crate::hinge::marks(&b.zone.design, b.line, &polygon) {
             Ok(m) => marks.extend(m),
             Err(e) => notes.push(format!("bent part {id}: bend {} has no marks: {e}", k + 1)),
         }
@@ -136,8 +138,18 @@ fn reach_to_line(h: &HalfPlane, m: &Member, t: f64, own: &Polygon) -> Result<Vec
 }
 
 /// Member `i`'s flat segment: its developed shape beyond the zone edge of each of its bends.
-fn segment(bent: &BentPart, i: usize, m: &Member, developed: &[Polygon], t: f64) -> Result<Segment, GridError> {
-    let mut local: Vec<Polygon> = developed.iter().map(|p| m.place.inverse().apply_polygon(p)).collect();
+fn segment(
+    bent: &BentPart,
+    i: usize,
+    m: &Member,
+    (developed, flat): (&[Polygon], &Polygon),
+    t: f64,
+) -> Result<Segment, GridError> {
+    // The flat part's material near the member (closing the outline may have filled a
+    // little beside the member's own shape), so segments and zones make up the whole part.
+    let near = platener_geom::offset::offset(developed, 0.25 * t)?;
+    let mine = platener_geom::boolean::intersection(&near, std::slice::from_ref(flat))?;
+    let mut local: Vec<Polygon> = mine.iter().map(|p| m.place.inverse().apply_polygon(p)).collect();
     for b in bent.bends.iter().filter(|b| b.members.contains(&i)) {
         let side = usize::from(b.members[1] == i);
         local = b.tangents[side].cut(m, t, &local)?;
@@ -191,18 +203,4 @@ fn flap(seam: &Seam, members: &[Member], t: f64) -> (Polygon, Segment) {
         frame,
     };
     (polygon, segment)
-}
-
-/// The part of the infinite line through `line` that crosses `polygon`'s bounds (a bend
-/// line drawn end to end across the part).
-fn clip_line(line: [DVec2; 2], polygon: &Polygon) -> [DVec2; 2] {
-    let d = (line[1] - line[0]).normalize_or_zero();
-    let along: Vec<f64> = polygon.outer.iter().map(|q| (*q - line[0]).dot(d)).collect();
-    let (lo, hi) = along
-        .iter()
-        .fold((f64::MAX, f64::MIN), |(l, h), x| (l.min(*x), h.max(*x)));
-    if lo > hi {
-        return line;
-    }
-    [line[0] + d * lo, line[0] + d * hi]
 }

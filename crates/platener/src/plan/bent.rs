@@ -181,7 +181,7 @@ pub fn pieces_of(
     for (index, bend) in bends.iter().enumerate() {
         let zone = Zone::new(part, index, bend, segments, thickness)?;
         for (u0, u1) in zone.slices() {
-            let strip = zone.strip(u0, u1, polygon);
+            let strip = zone.strip(u0, u1);
             let clipped = boolean::intersection(&[strip], std::slice::from_ref(polygon))
                 .map_err(|error| BentError::Grid { part, error })?;
             let frame = zone.frame_at((u0 + u1) / 2.0);
@@ -199,6 +199,9 @@ pub struct Zone {
     origin: DVec2,
     /// Unit vector along the line, flat frame.
     along: DVec2,
+    /// The line's length: the zone spans it, no further (in a net of many plates the line's
+    /// extension crosses other plates).
+    length: f64,
     /// Unit vector across the line towards segment j, flat frame.
     across: DVec2,
     width: f64,
@@ -250,12 +253,20 @@ impl Zone {
             s.outer.iter().map(|p| along.perp().dot(*p - p0)).sum::<f64>() / n
         };
         let (si, sj) = (side(&segments[i].0), side(&segments[j].0));
-        if si * sj >= 0.0 {
+        // A segment that joints left without material (a small facet between bends) still
+        // places its neighbours' zones by its frame: the other segment gives the side.
+        let sj = match (si == 0.0, sj == 0.0) {
+            (true, true) => return Err(bad("joins two segments without material")),
+            (false, true) => -si,
+            _ => sj,
+        };
+        if si * sj > 0.0 {
             return Err(bad("does not lie between the segments it joins"));
         }
         let flat = Self {
             origin: p0,
             along,
+            length: (p1 - p0).length(),
             across: along.perp() * sj.signum(),
             width: bend.width,
             turn: (180.0 - bend.angle_deg).to_radians(),
@@ -346,12 +357,10 @@ impl Zone {
         (0..n).map(|k| (k as f64 * step, (k + 1) as f64 * step)).collect()
     }
 
-    /// The strip of the flat frame between u0 and u1, long enough to cross `polygon`.
-    fn strip(&self, u0: f64, u1: f64, polygon: &Polygon) -> Polygon {
-        let (lo, hi) = polygon.bounds();
-        let reach = (hi - lo).length() + (self.origin - lo).length() + 1.0;
+    /// The strip of the flat frame between u0 and u1 across the line, along the line's length.
+    fn strip(&self, u0: f64, u1: f64) -> Polygon {
         let at = |u: f64, s: f64| self.origin + self.across * (u - self.width / 2.0) + self.along * s;
-        let mut strip = Polygon::new(vec![at(u0, -reach), at(u1, -reach), at(u1, reach), at(u0, reach)]);
+        let mut strip = Polygon::new(vec![at(u0, 0.0), at(u1, 0.0), at(u1, self.length), at(u0, self.length)]);
         strip.normalize_orientation();
         strip
     }
