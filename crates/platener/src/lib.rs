@@ -41,6 +41,7 @@
 //! docs/architecture.md says which module may use which.
 
 pub mod assembly;
+pub mod classify;
 pub mod cleanup;
 pub mod context;
 pub mod convert;
