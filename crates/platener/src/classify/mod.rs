@@ -188,7 +188,7 @@ pub struct Classification {
 pub fn run(mesh: &Mesh, settings: &ClassifySettings) -> Result<Classification, ClassifyError> {
     validate(settings)?;
     let area: f64 = mesh.areas.iter().sum();
-    if mesh.triangles.is_empty() || !(area > 0.0) {
+    if mesh.triangles.is_empty() || area.is_nan() || area <= 0.0 {
         return Err(ClassifyError::NoSurface);
     }
     let (lo, hi) = mesh.vertices.iter().fold((DVec3::MAX, DVec3::MIN), |(lo, hi), v| (lo.min(*v), hi.max(*v)));

@@ -98,9 +98,9 @@ pub(super) fn key(c: [i64; 3]) -> u64 {
 }
 
 /// Samples with normals: each normal from a plane fitted to the samples within `radius`
-/// when their RMS distance from it is at most `flat` and it lies within the normal
-/// tolerance of the triangle's (near a crease the fitted plane leans over the edge), else
-/// the triangle's normal.
+/// when their RMS distance from it is at most `flat` and, for a triangle larger than the
+/// neighbourhood, it lies within the normal tolerance of the triangle's (near a crease the
+/// fitted plane leans over the edge), else the triangle's normal.
 pub fn with_normals(mesh: &Mesh, points: &[(DVec3, u32)], radius: f64, flat: f64, cos_alpha: f64) -> Vec<Sample> {
     let grid = PointGrid::new(points.iter().map(|p| p.0), radius);
     points
@@ -108,7 +108,11 @@ pub fn with_normals(mesh: &Mesh, points: &[(DVec3, u32)], radius: f64, flat: f64
         .map(|&(p, t)| {
             let tn = mesh.normals[t as usize];
             let n = local_normal(&grid, points, p, radius, flat).map(|n| if n.dot(tn) < 0.0 { -n } else { n });
-            let n = n.filter(|n| n.dot(tn) >= cos_alpha).unwrap_or(tn);
+            // A triangle smaller than the neighbourhood says less about the surface than the
+            // neighbourhood does (a fine textured mesh); a larger one is trusted at creases.
+            let [a, b, c] = mesh.corners(t as usize);
+            let small = (a - b).length().max((b - c).length()).max((c - a).length()) < radius;
+            let n = n.filter(|n| small || n.dot(tn) >= cos_alpha).unwrap_or(tn);
             Sample { at: Oriented { p, n }, triangle: t }
         })
         .collect()
