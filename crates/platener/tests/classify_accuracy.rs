@@ -16,7 +16,11 @@ fn tally(noise: f64) -> (usize, usize, usize) {
             assert!(set.mesh.triangles.len() > 10_000, "{} is not a fine mesh", set.name);
             let c = classify::run(&set.mesh, &ClassifySettings::default()).expect("classifies");
             let s = testsets::score(&set, &c);
-            assert!(s.worst_angle_deg <= 0.5 && s.worst_radius_rel <= 0.02, "{}: {s:?}", set.name);
+            assert!(
+                s.worst_angle_deg <= 0.5 && s.worst_radius_rel <= 0.02,
+                "{}: {s:?}",
+                set.name
+            );
             t = (t.0 + s.found, t.1 + s.total, t.2 + s.phantoms);
         }
     }
@@ -27,7 +31,10 @@ fn tally(noise: f64) -> (usize, usize, usize) {
 
 fn check(noise: f64) {
     let (found, total, phantoms) = tally(noise);
-    assert!(found as f64 >= 0.95 * total as f64, "noise {noise}: found {found} of {total}");
+    assert!(
+        found as f64 >= 0.95 * total as f64,
+        "noise {noise}: found {found} of {total}"
+    );
     assert_eq!(phantoms, 0, "noise {noise}");
 }
 
@@ -75,7 +82,11 @@ fn fine_deep_texture_still_gives_the_box() {
     assert!(mesh.triangles.len() > 290_000);
     let c = classify::run(&mesh, &ClassifySettings::default()).expect("classifies");
     let truth: Vec<_> = truth.iter().map(|s| testsets::moved(s, rot, shift)).collect();
-    let set = testsets::TestSet { name: "deep texture".into(), mesh, truth };
+    let set = testsets::TestSet {
+        name: "deep texture".into(),
+        mesh,
+        truth,
+    };
     let s = testsets::score(&set, &c);
     assert_eq!((s.found, s.phantoms), (6, 0), "{s:?}");
     assert_eq!(c.primitives.len(), 6);

@@ -29,7 +29,12 @@ pub fn largest_component(params: &[DVec2], period: Option<f64>, cell: f64) -> Ve
     }
     // Labels are numbered in cell order, so the first maximum is the lowest-cell component.
     let best = (0..size.len()).fold(0, |b, i| if size[i] > size[b] { i } else { b });
-    point_cells.iter().enumerate().filter(|(_, c)| find(c) == best).map(|(i, _)| i).collect()
+    point_cells
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| find(c) == best)
+        .map(|(i, _)| i)
+        .collect()
 }
 
 /// Component labels of sorted, distinct `cells` (8-neighbourhood, wrapping x by `wrap`),
@@ -69,7 +74,9 @@ mod tests {
 
     #[test]
     fn two_patches_keep_the_larger() {
-        let mut p: Vec<DVec2> = (0..10).flat_map(|i| (0..10).map(move |j| DVec2::new(i as f64, j as f64))).collect();
+        let mut p: Vec<DVec2> = (0..10)
+            .flat_map(|i| (0..10).map(move |j| DVec2::new(i as f64, j as f64)))
+            .collect();
         p.extend((0..5).map(|i| DVec2::new(50.0 + i as f64, 0.0)));
         let keep = largest_component(&p, None, 1.0);
         assert_eq!(keep.len(), 100);
@@ -79,7 +86,10 @@ mod tests {
     #[test]
     fn wraps_round_the_period() {
         // Two runs either side of the seam of a 20-unit period are one ring piece.
-        let p: Vec<DVec2> = [0.5, 1.5, 2.5, 17.5, 18.5, 19.5, 10.5].iter().map(|&x| DVec2::new(x, 0.0)).collect();
+        let p: Vec<DVec2> = [0.5, 1.5, 2.5, 17.5, 18.5, 19.5, 10.5]
+            .iter()
+            .map(|&x| DVec2::new(x, 0.0))
+            .collect();
         let keep = largest_component(&p, Some(20.0), 1.0);
         assert_eq!(keep, vec![0, 1, 2, 3, 4, 5]);
         assert_eq!(largest_component(&p, None, 1.0), vec![0, 1, 2]);

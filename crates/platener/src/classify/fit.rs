@@ -36,8 +36,16 @@ pub fn simplest(shape: &Shape, points: &[DVec3], normals: &[DVec3], eps: f64) ->
     if let Shape::Cone { apex, axis, .. } = *shape
         && points.len() >= 8
     {
-        let radius = points.iter().map(|p| (*p - apex).reject_from_normalized(axis).length()).sum::<f64>() / points.len() as f64;
-        let start = Shape::Cylinder { axis, point: apex - axis * axis.dot(apex), radius };
+        let radius = points
+            .iter()
+            .map(|p| (*p - apex).reject_from_normalized(axis).length())
+            .sum::<f64>()
+            / points.len() as f64;
+        let start = Shape::Cylinder {
+            axis,
+            point: apex - axis * axis.dot(apex),
+            radius,
+        };
         simpler.extend(gauss_newton(start, points));
     }
     simpler.into_iter().find(|s| rms(s) <= eps / 2.0).unwrap_or(*shape)
@@ -57,8 +65,15 @@ fn plane(points: &[DVec3], normals: &[DVec3]) -> Option<Shape> {
     }
     let (_, vecs) = symmetric_eigen(m);
     let n = vecs[0].try_normalize()?;
-    let n = if n.dot(normals.iter().copied().sum::<DVec3>()) < 0.0 { -n } else { n };
-    Some(Shape::Plane { normal: n, offset: n.dot(c) })
+    let n = if n.dot(normals.iter().copied().sum::<DVec3>()) < 0.0 {
+        -n
+    } else {
+        n
+    };
+    Some(Shape::Plane {
+        normal: n,
+        offset: n.dot(c),
+    })
 }
 
 /// The shape `base` moved by the parameter step `x` (mm and radians, in a frame local to
@@ -66,19 +81,28 @@ fn plane(points: &[DVec3], normals: &[DVec3]) -> Option<Shape> {
 /// moves across the axis).
 fn moved(base: &Shape, x: &[f64]) -> Shape {
     match *base {
-        Shape::Sphere { center, radius } => {
-            Shape::Sphere { center: center + DVec3::new(x[0], x[1], x[2]), radius: radius + x[3] }
-        }
+        Shape::Sphere { center, radius } => Shape::Sphere {
+            center: center + DVec3::new(x[0], x[1], x[2]),
+            radius: radius + x[3],
+        },
         Shape::Cylinder { axis, point, radius } => {
             let (u, v) = basis(axis);
             let a = (axis + u * x[0] + v * x[1]).normalize();
             let p = point + u * x[2] + v * x[3];
-            Shape::Cylinder { axis: a, point: p - a * a.dot(p), radius: radius + x[4] }
+            Shape::Cylinder {
+                axis: a,
+                point: p - a * a.dot(p),
+                radius: radius + x[4],
+            }
         }
         Shape::Cone { apex, axis, half_angle } => {
             let (u, v) = basis(axis);
             let a = (axis + u * x[0] + v * x[1]).normalize();
-            Shape::Cone { apex: apex + DVec3::new(x[2], x[3], x[4]), axis: a, half_angle: half_angle + x[5] }
+            Shape::Cone {
+                apex: apex + DVec3::new(x[2], x[3], x[4]),
+                axis: a,
+                half_angle: half_angle + x[5],
+            }
         }
         Shape::Plane { .. } => *base,
     }
@@ -139,7 +163,10 @@ fn valid(shape: &Shape) -> bool {
 /// JᵀJ and Jᵀr of the signed distances at `shape`.
 fn normal_equations(shape: &Shape, points: &[DVec3], k: usize) -> ([[f64; 6]; 6], [f64; 6]) {
     const H: f64 = 1e-6;
-    let mut plus = [Shape::Plane { normal: DVec3::Z, offset: 0.0 }; 6];
+    let mut plus = [Shape::Plane {
+        normal: DVec3::Z,
+        offset: 0.0,
+    }; 6];
     let mut minus = plus;
     for i in 0..k {
         let mut x = [0.0; 6];
@@ -175,10 +202,11 @@ fn solve(mut a: [[f64; 6]; 6], mut b: [f64; 6], k: usize) -> Option<[f64; 6]> {
         }
         a.swap(c, piv);
         b.swap(c, piv);
+        let pivot_row = a[c];
         for r in c + 1..k {
-            let f = a[r][c] / a[c][c];
-            for cc in c..k {
-                a[r][cc] -= f * a[c][cc];
+            let f = a[r][c] / pivot_row[c];
+            for (x, p) in a[r][c..k].iter_mut().zip(&pivot_row[c..k]) {
+                *x -= f * p;
             }
             b[r] -= f * b[c];
         }

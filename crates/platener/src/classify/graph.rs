@@ -97,13 +97,25 @@ pub fn build(mesh: &Mesh, primitives: &[Primitive], labels: &[Option<u32>], volu
         for &p in &v.primitives {
             node_of_prim[p as usize] = nodes.len() as u32;
         }
-        nodes.push(Node { kind: NodeKind::Volume, volume: Some(v.kind), primitives: v.primitives.clone(), triangles: 0, area: 0.0 });
+        nodes.push(Node {
+            kind: NodeKind::Volume,
+            volume: Some(v.kind),
+            primitives: v.primitives.clone(),
+            triangles: 0,
+            area: 0.0,
+        });
     }
     let volume_nodes = nodes.len() as u32;
     for (k, slot) in node_of_prim.iter_mut().enumerate() {
         if *slot == u32::MAX {
             *slot = nodes.len() as u32;
-            nodes.push(Node { kind: NodeKind::Surface, volume: None, primitives: vec![k as u32], triangles: 0, area: 0.0 });
+            nodes.push(Node {
+                kind: NodeKind::Surface,
+                volume: None,
+                primitives: vec![k as u32],
+                triangles: 0,
+                area: 0.0,
+            });
         }
     }
     let node_of_triangle = assign_freeforms(mesh, labels, &node_of_prim, &mut nodes);
@@ -113,25 +125,41 @@ pub fn build(mesh: &Mesh, primitives: &[Primitive], labels: &[Option<u32>], volu
     }
     let edges = class_pairs(mesh, |f| Some(node_of_triangle[f]));
     for (i, node) in nodes.iter_mut().enumerate().skip(volume_nodes as usize) {
-        let touching = edges.iter().filter(|e| (e[0] == i as u32 && e[1] < volume_nodes) || (e[1] == i as u32 && e[0] < volume_nodes)).count();
+        let touching = edges
+            .iter()
+            .filter(|e| (e[0] == i as u32 && e[1] < volume_nodes) || (e[1] == i as u32 && e[0] < volume_nodes))
+            .count();
         if node.kind == NodeKind::Surface && touching >= 2 {
             node.kind = NodeKind::Connector;
         }
     }
-    Graph { nodes, edges, node_of_triangle }
+    Graph {
+        nodes,
+        edges,
+        node_of_triangle,
+    }
 }
 
 /// Each triangle's node: its primitive's, or a freeform node per connected region of
 /// unlabelled triangles (appended to `nodes` in order of their lowest triangle).
 fn assign_freeforms(mesh: &Mesh, labels: &[Option<u32>], node_of_prim: &[u32], nodes: &mut Vec<Node>) -> Vec<u32> {
-    let mut node: Vec<u32> = labels.iter().map(|l| l.map_or(u32::MAX, |k| node_of_prim[k as usize])).collect();
+    let mut node: Vec<u32> = labels
+        .iter()
+        .map(|l| l.map_or(u32::MAX, |k| node_of_prim[k as usize]))
+        .collect();
     let mut stack = Vec::new();
     for f in 0..node.len() {
         if node[f] != u32::MAX {
             continue;
         }
         let id = nodes.len() as u32;
-        nodes.push(Node { kind: NodeKind::Freeform, volume: None, primitives: Vec::new(), triangles: 0, area: 0.0 });
+        nodes.push(Node {
+            kind: NodeKind::Freeform,
+            volume: None,
+            primitives: Vec::new(),
+            triangles: 0,
+            area: 0.0,
+        });
         node[f] = id;
         stack.push(f);
         while let Some(g) = stack.pop() {

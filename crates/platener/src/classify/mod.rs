@@ -48,14 +48,21 @@ pub struct ClassifySettings {
 
 impl Default for ClassifySettings {
     fn default() -> Self {
-        Self { seed: 0x5EED_C1A5_5F1E_u64, thickness: 3.0, samples: 40_000 }
+        Self {
+            seed: 0x5EED_C1A5_5F1E_u64,
+            thickness: 3.0,
+            samples: 40_000,
+        }
     }
 }
 
 impl ClassifySettings {
     /// The classifier's settings for a conversion: the thinnest sheet offered.
     pub fn from_settings(s: &crate::Settings) -> Self {
-        Self { thickness: s.thinnest(), ..Self::default() }
+        Self {
+            thickness: s.thinnest(),
+            ..Self::default()
+        }
     }
 }
 
@@ -136,7 +143,9 @@ impl Thresholds {
         let d = self.diagonal;
         match *s {
             Shape::Plane { .. } => true,
-            Shape::Cylinder { radius, .. } | Shape::Sphere { radius, .. } => radius >= self.eps && radius <= self.max_radius,
+            Shape::Cylinder { radius, .. } | Shape::Sphere { radius, .. } => {
+                radius >= self.eps && radius <= self.max_radius
+            }
             Shape::Cone { half_angle, .. } => {
                 let lo = (self.eps / d).min(1.0).asin();
                 half_angle > lo && half_angle < std::f64::consts::FRAC_PI_2 - lo
@@ -191,7 +200,10 @@ pub fn run(mesh: &Mesh, settings: &ClassifySettings) -> Result<Classification, C
     if mesh.triangles.is_empty() || area.is_nan() || area <= 0.0 {
         return Err(ClassifyError::NoSurface);
     }
-    let (lo, hi) = mesh.vertices.iter().fold((DVec3::MAX, DVec3::MIN), |(lo, hi), v| (lo.min(*v), hi.max(*v)));
+    let (lo, hi) = mesh
+        .vertices
+        .iter()
+        .fold((DVec3::MAX, DVec3::MIN), |(lo, hi), v| (lo.min(*v), hi.max(*v)));
     let th = Thresholds::derive(area, (hi - lo).length(), settings);
     let points = sample::sample_surface(mesh, settings.samples, settings.seed);
     let samples = sample::with_normals(mesh, &points, th.normal_radius, th.eps / 2.0, th.cos_alpha);
@@ -201,16 +213,30 @@ pub fn run(mesh: &Mesh, settings: &ClassifySettings) -> Result<Classification, C
     let adjacency = graph::primitive_adjacency(mesh, &labels);
     let volumes = volumes::find(mesh, &samples, &primitives, &labels, &adjacency, &th);
     let graph = graph::build(mesh, &primitives, &labels, &volumes);
-    Ok(Classification { thresholds: th, samples, primitives, labels, volumes, graph, surface_area: area })
+    Ok(Classification {
+        thresholds: th,
+        samples,
+        primitives,
+        labels,
+        volumes,
+        graph,
+        surface_area: area,
+    })
 }
 
 /// Rejects settings no classification can use.
 fn validate(s: &ClassifySettings) -> Result<(), ClassifyError> {
     if !(s.thickness.is_finite() && s.thickness > 0.0) {
-        return Err(ClassifyError::Setting { name: "thickness", message: format!("{} is not a positive number of mm", s.thickness) });
+        return Err(ClassifyError::Setting {
+            name: "thickness",
+            message: format!("{} is not a positive number of mm", s.thickness),
+        });
     }
     if !(100..=10_000_000).contains(&s.samples) {
-        return Err(ClassifyError::Setting { name: "samples", message: format!("{} is not between 100 and 10 000 000", s.samples) });
+        return Err(ClassifyError::Setting {
+            name: "samples",
+            message: format!("{} is not between 100 and 10 000 000", s.samples),
+        });
     }
     Ok(())
 }

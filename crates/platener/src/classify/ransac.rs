@@ -51,14 +51,21 @@ struct Octree {
 
 impl Octree {
     fn new(samples: &[Sample], levels: usize) -> Self {
-        let (lo, hi) = samples.iter().fold((DVec3::MAX, DVec3::MIN), |(lo, hi), s| (lo.min(s.at.p), hi.max(s.at.p)));
+        let (lo, hi) = samples
+            .iter()
+            .fold((DVec3::MAX, DVec3::MIN), |(lo, hi), s| (lo.min(s.at.p), hi.max(s.at.p)));
         let size = (hi - lo).max_element().max(1e-9);
         let scale = ((1u64 << BITS) - 1) as f64 / size;
         let code_of: Vec<u64> = samples.iter().map(|s| morton((s.at.p - lo) * scale)).collect();
         let mut order: Vec<u32> = (0..samples.len() as u32).collect();
         order.sort_by_key(|&i| (code_of[i as usize], i));
         let codes = order.iter().map(|&i| code_of[i as usize]).collect();
-        Self { codes, order, code_of, levels: levels.clamp(1, BITS as usize) }
+        Self {
+            codes,
+            order,
+            code_of,
+            levels: levels.clamp(1, BITS as usize),
+        }
     }
 
     /// The run of `order` in the cell of sample `i` at `level` (1 = the root's children).
@@ -136,8 +143,16 @@ pub fn detect(samples: &[Sample], th: &Thresholds, seed: u64) -> Vec<Primitive> 
 impl Search<'_> {
     /// Rebuilds the live list and the scoring subset after samples were removed.
     fn refresh(&mut self) {
-        self.live = (0..self.samples.len() as u32).filter(|&i| self.alive[i as usize]).collect();
-        self.subset = self.shuffled.iter().copied().filter(|&i| self.alive[i as usize]).take(SUBSET).collect();
+        self.live = (0..self.samples.len() as u32)
+            .filter(|&i| self.alive[i as usize])
+            .collect();
+        self.subset = self
+            .shuffled
+            .iter()
+            .copied()
+            .filter(|&i| self.alive[i as usize])
+            .take(SUBSET)
+            .collect();
     }
 
     /// The paper's probability that a shape of `n` of the `live` samples was drawn at
@@ -158,7 +173,10 @@ impl Search<'_> {
             }
             let batch: Vec<([Oriented; 3], usize)> = (0..BATCH).filter_map(|_| self.draw()).collect();
             draws += BATCH;
-            let scored: Vec<Candidate> = batch.par_iter().flat_map_iter(|(q, level)| self.candidates(q, *level)).collect();
+            let scored: Vec<Candidate> = batch
+                .par_iter()
+                .flat_map_iter(|(q, level)| self.candidates(q, *level))
+                .collect();
             for c in &scored {
                 self.level_score[c.level - 1] += c.estimate;
             }
@@ -240,12 +258,21 @@ impl Search<'_> {
     /// The shapes through a minimal set that all its points accept and that are not
     /// better explained by a simpler shape, with their estimated inlier counts.
     fn candidates(&self, q: &[Oriented; 3], level: usize) -> Vec<Candidate> {
-        let shapes = [plane_from(q), cylinder_from(&q[0], &q[1]), sphere_from(&q[0], &q[1]), cone_from(q)];
+        let shapes = [
+            plane_from(q),
+            cylinder_from(&q[0], &q[1]),
+            sphere_from(&q[0], &q[1]),
+            cone_from(q),
+        ];
         shapes
             .into_iter()
             .flatten()
             .filter(|s| self.th.plausible(s) && q.iter().all(|o| s.accepts(o, self.th.eps, self.th.cos_alpha)))
-            .map(|shape| Candidate { shape, estimate: self.estimate(&shape), level })
+            .map(|shape| Candidate {
+                shape,
+                estimate: self.estimate(&shape),
+                level,
+            })
             .collect()
     }
 
@@ -261,12 +288,23 @@ impl Search<'_> {
 
     /// The live inliers of `shape` in their largest connected piece (ascending).
     fn inliers(&self, shape: &Shape) -> Vec<u32> {
-        let all: Vec<u32> = self.live.par_iter().copied().filter(|&i| self.accepts(shape, i)).collect();
+        let all: Vec<u32> = self
+            .live
+            .par_iter()
+            .copied()
+            .filter(|&i| self.accepts(shape, i))
+            .collect();
         let r = shape.reference_radius(all.iter().map(|&i| self.samples[i as usize].at.p));
-        let params: Vec<_> = all.iter().map(|&i| shape.parameters(self.samples[i as usize].at.p, r)).collect();
+        let params: Vec<_> = all
+            .iter()
+            .map(|&i| shape.parameters(self.samples[i as usize].at.p, r))
+            .collect();
         let period = params.first().and_then(|p| p.1);
         let uv: Vec<_> = params.iter().map(|p| p.0).collect();
-        largest_component(&uv, period, self.th.cell).into_iter().map(|k| all[k]).collect()
+        largest_component(&uv, period, self.th.cell)
+            .into_iter()
+            .map(|k| all[k])
+            .collect()
     }
 
     /// Refits `shape` to its connected `inliers`, collects them again, and removes them when
@@ -279,8 +317,13 @@ impl Search<'_> {
             if inliers.len() < self.th.min_points {
                 return None;
             }
-            let (pts, nrm): (Vec<DVec3>, Vec<DVec3>) = inliers.iter().map(|&i| (self.samples[i as usize].at.p, self.samples[i as usize].at.n)).unzip();
-            let refined = refit(&fitted, &pts, &nrm).filter(|s| self.th.plausible(s)).unwrap_or(fitted);
+            let (pts, nrm): (Vec<DVec3>, Vec<DVec3>) = inliers
+                .iter()
+                .map(|&i| (self.samples[i as usize].at.p, self.samples[i as usize].at.n))
+                .unzip();
+            let refined = refit(&fitted, &pts, &nrm)
+                .filter(|s| self.th.plausible(s))
+                .unwrap_or(fitted);
             fitted = simplest(&refined, &pts, &nrm, self.th.eps);
             inliers = self.inliers(&fitted);
         }
@@ -291,7 +334,21 @@ impl Search<'_> {
             self.alive[i as usize] = false;
         }
         self.refresh();
-        let outward = inliers.iter().map(|&i| fitted.normal_at(self.samples[i as usize].at.p).dot(self.samples[i as usize].at.n)).sum::<f64>() >= 0.0;
-        Some(Primitive { shape: fitted, outward, samples: inliers, triangles: Vec::new(), area: 0.0 })
+        let outward = inliers
+            .iter()
+            .map(|&i| {
+                fitted
+                    .normal_at(self.samples[i as usize].at.p)
+                    .dot(self.samples[i as usize].at.n)
+            })
+            .sum::<f64>()
+            >= 0.0;
+        Some(Primitive {
+            shape: fitted,
+            outward,
+            samples: inliers,
+            triangles: Vec::new(),
+            area: 0.0,
+        })
     }
 }

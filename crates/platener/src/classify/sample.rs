@@ -61,7 +61,10 @@ pub struct PointGrid {
 impl PointGrid {
     /// Bins `points` into cubes of side `cell`.
     pub fn new(points: impl Iterator<Item = DVec3>, cell: f64) -> Self {
-        let mut keys: Vec<(u64, u32)> = points.enumerate().map(|(i, p)| (key(cell_of(p, cell)), i as u32)).collect();
+        let mut keys: Vec<(u64, u32)> = points
+            .enumerate()
+            .map(|(i, p)| (key(cell_of(p, cell)), i as u32))
+            .collect();
         keys.par_sort_unstable();
         Self { cell, keys }
     }
@@ -113,7 +116,10 @@ pub fn with_normals(mesh: &Mesh, points: &[(DVec3, u32)], radius: f64, flat: f64
             let [a, b, c] = mesh.corners(t as usize);
             let small = (a - b).length().max((b - c).length()).max((c - a).length()) < radius;
             let n = n.filter(|n| small || n.dot(tn) >= cos_alpha).unwrap_or(tn);
-            Sample { at: Oriented { p, n }, triangle: t }
+            Sample {
+                at: Oriented { p, n },
+                triangle: t,
+            }
         })
         .collect()
 }
@@ -136,5 +142,7 @@ fn local_normal(grid: &PointGrid, points: &[(DVec3, u32)], p: DVec3, radius: f64
     let c = sum / n as f64;
     let cov = m * (1.0 / n as f64) - DMat3::from_cols(c * c.x, c * c.y, c * c.z);
     let (vals, vecs) = symmetric_eigen(cov);
-    (vals[0].max(0.0).sqrt() <= flat).then_some(vecs[0]).and_then(|v| v.try_normalize())
+    (vals[0].max(0.0).sqrt() <= flat)
+        .then_some(vecs[0])
+        .and_then(|v| v.try_normalize())
 }

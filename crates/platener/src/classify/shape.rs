@@ -97,7 +97,11 @@ impl Shape {
                 let h = v.dot(axis);
                 let rho = v.reject_from_normalized(axis).length();
                 let (s, c) = half_angle.sin_cos();
-                if h * c + rho * s >= 0.0 { rho * c - h * s } else { v.length() }
+                if h * c + rho * s >= 0.0 {
+                    rho * c - h * s
+                } else {
+                    v.length()
+                }
             }
         }
     }
@@ -166,8 +170,12 @@ impl Shape {
     /// The radius the parameter map of a cone uses for `points`: their mean distance from the
     /// axis (other shapes ignore it).
     pub fn reference_radius(&self, points: impl Iterator<Item = DVec3>) -> f64 {
-        let Shape::Cone { apex, axis, .. } = *self else { return 0.0 };
-        let (sum, n) = points.fold((0.0, 0usize), |(s, n), p| (s + (p - apex).reject_from_normalized(axis).length(), n + 1));
+        let Shape::Cone { apex, axis, .. } = *self else {
+            return 0.0;
+        };
+        let (sum, n) = points.fold((0.0, 0usize), |(s, n), p| {
+            (s + (p - apex).reject_from_normalized(axis).length(), n + 1)
+        });
         if n == 0 { 0.0 } else { sum / n as f64 }
     }
 }
@@ -188,7 +196,10 @@ fn angle_height(v: DVec3, axis: DVec3) -> (f64, f64) {
 pub fn plane_from(q: &[Oriented; 3]) -> Option<Shape> {
     let n = (q[1].p - q[0].p).cross(q[2].p - q[0].p).try_normalize()?;
     let n = if n.dot(q[0].n) < 0.0 { -n } else { n };
-    Some(Shape::Plane { normal: n, offset: n.dot(q[0].p) })
+    Some(Shape::Plane {
+        normal: n,
+        offset: n.dot(q[0].p),
+    })
 }
 
 /// The cylinder through two points with normals: the axis is perpendicular to both normals,
@@ -204,7 +215,11 @@ pub fn cylinder_from(a: &Oriented, b: &Oriented) -> Option<Shape> {
     let point = c - axis * axis.dot(c);
     let ra = (a.p - point).reject_from_normalized(axis).length();
     let rb = (b.p - point).reject_from_normalized(axis).length();
-    Some(Shape::Cylinder { axis, point, radius: 0.5 * (ra + rb) })
+    Some(Shape::Cylinder {
+        axis,
+        point,
+        radius: 0.5 * (ra + rb),
+    })
 }
 
 /// The sphere through two points with normals: centre midway between the closest points

@@ -54,7 +54,7 @@ fn dir(t: f64, p: f64) -> DVec3 {
 proptest! {
     /// Minimal sets of exact points give back the shape they lie on.
     #[test]
-    fn minimal_sets_recover_their_shape(t in 0.0..6.28f64, p in 0.1..3.0f64, r in 2.0..80.0f64,
+    fn minimal_sets_recover_their_shape(t in 0.0..std::f64::consts::TAU, p in 0.1..3.0f64, r in 2.0..80.0f64,
                                         c in prop::array::uniform3(-50.0..50.0f64),
                                         a in prop::array::uniform3(0.0..1.0f64), b in prop::array::uniform3(0.0..1.0f64),
                                         h in 0.1..1.3f64) {
@@ -94,7 +94,7 @@ proptest! {
 
     /// Gauss-Newton brings a perturbed start back to the shape exact points lie on.
     #[test]
-    fn refit_converges(t in 0.0..6.28f64, p in 0.2..2.9f64, r in 10.0..60.0f64, d in prop::array::uniform3(-1.0..1.0f64)) {
+    fn refit_converges(t in 0.0..std::f64::consts::TAU, p in 0.2..2.9f64, r in 10.0..60.0f64, d in prop::array::uniform3(-1.0..1.0f64)) {
         let axis = dir(t, p);
         let d = DVec3::from(d);
         for truth in [
@@ -118,24 +118,42 @@ proptest! {
 
 #[test]
 fn a_plane_patch_is_not_a_huge_cylinder() {
-    let pts: Vec<DVec3> = (0..100).map(|i| DVec3::new((i % 10) as f64 * 10.0, (i / 10) as f64 * 10.0, 0.0)).collect();
+    let pts: Vec<DVec3> = (0..100)
+        .map(|i| DVec3::new((i % 10) as f64 * 10.0, (i / 10) as f64 * 10.0, 0.0))
+        .collect();
     let normals = vec![DVec3::Z; pts.len()];
-    let huge = Shape::Cylinder { axis: DVec3::X, point: DVec3::new(0.0, 50.0, -5000.0), radius: 5000.0 };
+    let huge = Shape::Cylinder {
+        axis: DVec3::X,
+        point: DVec3::new(0.0, 50.0, -5000.0),
+        radius: 5000.0,
+    };
     let s = simplest(&huge, &pts, &normals, 1.0);
-    let Shape::Plane { normal, offset } = s else { panic!("{s:?}") };
+    let Shape::Plane { normal, offset } = s else {
+        panic!("{s:?}")
+    };
     assert!(normal.dot(DVec3::Z) > 1.0 - 1e-12 && offset.abs() < 1e-9);
     // A real cylinder stays one.
-    let cyl = Shape::Cylinder { axis: DVec3::Z, point: DVec3::ZERO, radius: 20.0 };
-    let pts: Vec<DVec3> = (0..100).map(|i| on(&cyl, i as f64 / 100.0, (i % 7) as f64 / 7.0).p).collect();
+    let cyl = Shape::Cylinder {
+        axis: DVec3::Z,
+        point: DVec3::ZERO,
+        radius: 20.0,
+    };
+    let pts: Vec<DVec3> = (0..100)
+        .map(|i| on(&cyl, i as f64 / 100.0, (i % 7) as f64 / 7.0).p)
+        .collect();
     assert_eq!(simplest(&cyl, &pts, &normals, 1.0), cyl);
 }
 
 #[test]
 fn samples_follow_area_and_seed() {
     // Two triangles of areas 1 and 3 (mm²), far apart.
-    let soup = vec![
+    let soup = [
         [DVec3::ZERO, DVec3::X, DVec3::Y * 2.0],
-        [DVec3::Z * 10.0, DVec3::Z * 10.0 + DVec3::X * 2.0, DVec3::Z * 10.0 + DVec3::Y * 3.0],
+        [
+            DVec3::Z * 10.0,
+            DVec3::Z * 10.0 + DVec3::X * 2.0,
+            DVec3::Z * 10.0 + DVec3::Y * 3.0,
+        ],
     ];
     let m = Mesh::build(soup.iter().flatten().copied().collect(), &[[0, 1, 2], [3, 4, 5]], 1e-9);
     let s = sample_surface(&m, 4000, 7);
@@ -146,7 +164,9 @@ fn samples_follow_area_and_seed() {
         let [a, b, c] = m.corners(*t as usize);
         let n = (b - a).cross(c - a).normalize();
         assert!(n.dot(*p - a).abs() < 1e-9, "off its triangle");
-        let inside = [(a, b), (b, c), (c, a)].iter().all(|(u, v)| (*v - *u).cross(*p - *u).dot(n) >= -1e-9);
+        let inside = [(a, b), (b, c), (c, a)]
+            .iter()
+            .all(|(u, v)| (*v - *u).cross(*p - *u).dot(n) >= -1e-9);
         assert!(inside);
     }
     assert_eq!(s, sample_surface(&m, 4000, 7));
@@ -160,7 +180,12 @@ fn a_box_is_six_planes_and_a_box_volume() {
     let c = run(&m, &ClassifySettings::default()).expect("classified");
     assert_eq!(c.primitives.len(), 6);
     for t in &truth {
-        assert!(c.primitives.iter().any(|p| testsets::matches(t, &p.shape, c.thresholds.eps).is_some()), "{t:?} missing");
+        assert!(
+            c.primitives
+                .iter()
+                .any(|p| testsets::matches(t, &p.shape, c.thresholds.eps).is_some()),
+            "{t:?} missing"
+        );
     }
     // Every triangle explained; the labelled areas add up to the surface.
     assert!(c.labels.iter().all(Option::is_some));
@@ -175,7 +200,15 @@ fn a_box_is_six_planes_and_a_box_volume() {
 
 #[test]
 fn an_l_extrusion_is_a_prism() {
-    let l = [(0.0, 0.0), (60.0, 0.0), (60.0, 15.0), (15.0, 15.0), (15.0, 50.0), (0.0, 50.0)].map(|(x, z)| DVec2::new(x, z));
+    let l = [
+        (0.0, 0.0),
+        (60.0, 0.0),
+        (60.0, 15.0),
+        (15.0, 15.0),
+        (15.0, 50.0),
+        (0.0, 50.0),
+    ]
+    .map(|(x, z)| DVec2::new(x, z));
     let m = mesh_of(&samples::prism(&l, 40.0));
     let c = run(&m, &ClassifySettings::default()).expect("classified");
     assert_eq!(c.primitives.len(), 8, "{:?}", c.primitives);
@@ -190,16 +223,27 @@ fn an_l_extrusion_is_a_prism() {
 fn a_hollow_box_finds_its_outside_as_a_box() {
     let m = mesh_of(&samples::closed_box(100.0, 80.0, 60.0, 3.0));
     let c = run(&m, &ClassifySettings::default()).expect("classified");
-    assert_eq!(c.primitives.iter().filter(|p| p.shape.kind() == ShapeKind::Plane).count(), 12);
+    assert_eq!(
+        c.primitives
+            .iter()
+            .filter(|p| p.shape.kind() == ShapeKind::Plane)
+            .count(),
+        12
+    );
     assert_eq!(c.primitives.len(), 12);
     let boxes: Vec<_> = c.volumes.iter().filter(|v| v.kind == VolumeKind::Box).collect();
     assert_eq!(boxes.len(), 1);
     // The outer box: its planes are the ones facing away from the centre at the outside.
     let centre = DVec3::new(50.0, 40.0, 30.0);
     for &k in &boxes[0].primitives {
-        let Shape::Plane { normal, offset } = c.primitives[k as usize].shape else { panic!() };
+        let Shape::Plane { normal, offset } = c.primitives[k as usize].shape else {
+            panic!()
+        };
         let out = offset - normal.dot(centre);
-        assert!((out - 50.0).abs() < 1e-6 || (out - 40.0).abs() < 1e-6 || (out - 30.0).abs() < 1e-6, "{out}");
+        assert!(
+            (out - 50.0).abs() < 1e-6 || (out - 40.0).abs() < 1e-6 || (out - 30.0).abs() < 1e-6,
+            "{out}"
+        );
     }
     // The cavity's six walls are left as surfaces of the graph.
     assert_eq!(c.graph.nodes.iter().filter(|n| n.kind == NodeKind::Surface).count(), 6);
@@ -212,7 +256,11 @@ fn tube_is_one_cylinder_volume_with_caps_and_bore() {
     assert_eq!(c.volumes.len(), 1, "{:?}", c.volumes);
     assert_eq!(c.volumes[0].kind, VolumeKind::Cylinder);
     assert_eq!(c.volumes[0].primitives.len(), 4);
-    let bores = c.primitives.iter().filter(|p| matches!(p.shape, Shape::Cylinder { .. }) && !p.outward).count();
+    let bores = c
+        .primitives
+        .iter()
+        .filter(|p| matches!(p.shape, Shape::Cylinder { .. }) && !p.outward)
+        .count();
     assert_eq!(bores, 1);
 }
 
@@ -245,12 +293,27 @@ fn same_seed_same_result() {
 #[test]
 fn bad_input_is_an_error() {
     let m = mesh_of(&samples::cuboid(DVec3::ZERO, DVec3::ONE));
-    let bad = ClassifySettings { thickness: f64::NAN, ..ClassifySettings::default() };
-    assert!(matches!(run(&m, &bad), Err(ClassifyError::Setting { name: "thickness", .. })));
-    let bad = ClassifySettings { samples: 5, ..ClassifySettings::default() };
-    assert!(matches!(run(&m, &bad), Err(ClassifyError::Setting { name: "samples", .. })));
+    let bad = ClassifySettings {
+        thickness: f64::NAN,
+        ..ClassifySettings::default()
+    };
+    assert!(matches!(
+        run(&m, &bad),
+        Err(ClassifyError::Setting { name: "thickness", .. })
+    ));
+    let bad = ClassifySettings {
+        samples: 5,
+        ..ClassifySettings::default()
+    };
+    assert!(matches!(
+        run(&m, &bad),
+        Err(ClassifyError::Setting { name: "samples", .. })
+    ));
     let empty = Mesh::build(Vec::new(), &[], 1e-9);
-    assert_eq!(run(&empty, &ClassifySettings::default()).err(), Some(ClassifyError::NoSurface));
+    assert_eq!(
+        run(&empty, &ClassifySettings::default()).err(),
+        Some(ClassifyError::NoSurface)
+    );
 }
 
 #[test]
@@ -258,7 +321,8 @@ fn bad_input_is_an_error() {
 fn measure_accuracy() {
     let levels = std::env::var("NOISE").map_or(vec![0.0, 0.1, 0.25, 0.5], |v| vec![v.parse().expect("a number")]);
     for noise in levels {
-        let (mut found, mut total, mut phantoms, mut worst_share, mut worst_deg, mut worst_rel) = (0, 0, 0, 0.0f64, 0.0f64, 0.0f64);
+        let (mut found, mut total, mut phantoms, mut worst_share, mut worst_deg, mut worst_rel) =
+            (0, 0, 0, 0.0f64, 0.0f64, 0.0f64);
         for seed in 0..5 {
             for set in testsets::standard(noise, seed) {
                 let c = classify(&set);
@@ -268,10 +332,20 @@ fn measure_accuracy() {
                 worst_deg = worst_deg.max(s.worst_angle_deg);
                 worst_rel = worst_rel.max(s.worst_radius_rel);
                 if s.found < s.total {
-                    eprintln!("  {} missed: {:?}", set.name, c.primitives.iter().map(|p| (p.area / c.surface_area, p.shape)).collect::<Vec<_>>());
+                    eprintln!(
+                        "  {} missed: {:?}",
+                        set.name,
+                        c.primitives
+                            .iter()
+                            .map(|p| (p.area / c.surface_area, p.shape))
+                            .collect::<Vec<_>>()
+                    );
                 }
             }
         }
-        eprintln!("noise {noise}: found {found}/{total}, phantoms {phantoms}, worst unmatched share {worst_share:.4}, worst angle {worst_deg:.3}°, worst radius {:.3} %", worst_rel * 100.0);
+        eprintln!(
+            "noise {noise}: found {found}/{total}, phantoms {phantoms}, worst unmatched share {worst_share:.4}, worst angle {worst_deg:.3}°, worst radius {:.3} %",
+            worst_rel * 100.0
+        );
     }
 }

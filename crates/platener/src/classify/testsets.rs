@@ -8,8 +8,8 @@ use glam::{DQuat, DVec3};
 use platener_geom::rng::SplitMix64;
 use serde::Serialize;
 
-use super::shape::Shape;
 use super::Classification;
+use super::shape::Shape;
 use crate::mesh::Mesh;
 use crate::read::Triangle;
 
@@ -54,10 +54,16 @@ pub fn fine_box(size: DVec3, cell: f64) -> (Vec<Triangle>, Vec<Shape>) {
                 p
             });
             // u × v is +axis: the far side faces out as made, the near side is turned.
-            tris.extend(face.into_iter().map(|t| if side > 0.5 { t } else { [t[0], t[2], t[1]] }));
+            tris.extend(
+                face.into_iter()
+                    .map(|t| if side > 0.5 { t } else { [t[0], t[2], t[1]] }),
+            );
             let mut n = DVec3::ZERO;
             n[axis] = if side > 0.5 { 1.0 } else { -1.0 };
-            truth.push(Shape::Plane { normal: n, offset: side * size[axis] });
+            truth.push(Shape::Plane {
+                normal: n,
+                offset: side * size[axis],
+            });
         }
     }
     (tris, truth)
@@ -81,9 +87,17 @@ pub fn revolved(r0: f64, r1: f64, bore: f64, h: f64, seg: usize, cell: f64) -> V
     let radial = steps(r0.max(r1) - bore, cell);
     let mut t = patch(seg, rings, |a, b| polar(a, r0 + (r1 - r0) * b, b * h));
     if bore > 0.0 {
-        t.extend(patch(seg, rings, |a, b| polar(a, bore, b * h)).into_iter().map(|x| [x[0], x[2], x[1]]));
+        t.extend(
+            patch(seg, rings, |a, b| polar(a, bore, b * h))
+                .into_iter()
+                .map(|x| [x[0], x[2], x[1]]),
+        );
     }
-    t.extend(patch(seg, radial, |a, b| polar(a, bore + (r1 - bore) * b, h)).into_iter().map(|x| [x[0], x[2], x[1]]));
+    t.extend(
+        patch(seg, radial, |a, b| polar(a, bore + (r1 - bore) * b, h))
+            .into_iter()
+            .map(|x| [x[0], x[2], x[1]]),
+    );
     t.extend(patch(seg, radial, |a, b| polar(a, bore + (r0 - bore) * b, 0.0)));
     t
 }
@@ -130,15 +144,29 @@ pub fn moved(s: &Shape, rot: DQuat, shift: DVec3) -> Shape {
     match *s {
         Shape::Plane { normal, offset } => {
             let n = rot * normal;
-            Shape::Plane { normal: n, offset: offset + n.dot(shift) }
+            Shape::Plane {
+                normal: n,
+                offset: offset + n.dot(shift),
+            }
         }
         Shape::Cylinder { axis, point, radius } => {
             let a = rot * axis;
             let p = rot * point + shift;
-            Shape::Cylinder { axis: a, point: p - a * a.dot(p), radius }
+            Shape::Cylinder {
+                axis: a,
+                point: p - a * a.dot(p),
+                radius,
+            }
         }
-        Shape::Sphere { center, radius } => Shape::Sphere { center: rot * center + shift, radius },
-        Shape::Cone { apex, axis, half_angle } => Shape::Cone { apex: rot * apex + shift, axis: rot * axis, half_angle },
+        Shape::Sphere { center, radius } => Shape::Sphere {
+            center: rot * center + shift,
+            radius,
+        },
+        Shape::Cone { apex, axis, half_angle } => Shape::Cone {
+            apex: rot * apex + shift,
+            axis: rot * axis,
+            half_angle,
+        },
     }
 }
 
@@ -152,24 +180,55 @@ pub fn standard(noise: f64, seed: u64) -> Vec<TestSet> {
     let slope = (25.0f64 / 50.0).atan();
     let raw: Vec<(&str, Vec<Triangle>, Vec<Shape>)> = vec![
         ("box", box_tris, box_truth),
-        ("tube", revolved(30.0, 30.0, 20.0, 60.0, 96, 2.0), vec![
-            Shape::Cylinder { axis: z, point: DVec3::ZERO, radius: 30.0 },
-            Shape::Cylinder { axis: z, point: DVec3::ZERO, radius: 20.0 },
-            plane(z, 60.0),
-            plane(-z, 0.0),
-        ]),
-        ("sphere", crate::samples::sphere(DVec3::ZERO, 40.0, 128, 64), vec![Shape::Sphere { center: DVec3::ZERO, radius: 40.0 }]),
-        ("cone", revolved(40.0, 15.0, 0.0, 50.0, 112, 2.0), vec![
-            Shape::Cone { apex: DVec3::new(0.0, 0.0, 80.0), axis: -z, half_angle: slope },
-            plane(z, 50.0),
-            plane(-z, 0.0),
-        ]),
+        (
+            "tube",
+            revolved(30.0, 30.0, 20.0, 60.0, 96, 2.0),
+            vec![
+                Shape::Cylinder {
+                    axis: z,
+                    point: DVec3::ZERO,
+                    radius: 30.0,
+                },
+                Shape::Cylinder {
+                    axis: z,
+                    point: DVec3::ZERO,
+                    radius: 20.0,
+                },
+                plane(z, 60.0),
+                plane(-z, 0.0),
+            ],
+        ),
+        (
+            "sphere",
+            crate::samples::sphere(DVec3::ZERO, 40.0, 128, 64),
+            vec![Shape::Sphere {
+                center: DVec3::ZERO,
+                radius: 40.0,
+            }],
+        ),
+        (
+            "cone",
+            revolved(40.0, 15.0, 0.0, 50.0, 112, 2.0),
+            vec![
+                Shape::Cone {
+                    apex: DVec3::new(0.0, 0.0, 80.0),
+                    axis: -z,
+                    half_angle: slope,
+                },
+                plane(z, 50.0),
+                plane(-z, 0.0),
+            ],
+        ),
     ];
     raw.into_iter()
         .enumerate()
         .map(|(i, (name, tris, truth))| {
             let (mesh, rot, shift) = roughen_and_move(&tris, noise, seed.wrapping_mul(31).wrapping_add(i as u64));
-            TestSet { name: format!("{name} (noise {noise} mm, seed {seed})"), mesh, truth: truth.iter().map(|s| moved(s, rot, shift)).collect() }
+            TestSet {
+                name: format!("{name} (noise {noise} mm, seed {seed})"),
+                mesh,
+                truth: truth.iter().map(|s| moved(s, rot, shift)).collect(),
+            }
         })
         .collect()
 }
@@ -202,18 +261,48 @@ pub fn matches(truth: &Shape, got: &Shape, eps: f64) -> Option<(f64, f64)> {
             let deg = n.dot(m).clamp(-1.0, 1.0).acos().to_degrees();
             (deg, 0.0, deg <= 0.5 && (d - e).abs() <= eps)
         }
-        (Shape::Cylinder { axis: a, point: p, radius: r }, Shape::Cylinder { axis: b, point: q, radius: s }) => {
+        (
+            Shape::Cylinder {
+                axis: a,
+                point: p,
+                radius: r,
+            },
+            Shape::Cylinder {
+                axis: b,
+                point: q,
+                radius: s,
+            },
+        ) => {
             let (deg, rel) = (angle(a, b), (r - s).abs() / r);
-            (deg, rel, deg <= 0.5 && rel <= 0.02 && (q - p).reject_from_normalized(a).length() <= 0.02 * r)
+            (
+                deg,
+                rel,
+                deg <= 0.5 && rel <= 0.02 && (q - p).reject_from_normalized(a).length() <= 0.02 * r,
+            )
         }
         (Shape::Sphere { center: c, radius: r }, Shape::Sphere { center: d, radius: s }) => {
             let rel = (r - s).abs() / r;
             (0.0, rel, rel <= 0.02 && (c - d).length() <= 0.02 * r)
         }
-        (Shape::Cone { apex: p, axis: a, half_angle: h }, Shape::Cone { apex: q, axis: b, half_angle: k }) => {
+        (
+            Shape::Cone {
+                apex: p,
+                axis: a,
+                half_angle: h,
+            },
+            Shape::Cone {
+                apex: q,
+                axis: b,
+                half_angle: k,
+            },
+        ) => {
             let deg = angle(a, b);
             let ha = (h - k).abs().to_degrees();
-            (deg.max(ha), 0.0, deg <= 0.5 && ha <= 0.5 && (p - q).length() <= 2.0 * eps)
+            (
+                deg.max(ha),
+                0.0,
+                deg <= 0.5 && ha <= 0.5 && (p - q).length() <= 2.0 * eps,
+            )
         }
         _ => return None,
     };
@@ -223,9 +312,16 @@ pub fn matches(truth: &Shape, got: &Shape, eps: f64) -> Option<(f64, f64)> {
 /// Scores `c` against the truth of `set`.
 pub fn score(set: &TestSet, c: &Classification) -> Score {
     let eps = c.thresholds.eps;
-    let mut s = Score { total: set.truth.len(), ..Score::default() };
+    let mut s = Score {
+        total: set.truth.len(),
+        ..Score::default()
+    };
     for t in &set.truth {
-        let best = c.primitives.iter().filter_map(|p| matches(t, &p.shape, eps)).min_by(|a, b| a.0.total_cmp(&b.0));
+        let best = c
+            .primitives
+            .iter()
+            .filter_map(|p| matches(t, &p.shape, eps))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
         if let Some((deg, rel)) = best {
             s.found += 1;
             s.worst_angle_deg = s.worst_angle_deg.max(deg);

@@ -78,8 +78,22 @@ impl Ctx<'_> {
 
 /// Finds the volumes: boxes, then prisms, then cylinders and spheres, each primitive used
 /// by at most one volume.
-pub fn find(mesh: &Mesh, samples: &[Sample], prims: &[Primitive], labels: &[Option<u32>], adjacency: &[[u32; 2]], th: &Thresholds) -> Vec<Volume> {
-    let cx = Ctx { mesh, samples, prims, labels, adjacency, th };
+pub fn find(
+    mesh: &Mesh,
+    samples: &[Sample],
+    prims: &[Primitive],
+    labels: &[Option<u32>],
+    adjacency: &[[u32; 2]],
+    th: &Thresholds,
+) -> Vec<Volume> {
+    let cx = Ctx {
+        mesh,
+        samples,
+        prims,
+        labels,
+        adjacency,
+        th,
+    };
     let pairs = parallel_pairs(&cx);
     let mut used = vec![false; prims.len()];
     let mut out = boxes(&cx, &pairs, &mut used);
@@ -88,11 +102,34 @@ pub fn find(mesh: &Mesh, samples: &[Sample], prims: &[Primitive], labels: &[Opti
     out
 }
 
+/// The volume of `kind` made of `prims` (sorted here), each marked used.
+fn claim(
+    used: &mut [bool],
+    mut prims: Vec<u32>,
+    kind: VolumeKind,
+    caps: Option<[u32; 2]>,
+    axis: Option<DVec3>,
+) -> Volume {
+    prims.sort_unstable();
+    for &k in &prims {
+        used[k as usize] = true;
+    }
+    Volume {
+        kind,
+        primitives: prims,
+        caps,
+        axis,
+    }
+}
+
 /// Bucket of a unit direction on a latitude-longitude grid of `n` rows.
 fn bucket(d: DVec3, n: usize) -> (usize, usize) {
     let lat = d.z.clamp(-1.0, 1.0).acos() / std::f64::consts::PI;
     let lon = (d.y.atan2(d.x) / std::f64::consts::TAU).rem_euclid(1.0);
-    (((lat * n as f64) as usize).min(n - 1), ((lon * 2.0 * n as f64) as usize).min(2 * n - 1))
+    (
+        ((lat * n as f64) as usize).min(n - 1),
+        ((lon * 2.0 * n as f64) as usize).min(2 * n - 1),
+    )
 }
 
 /// Pairs of planes whose normals are opposite within the parallel tolerance, with the solid
@@ -102,8 +139,11 @@ fn parallel_pairs(cx: &Ctx<'_>) -> Vec<Pair> {
     // Buckets at least twice the tolerance wide: an opposite normal is in the bucket of the
     // exact opposite direction or a neighbouring one.
     let rows = ((std::f64::consts::PI / (2.0 * tol)).floor() as usize).clamp(1, 90);
-    let planes: Vec<(u32, DVec3, f64)> = (0..cx.prims.len() as u32).filter_map(|k| cx.plane(k).map(|(n, d)| (k, n, d))).collect();
-    let mut buckets: Vec<((usize, usize), usize)> = planes.iter().enumerate().map(|(i, p)| (bucket(p.1, rows), i)).collect();
+    let planes: Vec<(u32, DVec3, f64)> = (0..cx.prims.len() as u32)
+        .filter_map(|k| cx.plane(k).map(|(n, d)| (k, n, d)))
+        .collect();
+    let mut buckets: Vec<((usize, usize), usize)> =
+        planes.iter().enumerate().map(|(i, p)| (bucket(p.1, rows), i)).collect();
     buckets.sort_unstable();
     let mut pairs = Vec::new();
     for (i, &(a, na, da)) in planes.iter().enumerate() {
@@ -115,7 +155,10 @@ fn parallel_pairs(cx: &Ctx<'_>) -> Vec<Pair> {
             }
             let at_pole = rr == 0 || rr == rows as i64 - 1;
             for &((br, bc), j) in &buckets {
-                let near_col = at_pole || { let d = (bc as i64 - c as i64).rem_euclid(2 * rows as i64); d <= 1 || d == 2 * rows as i64 - 1 };
+                let near_col = at_pole || {
+                    let d = (bc as i64 - c as i64).rem_euclid(2 * rows as i64);
+                    d <= 1 || d == 2 * rows as i64 - 1
+                };
                 if br as i64 != rr || !near_col || j <= i {
                     continue;
                 }
@@ -140,15 +183,22 @@ fn congruent(cx: &Ctx<'_>, a: u32, b: u32) -> bool {
     let Some((n, _)) = cx.plane(a) else { return false };
     let (u, v) = basis(n);
     let cells = |k: u32| -> BTreeSet<(i64, i64)> {
-        cx.prims[k as usize].samples.iter().map(|&i| {
-            let p = cx.samples[i as usize].at.p;
-            let q = DVec2::new(p.dot(u), p.dot(v)) / cx.th.cell;
-            (q.x.floor() as i64, q.y.floor() as i64)
-        }).collect()
+        cx.prims[k as usize]
+            .samples
+            .iter()
+            .map(|&i| {
+                let p = cx.samples[i as usize].at.p;
+                let q = DVec2::new(p.dot(u), p.dot(v)) / cx.th.cell;
+                (q.x.floor() as i64, q.y.floor() as i64)
+            })
+            .collect()
     };
     let (ca, cb) = (cells(a), cells(b));
     let covered = |x: &BTreeSet<(i64, i64)>, y: &BTreeSet<(i64, i64)>| {
-        let hit = x.iter().filter(|c| (-1..=1).any(|dx| (-1..=1).any(|dy| y.contains(&(c.0 + dx, c.1 + dy))))).count();
+        let hit = x
+            .iter()
+            .filter(|c| (-1..=1).any(|dx| (-1..=1).any(|dy| y.contains(&(c.0 + dx, c.1 + dy)))))
+            .count();
         hit as f64 >= 0.95 * x.len() as f64
     };
     !ca.is_empty() && !cb.is_empty() && covered(&ca, &cb) && covered(&cb, &ca)
@@ -159,7 +209,12 @@ fn congruent(cx: &Ctx<'_>, a: u32, b: u32) -> bool {
 fn boxes(cx: &Ctx<'_>, pairs: &[Pair], used: &mut [bool]) -> Vec<Volume> {
     let sin_tol = cx.th.parallel_deg.to_radians().sin();
     let normal = |k: u32| cx.plane(k).map_or(DVec3::ZERO, |p| p.0);
-    let square = |p: &Pair, q: &Pair| normal(p.a).dot(normal(q.a)).abs() <= sin_tol && [p.a, p.b].iter().all(|&x| [q.a, q.b].iter().all(|&y| cx.adjacent(x, y)));
+    let square = |p: &Pair, q: &Pair| {
+        normal(p.a).dot(normal(q.a)).abs() <= sin_tol
+            && [p.a, p.b]
+                .iter()
+                .all(|&x| [q.a, q.b].iter().all(|&y| cx.adjacent(x, y)))
+    };
     let mut out = Vec::new();
     for i in 0..pairs.len() {
         for j in i + 1..pairs.len() {
@@ -169,12 +224,13 @@ fn boxes(cx: &Ctx<'_>, pairs: &[Pair], used: &mut [bool]) -> Vec<Volume> {
                 if all.iter().any(|&x| used[x as usize]) || !(square(p, q) && square(p, r) && square(q, r)) {
                     continue;
                 }
-                let mut prims = all.to_vec();
-                prims.sort_unstable();
-                for &x in &all {
-                    used[x as usize] = true;
-                }
-                out.push(Volume { kind: VolumeKind::Box, primitives: prims, caps: Some([p.a, p.b]), axis: Some(normal(p.a)) });
+                out.push(claim(
+                    used,
+                    all.to_vec(),
+                    VolumeKind::Box,
+                    Some([p.a, p.b]),
+                    Some(normal(p.a)),
+                ));
             }
         }
     }
@@ -196,7 +252,9 @@ fn prisms(cx: &Ctx<'_>, pairs: &[Pair], used: &mut [bool]) -> Vec<Volume> {
             continue;
         }
         let planes = lateral.iter().filter(|&&k| cx.plane(k).is_some()).count();
-        let round = lateral.iter().all(|&k| matches!(cx.prims[k as usize].shape, Shape::Cylinder { .. }));
+        let round = lateral
+            .iter()
+            .all(|&k| matches!(cx.prims[k as usize].shape, Shape::Cylinder { .. }));
         let kind = match (planes, round) {
             (4, _) if lateral.len() == 4 => VolumeKind::Box,
             (_, true) => VolumeKind::Cylinder,
@@ -204,11 +262,7 @@ fn prisms(cx: &Ctx<'_>, pairs: &[Pair], used: &mut [bool]) -> Vec<Volume> {
         };
         let mut prims = lateral;
         prims.extend([p.a, p.b]);
-        prims.sort_unstable();
-        for &k in &prims {
-            used[k as usize] = true;
-        }
-        out.push(Volume { kind, primitives: prims, caps: Some([p.a, p.b]), axis: cx.plane(p.a).map(|x| x.0) });
+        out.push(claim(used, prims, kind, Some([p.a, p.b]), cx.plane(p.a).map(|x| x.0)));
     }
     out
 }
@@ -271,25 +325,31 @@ fn round(cx: &Ctx<'_>, used: &mut [bool]) -> Vec<Volume> {
         }
         match prim.shape {
             Shape::Sphere { .. } => {
-                used[k] = true;
-                out.push(Volume { kind: VolumeKind::Sphere, primitives: vec![k as u32], caps: None, axis: None });
+                out.push(claim(used, vec![k as u32], VolumeKind::Sphere, None, None));
             }
             Shape::Cylinder { axis, point, .. } => {
                 let caps: Vec<u32> = (0..cx.prims.len() as u32)
-                    .filter(|&c| !used[c as usize] && cx.adjacent(k as u32, c) && cx.plane(c).is_some_and(|(n, _)| n.cross(axis).length() <= sin_tol))
+                    .filter(|&c| {
+                        !used[c as usize]
+                            && cx.adjacent(k as u32, c)
+                            && cx.plane(c).is_some_and(|(n, _)| n.cross(axis).length() <= sin_tol)
+                    })
                     .collect();
-                let coaxial = |s: &Shape| matches!(*s, Shape::Cylinder { axis: a, point: p, .. }
-                    if a.cross(axis).length() <= sin_tol && (p - point).reject_from_normalized(axis).length() <= cx.th.eps);
+                let coaxial = |s: &Shape| {
+                    matches!(*s, Shape::Cylinder { axis: a, point: p, .. }
+                    if a.cross(axis).length() <= sin_tol && (p - point).reject_from_normalized(axis).length() <= cx.th.eps)
+                };
                 let bores: Vec<u32> = (0..cx.prims.len() as u32)
-                    .filter(|&b| b as usize != k && !used[b as usize] && !cx.prims[b as usize].outward && coaxial(&cx.prims[b as usize].shape))
+                    .filter(|&b| {
+                        b as usize != k
+                            && !used[b as usize]
+                            && !cx.prims[b as usize].outward
+                            && coaxial(&cx.prims[b as usize].shape)
+                    })
                     .filter(|&b| caps.iter().any(|&c| cx.adjacent(b, c)))
                     .collect();
-                let mut prims: Vec<u32> = caps.iter().chain(&bores).copied().chain([k as u32]).collect();
-                prims.sort_unstable();
-                for &x in &prims {
-                    used[x as usize] = true;
-                }
-                out.push(Volume { kind: VolumeKind::Cylinder, primitives: prims, caps: None, axis: Some(axis) });
+                let prims: Vec<u32> = caps.iter().chain(&bores).copied().chain([k as u32]).collect();
+                out.push(claim(used, prims, VolumeKind::Cylinder, None, Some(axis)));
             }
             _ => {}
         }
