@@ -42,6 +42,7 @@
 
 pub mod assembly;
 pub mod bends;
+pub mod classify;
 pub mod cleanup;
 pub mod context;
 pub mod convert;
