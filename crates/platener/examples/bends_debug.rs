@@ -31,7 +31,13 @@ fn main() {
         &platener::Cancel::default(),
     )
     .expect("converts");
-    let plan = &state.export.as_ref().unwrap().plan;
+    let bundle = state.export.as_ref().unwrap();
+    let plan = &bundle.plan;
+    let score = platener::score::score(state.mesh.as_ref().unwrap(), bundle, state.plates.as_deref());
+    println!(
+        "cut {:.0} mm engrave {:.0} mm score {:.3}",
+        bundle.report.cut_length, bundle.report.engrave_length, score.total
+    );
     let v = platener::verify::verify(plan, state.mesh.as_deref());
     println!(
         "parts {} covered {:?} inside {:?} groups {} interference {:.4} problems {:?}",
@@ -42,6 +48,12 @@ fn main() {
         v.interference_share,
         v.problems
     );
+    for p in plan.parts.iter().filter(|p| !p.segments.is_empty()) {
+        println!("bent part {} merged {:?}", p.id, p.merged);
+    }
+    for j in plan.joints.iter().filter(|j| v.joints_not_meeting.contains(&j.label)) {
+        println!("unmet joint {:?}", j);
+    }
     if std::env::var_os("PIECES").is_some() {
         pieces_report(plan);
     }

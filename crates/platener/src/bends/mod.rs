@@ -145,8 +145,9 @@ pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Re
         SheetSize::Fixed { width, height } => (width - margin, height - margin),
         SheetSize::Fit => (f64::INFINITY, f64::INFINITY),
     };
-    let bends = compute(&plates.plates, settings.bending, material, sheet)
-        .map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?;
+    let off_grid = |e| Error::model(cx.model(), ModelProblem::OffGrid(e));
+    let mut bends = compute(&plates.plates, settings.bending, material, sheet).map_err(off_grid)?;
+    keep_sound(&mut bends, plates, settings).map_err(off_grid)?;
     for (k, part) in bends.parts.iter().enumerate() {
         let t = plates.plates[part.members[0].plate as usize].thickness;
         let round = part.bends.iter().map(|b| b.zone.corner_gap()).fold(0.0, f64::max);
@@ -173,6 +174,32 @@ pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Re
         );
     }
     Ok(bends)
+}
+
+/// Drops the bent parts that would not hold together once their plates carry their joints
+/// (a joint's slot or shortened fingers cutting a plate apart next to a bend, a small facet
+/// left all joint): their plates stay plates, which the `joints` step then joins as usual.
+fn keep_sound(bends: &mut Bends, plates: &Plates, settings: &Settings) -> std::result::Result<(), GridError> {
+    let Some(style) = bends.style.filter(|_| !bends.parts.is_empty()) else {
+        return Ok(());
+    };
+    let joint_settings = crate::joints::settings_for(settings);
+    let (joints, _) = crate::joints::compute_except(&plates.plates, &joint_settings, &bends.unjointed())?;
+    let (sound, unsound): (Vec<BentPart>, Vec<BentPart>) = std::mem::take(&mut bends.parts)
+        .into_iter()
+        .partition(|p| crate::parts::bent::holds_together(p, plates, &joints, style));
+    bends.parts = sound;
+    for part in unsound {
+        let first = &part.members[0];
+        bends.refused.push(Refusal {
+            plates: [first.plate, part.members.get(1).map_or(first.plate, |m| m.plate)],
+            reason: format!(
+                "the bent part of plates {} would not hold together once jointed; they stay jointed plates",
+                plate_list(&part)
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// The plates of a bent part, numbered as in the plates step, for messages.

@@ -253,6 +253,16 @@ fn drop_unmet(plates: &[Plate], joints: &mut Joints) -> Vec<String> {
     warnings
 }
 
+/// The joint settings of a conversion: the user's, with the style that holds in the material
+/// where they chose none.
+pub(crate) fn settings_for(settings: &Settings) -> JointSettings {
+    let chosen = &settings.joints;
+    JointSettings {
+        style: Some(chosen.style.unwrap_or(JointStyle::for_material(settings.cut.material))),
+        ..chosen.clone()
+    }
+}
+
 /// Step `joints`: the plate graph and the joints along it, in the style the user chose or
 /// the one that holds in the material; bends of bent parts get none.
 pub fn run(
@@ -262,11 +272,7 @@ pub fn run(
     cx: &mut StepContext<'_>,
 ) -> Result<Joints> {
     cx.check_cancel()?;
-    let chosen = &settings.joints;
-    let joint_settings = JointSettings {
-        style: Some(chosen.style.unwrap_or(JointStyle::for_material(settings.cut.material))),
-        ..chosen.clone()
-    };
+    let joint_settings = settings_for(settings);
     let unjointed = bends.map(crate::bends::Bends::unjointed).unwrap_or_default();
     let (joints, warnings) = compute_except(&plates.plates, &joint_settings, &unjointed)
         .map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?;

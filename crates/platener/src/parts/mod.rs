@@ -6,7 +6,7 @@
 //! ([`loose`]). Outlines that joints left invalid are repaired ([`clean`]); necks the joints
 //! left narrower than twice the thickness are reported ([`necks`]).
 
-mod bent;
+pub(crate) mod bent;
 pub mod clean;
 mod loose;
 pub mod necks;
