@@ -20,6 +20,8 @@ pub struct Candidate {
     pub axis: DVec3,
     /// Where both plates reach the line, as parameters along `axis` from `point`.
     pub span: (f64, f64),
+    /// Where either plate reaches the line (the bend zone's extent along it).
+    pub reach: (f64, f64),
     /// Per plate: the unit direction in its mid-plane, perpendicular to the line, into it.
     pub into: [DVec3; 2],
     /// Per plate: how far it reaches from the line (its depth across it), mm.
@@ -90,6 +92,7 @@ fn candidate(plates: &[Plate], a: usize, b: usize) -> Option<((usize, usize), Ca
         point,
         axis,
         span,
+        reach: (ea.span.0.min(eb.span.0), ea.span.1.max(eb.span.1)),
         into: [ea.into, eb.into],
         depth: [ea.depth, eb.depth],
         enclosed,

@@ -93,7 +93,7 @@ pub struct BendLine {
     pub enclosed_deg: f64,
     /// The bend zone.
     pub zone: Zone,
-    /// The middle of the zone on the flat part, where both plates reach the line.
+    /// The middle of the zone on the flat part, as far as either plate reaches along it.
     pub line: [DVec2; 2],
     /// Per member: where its flat segment begins (the zone's edge on its side), in the model.
     pub tangents: [HalfPlane; 2],
@@ -385,7 +385,7 @@ fn bend_line(c: &Candidate, zone: Zone, parent: usize, pm: &Member, members: [us
         members,
         enclosed_deg: c.enclosed.to_degrees(),
         zone,
-        line: [flat(c.span.0), flat(c.span.1)],
+        line: [flat(c.reach.0), flat(c.reach.1)],
         tangents: [t_half(0), t_half(1)],
     }
 }

@@ -67,8 +67,12 @@ pub(super) fn part(
     }
     let polygon = united.into_iter().next().unwrap_or_default();
     let mut segments = Vec::with_capacity(bent.members.len());
+    // Each member's largest piece is its segment (bends name them by member); other pieces
+    // follow, then the flaps.
     for (i, m) in bent.members.iter().enumerate() {
-        segments.push(segment(bent, i, m, (&developed[i], &polygon), t)?);
+        let mut pieces = segment(bent, i, m, (&developed[i], &polygon), t)?.into_iter();
+        segments.extend(pieces.next());
+        extra_segments.splice(0..0, pieces);
     }
     segments.extend(extra_segments);
     let bends = bent
@@ -137,14 +141,15 @@ fn reach_to_line(h: &HalfPlane, m: &Member, t: f64, own: &Polygon) -> Result<Vec
     difference(std::slice::from_ref(&hull), std::slice::from_ref(own))
 }
 
-/// Member `i`'s flat segment: its developed shape beyond the zone edge of each of its bends.
+/// Member `i`'s flat segments: its developed shape beyond the zone edge of each of its
+/// bends, largest first (joints may leave more than one piece; all share the member's frame).
 fn segment(
     bent: &BentPart,
     i: usize,
     m: &Member,
     (developed, flat): (&[Polygon], &Polygon),
     t: f64,
-) -> Result<Segment, GridError> {
+) -> Result<Vec<Segment>, GridError> {
     // The flat part's material near the member (closing the outline may have filled a
     // little beside the member's own shape), so segments and zones make up the whole part.
     let near = platener_geom::offset::offset(developed, 0.25 * t)?;
@@ -155,15 +160,21 @@ fn segment(
         local = b.tangents[side].cut(m, t, &local)?;
     }
     local.sort_by(|a, b| b.area().total_cmp(&a.area()));
-    let polygon = local
-        .into_iter()
-        .next()
-        .map(|p| m.place.apply_polygon(&p))
-        .unwrap_or_default();
-    Ok(Segment {
-        polygon,
-        frame: m.flat_frame(),
-    })
+    if local.is_empty() {
+        local.push(Polygon::default());
+    }
+    let frame = m.flat_frame();
+    Ok(local
+        .iter()
+        .map(|p| Segment {
+            polygon: if p.outer.is_empty() {
+                p.clone()
+            } else {
+                m.place.apply_polygon(p)
+            },
+            frame,
+        })
+        .collect())
 }
 
 /// The cut of member `i` at a seam it is on (paper and card: both sides end at the line
