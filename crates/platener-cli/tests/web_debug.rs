@@ -9,7 +9,7 @@ mod web_support;
 use serde_json::{Value, json};
 use web_support::{Server, example_box};
 
-const PLATE_STEPS: [&str; 13] = [
+const PLATE_STEPS: [&str; 14] = [
     "read", "cleanup", "weld", "mesh", "coplanar", "shapes", "plates", "bends", "joints", "parts", "kerf", "labels",
     "sheets", "export",
 ];

@@ -148,25 +148,7 @@ impl<'a> Layout<'a> {
         };
         let t = self.plates[parent].thickness;
         let moving = self.groups[self.group[child]].clone();
-        let mut members: Vec<Member> = moving.iter().map(|&p| self.members[p].clone()).collect();
-        let mut shapes: Vec<Vec<Polygon>> = moving.iter().map(|&p| self.flat[p].clone()).collect();
-        let k = moving
-            .iter()
-            .position(|&p| p == child)
-            .expect("the child is in its group");
-        let trial = develop(&self.members[parent], &members[k], c, t, zone.deduction());
-        if trial.flipped != members[k].flipped {
-            for (m, s) in members.iter_mut().zip(&mut shapes) {
-                *m = m.flip(t);
-                *s = s.iter().map(mirror_y).collect();
-            }
-        }
-        let placed = develop(&self.members[parent], &members[k], c, t, zone.deduction());
-        let motion = members[k].place.inverse().then(&placed.place);
-        for (m, s) in members.iter_mut().zip(&mut shapes) {
-            m.place = m.place.then(&motion);
-            *s = s.iter().map(|p| motion.apply_polygon(p)).collect();
-        }
+        let (members, mut shapes, k) = self.moved(&moving, parent, child, c, zone);
         let cut = |plate: usize| HalfPlane {
             point: c.point,
             axis: c.axis,
@@ -190,20 +172,9 @@ impl<'a> Layout<'a> {
         shapes[k] = self.developed(child, &members[k], &[hc])?;
         let strip = self.strip(&self.members[parent], c, parent, t, zone.deduction());
         let staying: Vec<usize> = self.groups[self.group[parent]].clone();
-        for &p in &staying {
-            let mine = if p == parent { &parent_shape } else { &self.flat[p] };
-            for (j, &q) in moving.iter().enumerate() {
-                if !boxes_meet(mine, &shapes[j]) {
-                    continue;
-                }
-                let mut shared = intersection(mine, &shapes[j])?;
-                if p == parent && q == child {
-                    shared = difference(&shared, std::slice::from_ref(&strip))?;
-                }
-                if total_area(&shared) > 0.5 * t * t {
-                    return Ok(Err(format!("laid flat, plate {} would overlap plate {}", q + 1, p + 1)));
-                }
-            }
+        let pair = (parent, child, &parent_shape, &strip);
+        if let Some((p, q)) = self.overlap(&staying, &moving, &shapes, pair, t)? {
+            return Ok(Err(format!("laid flat, plate {} would overlap plate {}", q + 1, p + 1)));
         }
         if !self.fits(
             staying
@@ -228,6 +199,69 @@ impl<'a> Layout<'a> {
         self.groups[gp].extend(moved);
         self.bends.push((ci, parent));
         Ok(Ok(()))
+    }
+
+    /// The group `moving` (holding `child`) laid into `parent`'s flat across `c`, flipped if
+    /// its frames face the other way: its members, their developed shapes, and the child's
+    /// index among them.
+    fn moved(
+        &self,
+        moving: &[usize],
+        parent: usize,
+        child: usize,
+        c: &Candidate,
+        zone: Zone,
+    ) -> (Vec<Member>, Vec<Vec<Polygon>>, usize) {
+        let t = self.plates[parent].thickness;
+        let mut members: Vec<Member> = moving.iter().map(|&p| self.members[p].clone()).collect();
+        let mut shapes: Vec<Vec<Polygon>> = moving.iter().map(|&p| self.flat[p].clone()).collect();
+        let k = moving
+            .iter()
+            .position(|&p| p == child)
+            .expect("the child is in its group");
+        let trial = develop(&self.members[parent], &members[k], c, t, zone.deduction());
+        if trial.flipped != members[k].flipped {
+            for (m, s) in members.iter_mut().zip(&mut shapes) {
+                *m = m.flip(t);
+                *s = s.iter().map(mirror_y).collect();
+            }
+        }
+        let placed = develop(&self.members[parent], &members[k], c, t, zone.deduction());
+        let motion = members[k].place.inverse().then(&placed.place);
+        for (m, s) in members.iter_mut().zip(&mut shapes) {
+            m.place = m.place.then(&motion);
+            *s = s.iter().map(|p| motion.apply_polygon(p)).collect();
+        }
+        (members, shapes, k)
+    }
+
+    /// The first pair (staying plate, moving plate) whose developed shapes overlap by more
+    /// than t²/2, if any; the parent and the child may overlap inside `strip` (the bend
+    /// deduction), and the parent is compared by its new shape.
+    fn overlap(
+        &self,
+        staying: &[usize],
+        moving: &[usize],
+        shapes: &[Vec<Polygon>],
+        (parent, child, parent_shape, strip): (usize, usize, &Vec<Polygon>, &Polygon),
+        t: f64,
+    ) -> Result<Option<(usize, usize)>, GridError> {
+        for &p in staying {
+            let mine = if p == parent { parent_shape } else { &self.flat[p] };
+            for (j, &q) in moving.iter().enumerate() {
+                if !boxes_meet(mine, &shapes[j]) {
+                    continue;
+                }
+                let mut shared = intersection(mine, &shapes[j])?;
+                if p == parent && q == child {
+                    shared = difference(&shared, std::slice::from_ref(strip))?;
+                }
+                if total_area(&shared) > 0.5 * t * t {
+                    return Ok(Some((p, q)));
+                }
+            }
+        }
+        Ok(None)
     }
 
     /// Whether plate `p` keeps a flat segment of at least a fifth of its area beyond the zone

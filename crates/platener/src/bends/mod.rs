@@ -270,13 +270,12 @@ fn orders(candidates: &[Candidate], plates: &[Plate]) -> Vec<Vec<usize>> {
     let mut easiest: Vec<usize> = (0..candidates.len()).collect();
     easiest.sort_by(|&i, &j| {
         let (a, b) = (&candidates[i], &candidates[j]);
-        (a.turn() - b.turn())
-            .abs()
-            .gt(&1e-6)
-            .then(|| a.turn().total_cmp(&b.turn()))
-            .unwrap_or(std::cmp::Ordering::Equal)
-            .then(b.length().total_cmp(&a.length()))
-            .then(i.cmp(&j))
+        let by_turn = if (a.turn() - b.turn()).abs() > 1e-6 {
+            a.turn().total_cmp(&b.turn())
+        } else {
+            std::cmp::Ordering::Equal
+        };
+        by_turn.then(b.length().total_cmp(&a.length())).then(i.cmp(&j))
     });
     let mut longest: Vec<usize> = (0..candidates.len()).collect();
     longest.sort_by(|&i, &j| {

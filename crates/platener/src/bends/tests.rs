@@ -33,23 +33,23 @@ fn hinges() -> Settings {
 fn a_hexagonal_tube_is_one_bent_part_with_five_bends_and_a_seam_when_hinges_are_asked_for() {
     let state = run_plate(tube(6, 50.0, 60.0, 3.0), hinges());
     let bends = state.bends.as_ref().expect("bends");
-    assert_eq!(state.plates.as_ref().unwrap().plates.len(), 6);
+    assert_eq!(state.plates.as_ref().expect("the step ran").plates.len(), 6);
     assert_eq!(bends.parts.len(), 1, "{:#?}", bends.refused);
     let part = &bends.parts[0];
     assert_eq!(part.members.len(), 6);
     assert_eq!(part.bends.len(), 5);
     assert_eq!(part.seams.len(), 1);
-    let parts = &state.parts.as_ref().unwrap().parts;
+    let parts = &state.parts.as_ref().expect("the step ran").parts;
     assert_eq!(parts.len(), 1);
     assert_eq!(parts[0].segments.len(), 6);
     // Chosen by material, the hexagon's 60° corners stay finger joints: the hinge would
     // round them by 4 mm.
     let auto = run_plate(tube(6, 50.0, 60.0, 3.0), Settings::default());
-    assert!(auto.bends.as_ref().unwrap().parts.is_empty());
+    assert!(auto.bends.as_ref().expect("the step ran").parts.is_empty());
     assert!(
         auto.bends
             .as_ref()
-            .unwrap()
+            .expect("the step ran")
             .refused
             .iter()
             .all(|r| r.reason.contains("rounding"))
@@ -67,9 +67,9 @@ fn plate_centre(plate: &crate::plates::Plate) -> DVec3 {
 fn folding_the_tube_back_puts_every_plate_where_it_was() {
     let (n, radius, wall) = (12, 50.0, 3.0);
     let state = run_plate(tube(n, radius, 60.0, wall), Settings::default());
-    let plates = &state.plates.as_ref().unwrap().plates;
-    let bent = &state.bends.as_ref().unwrap().parts[0];
-    let part = &state.parts.as_ref().unwrap().parts[0];
+    let plates = &state.plates.as_ref().expect("the step ran").plates;
+    let bent = &state.bends.as_ref().expect("the step ran").parts[0];
+    let part = &state.parts.as_ref().expect("the step ran").parts[0];
     for (i, m) in bent.members.iter().enumerate() {
         let plate = &plates[m.plate as usize];
         let seg = &part.segments[i];
@@ -81,7 +81,7 @@ fn folding_the_tube_back_puts_every_plate_where_it_was() {
         assert!(part.polygon.contains(DVec2::new(local.x, local.y)));
         // Every corner of the segment, folded back, lies within the plate's slab (as the
         // joints step cut it: the seam has fingers).
-        let outline = &state.joints.as_ref().unwrap().outlines[m.plate as usize];
+        let outline = &state.joints.as_ref().expect("the step ran").outlines[m.plate as usize];
         for q in &seg.polygon.outer {
             let p = plate
                 .frame
@@ -124,11 +124,11 @@ fn tubes_of_6_12_and_24_sides_and_a_cone_in_card_bend_into_one_part() {
     for n in [6, 12, 24] {
         let settings = if n == 6 { hinges() } else { Settings::default() };
         let state = run_plate(tube(n, 50.0, 60.0, 3.0), settings);
-        let b = state.bends.as_ref().unwrap();
+        let b = state.bends.as_ref().expect("the step ran");
         assert_eq!(b.parts.len(), 1, "{n} sides: {:#?}", b.refused);
         assert_eq!(b.parts[0].bends.len(), n - 1, "{n} sides");
         assert_eq!(b.parts[0].seams.len(), 1, "{n} sides");
-        assert_eq!(state.parts.as_ref().unwrap().parts.len(), 1, "{n} sides");
+        assert_eq!(state.parts.as_ref().expect("the step ran").parts.len(), 1, "{n} sides");
     }
 }
 
@@ -139,15 +139,15 @@ fn no_bending_keeps_every_plate_a_part() {
         ..Settings::default()
     };
     let state = run_plate(tube(12, 50.0, 60.0, 3.0), settings);
-    assert!(state.bends.as_ref().unwrap().parts.is_empty());
-    assert_eq!(state.parts.as_ref().unwrap().parts.len(), 12);
+    assert!(state.bends.as_ref().expect("the step ran").parts.is_empty());
+    assert_eq!(state.parts.as_ref().expect("the step ran").parts.len(), 12);
 }
 
 #[test]
 fn a_box_keeps_its_finger_joints() {
     let state = run_plate(crate::samples::closed_box(100.0, 80.0, 60.0, 3.0), Settings::default());
-    assert!(state.bends.as_ref().unwrap().parts.is_empty());
-    assert_eq!(state.parts.as_ref().unwrap().parts.len(), 6);
+    assert!(state.bends.as_ref().expect("the step ran").parts.is_empty());
+    assert_eq!(state.parts.as_ref().expect("the step ran").parts.len(), 6);
 }
 
 mod chains {
@@ -192,7 +192,7 @@ mod chains {
                 let turn = glam::DAffine3::from_translation(a)
                     * glam::DAffine3::from_axis_angle(axis, turns[k - 1])
                     * glam::DAffine3::from_translation(-a);
-                motion = motion * turn;
+                motion *= turn;
             }
             let origin = motion.transform_point3(DVec3::new(0.0, 0.0, -T / 2.0));
             let frame = Frame {

@@ -98,20 +98,7 @@ pub(super) fn part(
     part.kind = PartKind::Bent;
     part.segments = segments;
     part.bends = bends;
-    for (i, m) in bent.members.iter().enumerate() {
-        let local = |q: DVec2| if m.flipped { DVec2::new(q.x, -q.y) } else { q };
-        let to_flat = |q: DVec2| m.place.apply(local(q));
-        part.edge_labels
-            .extend(labels[i].iter().map(|&(connection, [a, b])| EdgeLabel {
-                connection,
-                segment: [to_flat(a), to_flat(b)],
-            }));
-        part.marks
-            .extend(marks_of(m.plate, outlines[i]).into_iter().map(|mut mark| {
-                mark.path = mark.path.iter().map(|q| to_flat(*q)).collect();
-                mark
-            }));
-    }
+    add_member_marks(&mut part, bent, outlines, labels, marks_of);
     Ok((part, notes))
 }
 
@@ -139,6 +126,30 @@ fn reach_to_line(h: &HalfPlane, m: &Member, t: f64, own: &Polygon) -> Result<Vec
         return Ok(Vec::new());
     }
     difference(std::slice::from_ref(&hull), std::slice::from_ref(own))
+}
+
+/// The members' connection labels and own marks (features), laid into the flat part.
+fn add_member_marks(
+    part: &mut Part,
+    bent: &BentPart,
+    outlines: &[&Polygon],
+    labels: &[Vec<(u32, [DVec2; 2])>],
+    marks_of: &dyn Fn(u32, &Polygon) -> Vec<Mark>,
+) {
+    for (i, m) in bent.members.iter().enumerate() {
+        let local = |q: DVec2| if m.flipped { DVec2::new(q.x, -q.y) } else { q };
+        let to_flat = |q: DVec2| m.place.apply(local(q));
+        part.edge_labels
+            .extend(labels[i].iter().map(|&(connection, [a, b])| EdgeLabel {
+                connection,
+                segment: [to_flat(a), to_flat(b)],
+            }));
+        part.marks
+            .extend(marks_of(m.plate, outlines[i]).into_iter().map(|mut mark| {
+                mark.path = mark.path.iter().map(|q| to_flat(*q)).collect();
+                mark
+            }));
+    }
 }
 
 /// Member `i`'s flat segments: its developed shape beyond the zone edge of each of its
