@@ -145,6 +145,19 @@ pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Re
         SheetSize::Fixed { width, height } => (width - margin, height - margin),
         SheetSize::Fit => (f64::INFINITY, f64::INFINITY),
     };
+    if let (Some(style), Some(plate)) = (settings.bending.style(material), plates.plates.first())
+        && crate::hinge::max_turn(style, material, plate.thickness) == 0.0
+    {
+        cx.warn(
+            WarningKind::Joints,
+            format!(
+                "a {} bend does not work in {} mm {}: no plates are bent (try another --bend)",
+                style.name(),
+                plate.thickness,
+                material.name()
+            ),
+        );
+    }
     let off_grid = |e| Error::model(cx.model(), ModelProblem::OffGrid(e));
     let mut bends = compute(&plates.plates, settings.bending, material, sheet).map_err(off_grid)?;
     keep_sound(&mut bends, plates, settings).map_err(off_grid)?;

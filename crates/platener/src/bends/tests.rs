@@ -261,3 +261,19 @@ mod chains {
         }
     }
 }
+
+#[test]
+fn a_style_the_material_cannot_take_is_named_in_a_warning() {
+    let settings = Settings {
+        bending: crate::Bending::Style(crate::plan::BendStyle::Heat),
+        ..Settings::default()
+    };
+    let state = run_plate(tube(12, 50.0, 60.0, 3.0), settings);
+    assert!(state.bends.as_ref().expect("the step ran").parts.is_empty());
+    let warned = state
+        .records
+        .iter()
+        .flat_map(|r| &r.warnings)
+        .any(|w| w.message.contains("a heat bend does not work in 3 mm wood"));
+    assert!(warned);
+}
