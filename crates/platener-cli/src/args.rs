@@ -296,6 +296,8 @@ pub enum MethodArg {
     Plate,
     /// Stacked layers joined by shafts.
     Stacked,
+    /// Primitives found by RANSAC made into plates and bent parts (textured, noisy models).
+    Classifier,
     /// Every method; each result is written and the best by score is named.
     All,
 }
@@ -306,6 +308,7 @@ impl MethodArg {
         match self {
             MethodArg::Plate => vec![MethodKind::Plate],
             MethodArg::Stacked => vec![MethodKind::Stacked],
+            MethodArg::Classifier => vec![MethodKind::Classifier],
             MethodArg::All => MethodKind::ALL.to_vec(),
         }
     }

@@ -108,6 +108,7 @@ fn snapshot(state: &State, step: StepId) -> Option<Value> {
         StepId::Weld => to(state.weld.as_ref()),
         StepId::Mesh => to(state.mesh.as_ref()),
         StepId::Coplanar => to(state.coplanar.as_ref()),
+        StepId::Classify => to(state.classify.as_ref()),
         StepId::Shapes => to(state.shapes.as_ref()),
         StepId::Plates => to(state.plates.as_ref()),
         StepId::Bends => to(state.bends.as_ref()),
@@ -212,6 +213,10 @@ fn summary(state: &State, step: StepId) -> Value {
             .coplanar
             .as_ref()
             .map_or(Value::Null, |g| json!({"groups": g.groups.len()})),
+        StepId::Classify => state.classify.as_ref().map_or(Value::Null, |c| {
+            json!({"primitives": c.primitives.len(), "volumes": c.volumes.len(),
+                   "groups": state.coplanar.as_ref().map(|g| g.groups.len())})
+        }),
         StepId::Shapes => state
             .shapes
             .as_ref()

@@ -93,6 +93,9 @@ pub enum ModelProblem {
         /// The stack's height, mm.
         height: f64,
     },
+    /// The classifier could not classify the model.
+    #[error("{0}; use the plate or stacked method")]
+    Classify(crate::classify::ClassifyError),
     /// A method made no parts (its step warnings say why).
     #[error("the {method} method made no parts to cut (the warnings say why; `platener inspect --plates` shows more)")]
     NoParts {

@@ -691,6 +691,79 @@ pub fn cone_shell(n: usize, r_bottom: f64, r_top: f64, height: f64, wall: f64) -
     sweep_outline(&regular_outline(n, r_bottom), &profile, true)
 }
 
+/// A closed hollow box `w × d × h` with walls `t` thick whose six outer faces carry a
+/// texture of bumps up to `amplitude` high, about `period` apart, on a grid of `period / 4`
+/// (the classifier's textured-box sample). Bumps vanish along the box's edges, so the outer
+/// faces meet as a plain box does; the inner cavity is flat.
+pub fn textured_box(size: DVec3, t: f64, amplitude: f64, period: f64) -> Vec<Triangle> {
+    use std::f64::consts::PI;
+    let mut out = Vec::new();
+    for axis in 0..3 {
+        for high in [false, true] {
+            let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+            let (li, lj) = (size[i], size[j]);
+            let (ki, kj) = ((li / period).round().max(1.0), (lj / period).round().max(1.0));
+            let mut normal = DVec3::ZERO;
+            normal[axis] = if high { 1.0 } else { -1.0 };
+            let face = crate::classify::testsets::patch(4 * ki as usize, 4 * kj as usize, |u, v| {
+                let mut p = DVec3::ZERO;
+                p[axis] = if high { size[axis] } else { 0.0 };
+                p[i] = u * li;
+                p[j] = v * lj;
+                // Exactly flat along the edges, where the next face's grid meets this one.
+                let wave = |x: f64, k: f64| {
+                    if x <= 0.0 || x >= 1.0 {
+                        0.0
+                    } else {
+                        (PI * x * k).sin().powi(2)
+                    }
+                };
+                let bump = wave(u, ki) * wave(v, kj);
+                p + normal * amplitude * bump
+            });
+            // The low face's triangles turn round, so both faces wind outward.
+            out.extend(
+                face.into_iter()
+                    .map(|[a, b, c]| if high { [a, b, c] } else { [a, c, b] }),
+            );
+        }
+    }
+    let cavity = cuboid(DVec3::splat(t), size - DVec3::splat(t));
+    out.extend(cavity.into_iter().map(|[a, b, c]| [a, c, b]));
+    out
+}
+
+/// A solid cylinder of `radius` and `height` on the z axis (base at z = 0) whose side
+/// carries a diamond knurl `depth` deep with `ridges` ridges round it, tessellated finely
+/// (segments of at most 1 mm): the classifier's knurled-cylinder sample. The caps are fans
+/// through the knurled rims, so the solid is closed.
+pub fn knurled_cylinder(radius: f64, height: f64, depth: f64, ridges: usize) -> Vec<Triangle> {
+    use std::f64::consts::TAU;
+    let around = ((TAU * radius).ceil() as usize).max(8 * ridges);
+    let up = (height.ceil() as usize).max(2);
+    let pitch = TAU * radius / ridges as f64;
+    let at = |a: usize, k: usize| {
+        let theta = TAU * (a % around) as f64 / around as f64;
+        let z = height * k as f64 / up as f64;
+        let s = radius * theta;
+        let knurl = |x: f64| (x / pitch * TAU).sin().abs();
+        let r = radius - depth * 0.5 * (knurl(s + z) + knurl(s - z));
+        DVec3::new(r * theta.cos(), r * theta.sin(), z)
+    };
+    let mut out = Vec::with_capacity(2 * around * (up + 1));
+    for a in 0..around {
+        for k in 0..up {
+            let (p, q, r, s) = (at(a, k), at(a + 1, k), at(a + 1, k + 1), at(a, k + 1));
+            out.push([p, q, r]);
+            out.push([p, r, s]);
+        }
+        let (bottom, top) = (DVec3::ZERO, DVec3::new(0.0, 0.0, height));
+        out.push([bottom, at(a + 1, 0), at(a, 0)]);
+        out.push([top, at(a, up), at(a + 1, up)]);
+    }
+    out
+}
+
 /// The bent-plate samples of issue 19 (file name, triangles), as `examples/bent_samples.rs`
 /// writes them for the before/after figures.
 pub fn bent_samples() -> Vec<(&'static str, Vec<Triangle>)> {

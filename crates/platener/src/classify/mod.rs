@@ -17,6 +17,7 @@
 pub mod bitmap;
 pub mod fit;
 pub mod graph;
+pub mod groups;
 pub mod label;
 pub mod ransac;
 pub mod sample;
@@ -222,6 +223,21 @@ pub fn run(mesh: &Mesh, settings: &ClassifySettings) -> Result<Classification, C
         graph,
         surface_area: area,
     })
+}
+
+/// Step `classify` of the classifier method: the classification of `mesh`, and the planar
+/// groups its primitives stand for ([`groups`]), grown further over what they leave.
+pub fn step(
+    mesh: &Mesh,
+    settings: &crate::Settings,
+    cx: &mut crate::context::StepContext<'_>,
+) -> crate::error::Result<(Classification, crate::coplanar::PlanarGroups)> {
+    cx.check_cancel()?;
+    let found = run(mesh, &ClassifySettings::from_settings(settings))
+        .map_err(|e| crate::error::Error::model(cx.model(), crate::error::ModelProblem::Classify(e)))?;
+    let fixed = groups::fixed_groups(mesh, &found, settings.thinnest());
+    let planar = crate::coplanar::group_rest(mesh, settings.coplanar_angle_deg.to_radians(), fixed);
+    Ok((found, planar))
 }
 
 /// Rejects settings no classification can use.

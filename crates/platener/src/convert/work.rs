@@ -237,8 +237,12 @@ fn run_method(
     progress: &dyn Progress,
 ) -> Outcome {
     let settings = method.adjust(request.settings.clone());
+    let steps = StepId::of_method(method);
+    // The foundation is the steps a method starts with that others share; another method's
+    // foundation may have run further (the classifier makes its own planar groups).
+    let shared: Vec<StepId> = steps.iter().copied().take_while(|s| FOUNDATION.contains(s)).collect();
     let mut state = match foundations.iter().find(|s| *s.settings == settings) {
-        Some(done) => done.clone(),
+        Some(done) => done.clone().keeping(&shared),
         None => State {
             settings: Arc::new(settings),
             ..base.clone()
@@ -253,11 +257,11 @@ fn run_method(
             event,
         })
     };
-    let todo: Vec<StepId> = StepId::of_method(method)
+    let todo: Vec<StepId> = steps
         .into_iter()
         .filter(|s| !state.records.iter().any(|r| r.name == s.name()))
         .collect();
-    let (foundation, rest): (Vec<StepId>, Vec<StepId>) = todo.into_iter().partition(|s| FOUNDATION.contains(s));
+    let (foundation, rest): (Vec<StepId>, Vec<StepId>) = todo.into_iter().partition(|s| shared.contains(s));
     let ran = pipeline::run_observed(&foundation, &mut state, cancel, &observe)
         .and_then(|()| {
             if !foundation.is_empty() {

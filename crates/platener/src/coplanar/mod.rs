@@ -56,16 +56,69 @@ pub struct PlanarGroups {
 
 /// Groups the faces of `mesh` whose normals are within `angle` (radians) of their seed's.
 pub fn group_faces(mesh: &Mesh, angle: f64) -> PlanarGroups {
+    group_rest(mesh, angle, Fixed::default())
+}
+
+/// Groups decided before growth (the classifier's primitives): their faces and planes, and
+/// how far a vertex on one of them may move onto its plane even where welding did not move
+/// it (a texture's depth; 0 keeps the welding rule of [`refit`]).
+#[derive(Debug, Clone, Default)]
+pub struct Fixed {
+    /// The groups, each with its faces, plane and area.
+    pub groups: Vec<PlanarGroup>,
+    /// How far each group's vertices may be moved onto its plane, mm.
+    pub snap: Vec<f64>,
+}
+
+/// Groups the faces no group of `fixed` holds as [`group_faces`] does, then ranks every
+/// group (fixed or grown) largest first and refits the vertices.
+pub fn group_rest(mesh: &Mesh, angle: f64, fixed: Fixed) -> PlanarGroups {
     let n = mesh.triangles.len();
     let cos_max = angle.cos();
-    let mut order: Vec<u32> = (0..n as u32).collect();
+    let mut face_group = vec![u32::MAX; n];
+    for (id, g) in fixed.groups.iter().enumerate() {
+        g.faces.iter().for_each(|&f| face_group[f as usize] = id as u32);
+    }
+    let mut snap = fixed.snap;
+    let mut groups = fixed.groups;
+    snap.resize(groups.len(), 0.0);
+    grow(mesh, cos_max, &mut face_group, &mut groups);
+    snap.resize(groups.len(), 0.0);
+    // Largest first; ties by smallest face index, so the order is deterministic.
+    let mut ranked: Vec<usize> = (0..groups.len()).collect();
+    let key = |g: &PlanarGroup| g.faces.iter().copied().min().unwrap_or(u32::MAX);
+    ranked.sort_by(|&a, &b| {
+        groups[b]
+            .area
+            .total_cmp(&groups[a].area)
+            .then(key(&groups[a]).cmp(&key(&groups[b])))
+    });
+    let mut rank_of = vec![0u32; groups.len()];
+    for (rank, &g) in ranked.iter().enumerate() {
+        rank_of[g] = rank as u32;
+    }
+    face_group.iter_mut().for_each(|g| *g = rank_of[*g as usize]);
+    let snap: Vec<f64> = ranked.iter().map(|&g| snap[g]).collect();
+    let mut slots: Vec<Option<PlanarGroup>> = groups.into_iter().map(Some).collect();
+    let groups: Vec<PlanarGroup> = ranked.iter().filter_map(|&g| slots[g].take()).collect();
+    PlanarGroups {
+        vertices: refit::refit_vertices(mesh, &groups, &face_group, &snap),
+        groups,
+        face_group,
+        angle_deg: angle.to_degrees(),
+    }
+}
+
+/// Grows a group from each face not yet grouped (largest first) across shared edges.
+fn grow(mesh: &Mesh, cos_max: f64, face_group: &mut [u32], groups: &mut Vec<PlanarGroup>) {
+    let mut order: Vec<u32> = (0..face_group.len() as u32)
+        .filter(|&f| face_group[f as usize] == u32::MAX)
+        .collect();
     order.par_sort_unstable_by(|&a, &b| {
         mesh.areas[b as usize]
             .total_cmp(&mesh.areas[a as usize])
             .then(a.cmp(&b))
     });
-    let mut face_group = vec![u32::MAX; n];
-    let mut groups = Vec::new();
     let mut queue = VecDeque::new();
     for &seed in &order {
         if face_group[seed as usize] != u32::MAX {
@@ -89,28 +142,6 @@ pub fn group_faces(mesh: &Mesh, angle: f64) -> PlanarGroups {
             }
         }
         groups.push(summarise(mesh, faces, cos_max));
-    }
-    // Largest first; ties by smallest face index, so the order is deterministic.
-    let mut ranked: Vec<usize> = (0..groups.len()).collect();
-    let key = |g: &PlanarGroup| g.faces.iter().copied().min().unwrap_or(u32::MAX);
-    ranked.sort_by(|&a, &b| {
-        groups[b]
-            .area
-            .total_cmp(&groups[a].area)
-            .then(key(&groups[a]).cmp(&key(&groups[b])))
-    });
-    let mut rank_of = vec![0u32; groups.len()];
-    for (rank, &g) in ranked.iter().enumerate() {
-        rank_of[g] = rank as u32;
-    }
-    face_group.iter_mut().for_each(|g| *g = rank_of[*g as usize]);
-    let mut slots: Vec<Option<PlanarGroup>> = groups.into_iter().map(Some).collect();
-    let groups: Vec<PlanarGroup> = ranked.iter().filter_map(|&g| slots[g].take()).collect();
-    PlanarGroups {
-        vertices: refit::refit_vertices(mesh, &groups, &face_group),
-        groups,
-        face_group,
-        angle_deg: angle.to_degrees(),
     }
 }
 

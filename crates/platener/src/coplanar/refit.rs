@@ -8,6 +8,8 @@
 //! A vertex welding did not move stays where it is, and no vertex moves further than twice
 //! the distance welding moved it (from the farthest of its original corners): the planes
 //! around it then do not describe a corner near it, and the welded position is safer.
+//! Groups the classifier fixed carry a snap distance: their vertices move onto the planes
+//! by up to that much whether welding moved them or not (flattening a texture).
 
 use glam::DVec3;
 use platener_geom::plane_fit::Qef;
@@ -15,8 +17,9 @@ use platener_geom::plane_fit::Qef;
 use super::PlanarGroup;
 use crate::mesh::Mesh;
 
-/// Every mesh vertex refitted to its groups' planes (see the module doc).
-pub(super) fn refit_vertices(mesh: &Mesh, groups: &[PlanarGroup], face_group: &[u32]) -> Vec<DVec3> {
+/// Every mesh vertex refitted to its groups' planes (see the module doc); `snap[g]` is how
+/// far group g's vertices may move regardless of welding.
+pub(super) fn refit_vertices(mesh: &Mesh, groups: &[PlanarGroup], face_group: &[u32], snap: &[f64]) -> Vec<DVec3> {
     let n = mesh.vertices.len();
     // (vertex, group, distance welding moved it from this corner's original), sorted:
     // each vertex's groups are then one run, deduplicated in order (deterministic).
@@ -32,7 +35,8 @@ pub(super) fn refit_vertices(mesh: &Mesh, groups: &[PlanarGroup], face_group: &[
     for run in incident.chunk_by(|a, b| a.0 == b.0) {
         let v = run[0].0 as usize;
         let moved = run.iter().map(|r| r.2).fold(0.0, f64::max);
-        if moved == 0.0 || v >= n {
+        let allowed = run.iter().map(|r| snap[r.1 as usize]).fold(2.0 * moved, f64::max);
+        if allowed == 0.0 || v >= n {
             continue;
         }
         let mut qef = Qef::default();
@@ -42,7 +46,7 @@ pub(super) fn refit_vertices(mesh: &Mesh, groups: &[PlanarGroup], face_group: &[
         }
         let p = mesh.vertices[v];
         let x = qef.solve(p);
-        if (x - p).length() <= 2.0 * moved {
+        if (x - p).length() <= allowed {
             out[v] = x;
         }
     }

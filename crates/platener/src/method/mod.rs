@@ -9,6 +9,7 @@
 //! |---|---|
 //! | plate | foundation, `plates`, `joints`, `parts` (plates with joints → parts) |
 //! | stacked | foundation without welding, `stacked` (layers and shafts → parts) |
+//! | classifier | read to mesh, `classify` (primitives → planar groups), then as plate |
 
 use serde::Serialize;
 
@@ -23,17 +24,21 @@ pub enum MethodKind {
     Plate,
     /// The model sliced into stacked layers joined by shafts.
     Stacked,
+    /// Primitives found by RANSAC (planes, cylinders, cones) made into plates and bent
+    /// parts: the plate method for textured and noisy models.
+    Classifier,
 }
 
 impl MethodKind {
     /// Every method, in the order `--method all` runs them.
-    pub const ALL: [MethodKind; 2] = [MethodKind::Plate, MethodKind::Stacked];
+    pub const ALL: [MethodKind; 3] = [MethodKind::Plate, MethodKind::Stacked, MethodKind::Classifier];
 
     /// The name used in file names and reports.
     pub fn name(self) -> &'static str {
         match self {
             MethodKind::Plate => "plate",
             MethodKind::Stacked => "stacked",
+            MethodKind::Classifier => "classifier",
         }
     }
 
@@ -50,14 +55,14 @@ impl MethodKind {
 impl std::str::FromStr for MethodKind {
     type Err = Error;
 
-    /// `plate` or `stacked`.
+    /// `plate`, `stacked` or `classifier`.
     fn from_str(s: &str) -> Result<Self> {
         MethodKind::ALL
             .into_iter()
             .find(|m| m.name() == s.trim().to_ascii_lowercase())
             .ok_or_else(|| Error::Setting {
                 name: "method",
-                message: format!("{s:?} is none of plate, stacked"),
+                message: format!("{s:?} is none of plate, stacked, classifier"),
             })
     }
 }

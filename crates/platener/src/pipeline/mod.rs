@@ -18,7 +18,8 @@ use std::time::Instant;
 use crate::error::{Error, Result};
 use crate::settings::Settings;
 use crate::{
-    bends, cleanup, coplanar, export, joints, kerf, labels, mesh, plan, plates, read, shapes, sheets, stacked, weld,
+    bends, classify, cleanup, coplanar, export, joints, kerf, labels, mesh, plan, plates, read, shapes, sheets,
+    stacked, weld,
 };
 
 pub use crate::context::{Cancel, StepContext, StepRecord, Warning, WarningKind};
@@ -45,6 +46,8 @@ pub struct State {
     pub mesh: Option<Arc<mesh::Mesh>>,
     /// Step `coplanar`.
     pub coplanar: Option<Arc<coplanar::PlanarGroups>>,
+    /// Step `classify` (classifier method; it also fills `coplanar`).
+    pub classify: Option<Arc<classify::Classification>>,
     /// Step `shapes`.
     pub shapes: Option<Arc<shapes::Shapes>>,
     /// Step `plates`.
@@ -79,6 +82,7 @@ impl State {
             weld: None,
             mesh: None,
             coplanar: None,
+            classify: None,
             shapes: None,
             plates: None,
             bends: None,
@@ -102,6 +106,38 @@ impl State {
         let mut state = Self::new(source, Settings::default());
         state.parts = Some(Arc::new(input));
         state
+    }
+
+    /// This state without the snapshots and records of the steps not in `keep`: what a
+    /// method that shares only part of another's foundation starts from.
+    pub fn keeping(mut self, keep: &[StepId]) -> Self {
+        for step in StepId::ALL.into_iter().filter(|s| !keep.contains(s)) {
+            self.forget(step);
+        }
+        self.records.retain(|r| keep.iter().any(|s| s.name() == r.name));
+        self
+    }
+
+    /// Drops `step`'s snapshot.
+    fn forget(&mut self, step: StepId) {
+        match step {
+            StepId::Read => self.read = None,
+            StepId::Cleanup => self.cleanup = None,
+            StepId::Weld => self.weld = None,
+            StepId::Mesh => self.mesh = None,
+            StepId::Coplanar => self.coplanar = None,
+            StepId::Classify => self.classify = None,
+            StepId::Shapes => self.shapes = None,
+            StepId::Plates => self.plates = None,
+            StepId::Bends => self.bends = None,
+            StepId::Joints => self.joints = None,
+            StepId::Parts => self.parts = None,
+            StepId::Stacked => self.stacked = None,
+            StepId::Kerf => self.kerf = None,
+            StepId::Labels => self.labels = None,
+            StepId::Sheets => self.sheets = None,
+            StepId::Export => self.export = None,
+        }
     }
 
     /// The model's name, for messages.

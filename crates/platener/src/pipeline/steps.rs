@@ -8,7 +8,8 @@ use crate::context::StepContext;
 use crate::error::Result;
 use crate::method::MethodKind;
 use crate::{
-    bends, cleanup, coplanar, export, joints, kerf, labels, mesh, parts, plates, read, shapes, sheets, stacked, weld,
+    bends, classify, cleanup, coplanar, export, joints, kerf, labels, mesh, parts, plates, read, shapes, sheets,
+    stacked, weld,
 };
 
 /// Every pipeline step, named as in report.json and as the module it lives in.
@@ -24,6 +25,8 @@ pub enum StepId {
     Mesh,
     /// [`coplanar`]: planar groups.
     Coplanar,
+    /// [`classify`]: primitives, and the planar groups they stand for (classifier method).
+    Classify,
     /// [`shapes`]: each group's outline.
     Shapes,
     /// [`plates`]: the plates.
@@ -77,7 +80,7 @@ pub const CUTTING_PLAN: [StepId; 4] = [StepId::Kerf, StepId::Labels, StepId::She
 
 impl StepId {
     /// Every step, in pipeline order.
-    pub const ALL: [StepId; 15] = {
+    pub const ALL: [StepId; 16] = {
         let (p, c) = (PLATE, CUTTING_PLAN);
         [
             p[0],
@@ -85,6 +88,7 @@ impl StepId {
             p[2],
             p[3],
             p[4],
+            StepId::Classify,
             p[5],
             p[6],
             p[7],
@@ -106,6 +110,7 @@ impl StepId {
             StepId::Weld => "weld",
             StepId::Mesh => "mesh",
             StepId::Coplanar => "coplanar",
+            StepId::Classify => "classify",
             StepId::Shapes => "shapes",
             StepId::Plates => "plates",
             StepId::Bends => "bends",
@@ -124,6 +129,10 @@ impl StepId {
         let mut steps = match method {
             MethodKind::Plate => [&PLATE[..], &[StepId::Parts]].concat(),
             MethodKind::Stacked => [&FOUNDATION[..], &[StepId::Stacked]].concat(),
+            MethodKind::Classifier => {
+                let (f, p) = (&FOUNDATION, &PLATE);
+                [&f[..4], &[StepId::Classify], &f[5..], &p[6..], &[StepId::Parts]].concat()
+            }
         };
         steps.extend(CUTTING_PLAN);
         steps
@@ -146,6 +155,12 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
             state.mesh = Some(Arc::new(mesh::run(welded, cleaned, cx)?));
         }
         StepId::Coplanar => state.coplanar = Some(Arc::new(coplanar::run(need(&state.mesh, name, "mesh")?, &s))),
+        StepId::Classify => {
+            let mesh = need(&state.mesh, name, "mesh")?;
+            let (found, groups) = classify::step(mesh, &s, cx)?;
+            state.classify = Some(Arc::new(found));
+            state.coplanar = Some(Arc::new(groups));
+        }
         StepId::Shapes => {
             let (mesh, groups) = (
                 need(&state.mesh, name, "mesh")?,

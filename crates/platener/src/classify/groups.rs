@@ -1,0 +1,210 @@
+//! The classifier's conversion: primitives become the planar groups the plate method builds
+//! on (issue 20, "Conversion").
+//!
+//! - A plane primitive is one group at its fitted plane, holding every triangle it explains:
+//!   a textured wall becomes one flat group, its texture flattened onto the plane.
+//! - A cylinder or cone becomes `n` facet groups, one per angular sector, each at the plane
+//!   of a polygon with the circle's area ([`facet_distance`]): the plate method then finds
+//!   them as narrow plates and the `bends` step wraps them into one bent part. Coaxial
+//!   cylinders (a tube's outer and inner wall) share their sectors, so facets pair into
+//!   plates of the wall's thickness.
+//! - Spheres and what no primitive explains are grouped as the plate method groups them.
+//!
+//! Vertices of these groups are then moved onto their planes (by at most [`snap_distance`])
+//! where the planes around them meet, so a sector's ragged triangle border becomes the
+//! polygon's straight edge and a texture's corners the box's corners.
+
+use std::f64::consts::{PI, TAU};
+
+use glam::DVec3;
+
+use super::shape::{Shape, basis};
+use super::{Classification, Primitive};
+use crate::coplanar::{Fixed, PlanarGroup};
+use crate::mesh::Mesh;
+
+/// Fewest and most facets a curved primitive is cut into.
+const FACETS: (usize, usize) = (8, 48);
+
+/// One curved primitive's sectors: the frame they are measured in and their count.
+#[derive(Debug, Clone, Copy)]
+struct Sectors {
+    axis: DVec3,
+    /// A point on the axis (a cylinder's) or the apex (a cone's).
+    origin: DVec3,
+    u: DVec3,
+    v: DVec3,
+    n: usize,
+}
+
+impl Sectors {
+    fn of(&self, p: DVec3) -> usize {
+        let d = p - self.origin;
+        let a = d.dot(self.v).atan2(d.dot(self.u)).rem_euclid(TAU);
+        ((a / TAU * self.n as f64) as usize).min(self.n - 1)
+    }
+
+    /// The unit radial direction through the middle of sector `k`.
+    fn radial(&self, k: usize) -> DVec3 {
+        let a = (k as f64 + 0.5) * TAU / self.n as f64;
+        self.u * a.cos() + self.v * a.sin()
+    }
+}
+
+/// The distance from the axis of the facets of an `n`-gon with the area of a circle of
+/// `radius`: the facets then cut as much off the circle as they add, so volumes and plate
+/// thicknesses stay the circle's.
+pub fn facet_distance(radius: f64, n: usize) -> f64 {
+    let half = PI / n as f64;
+    radius * (PI / (n as f64 * half.tan())).sqrt()
+}
+
+/// How many facets a circle of `radius` needs so that no facet lies further than `tolerance`
+/// from it, within [`FACETS`].
+pub fn facet_count(radius: f64, tolerance: f64) -> usize {
+    let c = (1.0 - tolerance / radius).clamp(-1.0, 1.0);
+    let n = if c <= 0.0 {
+        FACETS.0 as f64
+    } else {
+        (PI / c.acos()).ceil()
+    };
+    (n as usize).clamp(FACETS.0, FACETS.1)
+}
+
+/// How far a vertex of a classified group may move onto its plane: twice the classifier's ε
+/// (the most a texture or noise strays from its primitive, and the plane's own fitting
+/// error) plus the facets' deviation from a curve, `tolerance`.
+pub fn snap_distance(c: &Classification, tolerance: f64) -> f64 {
+    2.0 * c.thresholds.eps + tolerance
+}
+
+/// The fixed groups of a classification (see the module doc), for [`crate::coplanar::group_rest`].
+pub fn fixed_groups(mesh: &Mesh, c: &Classification, thickness: f64) -> Fixed {
+    let tolerance = thickness / 2.0;
+    let sectors = curved_sectors(mesh, &c.primitives, tolerance, c.thresholds.eps);
+    let mut groups = Vec::new();
+    for (k, p) in c.primitives.iter().enumerate() {
+        match (&p.shape, sectors[k]) {
+            (Shape::Plane { normal, offset }, _) => groups.push(plane_group(mesh, p, *normal, *offset)),
+            (shape @ (Shape::Cylinder { .. } | Shape::Cone { .. }), Some(s)) => {
+                groups.extend(facet_groups(mesh, p, shape, &s));
+            }
+            _ => {}
+        }
+    }
+    groups.retain(|g| !g.faces.is_empty());
+    let snap = vec![snap_distance(c, tolerance); groups.len()];
+    Fixed { groups, snap }
+}
+
+/// A plane primitive's group, its normal turned to face the way its triangles face.
+fn plane_group(mesh: &Mesh, p: &Primitive, normal: DVec3, offset: f64) -> PlanarGroup {
+    let facing: DVec3 = p
+        .triangles
+        .iter()
+        .map(|&f| mesh.normals[f as usize] * mesh.areas[f as usize])
+        .sum();
+    let sign = if facing.dot(normal) < 0.0 { -1.0 } else { 1.0 };
+    PlanarGroup {
+        faces: p.triangles.clone(),
+        normal: normal * sign,
+        offset: offset * sign,
+        area: p.area,
+    }
+}
+
+/// A curved primitive's triangles split by sector, each sector at its facet's plane.
+fn facet_groups(mesh: &Mesh, p: &Primitive, shape: &Shape, s: &Sectors) -> Vec<PlanarGroup> {
+    let mut faces: Vec<Vec<u32>> = vec![Vec::new(); s.n];
+    let mut areas = vec![0.0; s.n];
+    for &f in &p.triangles {
+        let [a, b, c] = mesh.corners(f as usize);
+        let k = s.of((a + b + c) / 3.0);
+        faces[k].push(f);
+        areas[k] += mesh.areas[f as usize];
+    }
+    let mut out = Vec::with_capacity(s.n);
+    for (k, (faces, area)) in faces.into_iter().zip(areas).enumerate() {
+        let (normal, offset) = facet_plane(shape, s, k, p.outward);
+        out.push(PlanarGroup {
+            faces,
+            normal,
+            offset,
+            area,
+        });
+    }
+    out
+}
+
+/// The plane of facet `k` of a cylinder or cone, its normal out of the solid.
+fn facet_plane(shape: &Shape, s: &Sectors, k: usize, outward: bool) -> (DVec3, f64) {
+    let d = s.radial(k);
+    let side = if outward { 1.0 } else { -1.0 };
+    match *shape {
+        Shape::Cylinder { radius, .. } => {
+            let at = s.origin + d * facet_distance(radius, s.n);
+            (d * side, (d * side).dot(at))
+        }
+        Shape::Cone { half_angle, .. } => {
+            // The facet holds the apex, the tangent across the sector, and the line up the
+            // cone at the facet's distance from the axis.
+            let scale = facet_distance(1.0, s.n);
+            let along = s.axis + d * half_angle.tan() * scale;
+            let normal = along.cross(s.axis.cross(d)).normalize();
+            let normal = if normal.dot(d) * side < 0.0 { -normal } else { normal };
+            (normal, normal.dot(s.origin))
+        }
+        _ => (d, d.dot(s.origin)),
+    }
+}
+
+/// The sectors of every cylinder and cone (`None` for planes and spheres). Coaxial
+/// cylinders share the frame and facet count of the one found first, counted for the
+/// largest of them; a cone's count is that of its widest circle.
+fn curved_sectors(mesh: &Mesh, prims: &[Primitive], tolerance: f64, eps: f64) -> Vec<Option<Sectors>> {
+    let mut out: Vec<Option<Sectors>> = vec![None; prims.len()];
+    for (k, p) in prims.iter().enumerate() {
+        out[k] = match p.shape {
+            Shape::Cylinder { axis, point, radius } => {
+                let on_axis = |q: &Primitive| match q.shape {
+                    Shape::Cylinder {
+                        axis: a,
+                        point: o,
+                        radius: r,
+                    } if coaxial(axis, point, a, o, eps) => Some(r),
+                    _ => None,
+                };
+                let shared = (0..k).find_map(|j| out[j].filter(|_| on_axis(&prims[j]).is_some()));
+                let outer = prims.iter().filter_map(on_axis).fold(radius, f64::max);
+                shared.or_else(|| Some(frame(axis, point, facet_count(outer, tolerance))))
+            }
+            Shape::Cone { apex, axis, .. } => {
+                let widest = p
+                    .triangles
+                    .iter()
+                    .flat_map(|&f| mesh.corners(f as usize))
+                    .map(|x| {
+                        let d = x - apex;
+                        (d - axis * d.dot(axis)).length()
+                    })
+                    .fold(0.0, f64::max);
+                Some(frame(axis, apex, facet_count(widest, tolerance)))
+            }
+            _ => None,
+        };
+    }
+    out
+}
+
+/// Whether two cylinder axes are one line: parallel within 1° and within ε of each other.
+fn coaxial(a: DVec3, p: DVec3, b: DVec3, q: DVec3, eps: f64) -> bool {
+    let parallel = a.cross(b).length() <= 1f64.to_radians().sin();
+    let d = q - p;
+    parallel && (d - a * d.dot(a)).length() <= eps
+}
+
+/// Sectors around `axis` through `origin`.
+fn frame(axis: DVec3, origin: DVec3, n: usize) -> Sectors {
+    let (u, v) = basis(axis);
+    Sectors { axis, origin, u, v, n }
+}
