@@ -21,7 +21,7 @@ pub struct JobSettings {
     pub material: String,
     /// Kerf in mm; `None`: the material's.
     pub kerf: Option<f64>,
-    /// plate, stacked or all.
+    /// plate, stacked, classifier or all.
     pub method: String,
     /// `WxH` in mm or `fit`.
     pub sheet: String,
@@ -137,7 +137,7 @@ impl JobSettings {
             "all" => MethodKind::ALL.to_vec(),
             name => vec![
                 name.parse::<MethodKind>()
-                    .map_err(|_| "method must be plate, stacked or all".to_string())?,
+                    .map_err(|_| "method must be plate, stacked, classifier or all".to_string())?,
             ],
         };
         if let Some(k) = self.kerf

@@ -61,7 +61,7 @@ function build() {
   ui.mode = select('debug-mode', [['isolated', 'isolated step'], ['converting', 'converting']], st.mode);
   ui.model = el('select', { 'data-testid': 'debug-model' });
   ui.upload = el('input', { type: 'file', accept: '.stl,.obj,.3mf', 'data-testid': 'debug-upload' });
-  ui.method = select('debug-method', [['plate', 'plate'], ['stacked', 'stacked']], st.method);
+  ui.method = select('debug-method', [['plate', 'plate'], ['stacked', 'stacked'], ['classifier', 'classifier']], st.method);
   ui.step = el('select', { 'data-testid': 'debug-step' });
   ui.weld = el('input', { type: 'range', min: 0, max: 2, step: 0.01, value: 0.1, disabled: true, 'data-testid': 'debug-weld' });
   ui.weldAuto = el('input', { type: 'checkbox', checked: true, 'data-testid': 'debug-weld-auto' });

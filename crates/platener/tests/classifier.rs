@@ -1,0 +1,185 @@
+//! The classifier method (issue 20) on the samples the plate method cannot read: a hollow box
+//! whose walls carry a texture becomes its six walls with finger joints, a knurled cylinder a
+//! bent wrap with two discs; each plan rebuilds its model (verify with the model).
+
+use glam::{DQuat, DVec3};
+use platener::convert::convert;
+use platener::method::MethodKind;
+use platener::plan::{JointKind, PartKind, Plan};
+use platener::read::Triangle;
+use platener::verify::{Verification, verify};
+use platener::{Cancel, Settings, Source, State, samples};
+
+fn convert_with(method: MethodKind, model: Vec<Triangle>) -> State {
+    let settings = Settings {
+        thicknesses: vec![3.0],
+        ..Settings::default()
+    };
+    convert(method, Source::triangles("m", model), settings, &Cancel::default()).expect("converts")
+}
+
+fn checked(state: &State) -> (Plan, Verification) {
+    let plan = state.export.as_ref().expect("exported").plan.clone();
+    let v = verify(&plan, state.mesh.as_deref());
+    (plan, v)
+}
+
+/// Asserts the plan rebuilds its model: no problem, ≥ 95 % of the parts' volume inside it,
+/// ≥ 90 % of its surface covered, no interference.
+fn rebuilds(v: &Verification) {
+    assert!(v.passed(), "{:?}", v.problems);
+    let inside = v.volume_inside.expect("measured");
+    let covered = v.surface_covered.expect("measured");
+    assert!(inside >= 0.95, "volume inside {inside}");
+    assert!(covered >= 0.90, "surface covered {covered}");
+    assert!(v.interference_share < 0.01, "interference {}", v.interference_share);
+}
+
+/// The unit normal of a part's plane in the model (its transform's third column).
+fn normal_of(plan: &Plan, id: u32) -> DVec3 {
+    let part = plan.parts.iter().find(|p| p.id == id).expect("part");
+    let t = part.transform;
+    DVec3::new(t[0][2], t[1][2], t[2][2]).normalize()
+}
+
+const SIZE: DVec3 = DVec3::new(120.0, 90.0, 70.0);
+
+fn textured_box() -> Vec<Triangle> {
+    samples::textured_box(SIZE, 3.0, 0.5, 10.0)
+}
+
+/// Six parts, one per wall, their normals along `axes` (the box's axes, moved), every wall
+/// finger-jointed to its four neighbours.
+fn assert_six_jointed_walls(plan: &Plan, axes: [DVec3; 3]) {
+    assert_eq!(plan.parts.len(), 6);
+    assert!(plan.parts.iter().all(|p| p.kind == PartKind::Plate));
+    let mut per_axis = [0; 3];
+    for part in &plan.parts {
+        let n = normal_of(plan, part.id);
+        let k = (0..3)
+            .find(|&k| n.dot(axes[k]).abs() > 0.5f64.to_radians().cos())
+            .unwrap_or_else(|| panic!("part {} normal {n} is along no axis of the box", part.id));
+        per_axis[k] += 1;
+    }
+    assert_eq!(per_axis, [2, 2, 2]);
+    // The box has 12 edges; each joins two walls.
+    let fingers: Vec<[u32; 2]> = plan
+        .joints
+        .iter()
+        .filter(|j| j.kind == JointKind::Finger)
+        .map(|j| j.parts)
+        .collect();
+    assert_eq!(fingers.len(), 12, "{:?}", plan.joints);
+    for part in &plan.parts {
+        let meets = fingers.iter().filter(|j| j.contains(&part.id)).count();
+        assert_eq!(meets, 4, "part {}", part.id);
+    }
+}
+
+#[test]
+fn a_textured_hollow_box_becomes_its_six_walls_with_finger_joints() {
+    let state = convert_with(MethodKind::Classifier, textured_box());
+    let (plan, v) = checked(&state);
+    rebuilds(&v);
+    assert_six_jointed_walls(&plan, [DVec3::X, DVec3::Y, DVec3::Z]);
+    // The parts hold the walls' volume: the box less its cavity (the bumps add 1/4 of their
+    // height on average, 0.125 mm over the outer faces).
+    let walls = SIZE.element_product() - (SIZE - DVec3::splat(6.0)).element_product();
+    let area: f64 = state
+        .parts
+        .as_ref()
+        .expect("parts")
+        .parts
+        .iter()
+        .map(|p| p.polygon.area())
+        .sum();
+    let ratio = area * 3.0 / walls;
+    assert!((ratio - 1.0).abs() < 0.03, "parts hold {ratio} of the walls' volume");
+    let found = state.classify.as_ref().expect("classified");
+    assert_eq!(found.primitives.len(), 12, "six outer and six inner walls");
+}
+
+#[test]
+fn the_plate_method_cannot_read_the_texture_the_classifier_can() {
+    let plate = convert_with(MethodKind::Plate, textured_box());
+    let groups = plate.coplanar.as_ref().expect("grouped").groups.len();
+    assert!(groups > 1_000, "the texture splits the walls into {groups} groups");
+    let (_, v) = checked(&plate);
+    let inside = v.volume_inside.expect("measured");
+    let classified = convert_with(MethodKind::Classifier, textured_box());
+    assert_eq!(classified.coplanar.as_ref().expect("grouped").groups.len(), 12);
+    let (_, w) = checked(&classified);
+    assert!(
+        w.volume_inside.expect("measured") > inside + 0.2,
+        "{inside} → {:?}",
+        w.volume_inside
+    );
+}
+
+#[test]
+fn a_moved_textured_box_converts_the_same() {
+    let mut rng = platener_geom::rng::SplitMix64::new(20);
+    for _ in 0..2 {
+        let axis = DVec3::new(rng.unit() - 0.5, rng.unit() - 0.5, rng.unit() - 0.5).normalize();
+        let turn = DQuat::from_axis_angle(axis, rng.unit() * std::f64::consts::TAU);
+        let shift = DVec3::new(rng.unit(), rng.unit(), rng.unit()) * 200.0;
+        let moved = textured_box()
+            .into_iter()
+            .map(|t| t.map(|p| turn * p + shift))
+            .collect();
+        let state = convert_with(MethodKind::Classifier, moved);
+        let (plan, v) = checked(&state);
+        rebuilds(&v);
+        assert_six_jointed_walls(&plan, [turn * DVec3::X, turn * DVec3::Y, turn * DVec3::Z]);
+    }
+}
+
+#[test]
+fn a_knurled_cylinder_becomes_a_bent_wrap_with_two_discs() {
+    let (radius, height) = (50.0, 60.0);
+    let state = convert_with(
+        MethodKind::Classifier,
+        samples::knurled_cylinder(radius, height, 0.5, 36),
+    );
+    let (plan, v) = checked(&state);
+    rebuilds(&v);
+    assert_eq!(
+        plan.parts.len(),
+        3,
+        "{:?}",
+        plan.parts.iter().map(|p| p.kind).collect::<Vec<_>>()
+    );
+    let wrap = plan
+        .parts
+        .iter()
+        .find(|p| p.kind == PartKind::Bent)
+        .expect("a bent wrap");
+    let facets = wrap.segments.len();
+    assert!(facets >= 8, "{facets} facets");
+    assert_eq!(wrap.bends.len(), facets - 1, "one seam, every other facet edge bent");
+    let discs: Vec<_> = plan.parts.iter().filter(|p| p.kind == PartKind::Plate).collect();
+    assert_eq!(discs.len(), 2);
+    for disc in discs {
+        assert!(normal_of(&plan, disc.id).z.abs() > 0.5f64.to_radians().cos());
+    }
+    // The wrap is as long as the wall's mid-circle, less what the seam's fingers take: its
+    // flat length lies between 95 % and 105 % of 2π(r − t/2).
+    let xs = wrap.outline.iter().map(|p| p.x);
+    let (lo, hi) = xs.fold((f64::MAX, f64::MIN), |(lo, hi), x| (lo.min(x), hi.max(x)));
+    let ys = wrap.outline.iter().map(|p| p.y);
+    let (blo, bhi) = ys.fold((f64::MAX, f64::MIN), |(lo, hi), y| (lo.min(y), hi.max(y)));
+    let length = (hi - lo).max(bhi - blo);
+    let mid = std::f64::consts::TAU * (radius - 1.5);
+    assert!((length / mid - 1.0).abs() < 0.05, "flat length {length} for {mid}");
+}
+
+#[test]
+fn a_clean_box_converts_as_the_plate_method_converts_it() {
+    let model = samples::closed_box(120.0, 90.0, 70.0, 3.0);
+    let (plate, _) = checked(&convert_with(MethodKind::Plate, model.clone()));
+    let state = convert_with(MethodKind::Classifier, model);
+    let (plan, v) = checked(&state);
+    rebuilds(&v);
+    assert_eq!(plan.parts.len(), plate.parts.len());
+    assert_eq!(plan.joints.len(), plate.joints.len());
+}
