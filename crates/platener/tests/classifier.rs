@@ -3,6 +3,7 @@
 //! bent wrap with two discs; each plan rebuilds its model (verify with the model).
 
 use glam::{DQuat, DVec3};
+use platener::classify::ShapeKind;
 use platener::convert::convert;
 use platener::method::MethodKind;
 use platener::plan::{JointKind, PartKind, Plan};
@@ -182,4 +183,25 @@ fn a_clean_box_converts_as_the_plate_method_converts_it() {
     rebuilds(&v);
     assert_eq!(plan.parts.len(), plate.parts.len());
     assert_eq!(plan.joints.len(), plate.joints.len());
+}
+
+/// A finely tessellated (128-sided, effectively round) tube and cone shell: the plate method
+/// finds only slivers; the classifier's cylinders and cones become one living-hinge wrap.
+#[test]
+fn smooth_tubes_and_cone_shells_become_one_bent_wrap() {
+    let tube = samples::tube(128, 50.0, 60.0, 3.0);
+    let shade = samples::cone_shell(128, 70.0, 45.0, 60.0, 3.0);
+    for (name, model, kind) in [("tube", tube, ShapeKind::Cylinder), ("shade", shade, ShapeKind::Cone)] {
+        let state = convert_with(MethodKind::Classifier, model);
+        let found = state.classify.as_ref().expect("classified");
+        let curved: Vec<_> = found.primitives.iter().filter(|p| p.shape.kind() == kind).collect();
+        assert_eq!(curved.len(), 2, "{name}: the inner and outer wall");
+        let (plan, v) = checked(&state);
+        rebuilds(&v);
+        assert_eq!(plan.parts.len(), 1, "{name}");
+        let wrap = &plan.parts[0];
+        assert_eq!(wrap.kind, PartKind::Bent, "{name}");
+        assert!(wrap.segments.len() >= 8, "{name}: {} facets", wrap.segments.len());
+        assert_eq!(wrap.bends.len(), wrap.segments.len() - 1, "{name}");
+    }
 }

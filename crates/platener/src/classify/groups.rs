@@ -38,6 +38,14 @@ struct Sectors {
 }
 
 impl Sectors {
+    /// These sectors' frame made square to a nearly parallel `axis` (Gram–Schmidt, keeping
+    /// u and v's senses, so the sectors keep their angles whichever way the axis points).
+    fn turned_to(self, axis: DVec3) -> Self {
+        let u = (self.u - axis * axis.dot(self.u)).normalize();
+        let v = (self.v - axis * axis.dot(self.v) - u * u.dot(self.v)).normalize();
+        Self { u, v, ..self }
+    }
+
     fn of(&self, p: DVec3) -> usize {
         let d = p - self.origin;
         let a = d.dot(self.v).atan2(d.dot(self.u)).rem_euclid(TAU);
@@ -158,45 +166,51 @@ fn facet_plane(shape: &Shape, s: &Sectors, k: usize, outward: bool) -> (DVec3, f
     }
 }
 
-/// The sectors of every cylinder and cone (`None` for planes and spheres). Coaxial
-/// cylinders share the frame and facet count of the one found first, counted for the
-/// largest of them; a cone's count is that of its widest circle.
+/// The sectors of every cylinder and cone (`None` for planes and spheres). Coaxial ones (a
+/// tube's two walls, a shade's two cones) share the angular frame and the facet count of the
+/// first found, counted for the widest of them, so their facets pair up into plates.
 fn curved_sectors(mesh: &Mesh, prims: &[Primitive], tolerance: f64, eps: f64) -> Vec<Option<Sectors>> {
+    let axes: Vec<Option<(DVec3, DVec3, f64)>> = prims.iter().map(|p| axis_of(mesh, p)).collect();
     let mut out: Vec<Option<Sectors>> = vec![None; prims.len()];
-    for (k, p) in prims.iter().enumerate() {
-        out[k] = match p.shape {
-            Shape::Cylinder { axis, point, radius } => {
-                let on_axis = |q: &Primitive| match q.shape {
-                    Shape::Cylinder {
-                        axis: a,
-                        point: o,
-                        radius: r,
-                    } if coaxial(axis, point, a, o, eps) => Some(r),
-                    _ => None,
-                };
-                let shared = (0..k).find_map(|j| out[j].filter(|_| on_axis(&prims[j]).is_some()));
-                let outer = prims.iter().filter_map(on_axis).fold(radius, f64::max);
-                shared.or_else(|| Some(frame(axis, point, facet_count(outer, tolerance))))
-            }
-            Shape::Cone { apex, axis, .. } => {
-                let widest = p
-                    .triangles
-                    .iter()
-                    .flat_map(|&f| mesh.corners(f as usize))
-                    .map(|x| {
-                        let d = x - apex;
-                        (d - axis * d.dot(axis)).length()
-                    })
-                    .fold(0.0, f64::max);
-                Some(frame(axis, apex, facet_count(widest, tolerance)))
-            }
-            _ => None,
+    for k in 0..prims.len() {
+        let Some((axis, origin, _)) = axes[k] else {
+            continue;
         };
+        let on_axis = |j: usize| axes[j].filter(|&(a, o, _)| coaxial(axis, origin, a, o, eps));
+        let widest = (0..prims.len()).filter_map(on_axis).map(|x| x.2).fold(0.0, f64::max);
+        let shared = (0..k).find_map(|j| out[j].filter(|_| on_axis(j).is_some()));
+        out[k] = Some(match shared {
+            Some(s) => Sectors {
+                axis,
+                origin,
+                ..s.turned_to(axis)
+            },
+            None => frame(axis, origin, facet_count(widest, tolerance)),
+        });
     }
     out
 }
 
-/// Whether two cylinder axes are one line: parallel within 1° and within ε of each other.
+/// A curved primitive's axis, a point on it (a cone's apex) and its widest radius: a
+/// cylinder's radius, a cone's at the furthest corner of its triangles.
+fn axis_of(mesh: &Mesh, p: &Primitive) -> Option<(DVec3, DVec3, f64)> {
+    match p.shape {
+        Shape::Cylinder { axis, point, radius } => Some((axis, point, radius)),
+        Shape::Cone { apex, axis, .. } => {
+            let corners = p.triangles.iter().flat_map(|&f| mesh.corners(f as usize));
+            let widest = corners
+                .map(|x| {
+                    let d = x - apex;
+                    (d - axis * d.dot(axis)).length()
+                })
+                .fold(0.0, f64::max);
+            Some((axis, apex, widest))
+        }
+        _ => None,
+    }
+}
+
+/// Whether two axes are one line: parallel within 1° and within ε of each other.
 fn coaxial(a: DVec3, p: DVec3, b: DVec3, q: DVec3, eps: f64) -> bool {
     let parallel = a.cross(b).length() <= 1f64.to_radians().sin();
     let d = q - p;
