@@ -9,6 +9,9 @@
 //!   cylinders (a tube's outer and inner wall) share their sectors, so facets pair into
 //!   plates of the wall's thickness.
 //! - Spheres and what no primitive explains are grouped as the plate method groups them.
+//! - So is a primitive whose triangles are mostly one exact planar group ([`fragmented`]):
+//!   on a clean CAD model the exact faces are better than any fit, and RANSAC may lay a
+//!   huge, nearly flat cylinder over a plate.
 //!
 //! Vertices of these groups are then moved onto their planes (by at most [`snap_distance`])
 //! where the planes around them meet, so a sector's ragged triangle border becomes the
@@ -17,10 +20,11 @@
 use std::f64::consts::{PI, TAU};
 
 use glam::DVec3;
+use platener_geom::plane_fit::PlaneFit;
 
 use super::shape::{Shape, basis};
 use super::{Classification, Primitive};
-use crate::coplanar::{Fixed, PlanarGroup};
+use crate::coplanar::{Fixed, PlanarGroup, PlanarGroups};
 use crate::mesh::Mesh;
 
 /// Fewest and most facets a curved primitive is cut into.
@@ -87,11 +91,14 @@ pub fn snap_distance(c: &Classification, tolerance: f64) -> f64 {
 }
 
 /// The fixed groups of a classification (see the module doc), for [`crate::coplanar::group_rest`].
-pub fn fixed_groups(mesh: &Mesh, c: &Classification, thickness: f64) -> Fixed {
+pub fn fixed_groups(mesh: &Mesh, c: &Classification, exact: &PlanarGroups, thickness: f64) -> Fixed {
     let tolerance = thickness / 2.0;
     let sectors = curved_sectors(mesh, &c.primitives, tolerance, c.thresholds.eps);
     let mut groups = Vec::new();
     for (k, p) in c.primitives.iter().enumerate() {
+        if !fragmented(mesh, p, exact) {
+            continue;
+        }
         match (&p.shape, sectors[k]) {
             (Shape::Plane { normal, offset }, _) => groups.push(plane_group(mesh, p, *normal, *offset)),
             (shape @ (Shape::Cylinder { .. } | Shape::Cone { .. }), Some(s)) => {
@@ -105,8 +112,37 @@ pub fn fixed_groups(mesh: &Mesh, c: &Classification, thickness: f64) -> Fixed {
     Fixed { groups, snap }
 }
 
-/// A plane primitive's group, its normal turned to face the way its triangles face.
+/// Whether the exact planar groups (those the plate method uses) split `p`'s triangles so
+/// that none holds [`FRAGMENTED`] of its area: a texture, noise or a tessellated curve that
+/// the primitive should replace. A primitive that is mostly one exact face (a CAD plate, or a
+/// nearly flat "cylinder" RANSAC laid over one) is left to the exact groups, which keep its
+/// details.
+fn fragmented(mesh: &Mesh, p: &Primitive, exact: &PlanarGroups) -> bool {
+    let mut by_group: Vec<(u32, f64)> = p
+        .triangles
+        .iter()
+        .map(|&f| (exact.face_group[f as usize], mesh.areas[f as usize]))
+        .collect();
+    by_group.sort_unstable_by_key(|x| x.0);
+    let largest = by_group
+        .chunk_by(|a, b| a.0 == b.0)
+        .map(|run| run.iter().map(|x| x.1).sum::<f64>())
+        .fold(0.0, f64::max);
+    largest < FRAGMENTED * p.area
+}
+
+/// A primitive whose largest exact group holds less than this share of its area replaces
+/// the exact groups (see [`fragmented`]).
+pub const FRAGMENTED: f64 = 0.5;
+
+/// A plane primitive's group at the plane of its own triangles (area-weighted least
+/// squares, [`PlaneFit`]): RANSAC's refit takes in samples near the plane's border whose
+/// normals lean towards it, and may sit a fraction of ε off a face that is exactly flat. The
+/// normal faces the way the triangles face.
 fn plane_group(mesh: &Mesh, p: &Primitive, normal: DVec3, offset: f64) -> PlanarGroup {
+    let mut fit = PlaneFit::default();
+    p.triangles.iter().for_each(|&f| fit.add(mesh.corners(f as usize)));
+    let (normal, offset) = fit.plane().unwrap_or((normal, offset));
     let facing: DVec3 = p
         .triangles
         .iter()

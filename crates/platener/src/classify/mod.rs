@@ -235,8 +235,10 @@ pub fn step(
     cx.check_cancel()?;
     let found = run(mesh, &ClassifySettings::from_settings(settings))
         .map_err(|e| crate::error::Error::model(cx.model(), crate::error::ModelProblem::Classify(e)))?;
-    let fixed = groups::fixed_groups(mesh, &found, settings.thinnest());
-    let planar = crate::coplanar::group_rest(mesh, settings.coplanar_angle_deg.to_radians(), fixed);
+    let angle = settings.coplanar_angle_deg.to_radians();
+    let exact = crate::coplanar::group_faces(mesh, angle);
+    let fixed = groups::fixed_groups(mesh, &found, &exact, settings.thinnest());
+    let planar = crate::coplanar::group_rest(mesh, angle, fixed);
     Ok((found, planar))
 }
 

@@ -42,10 +42,12 @@ impl MethodKind {
         }
     }
 
-    /// The settings this method runs with: the stacked method keeps every surface detail, so
-    /// it merges exact duplicates only.
+    /// The settings this method runs with: the stacked method keeps every surface detail, and
+    /// the classifier reads a texture's or noise's every vertex (welding a fine texture at a
+    /// fraction of a sheet merges vertices across it and bends the faces around it), so both
+    /// merge exact duplicates only.
     pub fn adjust(self, mut settings: Settings) -> Settings {
-        if self == MethodKind::Stacked {
+        if matches!(self, MethodKind::Stacked | MethodKind::Classifier) {
             settings.weld = Weld::Off;
         }
         settings
