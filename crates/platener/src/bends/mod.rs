@@ -391,7 +391,7 @@ fn bend_line(c: &Candidate, zone: Zone, parent: usize, pm: &Member, members: [us
         into: c.into[side],
     };
     let into = c.into[c.side_of(parent)];
-    let centre = c.point + into * (zone.setback() - zone.width / 2.0);
+    let centre = c.point + into * (zone.setback() - zone.width() / 2.0);
     let flat = |along: f64| pm.place.apply(pm.frame.to_2d(centre + c.axis * along));
     BendLine {
         members,

@@ -108,7 +108,7 @@ fn folding_the_tube_back_puts_every_plate_where_it_was() {
             for q in &part.segments[k].polygon.outer {
                 let dist = (*q - a).perp_dot(d).abs();
                 assert!(
-                    dist >= b.zone.width / 2.0 - 0.01,
+                    dist >= b.zone.width() / 2.0 - 0.01,
                     "segment {k} reaches into the zone: {dist}"
                 );
             }
