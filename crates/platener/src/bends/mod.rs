@@ -59,6 +59,10 @@ pub struct Bends {
     pub candidates: usize,
     /// Candidates that stayed joints, and why.
     pub refused: Vec<Refusal>,
+    /// The joints of these bent parts, computed to check each holds together, for the
+    /// `joints` step to take (the joints snapshot shows them).
+    #[serde(skip)]
+    pub joints: Option<std::sync::Arc<crate::joints::reuse::Computed>>,
 }
 
 /// A candidate that stayed a joint.
@@ -192,16 +196,21 @@ pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Re
 /// Drops the bent parts that would not hold together once their plates carry their joints
 /// (a joint's slot or shortened fingers cutting a plate apart next to a bend, a small facet
 /// left all joint): their plates stay plates, which the `joints` step then joins as usual.
+/// When every part holds, the joints computed here are the final ones: they are kept for
+/// the `joints` step.
 fn keep_sound(bends: &mut Bends, plates: &Plates, settings: &Settings) -> std::result::Result<(), GridError> {
     let Some(style) = bends.style.filter(|_| !bends.parts.is_empty()) else {
         return Ok(());
     };
     let joint_settings = crate::joints::settings_for(settings);
-    let (joints, _) = crate::joints::compute_except(&plates.plates, &joint_settings, &bends.unjointed())?;
+    let computed = crate::joints::reuse::Computed::compute(&plates.plates, &joint_settings, &bends.unjointed())?;
     let (sound, unsound): (Vec<BentPart>, Vec<BentPart>) = std::mem::take(&mut bends.parts)
         .into_iter()
-        .partition(|p| crate::parts::bent::holds_together(p, plates, &joints, style));
+        .partition(|p| crate::parts::bent::holds_together(p, plates, &computed.joints, style));
     bends.parts = sound;
+    if unsound.is_empty() {
+        bends.joints = Some(std::sync::Arc::new(computed));
+    }
     for part in unsound {
         let first = &part.members[0];
         bends.refused.push(Refusal {
@@ -259,6 +268,7 @@ pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f
                 reason: reason.clone(),
             })
             .collect(),
+        joints: None,
     })
 }
 
