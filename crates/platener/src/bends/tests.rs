@@ -287,7 +287,10 @@ fn the_joints_step_takes_the_joints_the_bends_step_computed_when_every_part_hold
     let kept = bends.joints.as_ref().expect("every part holds: its joints are kept");
     let settings = crate::joints::settings_for(&state.settings);
     assert!(kept.made_for(plates, &settings, &bends.unjointed()));
-    assert!(!kept.made_for(plates, &settings, &Default::default()), "bends leave no fingers");
+    assert!(
+        !kept.made_for(plates, &settings, &Default::default()),
+        "bends leave no fingers"
+    );
     // The joints step's outlines are the ones computed afresh: 12 plates, 11 bends without
     // fingers and one seam with them.
     let (fresh, _) = crate::joints::compute_except(plates, &settings, &bends.unjointed()).expect("on the grid");

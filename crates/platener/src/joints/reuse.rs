@@ -34,7 +34,10 @@ struct Key {
 impl Key {
     fn new(plates: &[Plate], settings: &JointSettings, unjointed: &BTreeSet<(u32, u32)>) -> Self {
         Self {
-            plates: plates.iter().map(|p| (p.thickness.to_bits(), p.area.to_bits())).collect(),
+            plates: plates
+                .iter()
+                .map(|p| (p.thickness.to_bits(), p.area.to_bits()))
+                .collect(),
             settings: settings.clone(),
             unjointed: unjointed.clone(),
         }
