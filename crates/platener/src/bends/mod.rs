@@ -11,6 +11,8 @@
 //!    shapes would overlap or the part would not fit on a sheet. A candidate inside one group
 //!    is a seam: the ring is cut open there and a joint closes it. Several orders are tried;
 //!    the layout with fewer, larger parts wins.
+//! 3. [`remove`]: where a plate already added blocks others from joining, the layout is grown
+//!    again without it (a bounded number of times), and kept when it is better.
 //!
 //! The snapshot says which plates form each bent part, where each lies on the flat, its bend
 //! lines and seams; the `joints` step leaves bends (and glued seams) without fingers and
@@ -18,6 +20,9 @@
 
 mod find;
 mod grow;
+mod remove;
+#[cfg(test)]
+mod remove_tests;
 #[cfg(test)]
 mod tests;
 mod unfold;
@@ -248,14 +253,16 @@ pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f
         .iter()
         .map(|c| zone_of(c, plates, style, material, bending == Bending::Auto))
         .collect();
-    let mut best: Option<grow::Layout> = None;
+    let grow = |order: &[usize]| grow::Layout::new(plates, &candidates, &zones, sheet).grow(order);
+    let mut best: Option<(grow::Layout, Vec<usize>)> = None;
     for order in orders(&candidates, plates) {
-        let layout = grow::Layout::new(plates, &candidates, &zones, sheet).grow(&order)?;
-        if best.as_ref().is_none_or(|b| layout.quality() < b.quality()) {
-            best = Some(layout);
+        let layout = grow(&order)?;
+        if best.as_ref().is_none_or(|(b, _)| layout.quality() < b.quality()) {
+            best = Some((layout, order));
         }
     }
-    let layout = best.expect("at least one order is tried");
+    let (layout, order) = best.expect("at least one order is tried");
+    let layout = remove::improve(layout, order, &candidates, grow)?;
     Ok(Bends {
         style: Some(style),
         parts: parts_of(&layout, &candidates, &zones),
