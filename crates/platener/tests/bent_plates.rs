@@ -1,31 +1,17 @@
 //! Bent plates (issue 19) on the samples: tubes, a cup, a rounded tray and a card cone become
 //! few bent parts, and each plan rebuilds its model (verify with the model).
 
-use platener::convert::convert;
-use platener::method::MethodKind;
 use platener::plan::{BendStyle, JointKind, MarkKind, Material, PartKind, Plan};
 use platener::read::Triangle;
 use platener::verify::{Verification, verify};
-use platener::{Bending, Cancel, Settings, Source, State, samples};
+use platener::{Bending, State, samples};
+
+mod support;
+
+use support::convert_plates;
 
 fn convert_sample(model: Vec<Triangle>, material: Material, t: f64) -> State {
-    convert_with(model, material, t, Bending::Auto)
-}
-
-fn convert_with(model: Vec<Triangle>, material: Material, t: f64, bending: Bending) -> State {
-    let mut settings = Settings {
-        thicknesses: vec![t],
-        bending,
-        ..Settings::default()
-    };
-    settings.cut.material = material;
-    convert(
-        MethodKind::Plate,
-        Source::triangles("m", model),
-        settings,
-        &Cancel::default(),
-    )
-    .expect("converts")
+    convert_plates(model, material, t, Bending::Auto)
 }
 
 /// The plan and its verification against the model; asserts it rebuilds the model: no
@@ -64,7 +50,7 @@ fn tubes_of_6_12_and_24_sides_are_one_living_hinge_part_with_a_finger_seam() {
         } else {
             (Bending::Auto, 0.95)
         };
-        let state = convert_with(samples::tube(n, 50.0, 60.0, 3.0), Material::Wood, 3.0, bending);
+        let state = convert_plates(samples::tube(n, 50.0, 60.0, 3.0), Material::Wood, 3.0, bending);
         let (plan, v) = rebuilt_within(&state, min_inside);
         assert_eq!(plan.parts.len(), 1, "{n} sides");
         let part = &plan.parts[0];

@@ -13,27 +13,16 @@ use platener_geom::Polygon;
 use platener_geom::offset::offset;
 use proptest::prelude::*;
 
+mod support;
+
 /// The plate method's conversion of `model` with sheets of `t` mm (wood unless `card`).
 fn convert_plates(model: Vec<Triangle>, t: f64, card: bool) -> State {
     convert_bending(model, t, card, platener::Bending::Auto)
 }
 
 fn convert_bending(model: Vec<Triangle>, t: f64, card: bool, bending: platener::Bending) -> State {
-    let mut settings = Settings {
-        thicknesses: vec![t],
-        bending,
-        ..Settings::default()
-    };
-    if card {
-        settings.cut.material = Material::Cardboard;
-    }
-    convert(
-        MethodKind::Plate,
-        Source::triangles("m", model),
-        settings,
-        &Cancel::default(),
-    )
-    .expect("converts")
+    let material = if card { Material::Cardboard } else { Material::Wood };
+    support::convert_plates(model, material, t, bending)
 }
 
 /// What the assembled parts are, measured.

@@ -77,6 +77,22 @@ pub(crate) struct Layout<'a> {
     pub bends: Vec<(usize, usize)>,
     /// Why a candidate joining two groups was refused.
     pub refused: Vec<(usize, String)>,
+    /// The candidates refused because the developed shapes would overlap, in the order
+    /// taken: each with the plates of the staying group that the moving group would overlap
+    /// and how many plates that group holds (what removing them could let in).
+    pub blocked: Vec<Blocked>,
+}
+
+/// A candidate refused because the moving group, laid flat, would overlap plates of the
+/// group it was to join.
+#[derive(Debug, Clone)]
+pub(crate) struct Blocked {
+    /// The candidate.
+    pub candidate: usize,
+    /// The plates of the staying group it would overlap, ascending.
+    pub by: Vec<usize>,
+    /// How many plates the moving group holds.
+    pub moving: usize,
 }
 
 impl<'a> Layout<'a> {
@@ -104,6 +120,7 @@ impl<'a> Layout<'a> {
             flat: plates.iter().map(|p| vec![p.polygon.clone()]).collect(),
             bends: Vec::new(),
             refused: Vec::new(),
+            blocked: Vec::new(),
         }
     }
 
@@ -173,7 +190,15 @@ impl<'a> Layout<'a> {
         let strip = self.strip(&self.members[parent], c, parent, t, zone.deduction());
         let staying: Vec<usize> = self.groups[self.group[parent]].clone();
         let pair = (parent, child, &parent_shape, &strip);
-        if let Some((p, q)) = self.overlap(&staying, &moving, &shapes, pair, t)? {
+        let overlaps = self.overlaps(&staying, &moving, &shapes, pair, t)?;
+        if let Some(&(p, q)) = overlaps.first() {
+            let mut by: Vec<usize> = overlaps.iter().map(|&(p, _)| p).collect();
+            by.sort_unstable();
+            self.blocked.push(Blocked {
+                candidate: ci,
+                by,
+                moving: moving.len(),
+            });
             return Ok(Err(format!("laid flat, plate {} would overlap plate {}", q + 1, p + 1)));
         }
         if !self.fits(
@@ -235,17 +260,18 @@ impl<'a> Layout<'a> {
         (members, shapes, k)
     }
 
-    /// The first pair (staying plate, moving plate) whose developed shapes overlap by more
-    /// than t²/2, if any; the parent and the child may overlap inside `strip` (the bend
-    /// deduction), and the parent is compared by its new shape.
-    fn overlap(
+    /// Per staying plate, the first moving plate whose developed shapes overlap it by more
+    /// than t²/2 (pairs in `staying` order); the parent and the child may overlap inside
+    /// `strip` (the bend deduction), and the parent is compared by its new shape.
+    fn overlaps(
         &self,
         staying: &[usize],
         moving: &[usize],
         shapes: &[Vec<Polygon>],
         (parent, child, parent_shape, strip): (usize, usize, &Vec<Polygon>, &Polygon),
         t: f64,
-    ) -> Result<Option<(usize, usize)>, GridError> {
+    ) -> Result<Vec<(usize, usize)>, GridError> {
+        let mut found = Vec::new();
         for &p in staying {
             let mine = if p == parent { parent_shape } else { &self.flat[p] };
             for (j, &q) in moving.iter().enumerate() {
@@ -257,11 +283,12 @@ impl<'a> Layout<'a> {
                     shared = difference(&shared, std::slice::from_ref(strip))?;
                 }
                 if total_area(&shared) > 0.5 * t * t {
-                    return Ok(Some((p, q)));
+                    found.push((p, q));
+                    break;
                 }
             }
         }
-        Ok(None)
+        Ok(found)
     }
 
     /// Whether plate `p` keeps a flat segment of at least a fifth of its area beyond the zone

@@ -11,6 +11,8 @@
 //!    shapes would overlap or the part would not fit on a sheet. A candidate inside one group
 //!    is a seam: the ring is cut open there and a joint closes it. Several orders are tried;
 //!    the layout with fewer, larger parts wins.
+//! 3. [`remove`]: where a plate already added blocks others from joining, the layout is grown
+//!    again without it (a bounded number of times), and kept when it is better.
 //!
 //! The snapshot says which plates form each bent part, where each lies on the flat, its bend
 //! lines and seams; the `joints` step leaves bends (and glued seams) without fingers and
@@ -18,6 +20,9 @@
 
 mod find;
 mod grow;
+mod remove;
+#[cfg(test)]
+mod remove_tests;
 #[cfg(test)]
 mod tests;
 mod unfold;
@@ -59,6 +64,10 @@ pub struct Bends {
     pub candidates: usize,
     /// Candidates that stayed joints, and why.
     pub refused: Vec<Refusal>,
+    /// The joints of these bent parts, computed to check each holds together, for the
+    /// `joints` step to take (the joints snapshot shows them).
+    #[serde(skip)]
+    pub joints: Option<std::sync::Arc<crate::joints::reuse::Computed>>,
 }
 
 /// A candidate that stayed a joint.
@@ -192,16 +201,21 @@ pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Re
 /// Drops the bent parts that would not hold together once their plates carry their joints
 /// (a joint's slot or shortened fingers cutting a plate apart next to a bend, a small facet
 /// left all joint): their plates stay plates, which the `joints` step then joins as usual.
+/// When every part holds, the joints computed here are the final ones: they are kept for
+/// the `joints` step.
 fn keep_sound(bends: &mut Bends, plates: &Plates, settings: &Settings) -> std::result::Result<(), GridError> {
     let Some(style) = bends.style.filter(|_| !bends.parts.is_empty()) else {
         return Ok(());
     };
     let joint_settings = crate::joints::settings_for(settings);
-    let (joints, _) = crate::joints::compute_except(&plates.plates, &joint_settings, &bends.unjointed())?;
+    let computed = crate::joints::reuse::Computed::compute(&plates.plates, &joint_settings, &bends.unjointed())?;
     let (sound, unsound): (Vec<BentPart>, Vec<BentPart>) = std::mem::take(&mut bends.parts)
         .into_iter()
-        .partition(|p| crate::parts::bent::holds_together(p, plates, &joints, style));
+        .partition(|p| crate::parts::bent::holds_together(p, plates, &computed.joints, style));
     bends.parts = sound;
+    if unsound.is_empty() {
+        bends.joints = Some(std::sync::Arc::new(computed));
+    }
     for part in unsound {
         let first = &part.members[0];
         bends.refused.push(Refusal {
@@ -239,14 +253,16 @@ pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f
         .iter()
         .map(|c| zone_of(c, plates, style, material, bending == Bending::Auto))
         .collect();
-    let mut best: Option<grow::Layout> = None;
+    let grow = |order: &[usize]| grow::Layout::new(plates, &candidates, &zones, sheet).grow(order);
+    let mut best: Option<(grow::Layout, Vec<usize>)> = None;
     for order in orders(&candidates, plates) {
-        let layout = grow::Layout::new(plates, &candidates, &zones, sheet).grow(&order)?;
-        if best.as_ref().is_none_or(|b| layout.quality() < b.quality()) {
-            best = Some(layout);
+        let layout = grow(&order)?;
+        if best.as_ref().is_none_or(|(b, _)| layout.quality() < b.quality()) {
+            best = Some((layout, order));
         }
     }
-    let layout = best.expect("at least one order is tried");
+    let (layout, order) = best.expect("at least one order is tried");
+    let layout = remove::improve(layout, order, &candidates, grow)?;
     Ok(Bends {
         style: Some(style),
         parts: parts_of(&layout, &candidates, &zones),
@@ -259,6 +275,7 @@ pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f
                 reason: reason.clone(),
             })
             .collect(),
+        joints: None,
     })
 }
 
@@ -391,7 +408,7 @@ fn bend_line(c: &Candidate, zone: Zone, parent: usize, pm: &Member, members: [us
         into: c.into[side],
     };
     let into = c.into[c.side_of(parent)];
-    let centre = c.point + into * (zone.setback() - zone.width / 2.0);
+    let centre = c.point + into * (zone.setback() - zone.width() / 2.0);
     let flat = |along: f64| pm.place.apply(pm.frame.to_2d(centre + c.axis * along));
     BendLine {
         members,

@@ -108,7 +108,7 @@ fn folding_the_tube_back_puts_every_plate_where_it_was() {
             for q in &part.segments[k].polygon.outer {
                 let dist = (*q - a).perp_dot(d).abs();
                 assert!(
-                    dist >= b.zone.width / 2.0 - 0.01,
+                    dist >= b.zone.width() / 2.0 - 0.01,
                     "segment {k} reaches into the zone: {dist}"
                 );
             }
@@ -276,4 +276,26 @@ fn a_style_the_material_cannot_take_is_named_in_a_warning() {
         .flat_map(|r| &r.warnings)
         .any(|w| w.message.contains("a heat bend does not work in 3 mm wood"));
     assert!(warned);
+}
+
+#[test]
+fn the_joints_step_takes_the_joints_the_bends_step_computed_when_every_part_holds() {
+    let state = run_plate(tube(12, 50.0, 60.0, 3.0), Settings::default());
+    let plates = &state.plates.as_ref().expect("the step ran").plates;
+    let bends = state.bends.as_ref().expect("the step ran");
+    assert_eq!(bends.parts.len(), 1);
+    let kept = bends.joints.as_ref().expect("every part holds: its joints are kept");
+    let settings = crate::joints::settings_for(&state.settings);
+    assert!(kept.made_for(plates, &settings, &bends.unjointed()));
+    assert!(
+        !kept.made_for(plates, &settings, &Default::default()),
+        "bends leave no fingers"
+    );
+    // The joints step's outlines are the ones computed afresh: 12 plates, 11 bends without
+    // fingers and one seam with them.
+    let (fresh, _) = crate::joints::compute_except(plates, &settings, &bends.unjointed()).expect("on the grid");
+    let joints = state.joints.as_ref().expect("the step ran");
+    assert_eq!(joints.outlines, fresh.outlines);
+    assert_eq!(joints.connections.len(), 1);
+    assert_eq!(joints.connections[0].plates, fresh.connections[0].plates);
 }

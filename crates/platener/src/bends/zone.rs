@@ -13,35 +13,49 @@ use serde::Serialize;
 use crate::hinge::{BendDesign, HingeError, design as hinge_design};
 use crate::plan::{BendStyle, Material};
 
-/// The zone of one bend.
+/// The zone of one bend: its hinge or fold design, the one source of its width and radius.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(transparent)]
 pub struct Zone {
-    /// How the material is made to bend.
-    pub style: BendStyle,
-    /// The turn, radians.
-    pub turn: f64,
-    /// Width of the zone on the flat part, mm (the neutral arc's length).
-    pub width: f64,
-    /// Radius of the neutral arc, mm.
-    pub radius: f64,
     /// The hinge or fold that makes it (links, slits, dashes).
     pub design: BendDesign,
 }
 
 impl Zone {
+    /// How the material is made to bend.
+    pub fn style(&self) -> BendStyle {
+        self.design.style
+    }
+
+    /// The turn, radians.
+    pub fn turn(&self) -> f64 {
+        self.design.turn
+    }
+
+    /// Width of the zone on the flat part, mm (the neutral arc's length).
+    pub fn width(&self) -> f64 {
+        self.design.zone_width
+    }
+
+    /// Radius of the neutral arc, mm.
+    pub fn radius(&self) -> f64 {
+        self.design.neutral_radius
+    }
+
     /// How far each tangent line lies from the sharp corner of the mid-planes: R·tan(φ/2).
     pub fn setback(&self) -> f64 {
-        self.radius * (self.turn / 2.0).tan()
+        self.radius() * (self.turn() / 2.0).tan()
     }
 
     /// How much shorter the flat part is than the sharp corner's development: 2·setback − width.
     pub fn deduction(&self) -> f64 {
-        2.0 * self.setback() - self.width
+        2.0 * self.setback() - self.width()
     }
 
-    /// How far inside the model's sharp corner the bent arc passes, mm: R·(1/cos(φ/2) − 1).
+    /// How far inside the model's sharp corner the bent arc passes, mm (see
+    /// [`BendDesign::corner_gap`]).
     pub fn corner_gap(&self) -> f64 {
-        self.radius * (1.0 / (self.turn / 2.0).cos() - 1.0)
+        self.design.corner_gap()
     }
 }
 
@@ -76,13 +90,7 @@ pub(crate) fn design(
     max_width: f64,
     strict: bool,
 ) -> Result<Zone, String> {
-    let zone = |design: BendDesign| Zone {
-        style,
-        turn,
-        width: design.zone_width,
-        radius: design.neutral_radius,
-        design,
-    };
+    let zone = |design: BendDesign| Zone { design };
     let attempt = |limit: f64| hinge_design(style, material, thickness, turn, limit);
     let narrowest = match attempt(max_width.min(width_for_bulge(turn, thickness, depth))) {
         Ok(design) => return Ok(zone(design)),

@@ -27,6 +27,7 @@ mod claims;
 mod connect;
 mod fingers;
 mod junction;
+pub mod reuse;
 #[cfg(test)]
 mod tests;
 
@@ -264,7 +265,8 @@ pub(crate) fn settings_for(settings: &Settings) -> JointSettings {
 }
 
 /// Step `joints`: the plate graph and the joints along it, in the style the user chose or
-/// the one that holds in the material; bends of bent parts get none.
+/// the one that holds in the material; bends of bent parts get none. The joints the `bends`
+/// step already computed for the same plates and bends are taken as they are.
 pub fn run(
     plates: &Plates,
     bends: Option<&crate::bends::Bends>,
@@ -274,8 +276,14 @@ pub fn run(
     cx.check_cancel()?;
     let joint_settings = settings_for(settings);
     let unjointed = bends.map(crate::bends::Bends::unjointed).unwrap_or_default();
-    let (joints, warnings) = compute_except(&plates.plates, &joint_settings, &unjointed)
-        .map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?;
+    let computed = bends
+        .and_then(|b| b.joints.as_deref())
+        .filter(|c| c.made_for(&plates.plates, &joint_settings, &unjointed));
+    let (joints, warnings) = match computed {
+        Some(c) => (c.joints.clone(), c.warnings.clone()),
+        None => compute_except(&plates.plates, &joint_settings, &unjointed)
+            .map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?,
+    };
     for w in warnings {
         cx.warn(WarningKind::Joints, w);
     }

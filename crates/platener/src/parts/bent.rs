@@ -82,7 +82,7 @@ pub(super) fn part(
             line: b.line,
             angle_deg: b.enclosed_deg,
             style,
-            width: b.zone.width,
+            width: b.zone.width(),
             segments: b.members,
         })
         .collect();
