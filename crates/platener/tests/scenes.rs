@@ -1,9 +1,12 @@
 //! The 3D scenes (issue 16): every view of the examples and of the corpus loads back with the
 //! `gltf` crate, solids are watertight and outward, the `final` view's parts have the plan
-//! parts' volumes and places, and the Khronos validator finds no error.
+//! parts' volumes and places, and the Khronos validator finds no error. The classifier's
+//! `primitives` view is tested in `scenes/primitives.rs`.
 
 #[path = "scenes/check.rs"]
 mod check;
+#[path = "scenes/primitives.rs"]
+mod primitives;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -58,6 +61,7 @@ fn check_view(v: View, scene: &Scene, parts: &[Part]) -> Loaded {
         View::Model => "model",
         View::Wireframe => "wireframe",
         View::Coplanar => "group-",
+        View::Primitives => "",
         View::Plates | View::Bent => "plate-",
         View::Final => "part-",
     };
@@ -65,6 +69,12 @@ fn check_view(v: View, scene: &Scene, parts: &[Part]) -> Loaded {
         assert!(n.name.starts_with(prefix), "{v}: node {}", n.name);
         if matches!(v, View::Plates | View::Bent) {
             assert_eq!(n.name, format!("plate-{}", i + 1));
+        }
+        if v == View::Primitives {
+            let kind = n.name.rsplit_once('-').map(|(k, _)| k);
+            let named =
+                n.name == "unexplained" || kind.is_some_and(|k| ["plane", "cylinder", "sphere", "cone"].contains(&k));
+            assert!(named, "{v}: node {}", n.name);
         }
         let Some(mode) = n.mode else { continue };
         let want = if v == View::Wireframe {
@@ -122,6 +132,11 @@ fn assert_parts(l: &Loaded, parts: &[Part]) {
     }
 }
 
+/// The views the plate method reaches: all but the classifier's `primitives`.
+fn plate_views() -> impl Iterator<Item = View> {
+    View::ALL.into_iter().filter(|v| *v != View::Primitives)
+}
+
 fn parts_of(state: &State) -> &[Part] {
     state.parts.as_ref().map_or(&[], |p| &p.parts)
 }
@@ -130,7 +145,7 @@ fn parts_of(state: &State) -> &[Part] {
 fn every_view_of_the_examples_loads_back_and_final_matches_the_parts() {
     for path in examples() {
         let state = run(MethodKind::Plate, &path).expect("plate method");
-        for v in View::ALL {
+        for v in plate_views() {
             let scene = view(&state, v);
             let l = check_view(v, &scene, parts_of(&state));
             assert!(!l.nodes.is_empty(), "{}: {v} is empty", path.display());
@@ -153,7 +168,7 @@ fn scenes_are_byte_identical_and_every_plan_zip_holds_the_assembly() {
     let path = &examples()[0];
     let c = run(MethodKind::Plate, path).expect("plate method");
     let again = run(MethodKind::Plate, path).expect("plate method");
-    for v in View::ALL {
+    for v in plate_views() {
         assert_eq!(view(&c, v).glb, view(&again, v).glb, "{v}");
     }
     let bundle = c.export.as_ref().expect("export");
@@ -163,7 +178,18 @@ fn scenes_are_byte_identical_and_every_plan_zip_holds_the_assembly() {
 #[test]
 fn view_names_round_trip_in_order() {
     let names: Vec<&str> = View::ALL.iter().map(|v| v.name()).collect();
-    assert_eq!(names, ["model", "wireframe", "coplanar", "plates", "bent", "final"]);
+    assert_eq!(
+        names,
+        [
+            "model",
+            "wireframe",
+            "coplanar",
+            "primitives",
+            "plates",
+            "bent",
+            "final"
+        ]
+    );
     for v in View::ALL {
         assert_eq!(v.name().parse::<View>(), Ok(v));
     }
@@ -313,7 +339,7 @@ fn the_khronos_validator_finds_no_errors() {
     for path in examples() {
         let state = run(MethodKind::Plate, &path).expect("plate method");
         let stem = path.file_stem().expect("stem").to_string_lossy().into_owned();
-        for v in View::ALL {
+        for v in plate_views() {
             let file = out.path().join(format!("{stem}-{v}.glb"));
             std::fs::write(&file, view(&state, v).glb).expect("write");
             files.push(file);

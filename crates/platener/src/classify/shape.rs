@@ -58,6 +58,18 @@ pub enum ShapeKind {
     Cone,
 }
 
+impl ShapeKind {
+    /// The kind's name as its JSON has it (`plane`, `cylinder`, …), for names a viewer shows.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShapeKind::Plane => "plane",
+            ShapeKind::Cylinder => "cylinder",
+            ShapeKind::Sphere => "sphere",
+            ShapeKind::Cone => "cone",
+        }
+    }
+}
+
 /// A point with its unit normal: what every minimal set is made of.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Oriented {

@@ -18,6 +18,11 @@ impl State {
                 let groups = self.coplanar.as_ref().ok_or_else(|| need("coplanar"))?;
                 scene::coplanar(mesh, groups)
             }
+            View::Primitives => {
+                let mesh = self.mesh.as_ref().ok_or_else(|| need("mesh"))?;
+                let classification = self.classify.as_ref().ok_or_else(|| need("classify"))?;
+                scene::primitives(mesh, classification)
+            }
             View::Plates => scene::plates(self.plates.as_ref().ok_or_else(|| need("plates"))?),
             View::Bent => scene::bent(
                 self.plates.as_ref().ok_or_else(|| need("plates"))?,

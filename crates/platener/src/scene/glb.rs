@@ -2,8 +2,8 @@
 //!
 //! The JSON is written with serde_json (its maps are sorted, so the bytes depend on the input
 //! only) and the binary chunk is packed here, each buffer view 4-byte aligned. Only what the
-//! scenes need: positions (no normals, viewers shade flat), indices, triangles or lines, one
-//! material per colour, a single root node that scales millimetres to metres and turns the
+//! scenes need: positions (no normals, viewers shade flat), indices, triangles, lines or
+//! points, one material per colour, node `extras` for what a viewer may list, a single root node that scales millimetres to metres and turns the
 //! model's Z-up into glTF's Y-up (plan-format.md, "The 3D scene").
 
 use std::collections::BTreeMap;
@@ -22,6 +22,28 @@ pub(crate) enum Mode {
     Lines,
     /// Triples of indices, one triangle each, counter-clockwise seen from outside (mode 4).
     Triangles,
+    /// Every position one point, no indices (mode 0).
+    Points,
+}
+
+impl Mode {
+    /// How many indices make one element (points have none).
+    fn per(self) -> usize {
+        match self {
+            Mode::Lines => 2,
+            Mode::Triangles => 3,
+            Mode::Points => 0,
+        }
+    }
+
+    /// glTF's `mode` number.
+    fn number(self) -> u32 {
+        match self {
+            Mode::Points => 0,
+            Mode::Lines => 1,
+            Mode::Triangles => 4,
+        }
+    }
 }
 
 /// Positions and indices of one mesh, in mm.
@@ -29,7 +51,7 @@ pub(crate) enum Mode {
 pub(crate) struct MeshData {
     /// Vertex positions.
     pub(crate) positions: Vec<DVec3>,
-    /// Two or three indices per element, by the mode.
+    /// Two or three indices per element, by the mode; none for points.
     pub(crate) indices: Vec<u32>,
 }
 
@@ -61,6 +83,8 @@ pub(crate) struct GlbBuilder {
     pub(crate) triangles: usize,
     /// Lines over all meshes.
     pub(crate) lines: usize,
+    /// Points over all meshes.
+    pub(crate) points: usize,
 }
 
 impl GlbBuilder {
@@ -106,31 +130,68 @@ impl GlbBuilder {
         colour: Colour,
         double_sided: bool,
     ) -> Result<Option<usize>, SceneError> {
-        let per = if mode == Mode::Lines { 2 } else { 3 };
+        self.mesh_of(name, &[(data, mode)], colour, double_sided)
+    }
+
+    /// Adds a mesh of several primitives in one colour (a surface and its sample points), the
+    /// empty ones left out; `None` when none has anything to draw.
+    pub(crate) fn mesh_of(
+        &mut self,
+        name: &str,
+        parts: &[(&MeshData, Mode)],
+        colour: Colour,
+        double_sided: bool,
+    ) -> Result<Option<usize>, SceneError> {
+        let mut primitives = Vec::new();
+        for &(data, mode) in parts {
+            if let Some(p) = self.primitive(name, data, mode, colour, double_sided)? {
+                primitives.push(p);
+            }
+        }
+        if primitives.is_empty() {
+            return Ok(None);
+        }
+        self.meshes.push(json!({ "name": name, "primitives": primitives }));
+        Ok(Some(self.meshes.len() - 1))
+    }
+
+    /// One primitive's JSON with its accessors written; `None` when it is empty.
+    fn primitive(
+        &mut self,
+        name: &str,
+        data: &MeshData,
+        mode: Mode,
+        colour: Colour,
+        double_sided: bool,
+    ) -> Result<Option<Value>, SceneError> {
+        let per = mode.per();
         if data.positions.is_empty() || data.indices.len() < per {
             return Ok(None);
         }
         let count = u32::try_from(data.positions.len()).map_err(|_| SceneError::TooLarge { what: name.into() })?;
-        if data.indices.iter().any(|&i| i >= count) || !data.indices.len().is_multiple_of(per) {
+        let fits = match mode {
+            Mode::Points => data.indices.is_empty(),
+            _ => data.indices.iter().all(|&i| i < count) && data.indices.len().is_multiple_of(per),
+        };
+        if !fits {
             return Err(SceneError::Bug(format!("mesh {name}: indices do not fit its vertices")));
         }
         let position = self.positions(&data.positions);
-        let indices = self.indices(&data.indices, count);
         let material = self.material(colour, double_sided);
+        let mut primitive = json!({
+            "attributes": { "POSITION": position },
+            "material": material,
+            "mode": mode.number(),
+        });
         match mode {
             Mode::Lines => self.lines += data.indices.len() / 2,
             Mode::Triangles => self.triangles += data.indices.len() / 3,
+            Mode::Points => self.points += data.positions.len(),
         }
-        self.meshes.push(json!({
-            "name": name,
-            "primitives": [{
-                "attributes": { "POSITION": position },
-                "indices": indices,
-                "material": material,
-                "mode": if mode == Mode::Lines { 1 } else { 4 },
-            }],
-        }));
-        Ok(Some(self.meshes.len() - 1))
+        if mode != Mode::Points {
+            primitive["indices"] = json!(self.indices(&data.indices, count));
+        }
+        Ok(Some(primitive))
     }
 
     /// The POSITION accessor (f32 VEC3) with the min/max glTF requires, taken from the f32
@@ -173,7 +234,16 @@ impl GlbBuilder {
     /// Adds a child of the root: a named node drawing `mesh`, placed by `frame` (local →
     /// model) when given.
     pub(crate) fn node(&mut self, name: &str, mesh: Option<usize>, frame: Option<&Frame>) {
+        self.node_with(name, mesh, frame, None);
+    }
+
+    /// [`GlbBuilder::node`] with application data in the node's `extras` (what it stands for,
+    /// for a viewer to list).
+    pub(crate) fn node_with(&mut self, name: &str, mesh: Option<usize>, frame: Option<&Frame>, extras: Option<Value>) {
         let mut node = json!({ "name": name });
+        if let Some(e) = extras {
+            node["extras"] = e;
+        }
         if let Some(m) = mesh {
             node["mesh"] = json!(m);
         }

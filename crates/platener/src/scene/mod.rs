@@ -1,12 +1,13 @@
 //! 3D scenes of the pipeline's snapshots as glTF 2.0 binary (GLB), for viewers.
 //!
-//! Six views show what platener sees and makes, in this order ([`View::ALL`]):
+//! Seven views show what platener sees and makes, in this order ([`View::ALL`]):
 //!
 //! | view | function | what |
 //! |---|---|---|
 //! | `model` | [`model`] | the mesh as read |
 //! | `wireframe` | [`wireframe`] | its edges, as lines |
 //! | `coplanar` | [`coplanar`] | each planar group in its own colour |
+//! | `primitives` | [`primitives`] | each classifier primitive in its own colour, with its inlier samples as points |
 //! | `plates` | [`plates`] | each plate a closed slab in its own colour |
 //! | `bent` | [`bent`] | plates coloured by their bent part |
 //! | `final` | [`assembly`] | every part as cut, placed by its transform (`assembly.glb`) |
@@ -20,6 +21,7 @@ mod decimate;
 mod extrude;
 mod glb;
 mod palette;
+mod primitives;
 mod solid;
 mod surface;
 #[cfg(test)]
@@ -28,6 +30,7 @@ mod tests;
 use std::str::FromStr;
 
 pub use decimate::TRIANGLE_LIMIT;
+pub use primitives::{POINT_LIMIT, primitives};
 pub use solid::{assembly, bent, plates};
 pub use surface::{GROUP_NODE_LIMIT, coplanar, model, wireframe};
 
@@ -40,6 +43,8 @@ pub enum View {
     Wireframe,
     /// Each planar group its own colour.
     Coplanar,
+    /// Each primitive the classifier found its own colour, its inlier samples as points.
+    Primitives,
     /// Each plate a solid slab, its own colour.
     Plates,
     /// Plates coloured by the bent part they belong to.
@@ -50,10 +55,11 @@ pub enum View {
 
 impl View {
     /// Every view, in the pipeline's order.
-    pub const ALL: [View; 6] = [
+    pub const ALL: [View; 7] = [
         View::Model,
         View::Wireframe,
         View::Coplanar,
+        View::Primitives,
         View::Plates,
         View::Bent,
         View::Final,
@@ -65,6 +71,7 @@ impl View {
             View::Model => "model",
             View::Wireframe => "wireframe",
             View::Coplanar => "coplanar",
+            View::Primitives => "primitives",
             View::Plates => "plates",
             View::Bent => "bent",
             View::Final => "final",
@@ -99,6 +106,8 @@ pub struct Scene {
     pub triangles: usize,
     /// Line segments over all meshes (the wireframe).
     pub lines: usize,
+    /// Points over all meshes (the primitives view's samples).
+    pub points: usize,
     /// Nodes, the root included.
     pub nodes: usize,
     /// What the viewer should know (decimation, views that are stand-ins).
@@ -107,11 +116,12 @@ pub struct Scene {
 
 impl Scene {
     fn finish(glb: glb::GlbBuilder, root: &str, notes: Vec<String>) -> Result<Self, SceneError> {
-        let (triangles, lines, nodes) = (glb.triangles, glb.lines, glb.node_count());
+        let (triangles, lines, points, nodes) = (glb.triangles, glb.lines, glb.points, glb.node_count());
         Ok(Scene {
             glb: glb.finish(root)?,
             triangles,
             lines,
+            points,
             nodes,
             notes,
         })
@@ -122,7 +132,7 @@ impl Scene {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SceneError {
     /// A view name that does not exist (caller's fault).
-    #[error("unknown view '{0}': expected one of model, wireframe, coplanar, plates, bent, final")]
+    #[error("unknown view '{0}': expected one of model, wireframe, coplanar, primitives, plates, bent, final")]
     UnknownView(String),
     /// Geometry that cannot be drawn: non-finite or huge coordinates (input's fault).
     #[error("cannot draw {what}: {error}")]

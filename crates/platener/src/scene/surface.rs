@@ -105,8 +105,15 @@ fn index_soup(soup: &[read::Triangle]) -> Indexed {
 
 /// Some faces of the mesh with only the vertices they use.
 fn faces_of(mesh: &Mesh, faces: &[u32]) -> MeshData {
+    faces_under(mesh, faces, usize::MAX).0
+}
+
+/// Some faces of the mesh with only the vertices they use, clustered down to at most `limit`
+/// triangles when there are more (with the note [`under_limit`] writes).
+pub(super) fn faces_under(mesh: &Mesh, faces: &[u32], limit: usize) -> (MeshData, Option<String>) {
     let picked: Vec<[u32; 3]> = faces.iter().map(|&f| mesh.triangles[f as usize]).collect();
-    triangles(compact(&mesh.vertices, picked))
+    let (indexed, note) = under_limit(compact(&mesh.vertices, picked), limit);
+    (triangles(indexed), note)
 }
 
 fn triangles((positions, tris): (Vec<DVec3>, Vec<[u32; 3]>)) -> MeshData {

@@ -162,3 +162,33 @@ fn view_names_parse_back() {
     }
     assert!(matches!("x".parse::<View>(), Err(SceneError::UnknownView(_))));
 }
+
+/// A textured box of 261 000 triangles: each primitive's node is decimated to its share of the
+/// limit, the note says so, and every k-th inlier keeps the points under their limit.
+#[test]
+fn a_classification_over_the_limits_is_drawn_decimated_and_thinned() {
+    let soup = crate::samples::textured_box(DVec3::new(120.0, 90.0, 70.0), 3.0, 0.3, 2.5);
+    let welded = crate::weld::weld_soup(&soup, 1e-6);
+    let mesh = crate::mesh::Mesh::build(welded.vertices, &welded.triangles, 1e-9);
+    assert!(mesh.triangles.len() > TRIANGLE_LIMIT);
+    let c = crate::classify::run(&mesh, &crate::classify::ClassifySettings::default()).expect("classifies");
+    let inliers: usize = c.primitives.iter().map(|p| p.samples.len()).sum();
+    assert!(inliers > POINT_LIMIT, "{inliers} inliers");
+    let s = primitives(&mesh, &c).expect("scene");
+    assert!(
+        s.triangles <= TRIANGLE_LIMIT && s.triangles > TRIANGLE_LIMIT / 10,
+        "{}",
+        s.triangles
+    );
+    assert_eq!(
+        s.notes,
+        [format!(
+            "decimated from {} to {} triangles for viewing",
+            mesh.triangles.len(),
+            s.triangles
+        )]
+    );
+    let stride = inliers.div_ceil(POINT_LIMIT);
+    assert_eq!(s.points, inliers.div_ceil(stride), "every {stride}-th of {inliers}");
+    assert!(s.points <= POINT_LIMIT);
+}

@@ -4,13 +4,15 @@ use std::collections::BTreeMap;
 
 use glam::{DMat4, DQuat, DVec3, Mat4};
 
-/// One child of the root: its name, transform (local → model mm) and mesh.
+/// One child of the root: its name, transform (local → model mm), mesh (its one line or
+/// triangle primitive) and the points of a POINTS primitive beside it (the primitives view).
 pub struct Node {
     pub name: String,
     pub matrix: DMat4,
     pub mode: Option<gltf::mesh::Mode>,
     pub positions: Vec<DVec3>,
     pub indices: Vec<u32>,
+    pub points: Vec<DVec3>,
 }
 
 impl Node {
@@ -48,17 +50,25 @@ pub fn load(glb: &[u8]) -> Loaded {
         .children()
         .map(|n| {
             let matrix = Mat4::from_cols_array_2d(&n.transform().matrix()).as_dmat4();
-            let (mut mode, mut positions, mut indices) = (None, Vec::new(), Vec::new());
-            if let Some(mesh) = n.mesh() {
-                let prims: Vec<_> = mesh.primitives().collect();
-                assert_eq!(prims.len(), 1);
-                let r = prims[0].reader(|_| Some(&blob[..]));
-                mode = Some(prims[0].mode());
-                positions = r
+            let (mut mode, mut positions, mut indices, mut points) = (None, Vec::new(), Vec::new(), Vec::new());
+            for p in n.mesh().iter().flat_map(|m| m.primitives()) {
+                let r = p.reader(|_| Some(&blob[..]));
+                let at: Vec<DVec3> = r
                     .read_positions()
                     .expect("positions")
                     .map(|p| DVec3::from(p.map(f64::from)))
                     .collect();
+                if p.mode() == gltf::mesh::Mode::Points {
+                    assert!(
+                        r.read_indices().is_none() && points.is_empty(),
+                        "one unindexed POINTS primitive"
+                    );
+                    points = at;
+                    continue;
+                }
+                assert!(mode.is_none(), "one line or triangle primitive per mesh");
+                mode = Some(p.mode());
+                positions = at;
                 indices = r.read_indices().expect("indices").into_u32().collect();
             }
             Node {
@@ -67,6 +77,7 @@ pub fn load(glb: &[u8]) -> Loaded {
                 mode,
                 positions,
                 indices,
+                points,
             }
         })
         .collect();
