@@ -75,6 +75,7 @@ pub fn view_of(step: StepId) -> Option<View> {
         StepId::Read => Some(View::Model),
         StepId::Mesh => Some(View::Wireframe),
         StepId::Coplanar => Some(View::Coplanar),
+        StepId::Classify => Some(View::Primitives),
         StepId::Plates => Some(View::Plates),
         StepId::Bends => Some(View::Bent),
         StepId::Parts | StepId::Stacked => Some(View::Final),
@@ -186,6 +187,11 @@ pub fn test_set() -> Vec<TestModel> {
             "two-bodies",
             "sphere and torus: the stacked method's layers",
             s::two_bodies(10.0),
+        ),
+        model(
+            "textured-box",
+            "hollow box 60x40x30, 3 mm walls, 0.5 mm bumps outside: the classifier's 12 planes",
+            s::textured_box(glam::DVec3::new(60.0, 40.0, 30.0), 3.0, 0.5, 10.0),
         ),
     ]
 }
