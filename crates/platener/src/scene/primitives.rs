@@ -49,21 +49,30 @@ pub fn primitives(mesh: &Mesh, classification: &Classification) -> Result<Scene,
     if m.is_some() {
         glb.node(UNEXPLAINED, m, None);
     }
-    let mut notes = Vec::new();
-    if decimated {
-        notes.push(format!(
-            "decimated from {} to {} triangles for viewing",
-            mesh.triangles.len(),
-            glb.triangles
-        ));
-    }
-    if shown.len() < classification.primitives.len() {
-        notes.push(format!(
-            "{} smaller primitives (past the first {GROUP_NODE_LIMIT}) drawn grey with the unexplained faces",
-            classification.primitives.len() - shown.len()
-        ));
-    }
+    let hidden = classification.primitives.len() - shown.len();
+    let notes = notes(decimated.then_some((total, glb.triangles)), &points, hidden);
     Scene::finish(glb, "primitives", notes)
+}
+
+/// What the viewer should know: triangles decimated (from, to), inliers thinned, primitives
+/// drawn grey.
+fn notes(decimated: Option<(usize, usize)>, points: &PointPicker, hidden: usize) -> Vec<String> {
+    let mut notes = Vec::new();
+    if let Some((from, to)) = decimated {
+        notes.push(format!("decimated from {from} to {to} triangles for viewing"));
+    }
+    if points.stride > 1 {
+        notes.push(format!(
+            "1 in {} of the {} inlier samples drawn as points",
+            points.stride, points.seen
+        ));
+    }
+    if hidden > 0 {
+        notes.push(format!(
+            "{hidden} later primitives (past the first {GROUP_NODE_LIMIT}) drawn grey with the unexplained faces"
+        ));
+    }
+    notes
 }
 
 /// What a viewer can list about a primitive: its kind, fitted shape (the classification's

@@ -180,15 +180,18 @@ fn a_classification_over_the_limits_is_drawn_decimated_and_thinned() {
         "{}",
         s.triangles
     );
+    let stride = inliers.div_ceil(POINT_LIMIT);
     assert_eq!(
         s.notes,
-        [format!(
-            "decimated from {} to {} triangles for viewing",
-            mesh.triangles.len(),
-            s.triangles
-        )]
+        [
+            format!(
+                "decimated from {} to {} triangles for viewing",
+                mesh.triangles.len(),
+                s.triangles
+            ),
+            format!("1 in {stride} of the {inliers} inlier samples drawn as points")
+        ]
     );
-    let stride = inliers.div_ceil(POINT_LIMIT);
     assert_eq!(s.points, inliers.div_ceil(stride), "every {stride}-th of {inliers}");
     assert!(s.points <= POINT_LIMIT);
 }
