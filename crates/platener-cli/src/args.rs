@@ -89,7 +89,7 @@ pub enum Command {
 pub struct SceneArgs {
     /// The model file (.stl, .obj, .3mf).
     pub model: PathBuf,
-    /// The view: model, wireframe, coplanar, plates, bent or final.
+    /// The view: model, wireframe, coplanar, primitives, plates, bent or final.
     #[arg(long, default_value = "final")]
     pub view: String,
     /// The .glb file to write.

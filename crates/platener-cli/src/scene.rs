@@ -16,8 +16,10 @@ pub const EXAMPLES: &str = "Examples:
   platener scene model.stl --view coplanar -o groups.glb
 
 Views: model (the mesh as read), wireframe (its edges), coplanar (each planar group its own
-colour), plates (each plate a slab), bent (plates by bent part), final (every part as cut,
-joints included). Lengths are mm under a 0.001 root scale, Z-up turned to Y-up.";
+colour), primitives (each primitive the classifier found its own colour, its inlier samples
+as points; --method classifier), plates (each plate a slab), bent (plates by bent part), final
+(every part as cut, joints included). Lengths are mm under a 0.001 root scale, Z-up turned to
+Y-up.";
 
 /// Runs the command.
 pub fn run(args: &SceneArgs) -> anyhow::Result<()> {
@@ -60,12 +62,13 @@ pub fn run(args: &SceneArgs) -> anyhow::Result<()> {
     };
     std::fs::write(&args.output, &scene.glb).with_context(|| format!("cannot write {}", args.output.display()))?;
     eprintln!(
-        "{}: the {view} view of the {} method, {} nodes, {} triangles, {} lines, {} bytes",
+        "{}: the {view} view of the {} method, {} nodes, {} triangles, {} lines, {} points, {} bytes",
         args.output.display(),
         method.name(),
         scene.nodes,
         scene.triangles,
         scene.lines,
+        scene.points,
         scene.glb.len()
     );
     for note in &scene.notes {

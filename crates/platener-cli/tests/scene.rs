@@ -104,7 +104,46 @@ fn a_view_the_method_has_not_or_an_unknown_view_is_an_error() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("needs step plates"), "{stderr}");
     assert!(!glb.exists());
+    let out = scene_of_box(&["--view", "primitives", "--method", "plate"], &glb);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("needs step classify"), "{stderr}");
     let out = scene_of_box(&["--view", "assembly"], &glb);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("unknown view"));
+}
+
+/// The classifier's primitives of the box: a plane node per wall face, each with its inlier
+/// points beside its triangles and its fitted plane in `extras`.
+#[test]
+fn the_primitives_view_names_each_plane_and_carries_its_shape() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let glb = dir.path().join("primitives.glb");
+    let out = scene_of_box(&["--view", "primitives", "--method", "classifier"], &glb);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("the primitives view of the classifier method"),
+        "{stderr}"
+    );
+    let json = glb_json(&std::fs::read(&glb).expect("written"));
+    let nodes = json["nodes"].as_array().expect("nodes");
+    let planes: Vec<&serde_json::Value> = nodes
+        .iter()
+        .filter(|n| n["name"].as_str().is_some_and(|s| s.starts_with("plane-")))
+        .collect();
+    assert!(planes.len() >= 6, "{stderr}");
+    for n in planes {
+        let normal = n["extras"]["shape"]["normal"].as_array().expect("a plane's normal");
+        let length: f64 = normal.iter().filter_map(serde_json::Value::as_f64).map(|c| c * c).sum();
+        assert!((length - 1.0).abs() < 1e-9, "{n}");
+        let mesh = &json["meshes"][n["mesh"].as_u64().expect("mesh") as usize];
+        let modes: Vec<u64> = mesh["primitives"]
+            .as_array()
+            .expect("primitives")
+            .iter()
+            .filter_map(|p| p["mode"].as_u64())
+            .collect();
+        assert_eq!(modes, [4, 0], "triangles, then the inlier points: {n}");
+    }
 }

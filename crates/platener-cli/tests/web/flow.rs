@@ -191,6 +191,11 @@ pub fn upload_convert_and_every_link_works(backend: Backend) {
     for view in ["model", "wireframe", "coplanar", "plates", "bent", "final"] {
         assert!(c["links"]["scenes"][view].is_string(), "scene {view}");
     }
+    // The classifier's primitives are among its own method's scenes (checked below like every
+    // link), not the best method's: the plate method classifies nothing.
+    let primitives = &c["links"]["methods"]["classifier"]["scenes"]["primitives"];
+    assert!(primitives.is_string(), "{}", c["links"]);
+    assert!(c["links"]["scenes"]["primitives"].is_null());
     assert!(links.iter().any(|l| l.ends_with(".svg")), "{links:?}");
     for link in links.iter().filter(|l| !l.ends_with("/events")) {
         check_link(&server, link);

@@ -1,4 +1,4 @@
-// The conversion area: upload, settings (a change re-cuts and keeps the view), progress, the six
+// The conversion area: upload, settings (a change re-cuts and keeps the view), progress, the seven
 // 3D views, the sheets with their numbers, hover linking between 3D and sheet, the final view's
 // exploded slider and assembly player, publishing.
 
@@ -9,7 +9,7 @@ import { assemblyOrder } from './assembly.js';
 import * as progress from './progress.js';
 
 const $ = (id) => document.getElementById(id);
-export const VIEWS = ['model', 'wireframe', 'coplanar', 'plates', 'bent', 'final'];
+export const VIEWS = ['model', 'wireframe', 'coplanar', 'primitives', 'plates', 'bent', 'final'];
 const FINISHED = new Set(['done', 'failed', 'cancelled']);
 
 /** The settings form as the API takes them. */

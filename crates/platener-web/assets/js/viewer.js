@@ -164,6 +164,11 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
       disposeTree(state.model);
     }
     state.model = gltf.scene;
+    // Sample points (the primitives view) load one pixel wide: too small to see a primitive's
+    // inliers by.
+    state.model.traverse((o) => {
+      if (o.isPoints) o.material.size = 3;
+    });
     scene.add(state.model);
     state.model.updateMatrixWorld(true);
     const box = new THREE.Box3().setFromObject(state.model);
