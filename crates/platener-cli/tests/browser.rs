@@ -20,7 +20,8 @@ use browser_support::{Browser, PATIENCE, Page, Rect, chromium};
 use serde_json::Value;
 use web_support::Server;
 
-/// The six views, in the page's order.
+/// The six views of the plate method (all but the classifier's `primitives`), in the page's
+/// order.
 const VIEWS: [&str; 6] = ["model", "wireframe", "coplanar", "plates", "bent", "final"];
 
 /// A server and a browser for one test; the data dir lives as long as they do.
@@ -206,6 +207,11 @@ fn upload_button_progress_six_views_hover_and_settings_recut() {
         let img = show_view(&page, view, &format!("03-view-{view}"));
         assert_view_rendered(view, &img);
     }
+    assert_eq!(
+        page.eval("document.querySelector('[data-testid=view-primitives]').disabled"),
+        Value::Bool(true),
+        "the plate method has no primitives to show"
+    );
 
     // Hover in the final view: the part lights up in 3D, its number shows, and the same part
     // is marked on the sheet.
@@ -249,7 +255,22 @@ fn upload_button_progress_six_views_hover_and_settings_recut() {
     check_explode_and_player(&rig, &page, &id);
     publish_and_see_in_gallery(&rig, &page, &id);
     recut_keeps_view(&rig, &page, &id);
+    classifier_shows_its_primitives(&rig, &page);
     page.assert_no_problems("landing page, upload, views, hover, re-cut");
+}
+
+/// Choosing the classifier method re-cuts, and its primitives view is enabled and drawn in
+/// the palette's colours.
+fn classifier_shows_its_primitives(rig: &Rig, page: &Page) {
+    let id = page.state()["id"].as_str().expect("a conversion").to_string();
+    page.eval(
+        "(() => { const s = document.querySelector('[data-testid=method]'); s.value = 'classifier'; \
+         s.dispatchEvent(new Event('change', { bubbles: true })); })()",
+    );
+    let recut = wait_converted(page, Some(&id));
+    assert_eq!(conversion(rig, &recut)["best"], "classifier");
+    let img = show_view(page, "primitives", "09-classifier-primitives");
+    assert_view_rendered("primitives", &img);
 }
 
 /// A settings change re-cuts: a new conversion with the new material, the view kept (plates,
