@@ -142,33 +142,23 @@ impl GlbBuilder {
         colour: Colour,
         double_sided: bool,
     ) -> Result<Option<usize>, SceneError> {
-        let mut primitives = Vec::new();
-        for &(data, mode) in parts {
-            if let Some(p) = self.primitive(name, data, mode, colour, double_sided)? {
-                primitives.push(p);
-            }
-        }
-        if primitives.is_empty() {
+        let drawn: Vec<(&MeshData, Mode)> = parts.iter().copied().filter(|(d, m)| drawable(d, *m)).collect();
+        if drawn.is_empty() {
             return Ok(None);
         }
+        let material = self.material(colour, double_sided);
+        let primitives = drawn
+            .into_iter()
+            .map(|(data, mode)| self.primitive(name, data, mode, material))
+            .collect::<Result<Vec<Value>, SceneError>>()?;
         self.meshes.push(json!({ "name": name, "primitives": primitives }));
         Ok(Some(self.meshes.len() - 1))
     }
 
-    /// One primitive's JSON with its accessors written; `None` when it is empty.
-    fn primitive(
-        &mut self,
-        name: &str,
-        data: &MeshData,
-        mode: Mode,
-        colour: Colour,
-        double_sided: bool,
-    ) -> Result<Option<Value>, SceneError> {
-        let per = mode.per();
-        if data.positions.is_empty() || data.indices.len() < per {
-            return Ok(None);
-        }
+    /// One primitive's JSON with its accessors written.
+    fn primitive(&mut self, name: &str, data: &MeshData, mode: Mode, material: usize) -> Result<Value, SceneError> {
         let count = u32::try_from(data.positions.len()).map_err(|_| SceneError::TooLarge { what: name.into() })?;
+        let per = mode.per();
         let fits = match mode {
             Mode::Points => data.indices.is_empty(),
             _ => data.indices.iter().all(|&i| i < count) && data.indices.len().is_multiple_of(per),
@@ -177,7 +167,6 @@ impl GlbBuilder {
             return Err(SceneError::Bug(format!("mesh {name}: indices do not fit its vertices")));
         }
         let position = self.positions(&data.positions);
-        let material = self.material(colour, double_sided);
         let mut primitive = json!({
             "attributes": { "POSITION": position },
             "material": material,
@@ -191,7 +180,7 @@ impl GlbBuilder {
         if mode != Mode::Points {
             primitive["indices"] = json!(self.indices(&data.indices, count));
         }
-        Ok(Some(primitive))
+        Ok(primitive)
     }
 
     /// The POSITION accessor (f32 VEC3) with the min/max glTF requires, taken from the f32
@@ -291,6 +280,11 @@ impl GlbBuilder {
         let json = serde_json::to_vec(&doc).map_err(|e| SceneError::Bug(e.to_string()))?;
         pack(json, self.bin)
     }
+}
+
+/// Whether `data` draws anything in `mode` (glTF forbids empty accessors).
+fn drawable(data: &MeshData, mode: Mode) -> bool {
+    !data.positions.is_empty() && data.indices.len() >= mode.per()
 }
 
 /// Packs the two chunks into a GLB container (glTF 2.0 spec, section 4.4).
