@@ -3,8 +3,9 @@
 //! The JSON is written with serde_json (its maps are sorted, so the bytes depend on the input
 //! only) and the binary chunk is packed here, each buffer view 4-byte aligned. Only what the
 //! scenes need: positions (no normals, viewers shade flat), indices, triangles, lines or
-//! points, one material per colour, node `extras` for what a viewer may list, a single root node that scales millimetres to metres and turns the
-//! model's Z-up into glTF's Y-up (plan-format.md, "The 3D scene").
+//! points, one material per colour, node `extras` for what a viewer may list, a single root
+//! node that scales millimetres to metres and turns the model's Z-up into glTF's Y-up
+//! (plan-format.md, "The 3D scene").
 
 use std::collections::BTreeMap;
 
