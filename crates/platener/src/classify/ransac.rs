@@ -36,6 +36,8 @@ const BITS: u32 = 10;
 #[derive(Debug, Clone, Copy)]
 struct Candidate {
     shape: Shape,
+    /// The estimated inlier count, or once checked the connected inliers counted
+    /// ([`Search::best_connected`]): an upper bound either way, as samples only die.
     estimate: f64,
     level: usize,
 }
@@ -108,6 +110,11 @@ struct Search<'a> {
     shuffled: Vec<u32>,
     level_score: Vec<f64>,
     rng: SplitMix64,
+    /// Shapes whose connected inliers were too few (as drawn and refitted to them): samples
+    /// only die, so they never grow, and new candidates like them are not scored again. A
+    /// model of many coplanar islands (chips, tiles) otherwise proposes its plane in every
+    /// batch and checks it at the cost of a full inlier search each time.
+    rejected: Vec<Shape>,
 }
 
 /// Detects primitives among `samples`, largest first; each keeps its inliers (sample
@@ -131,6 +138,7 @@ pub fn detect(samples: &[Sample], th: &Thresholds, seed: u64) -> Vec<Primitive> 
         shuffled,
         level_score: vec![1.0; th.octree_levels.clamp(1, BITS as usize)],
         rng,
+        rejected: Vec::new(),
     };
     s.refresh();
     let mut found = Vec::new();
@@ -185,8 +193,14 @@ impl Search<'_> {
                 if self.found_probability(pool[b].estimate, draws) < CONFIDENCE {
                     break;
                 }
-                let (k, inliers) = self.best_connected(&pool);
+                let (k, inliers) = self.best_connected(&mut pool);
                 let cand = pool.swap_remove(k);
+                if inliers.len() < self.th.min_points {
+                    self.reject(&cand.shape, &inliers);
+                    let least = self.th.min_points as f64;
+                    pool.retain(|c| c.estimate >= least && !self.is_rejected(&c.shape));
+                    continue;
+                }
                 if let Some(p) = self.extract(&cand.shape, inliers) {
                     return Some(p);
                 }
@@ -201,8 +215,9 @@ impl Search<'_> {
     /// inliers. Estimates count every inlier, so a candidate grazing several surfaces can
     /// lead on its estimate yet hold few connected inliers; candidates are checked in order of
     /// estimate until the estimate falls below the best connected count (it bounds that count
-    /// up to sampling error), at most [`CHECKED`].
-    fn best_connected(&self, pool: &[Candidate]) -> (usize, Vec<u32>) {
+    /// up to sampling error), at most [`CHECKED`]. Each checked candidate's estimate becomes its
+    /// connected count, an upper bound from then on.
+    fn best_connected(&self, pool: &mut [Candidate]) -> (usize, Vec<u32>) {
         let mut order: Vec<usize> = (0..pool.len()).collect();
         order.sort_by(|&a, &b| pool[b].estimate.total_cmp(&pool[a].estimate).then(a.cmp(&b)));
         let mut best: Option<(usize, Vec<u32>)> = None;
@@ -211,6 +226,7 @@ impl Search<'_> {
                 break;
             }
             let inliers = self.inliers(&pool[i].shape);
+            pool[i].estimate = inliers.len() as f64;
             if best.as_ref().is_none_or(|b| inliers.len() > b.1.len()) {
                 best = Some((i, inliers));
             }
@@ -268,12 +284,31 @@ impl Search<'_> {
             .into_iter()
             .flatten()
             .filter(|s| self.th.plausible(s) && q.iter().all(|o| s.accepts(o, self.th.eps, self.th.cos_alpha)))
+            .filter(|s| !self.is_rejected(s))
             .map(|shape| Candidate {
                 shape,
                 estimate: self.estimate(&shape),
                 level,
             })
             .collect()
+    }
+
+    /// Remembers `shape` and its refit to `inliers` as too small (see `rejected`).
+    fn reject(&mut self, shape: &Shape, inliers: &[u32]) {
+        let (pts, nrm): (Vec<DVec3>, Vec<DVec3>) = inliers
+            .iter()
+            .map(|&i| (self.samples[i as usize].at.p, self.samples[i as usize].at.n))
+            .unzip();
+        self.rejected.push(*shape);
+        if let Some(r) = refit(shape, &pts, &nrm) {
+            self.rejected.push(r);
+        }
+    }
+
+    /// Whether `shape` is one of the rejected ones, within ε and α.
+    fn is_rejected(&self, shape: &Shape) -> bool {
+        let (eps, cos) = (self.th.eps, self.th.cos_alpha);
+        self.rejected.iter().any(|r| r.same_as(shape, eps, cos))
     }
 
     /// Inliers on the subset, scaled to all live samples.

@@ -87,6 +87,49 @@ pub fn basis(a: DVec3) -> (DVec3, DVec3) {
 }
 
 impl Shape {
+    /// Whether `other` is the same surface within `eps` (positions, radii) and the angle
+    /// whose cosine is `cos_alpha` (directions): what RANSAC treats as one candidate.
+    pub fn same_as(&self, other: &Shape, eps: f64, cos_alpha: f64) -> bool {
+        let line_gap = |p: DVec3, a: DVec3, q: DVec3| {
+            let d = q - p;
+            (d - a * d.dot(a)).length()
+        };
+        match (*self, *other) {
+            (Shape::Plane { normal: n, offset: o }, Shape::Plane { normal: m, offset: p }) => {
+                let dot = n.dot(m);
+                dot.abs() >= cos_alpha && (o - p * dot.signum()).abs() <= eps
+            }
+            (
+                Shape::Cylinder {
+                    axis: a,
+                    point: p,
+                    radius: r,
+                },
+                Shape::Cylinder {
+                    axis: b,
+                    point: q,
+                    radius: s,
+                },
+            ) => a.dot(b).abs() >= cos_alpha && (r - s).abs() <= eps && line_gap(p, a, q) <= eps,
+            (Shape::Sphere { center: c, radius: r }, Shape::Sphere { center: d, radius: s }) => {
+                (c - d).length() <= eps && (r - s).abs() <= eps
+            }
+            (
+                Shape::Cone {
+                    apex: p,
+                    axis: a,
+                    half_angle: h,
+                },
+                Shape::Cone {
+                    apex: q,
+                    axis: b,
+                    half_angle: k,
+                },
+            ) => (p - q).length() <= eps && a.dot(b) >= cos_alpha && (h - k).abs() <= cos_alpha.acos(),
+            _ => false,
+        }
+    }
+
     /// Which primitive this is.
     pub fn kind(&self) -> ShapeKind {
         match self {
