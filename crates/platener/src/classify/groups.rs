@@ -96,7 +96,8 @@ pub fn fixed_groups(mesh: &Mesh, c: &Classification, exact: &PlanarGroups, thick
     let sectors = curved_sectors(mesh, &c.primitives, tolerance, c.thresholds.eps);
     let mut groups = Vec::new();
     for (k, p) in c.primitives.iter().enumerate() {
-        if !fragmented(mesh, p, exact) {
+        let pieces = sectors[k].map_or(1, |s| s.n);
+        if !fragmented(mesh, p, exact, pieces) {
             continue;
         }
         match (&p.shape, sectors[k]) {
@@ -112,23 +113,29 @@ pub fn fixed_groups(mesh: &Mesh, c: &Classification, exact: &PlanarGroups, thick
     Fixed { groups, snap }
 }
 
-/// Whether the exact planar groups (those the plate method uses) split `p`'s triangles so
-/// that none holds [`FRAGMENTED`] of its area: a texture, noise or a tessellated curve that
-/// the primitive should replace. A primitive that is mostly one exact face (a CAD plate, or a
-/// nearly flat "cylinder" RANSAC laid over one) is left to the exact groups, which keep its
-/// details.
-fn fragmented(mesh: &Mesh, p: &Primitive, exact: &PlanarGroups) -> bool {
+/// Whether the exact planar groups (those the plate method uses) split `p`'s triangles
+/// finely: none holds [`FRAGMENTED`] of its area, and they are on average (weighted by
+/// area) smaller than a quarter of the pieces the primitive would be cut into (`pieces`: 1
+/// for a plane, its sectors for a curve). That is a texture, noise or a fine tessellation,
+/// which the primitive should replace. A primitive that is mostly one exact face (a CAD
+/// plate, or a nearly flat "cylinder" RANSAC laid over one), or a few facets as large as the
+/// classifier's own (a low-poly lamp shade), is left to the exact groups, which keep the
+/// model's own edges.
+fn fragmented(mesh: &Mesh, p: &Primitive, exact: &PlanarGroups, pieces: usize) -> bool {
     let mut by_group: Vec<(u32, f64)> = p
         .triangles
         .iter()
         .map(|&f| (exact.face_group[f as usize], mesh.areas[f as usize]))
         .collect();
     by_group.sort_unstable_by_key(|x| x.0);
-    let largest = by_group
+    let areas: Vec<f64> = by_group
         .chunk_by(|a, b| a.0 == b.0)
-        .map(|run| run.iter().map(|x| x.1).sum::<f64>())
-        .fold(0.0, f64::max);
-    largest < FRAGMENTED * p.area
+        .map(|run| run.iter().map(|x| x.1).sum())
+        .collect();
+    let total: f64 = areas.iter().sum();
+    let largest = areas.iter().copied().fold(0.0, f64::max);
+    let typical = areas.iter().map(|a| a * a).sum::<f64>() / total.max(f64::MIN_POSITIVE);
+    largest < FRAGMENTED * p.area && typical < p.area / (4.0 * pieces as f64)
 }
 
 /// A primitive whose largest exact group holds less than this share of its area replaces
