@@ -114,12 +114,12 @@ pub fn fixed_groups(mesh: &Mesh, c: &Classification, exact: &PlanarGroups, thick
 }
 
 /// Whether the exact planar groups (those the plate method uses) split `p`'s triangles
-/// finely: none holds [`FRAGMENTED`] of its area, and they are on average (weighted by
-/// area) smaller than a quarter of the pieces the primitive would be cut into (`pieces`: 1
-/// for a plane, its sectors for a curve). That is a texture, noise or a fine tessellation,
-/// which the primitive should replace. A primitive that is mostly one exact face (a CAD
-/// plate, or a nearly flat "cylinder" RANSAC laid over one), or a few facets as large as the
-/// classifier's own (a low-poly lamp shade), is left to the exact groups, which keep the
+/// finely: at least [`FINE_GROUPS`] of them, none holding [`FRAGMENTED`] of its area, on
+/// average (weighted by area) smaller than a quarter of the pieces the primitive would be
+/// cut into (`pieces`: 1 for a plane, its sectors for a curve). That is a texture, noise or
+/// a fine tessellation, which the primitive should replace. A primitive that is mostly one
+/// exact face (a CAD plate, or a nearly flat "cylinder" RANSAC laid over one), or a few
+/// facets someone drew (a low-poly lamp shade), is left to the exact groups, which keep the
 /// model's own edges.
 fn fragmented(mesh: &Mesh, p: &Primitive, exact: &PlanarGroups, pieces: usize) -> bool {
     let mut by_group: Vec<(u32, f64)> = p
@@ -135,8 +135,12 @@ fn fragmented(mesh: &Mesh, p: &Primitive, exact: &PlanarGroups, pieces: usize) -
     let total: f64 = areas.iter().sum();
     let largest = areas.iter().copied().fold(0.0, f64::max);
     let typical = areas.iter().map(|a| a * a).sum::<f64>() / total.max(f64::MIN_POSITIVE);
-    largest < FRAGMENTED * p.area && typical < p.area / (4.0 * pieces as f64)
+    largest < FRAGMENTED * p.area && typical < p.area / (4.0 * pieces as f64) && areas.len() >= FINE_GROUPS
 }
+
+/// The fewest exact groups a primitive must span to replace them: fewer are facets someone
+/// chose (a low-poly lamp's triangles, a 12-sided tube), not a texture or a fine tessellation.
+pub const FINE_GROUPS: usize = 16;
 
 /// A primitive whose largest exact group holds less than this share of its area replaces
 /// the exact groups (see [`fragmented`]).
