@@ -205,3 +205,22 @@ fn smooth_tubes_and_cone_shells_become_one_bent_wrap() {
         assert_eq!(wrap.bends.len(), wrap.segments.len() - 1, "{name}");
     }
 }
+
+/// A small textured box (60 × 40 × 30, the same bumps): with ε = t / 2 = 1.5 mm, a quarter
+/// of its smallest side, cylinders rounding its edges used to take strips of its faces.
+#[test]
+fn a_small_textured_box_is_still_six_walls() {
+    let state = convert_with(
+        MethodKind::Classifier,
+        samples::textured_box(DVec3::new(60.0, 40.0, 30.0), 3.0, 0.5, 10.0),
+    );
+    let found = state.classify.as_ref().expect("classified");
+    assert!(
+        found.primitives.iter().all(|p| p.shape.kind() == ShapeKind::Plane),
+        "{:?}",
+        found.primitives.iter().map(|p| p.shape.kind()).collect::<Vec<_>>()
+    );
+    let (plan, v) = checked(&state);
+    rebuilds(&v);
+    assert_six_jointed_walls(&plan, [DVec3::X, DVec3::Y, DVec3::Z]);
+}

@@ -90,7 +90,9 @@ pub struct Thresholds {
     pub spacing: f64,
     /// Distance tolerance ε, mm: min(thickness / 2, diagonal / 50).
     pub eps: f64,
-    /// Radius of the neighbourhood a sample's normal is fitted to, mm: max(3·spacing, 2ε).
+    /// Radius of the neighbourhood a sample's normal is fitted to, mm: max(3·spacing, 4ε).
+    /// At 2ε, α would be 45° wherever samples are dense, and cylinders rounding a small
+    /// textured box's edges took strips of its faces.
     pub normal_radius: f64,
     /// Normal tolerance α, degrees: atan(2ε / normal_radius), the most noise within ±ε can
     /// tilt a normal fitted over that neighbourhood.
@@ -117,7 +119,7 @@ impl Thresholds {
     pub fn derive(area: f64, diagonal: f64, s: &ClassifySettings) -> Self {
         let spacing = (area / s.samples as f64).sqrt();
         let eps = (s.thickness / 2.0).min(diagonal / 50.0);
-        let normal_radius = (3.0 * spacing).max(2.0 * eps);
+        let normal_radius = (3.0 * spacing).max(4.0 * eps);
         let alpha = (2.0 * eps / normal_radius).atan();
         let side = 4.0 * s.thickness;
         let min_points = ((side * side / (spacing * spacing)) as usize).max(10);
