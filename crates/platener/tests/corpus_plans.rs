@@ -34,7 +34,6 @@ const PASSING: &[&str] = &[
     "chinese_chess_piece_engraved/stacked",
     "clamp_bar_140/stacked",
     "cube_libre_puzzle_pieces/stacked",
-    "indiafoss_keychain_text/classifier",
     "indiafoss_keychain_text/stacked",
     "ipad_mini_arcade_cabinet_half/classifier",
     "ipad_mini_arcade_cabinet_half/plate",
