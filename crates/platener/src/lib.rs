@@ -55,6 +55,7 @@ pub mod inspect;
 pub mod joints;
 pub mod kerf;
 pub mod labels;
+pub mod layers;
 pub mod mesh;
 pub mod method;
 pub mod parts;

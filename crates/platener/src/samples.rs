@@ -235,6 +235,45 @@ pub fn closed_box(w: f64, d: f64, h: f64, t: f64) -> Vec<Triangle> {
     )
 }
 
+/// A closed box `w × d × h` (walls `t` thick) with a solid dome on the middle of its lid: a
+/// hemisphere of `radius` with `segments` meridians and `rings` bands from its rim up to its
+/// top. Plates and a sphere in one closed model, the classifier's mixed plan's reference. The
+/// box is an outer shell and an inward-wound cavity, so the lid's face is a plain rectangle
+/// with the dome's rim as a hole.
+pub fn domed_box(w: f64, d: f64, h: f64, t: f64, radius: f64, segments: usize, rings: usize) -> Vec<Triangle> {
+    let (segments, rings) = (segments.max(3), rings.max(1));
+    let mut out: Vec<Triangle> = cuboid(DVec3::ZERO, DVec3::new(w, d, h))
+        .into_iter()
+        .filter(|tri| !tri.iter().all(|p| p.z == h))
+        .collect();
+    let cavity = cuboid(DVec3::splat(t), DVec3::new(w - t, d - t, h - t));
+    out.extend(cavity.into_iter().map(|[a, b, c]| [a, c, b]));
+    let c = DVec2::new(w / 2.0, d / 2.0);
+    let at = |i: usize, j: usize| {
+        let (se, ce) = (std::f64::consts::FRAC_PI_2 * i as f64 / rings as f64).sin_cos();
+        let (sp, cp) = (std::f64::consts::TAU * (j % segments) as f64 / segments as f64).sin_cos();
+        let r = if i == 0 { radius } else { radius * ce };
+        DVec3::new(c.x + r * cp, c.y + r * sp, h + radius * se)
+    };
+    let lid = platener_geom::Polygon {
+        outer: vec![DVec2::ZERO, DVec2::new(w, 0.0), DVec2::new(w, d), DVec2::new(0.0, d)],
+        holes: vec![(0..segments).rev().map(|j| at(0, j).truncate()).collect()],
+    };
+    let lid = platener_geom::triangulate::triangulate(&lid).expect("a lid on the grid");
+    for tri in &lid.triangles {
+        out.push(tri.map(|i| lid.points[i as usize].extend(h)));
+    }
+    for j in 0..segments {
+        for i in 0..rings - 1 {
+            let (a, b, c2, e) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+            out.push([a, b, c2]);
+            out.push([a, c2, e]);
+        }
+        out.push([at(rings - 1, j), at(rings - 1, j + 1), DVec3::new(c.x, c.y, h + radius)]);
+    }
+    out
+}
+
 /// Two `t`-thick plates crossing at right angles in a plus-shaped profile `size` across,
 /// extruded `size` deep: a horizontal one at mid height and a vertical one at mid width.
 pub fn crossing_plates(size: f64, t: f64) -> Vec<Triangle> {

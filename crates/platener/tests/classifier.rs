@@ -224,3 +224,63 @@ fn a_small_textured_box_is_still_six_walls() {
     rebuilds(&v);
     assert_six_jointed_walls(&plan, [DVec3::X, DVec3::Y, DVec3::Z]);
 }
+
+/// A closed box with a solid dome on its lid: the walls become plates, the dome stacked layers
+/// on a shaft that goes on through a slot in the lid.
+#[test]
+fn a_domed_box_becomes_plates_and_a_stack_of_layers_jointed_to_the_lid() {
+    let (h, radius, t) = (50.0, 30.0, 3.0);
+    let state = convert_with(MethodKind::Classifier, samples::domed_box(120.0, 90.0, h, t, radius, 96, 24));
+    let (plan, v) = checked(&state);
+    rebuilds(&v);
+    let of = |kind| plan.parts.iter().filter(move |p| p.kind == kind);
+    assert_eq!(of(PartKind::Plate).count(), 6, "the box's six walls");
+    let layers: Vec<_> = of(PartKind::Layer).collect();
+    assert_eq!(layers.len(), 10, "30 mm of dome in 3 mm layers");
+    // Each layer lies on the one below, the first on the lid, and its island (before slots are
+    // cut) is the dome's section at its mid-plane: a 96-gon's area is 0.07 % under the
+    // circle's, the 24 bands' chords take up to 1 % near the top.
+    let stack = state.layers.as_ref().and_then(|l| l.stack.as_ref()).expect("a stack");
+    for (k, layer) in layers.iter().enumerate() {
+        let z = layer.transform[2][3];
+        assert!((z - (h + t * k as f64)).abs() < 1e-6, "layer {k} at {z}");
+        let mid = z + t / 2.0 - h;
+        let section = std::f64::consts::PI * (radius * radius - mid * mid);
+        let [island] = &stack.layers[k].islands[..] else { panic!("layer {k} is one island") };
+        assert_eq!(island.part, layer.id);
+        let area = island.outline.area();
+        assert!((area / section - 1.0).abs() < 0.015, "layer {k}: {area} for {section}");
+    }
+    let shafts: Vec<_> = of(PartKind::Shaft).collect();
+    assert!(!shafts.is_empty());
+    // Every shaft through the bottom layer goes on through the lid: a slot joint, a hole in
+    // the lid as large as the shaft's end, and the shaft reaching 3 mm below the dome.
+    let lid = plan
+        .parts
+        .iter()
+        .find(|p| p.kind == PartKind::Plate && (p.transform[2][3] - h).abs() < 1e-6)
+        .expect("the lid");
+    let tenons: Vec<_> = plan.joints.iter().filter(|j| j.kind == JointKind::Slot).collect();
+    assert!(!tenons.is_empty(), "{:?}", plan.joints);
+    assert_eq!(lid.holes.len(), tenons.len());
+    for j in &tenons {
+        assert_eq!(j.parts[1], lid.id);
+        let shaft = shafts.iter().find(|s| s.id == j.parts[0]).expect("a shaft");
+        let lowest = shaft.outline.iter().map(|p| p.y).fold(f64::MAX, f64::min);
+        assert!((lowest + t).abs() < 1e-6, "the shaft ends {lowest} below the lid's face");
+    }
+    let slots: f64 = lid.holes.iter().map(|h| platener_geom::polygon::signed_area(h).abs()).sum();
+    assert!(slots > 0.0 && slots < 3.0 * 60.0 * tenons.len() as f64, "{slots}");
+    let report = state.layers.as_ref().expect("the layers step ran");
+    assert!(report.rests_on.is_some() && report.skipped.is_none());
+}
+
+/// Models the plates explain whole get no layers: the classifier's plan of a textured box is
+/// its six walls, with nothing left over for the layers step.
+#[test]
+fn a_box_leaves_nothing_to_the_layers() {
+    let state = convert_with(MethodKind::Classifier, samples::closed_box(120.0, 90.0, 70.0, 3.0));
+    let layers = state.layers.as_ref().expect("the layers step ran");
+    assert!(layers.stack.is_none() && layers.skipped.is_some(), "{layers:?}");
+    assert!(layers.marked_share < 0.001);
+}

@@ -18,8 +18,8 @@ use std::time::Instant;
 use crate::error::{Error, Result};
 use crate::settings::Settings;
 use crate::{
-    bends, classify, cleanup, coplanar, export, joints, kerf, labels, mesh, plan, plates, read, shapes, sheets,
-    stacked, weld,
+    bends, classify, cleanup, coplanar, export, joints, kerf, labels, layers, mesh, plan, plates, read, shapes,
+    sheets, stacked, weld,
 };
 
 pub use crate::context::{Cancel, StepContext, StepRecord, Warning, WarningKind};
@@ -58,6 +58,8 @@ pub struct State {
     pub joints: Option<Arc<joints::Joints>>,
     /// Step `stacked`: layers and shafts of the stacked method.
     pub stacked: Option<Arc<stacked::Stack>>,
+    /// Step `layers`: the classifier's spheres and freeforms as layers among its plates.
+    pub layers: Option<Arc<layers::Layers>>,
     /// Input of the cutting-plan steps: the parts a method made, with the cutting settings.
     pub parts: Option<Arc<plan::PlanInput>>,
     /// Step `kerf`.
@@ -88,6 +90,7 @@ impl State {
             bends: None,
             joints: None,
             stacked: None,
+            layers: None,
             parts: None,
             kerf: None,
             labels: None,
@@ -133,6 +136,7 @@ impl State {
             StepId::Joints => self.joints = None,
             StepId::Parts => self.parts = None,
             StepId::Stacked => self.stacked = None,
+            StepId::Layers => self.layers = None,
             StepId::Kerf => self.kerf = None,
             StepId::Labels => self.labels = None,
             StepId::Sheets => self.sheets = None,

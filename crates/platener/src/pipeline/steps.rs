@@ -8,8 +8,8 @@ use crate::context::StepContext;
 use crate::error::Result;
 use crate::method::MethodKind;
 use crate::{
-    bends, classify, cleanup, coplanar, export, joints, kerf, labels, mesh, parts, plates, read, shapes, sheets,
-    stacked, weld,
+    bends, classify, cleanup, coplanar, export, joints, kerf, labels, layers, mesh, parts, plates, read, shapes,
+    sheets, stacked, weld,
 };
 
 /// Every pipeline step, named as in report.json and as the module it lives in.
@@ -39,6 +39,9 @@ pub enum StepId {
     Parts,
     /// [`stacked`]: layers and shafts as parts to cut (stacked method).
     Stacked,
+    /// [`layers`]: spheres and freeforms as stacked layers among the plates (classifier
+    /// method).
+    Layers,
     /// [`kerf`]: cut paths.
     Kerf,
     /// [`labels`]: engraved numbers.
@@ -80,7 +83,7 @@ pub const CUTTING_PLAN: [StepId; 4] = [StepId::Kerf, StepId::Labels, StepId::She
 
 impl StepId {
     /// Every step, in pipeline order.
-    pub const ALL: [StepId; 16] = {
+    pub const ALL: [StepId; 17] = {
         let (p, c) = (PLATE, CUTTING_PLAN);
         [
             p[0],
@@ -94,6 +97,7 @@ impl StepId {
             p[7],
             p[8],
             StepId::Parts,
+            StepId::Layers,
             StepId::Stacked,
             c[0],
             c[1],
@@ -117,6 +121,7 @@ impl StepId {
             StepId::Joints => "joints",
             StepId::Parts => "parts",
             StepId::Stacked => "stacked",
+            StepId::Layers => "layers",
             StepId::Kerf => "kerf",
             StepId::Labels => "labels",
             StepId::Sheets => "sheets",
@@ -131,7 +136,7 @@ impl StepId {
             MethodKind::Stacked => [&FOUNDATION[..], &[StepId::Stacked]].concat(),
             MethodKind::Classifier => {
                 let (f, p) = (&FOUNDATION, &PLATE);
-                [&f[..4], &[StepId::Classify], &f[5..], &p[6..], &[StepId::Parts]].concat()
+                [&f[..4], &[StepId::Classify], &f[5..], &p[6..], &[StepId::Parts, StepId::Layers]].concat()
             }
         };
         steps.extend(CUTTING_PLAN);
@@ -192,6 +197,23 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
             let (stack, input) = stacked::run(model, cleaned, mesh, state.coplanar.as_deref(), &s, cx)?;
             state.stacked = Some(Arc::new(stack));
             state.parts = Some(Arc::new(input));
+        }
+        StepId::Layers => {
+            let inputs = layers::Inputs {
+                model: need(&state.read, name, "read")?,
+                cleaned: need(&state.cleanup, name, "cleanup")?,
+                mesh: need(&state.mesh, name, "mesh")?,
+                found: need(&state.classify, name, "classify")?,
+                groups: need(&state.coplanar, name, "classify")?,
+                shapes: need(&state.shapes, name, "shapes")?,
+                plates: need(&state.plates, name, "plates")?,
+                parts: need(&state.parts, name, "parts")?,
+            };
+            let (made, input) = layers::run(&inputs, &s, cx)?;
+            state.layers = Some(Arc::new(made));
+            if let Some(input) = input {
+                state.parts = Some(Arc::new(input));
+            }
         }
         StepId::Kerf => state.kerf = Some(Arc::new(kerf::run(need(&state.parts, name, "parts")?, cx)?)),
         StepId::Labels => state.labels = Some(Arc::new(labels::run(need(&state.parts, name, "parts")?, cx))),

@@ -44,13 +44,16 @@ pub struct LayerIslands {
 
 /// The islands of every layer of `sliced`.
 pub fn islands_of(sliced: &Sliced, settings: &StackedSettings) -> Result<LayerIslands, GridError> {
-    let per_layer: Vec<(Vec<Polygon>, Vec<Polygon>)> = sliced
-        .loops
-        .par_iter()
-        .map(|loops| {
-            let filled = fill(loops)?;
-            keep_cuttable(filled, settings)
-        })
+    let filled: Vec<Vec<Polygon>> = sliced.loops.par_iter().map(|loops| fill(loops)).collect::<Result<_, _>>()?;
+    islands_from(filled, settings)
+}
+
+/// The islands of layers whose material is `filled` (per layer, bottom first): the pieces
+/// large enough to cut, and the small ones that hold other layers together.
+pub(crate) fn islands_from(filled: Vec<Vec<Polygon>>, settings: &StackedSettings) -> Result<LayerIslands, GridError> {
+    let per_layer: Vec<(Vec<Polygon>, Vec<Polygon>)> = filled
+        .into_par_iter()
+        .map(|filled| keep_cuttable(filled, settings))
         .collect::<Result<_, GridError>>()?;
     let mut islands = Vec::with_capacity(per_layer.len());
     let mut small = Vec::new();

@@ -42,6 +42,8 @@ pub(crate) struct Chain {
     pub closed: bool,
     /// A triangle of the chain (its first).
     pub face: u32,
+    /// Each segment's triangle, in order (segment i runs from edge i to edge i + 1).
+    pub faces: Vec<u32>,
 }
 
 /// An open chain's crossing points and the body it belongs to.
@@ -51,6 +53,32 @@ pub(crate) struct OpenChain {
     pub points: Ring,
     /// The mesh component of its first triangle.
     pub component: u32,
+    /// Its length, mm, and the part of it cut from marked triangles (see [`Marked`]).
+    pub marked: Marked,
+}
+
+/// How much of a loop's length was cut from marked triangles (the classifier's layers mark
+/// the triangles no plate builds): lengths in mm, gaps bridged across not counted.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct Marked {
+    /// Length cut from marked triangles.
+    pub marked: f64,
+    /// Whole length.
+    pub length: f64,
+}
+
+impl Marked {
+    /// The marked share of the length, 0 for a loop of no length.
+    pub fn share(self) -> f64 {
+        if self.length > 0.0 { self.marked / self.length } else { 0.0 }
+    }
+}
+
+impl AddAssign for Marked {
+    fn add_assign(&mut self, o: Self) {
+        self.marked += o.marked;
+        self.length += o.length;
+    }
 }
 
 /// Chains `segments` (sorted by start edge) through their shared edges. On a non-manifold edge
@@ -73,11 +101,13 @@ pub(crate) fn chain(segments: &[Segment]) -> Vec<Chain> {
     let mut out = Vec::new();
     let walk = |start: usize, used: &mut Vec<bool>| {
         let mut edges = vec![segments[start].from];
+        let mut faces = vec![segments[start].face];
         used[start] = true;
         let mut at = start;
         while let Some(j) = next(used, segments[at].to) {
             used[j] = true;
             edges.push(segments[j].from);
+            faces.push(segments[j].face);
             at = j;
         }
         let closed = segments[at].to == segments[start].from;
@@ -88,6 +118,7 @@ pub(crate) fn chain(segments: &[Segment]) -> Vec<Chain> {
             edges,
             closed,
             face: segments[start].face,
+            faces,
         }
     };
     // Open chains first, from their true starts, so they are not cut in two.
@@ -105,8 +136,9 @@ pub(crate) fn chain(segments: &[Segment]) -> Vec<Chain> {
 }
 
 /// Joins open chains end to start across gaps no wider than `gap`, nearest pairs first.
-/// Returns the loops so closed (with the component of their first chain) and the counts.
-pub(crate) fn close_gaps(open: Vec<OpenChain>, gap: f64) -> (Vec<(Ring, u32)>, LoopStats) {
+/// Returns the loops so closed (with the component of their first chain and their marked
+/// length) and the counts.
+pub(crate) fn close_gaps(open: Vec<OpenChain>, gap: f64) -> (Vec<(Ring, u32, Marked)>, LoopStats) {
     let m = open.len();
     let mut stats = LoopStats::default();
     if m == 0 {
@@ -154,14 +186,16 @@ pub(crate) fn close_gaps(open: Vec<OpenChain>, gap: f64) -> (Vec<(Ring, u32)>, L
             continue;
         }
         let mut ring: Ring = Vec::new();
+        let mut marked = Marked::default();
         let mut at = i;
         while !seen[at] {
             seen[at] = true;
             ring.extend(open[at].points.iter().copied());
+            marked += open[at].marked;
             at = next[at].expect("every chain in a cycle has a successor");
         }
         stats.bridged += 1;
-        out.push((ring, open[i].component));
+        out.push((ring, open[i].component, marked));
     }
     (out, stats)
 }

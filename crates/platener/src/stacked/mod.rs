@@ -61,7 +61,8 @@ pub use loops::LoopStats;
 pub use orient::{AxisChoice, SlicePlan, choose_up};
 pub use parts::{Numbers, plan_input};
 pub use peg::PEG_MIN_WALL;
-pub(crate) use slice::section;
+pub(crate) use islands::{fill, islands_from};
+pub(crate) use slice::{section, slice_marked};
 pub use slice::{SliceLoop, Sliced, slice};
 pub use support::KeptIsland;
 pub use tabs::{TAB_SIZE, tab_size};
@@ -207,9 +208,7 @@ pub fn run(
         ));
     }
     cx.check_cancel()?;
-    let placed = shafts::place(&layers.islands, &settings.stacked, settings.shaft_thickness()).map_err(geometry)?;
-    cx.check_cancel()?;
-    let stack = assemble::assemble(plan, settings.shaft_thickness(), layers, placed, sliced.stats).map_err(geometry)?;
+    let stack = build(&model.name, plan, layers, sliced.stats, settings, cx)?;
     for w in warnings(&stack) {
         cx.warn(WarningKind::CuttingPlan, w);
     }
@@ -221,8 +220,24 @@ pub fn run(
     Ok((stack, input))
 }
 
+/// The stack of `layers` (their islands as cut from the planes of `plan`) of model `name`:
+/// shafts placed through them, slots cut.
+pub(crate) fn build(
+    name: &str,
+    plan: SlicePlan,
+    layers: LayerIslands,
+    loops: LoopStats,
+    settings: &Settings,
+    cx: &StepContext<'_>,
+) -> Result<Stack> {
+    let geometry = |e: platener_geom::GridError| Error::model(name, ModelProblem::OffGrid(e));
+    let placed = shafts::place(&layers.islands, &settings.stacked, settings.shaft_thickness()).map_err(geometry)?;
+    cx.check_cancel()?;
+    assemble::assemble(plan, settings.shaft_thickness(), layers, placed, loops).map_err(geometry)
+}
+
 /// Where the numbers of layers too thin for them went.
-fn number_warnings(n: &Numbers) -> Vec<String> {
+pub(crate) fn number_warnings(n: &Numbers) -> Vec<String> {
     let mut out = Vec::new();
     if !n.on_tab.is_empty() {
         out.push(format!(

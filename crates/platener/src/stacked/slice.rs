@@ -23,7 +23,7 @@ use platener_geom::polygon::{remove_straight_vertices, signed_area2};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::loops::{self, LoopStats, OpenChain};
+use super::loops::{self, LoopStats, Marked, OpenChain};
 use super::orient::SlicePlan;
 use crate::mesh::Mesh;
 
@@ -49,6 +49,9 @@ pub struct SliceLoop {
     pub points: Ring,
     /// The mesh body (component) it was cut from.
     pub component: u32,
+    /// Share of its length cut from marked triangles ([`slice_marked`]; 0 when none are).
+    #[serde(skip)]
+    pub marked: f64,
 }
 
 /// Every plane's loops.
@@ -71,6 +74,13 @@ pub const MAX_GAP_SHARE: f64 = 0.25;
 /// straight run. Open chains (holes in the surface) are closed across gaps up to
 /// [`MAX_GAP_SHARE`] of the model's diagonal.
 pub fn slice(mesh: &Mesh, plan: &SlicePlan, tolerance: f64) -> Sliced {
+    slice_marked(mesh, plan, tolerance, &[])
+}
+
+/// [`slice`], with each loop's share of length cut from the triangles `marked` says (by
+/// triangle index; missing entries are unmarked): the classifier's `layers` step keeps the
+/// loops its spheres and freeforms make.
+pub(crate) fn slice_marked(mesh: &Mesh, plan: &SlicePlan, tolerance: f64, marked: &[bool]) -> Sliced {
     let local: Vec<DVec3> = mesh.vertices.par_iter().map(|p| plan.frame.to_local(*p)).collect();
     let gap = local
         .par_iter()
@@ -87,15 +97,13 @@ pub fn slice(mesh: &Mesh, plan: &SlicePlan, tolerance: f64) -> Sliced {
     let per_plane: Vec<(Vec<SliceLoop>, LoopStats)> = (0..plan.count)
         .into_par_iter()
         .map(|k| {
-            plane_loops(
+            let cut = Cut {
                 mesh,
-                &local,
+                local: &local,
                 plan,
-                k,
-                &segments[starts[k]..starts[k + 1]],
-                tolerance,
-                gap,
-            )
+                marked,
+            };
+            plane_loops(&cut, k, &segments[starts[k]..starts[k + 1]], tolerance, gap)
         })
         .collect();
     let mut stats = LoopStats::default();
@@ -186,28 +194,50 @@ fn crossing(local: &[DVec3], edge: [u32; 2], p: f64) -> DVec2 {
     a.truncate() + (b.truncate() - a.truncate()) * t
 }
 
+/// What a plane's loops are cut from: the mesh, its vertices in the stack frame, the planes
+/// and the marked triangles.
+struct Cut<'a> {
+    mesh: &'a Mesh,
+    local: &'a [DVec3],
+    plan: &'a SlicePlan,
+    marked: &'a [bool],
+}
+
+impl Cut<'_> {
+    /// The length of the chain through `points` (closed: back to the first) and the part of
+    /// it cut from marked triangles; segment i runs from point i and lies in `faces[i]`.
+    fn marked(&self, points: &[DVec2], faces: &[u32]) -> Marked {
+        let mut m = Marked::default();
+        for (i, &f) in faces.iter().enumerate() {
+            let d = points[i].distance(points[(i + 1) % points.len()]);
+            m.length += d;
+            if self.marked.get(f as usize).copied().unwrap_or(false) {
+                m.marked += d;
+            }
+        }
+        m
+    }
+}
+
 /// The loops of plane `k` from its segments (sorted by start edge).
-fn plane_loops(
-    mesh: &Mesh,
-    local: &[DVec3],
-    plan: &SlicePlan,
-    k: usize,
-    segments: &[Segment],
-    tolerance: f64,
-    gap: f64,
-) -> (Vec<SliceLoop>, LoopStats) {
-    let p = plan.plane(k);
-    let point = |e: u32| crossing(local, mesh.topology.edges[e as usize], p);
+fn plane_loops(cut: &Cut<'_>, k: usize, segments: &[Segment], tolerance: f64, gap: f64) -> (Vec<SliceLoop>, LoopStats) {
+    let p = cut.plan.plane(k);
+    let point = |e: u32| crossing(cut.local, cut.mesh.topology.edges[e as usize], p);
     let chains = loops::chain(segments);
-    let mut closed: Vec<(Ring, u32)> = Vec::new();
+    let mut closed: Vec<(Ring, u32, Marked)> = Vec::new();
     let mut open: Vec<OpenChain> = Vec::new();
     for c in chains {
-        let component = mesh.component.get(c.face as usize).copied().unwrap_or(0);
+        let component = cut.mesh.component.get(c.face as usize).copied().unwrap_or(0);
         let points: Ring = c.edges.iter().map(|&e| point(e)).collect();
+        let marked = cut.marked(&points, &c.faces);
         if c.closed {
-            closed.push((points, component));
+            closed.push((points, component, marked));
         } else {
-            open.push(OpenChain { points, component });
+            open.push(OpenChain {
+                points,
+                component,
+                marked,
+            });
         }
     }
     let (bridged, mut stats) = loops::close_gaps(open, gap);
@@ -215,11 +245,12 @@ fn plane_loops(
     let loops = closed
         .into_iter()
         .chain(bridged)
-        .filter_map(|(points, component)| {
+        .filter_map(|(points, component, marked)| {
             let ring = clean_ring(&points, tolerance);
             (ring.len() >= 3 && signed_area2(&ring) != 0.0).then_some(SliceLoop {
                 points: ring,
                 component,
+                marked: marked.share(),
             })
         })
         .collect();

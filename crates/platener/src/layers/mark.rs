@@ -1,0 +1,115 @@
+//! Which triangles the layers build, and which plate face they rest on.
+//!
+//! A triangle is *marked* when no plate builds it (its planar group became no plate) and no
+//! plane, cylinder or cone explains it: it is a sphere's, or nothing's (a freeform). Planes,
+//! cylinders and cones left without a plate are details the plates leave out (a small boss, a
+//! rounded edge), not volumes to rebuild in layers.
+
+use glam::DVec3;
+
+use crate::classify::{Classification, ShapeKind};
+use crate::coplanar::PlanarGroups;
+use crate::mesh::Mesh;
+use crate::plates::Plates;
+use crate::shapes::Shapes;
+
+/// The marked triangles and their area.
+#[derive(Debug, Clone)]
+pub(crate) struct Marked {
+    /// Per mesh triangle, whether the layers build it.
+    pub faces: Vec<bool>,
+    /// Their area, mm².
+    pub area: f64,
+}
+
+/// The triangles of `mesh` no plate builds that a sphere or nothing explains.
+pub(crate) fn marked(
+    mesh: &Mesh,
+    found: &Classification,
+    groups: &PlanarGroups,
+    shapes: &Shapes,
+    plates: &Plates,
+) -> Marked {
+    let built = built_groups(groups, shapes, plates);
+    let faces: Vec<bool> = (0..mesh.triangles.len())
+        .map(|f| {
+            let kind = found
+                .labels
+                .get(f)
+                .copied()
+                .flatten()
+                .and_then(|p| found.primitives.get(p as usize))
+                .map(|p| p.shape.kind());
+            let in_plate = groups.face_group.get(f).is_some_and(|&g| built[g as usize]);
+            !in_plate && matches!(kind, None | Some(ShapeKind::Sphere))
+        })
+        .collect();
+    let area = faces.iter().zip(&mesh.areas).filter(|(m, _)| **m).map(|(_, a)| a).sum();
+    Marked { faces, area }
+}
+
+/// Per planar group, whether a plate was made from it.
+pub(crate) fn built_groups(groups: &PlanarGroups, shapes: &Shapes, plates: &Plates) -> Vec<bool> {
+    let mut built = vec![false; groups.groups.len()];
+    for used in &plates.coverage.shapes {
+        if !used.plates.is_empty()
+            && let Some(shape) = shapes.shapes.get(used.shape as usize)
+            && let Some(b) = built.get_mut(shape.group as usize)
+        {
+            *b = true;
+        }
+    }
+    built
+}
+
+/// The plate face the marked surface meets along the longest boundary: its planar group and
+/// that length, mm. A dome on a lid meets the lid's top face all round, so the layers are laid
+/// parallel to it and start on it.
+pub(crate) fn resting_face(mesh: &Mesh, marked: &[bool], groups: &PlanarGroups, built: &[bool]) -> Option<(u32, f64)> {
+    let mut shared = vec![0.0; groups.groups.len()];
+    let topology = &mesh.topology;
+    for (e, [a, b]) in topology.edges.iter().enumerate() {
+        let corners = topology.edge_corners(e as u32);
+        let faces: Vec<usize> = corners.iter().map(|c| (c / 3) as usize).collect();
+        let [f, g] = faces[..] else { continue };
+        let other = match (marked[f], marked[g]) {
+            (true, false) => g,
+            (false, true) => f,
+            _ => continue,
+        };
+        let group = groups.face_group[other] as usize;
+        if built[group] {
+            shared[group] += mesh.vertices[*a as usize].distance(mesh.vertices[*b as usize]);
+        }
+    }
+    shared
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| **l > 0.0)
+        .max_by(|a, b| a.1.total_cmp(b.1).then(b.0.cmp(&a.0)))
+        .map(|(g, l)| (g as u32, *l))
+}
+
+/// The extent of the marked triangles' vertices along `up`, from `origin`: (lowest, highest).
+pub(crate) fn extent(mesh: &Mesh, marked: &[bool], origin: DVec3, up: DVec3) -> Option<(f64, f64)> {
+    let mut range: Option<(f64, f64)> = None;
+    for (t, _) in mesh.triangles.iter().zip(marked).filter(|(_, m)| **m) {
+        for &v in t {
+            let h = (mesh.vertices[v as usize] - origin).dot(up);
+            range = Some(range.map_or((h, h), |(lo, hi)| (lo.min(h), hi.max(h))));
+        }
+    }
+    range
+}
+
+/// The centre of the marked triangles' bounding box.
+pub(crate) fn centre(mesh: &Mesh, marked: &[bool]) -> Option<DVec3> {
+    let mut bounds: Option<(DVec3, DVec3)> = None;
+    for (t, _) in mesh.triangles.iter().zip(marked).filter(|(_, m)| **m) {
+        for &v in t {
+            let p = mesh.vertices[v as usize];
+            bounds = Some(bounds.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))));
+        }
+    }
+    bounds.map(|(lo, hi)| (lo + hi) / 2.0)
+}
