@@ -230,7 +230,10 @@ fn a_small_textured_box_is_still_six_walls() {
 #[test]
 fn a_domed_box_becomes_plates_and_a_stack_of_layers_jointed_to_the_lid() {
     let (h, radius, t) = (50.0, 30.0, 3.0);
-    let state = convert_with(MethodKind::Classifier, samples::domed_box(120.0, 90.0, h, t, radius, 96, 24));
+    let state = convert_with(
+        MethodKind::Classifier,
+        samples::domed_box(120.0, 90.0, h, t, radius, 96, 24),
+    );
     let (plan, v) = checked(&state);
     rebuilds(&v);
     let of = |kind| plan.parts.iter().filter(move |p| p.kind == kind);
@@ -246,7 +249,9 @@ fn a_domed_box_becomes_plates_and_a_stack_of_layers_jointed_to_the_lid() {
         assert!((z - (h + t * k as f64)).abs() < 1e-6, "layer {k} at {z}");
         let mid = z + t / 2.0 - h;
         let section = std::f64::consts::PI * (radius * radius - mid * mid);
-        let [island] = &stack.layers[k].islands[..] else { panic!("layer {k} is one island") };
+        let [island] = &stack.layers[k].islands[..] else {
+            panic!("layer {k} is one island")
+        };
         assert_eq!(island.part, layer.id);
         let area = island.outline.area();
         assert!((area / section - 1.0).abs() < 0.015, "layer {k}: {area} for {section}");
@@ -266,10 +271,19 @@ fn a_domed_box_becomes_plates_and_a_stack_of_layers_jointed_to_the_lid() {
     for j in &tenons {
         assert_eq!(j.parts[1], lid.id);
         let shaft = shafts.iter().find(|s| s.id == j.parts[0]).expect("a shaft");
-        let lowest = shaft.outline.iter().map(|p| p.y).fold(f64::MAX, f64::min);
-        assert!((lowest + t).abs() < 1e-6, "the shaft ends {lowest} below the lid's face");
+        let m = shaft.transform;
+        let z = |p: &glam::DVec2| m[2][0] * p.x + m[2][1] * p.y + m[2][3];
+        let lowest = shaft.outline.iter().map(z).fold(f64::MAX, f64::min);
+        assert!(
+            (lowest - (h - t)).abs() < 1e-6,
+            "the shaft ends at z = {lowest}, not under the lid"
+        );
     }
-    let slots: f64 = lid.holes.iter().map(|h| platener_geom::polygon::signed_area(h).abs()).sum();
+    let slots: f64 = lid
+        .holes
+        .iter()
+        .map(|h| platener_geom::polygon::signed_area(h).abs())
+        .sum();
     assert!(slots > 0.0 && slots < 3.0 * 60.0 * tenons.len() as f64, "{slots}");
     let report = state.layers.as_ref().expect("the layers step ran");
     assert!(report.rests_on.is_some() && report.skipped.is_none());
@@ -283,4 +297,69 @@ fn a_box_leaves_nothing_to_the_layers() {
     let layers = state.layers.as_ref().expect("the layers step ran");
     assert!(layers.stack.is_none() && layers.skipped.is_some(), "{layers:?}");
     assert!(layers.marked_share < 0.001);
+}
+
+/// The classifier's plan of a corpus model, or `None` (with a message) without the corpus.
+fn corpus_plan(name: &str) -> Option<State> {
+    let dir = samples::shared_corpus().map_err(|m| eprintln!("{m}")).ok()?;
+    let settings = Settings {
+        thicknesses: vec![3.0],
+        ..Settings::default()
+    };
+    let source = Source::File(dir.join(name));
+    Some(convert(MethodKind::Classifier, source, settings, &Cancel::default()).expect("converts"))
+}
+
+/// The Utah teapot: its flat lid top is a plate in the middle of the body's layers. Shafts pass
+/// through the plate as through a layer, so the layers are jointed to it and the plan holds
+/// together; the layers nothing holds (the spout's) are left out, with a warning.
+#[test]
+fn the_teapots_layers_are_threaded_through_its_lid_plate() {
+    let Some(state) = corpus_plan("organic/utah_teapot.stl") else {
+        return;
+    };
+    let (plan, v) = checked(&state);
+    assert!(v.passed(), "{:?}", v.problems);
+    let layers = state.layers.as_ref().expect("the layers step ran");
+    let stack = layers.stack.as_ref().expect("layers were made");
+    assert!(!layers.tenons.is_empty());
+    for [shaft, plate] in &layers.tenons {
+        let plate = plan.parts.iter().find(|p| p.id == *plate).expect("the plate");
+        assert_eq!(plate.kind, PartKind::Plate);
+        assert!(
+            !plate.holes.is_empty(),
+            "the shaft's slot is cut into plate {}",
+            plate.id
+        );
+        assert!(
+            plan.joints
+                .iter()
+                .any(|j| j.kind == JointKind::Slot && j.parts == [*shaft, plate.id])
+        );
+    }
+    // Only layers a shaft holds to the plate are in the plan.
+    let shafts: Vec<_> = plan.parts.iter().filter(|p| p.kind == PartKind::Shaft).collect();
+    assert_eq!(shafts.len(), stack.shafts.len());
+    assert!(layers.left_out > 0);
+    let warned = state
+        .records
+        .iter()
+        .flat_map(|r| &r.warnings)
+        .any(|w| w.message.contains("left out"));
+    assert!(warned);
+}
+
+/// A house whose only freeform is a sliver of its roof: no shaft can hold that layer to a
+/// plate, so it is left out rather than shipped as a loose part, and the plan stays the
+/// plate method's.
+#[test]
+fn layers_nothing_holds_are_left_out() {
+    let Some(state) = corpus_plan("plates/model_house_walls.stl") else {
+        return;
+    };
+    let (plan, v) = checked(&state);
+    assert!(v.passed(), "{:?}", v.problems);
+    assert!(plan.parts.iter().all(|p| p.kind == PartKind::Plate));
+    let layers = state.layers.as_ref().expect("the layers step ran");
+    assert!(layers.stack.is_none() && layers.left_out > 0, "{layers:?}");
 }

@@ -5,20 +5,22 @@
 //! primitive explains) has no plate, so without this step the classifier's plan simply left it
 //! out. Here those triangles are *marked* (`mark`), the model is sliced as the stacked method
 //! slices it, and each layer keeps the material inside loops cut mostly (by length) from marked
-//! triangles: a dome's circles, not the lid's square it stands on. Ground a plate already
-//! covers is cut away with a clearance (`footprint`), so layers never overlap plates. The layers
-//! are threaded on shafts by the stacked method's own code; where the stack lies on a plate
-//! parallel to its layers the shafts go on through slots in it (`tenon`), so the stack is
-//! jointed to the plates. The layers are laid parallel to the plate face the marked surface
+//! triangles: a dome's circles, not the lid's square it stands on. Where a part already in the
+//! plan passes through a layer (the columns of the layer meeting its volume, bend zones
+//! included), the layer gives way with a clearance, so layers never overlap plates. The layers
+//! are threaded on shafts by the stacked method's own code, with the plates lying where layers
+//! lie taking part as islands of those layers (`aligned`): shafts go on through slots in them, so the stack is
+//! jointed to the plates. Groups of layers no shaft holds to a plate are left out: nothing
+//! would hold them in place. The layers are laid parallel to the plate face the marked surface
 //! meets along the longest boundary and start on it.
 //!
 //! docs/classifier.md ("Spheres and freeforms") gives the rules and their limits.
 
-mod footprint;
+mod aligned;
 mod mark;
-mod tenon;
 
 use glam::DVec3;
+use platener_geom::slab::Slab;
 use platener_geom::{Frame, GridError, Polygon, boolean, offset};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -29,14 +31,12 @@ use crate::context::{StepContext, WarningKind};
 use crate::coplanar::PlanarGroups;
 use crate::error::{Error, ModelProblem, Result};
 use crate::mesh::Mesh;
-use crate::plan::{Joint, JointKind, PlanInput};
+use crate::plan::{Joint, JointKind, Part, PlanInput};
 use crate::plates::Plates;
 use crate::read::Model;
 use crate::settings::Settings;
 use crate::shapes::Shapes;
 use crate::stacked::{self, AxisChoice, SliceLoop, SlicePlan, Stack};
-
-use footprint::{Slab, footprint};
 
 /// Below this share of the surface, marked triangles are details (a rounded corner, a bit of
 /// text), not a volume worth layers.
@@ -73,6 +73,8 @@ pub struct Layers {
     pub stack: Option<Stack>,
     /// Shafts that go on through a slot in a plate: (shaft part, plate part).
     pub tenons: Vec<[u32; 2]>,
+    /// Layer and shaft parts left out because no shaft holds them to a plate.
+    pub left_out: usize,
     /// Why no layers were made, when none were.
     pub skipped: Option<String>,
 }
@@ -85,6 +87,7 @@ impl Layers {
             rests_on: None,
             stack: None,
             tenons: Vec::new(),
+            left_out: 0,
             skipped: Some(why),
         }
     }
@@ -114,9 +117,13 @@ pub struct Inputs<'a> {
 /// Step `layers`: the marked surface as stacked layers among the plates. Returns the snapshot
 /// and, when layers were made, the parts with them added (plates with their slots).
 pub fn run(inputs: &Inputs<'_>, settings: &Settings, cx: &mut StepContext<'_>) -> Result<(Layers, Option<PlanInput>)> {
-    let Inputs { model, mesh, .. } = *inputs;
+    let mesh = inputs.mesh;
     let marked = mark::marked(mesh, inputs.found, inputs.groups, inputs.shapes, inputs.plates);
-    let share = if mesh.surface_area > 0.0 { marked.area / mesh.surface_area } else { 0.0 };
+    let share = if mesh.surface_area > 0.0 {
+        marked.area / mesh.surface_area
+    } else {
+        0.0
+    };
     if share < MIN_MARKED_SHARE {
         let why = format!(
             "{:.1} % of the surface is neither plate nor plane, cylinder or cone (layers start at {:.0} %)",
@@ -126,49 +133,110 @@ pub fn run(inputs: &Inputs<'_>, settings: &Settings, cx: &mut StepContext<'_>) -
         return Ok((Layers::none(marked.area, share, why), None));
     }
     let built = mark::built_groups(inputs.groups, inputs.shapes, inputs.plates);
-    let rests_on = mark::resting_face(mesh, &marked.faces, inputs.groups, &built)
-        .map(|(group, shared)| RestsOn { group, shared });
+    let rests_on =
+        mark::resting_face(mesh, &marked.faces, inputs.groups, &built).map(|(group, shared)| RestsOn { group, shared });
     let Some(plan) = slice_plan(mesh, &marked.faces, inputs.groups, rests_on, settings.layer_thickness()) else {
         return Ok((Layers::none(marked.area, share, "no marked triangle".into()), None));
     };
-    let geometry = |e: GridError| Error::model(&model.name, ModelProblem::OffGrid(e));
-    let tolerance = settings.straight_tolerance.unwrap_or(inputs.cleaned.tolerances.straight);
-    let sliced = stacked::slice_marked(mesh, &plan, tolerance, &marked.faces);
-    cx.check_cancel()?;
-    let filled = layer_material(&sliced.loops, &plan, inputs.parts).map_err(geometry)?;
-    let islands = stacked::islands_from(filled, &settings.stacked).map_err(geometry)?;
-    if islands.islands.iter().all(Vec::is_empty) {
-        let why = "the marked surface leaves no layer large enough to cut beside the plates".to_string();
-        return Ok((Layers::none(marked.area, share, why), None));
-    }
-    let mut stack = stacked::build(&model.name, plan, islands, sliced.stats, settings, cx)?;
+    let layers = Layers {
+        rests_on,
+        ..Layers::none(marked.area, share, String::new())
+    };
     let mut merged = inputs.parts.clone();
-    renumber(&mut stack, merged.parts.iter().map(|p| p.id).max().unwrap_or(0));
-    let joined = tenon::join(&mut stack, &mut merged.parts).map_err(geometry)?;
-    let (mut input, numbers) = stacked::plan_input(&stack, model, settings)?;
+    let (mut stack, tenons, left_out) = match held_stack(inputs, &marked.faces, plan, &mut merged, settings, cx)? {
+        Ok(held) => held,
+        Err((why, left_out)) => {
+            let skipped = Some(why);
+            return Ok((
+                Layers {
+                    skipped,
+                    left_out,
+                    ..layers
+                },
+                None,
+            ));
+        }
+    };
+    let ids = stack.number_from(merged.parts.iter().map(|p| p.id).max().unwrap_or(0) + 1);
+    let tenons: Vec<[u32; 2]> = tenons.iter().map(|[s, p]| [ids[s], *p]).collect();
+    let (mut input, numbers) = stacked::plan_input(&stack, inputs.model, settings)?;
     crate::parts::clean::clean_input(&mut input, cx);
-    for w in stacked::warnings(&stack).into_iter().chain(stacked::number_warnings(&numbers)) {
+    for w in stacked::warnings(&stack)
+        .into_iter()
+        .chain(stacked::number_warnings(&numbers))
+    {
         cx.warn(WarningKind::CuttingPlan, w);
     }
-    merge(&mut merged, input, &joined);
-    for g in &joined.glued {
-        cx.warn(
-            WarningKind::CuttingPlan,
-            format!(
-                "parts {} and {}: a layer lies on a plate over {:.0} mm² and no shaft reaches through it; glue them",
-                g.parts[0], g.parts[1], g.area
-            ),
-        );
-    }
+    merge(&mut merged, input, &tenons);
     let layers = Layers {
-        marked_area: marked.area,
-        marked_share: share,
-        rests_on,
         stack: Some(stack),
-        tenons: joined.tenons,
+        tenons,
+        left_out,
         skipped: None,
+        ..layers
     };
     Ok((layers, Some(merged)))
+}
+
+/// What [`held_stack`] made: the stack, its tenons (shaft, plate) and how many parts it left
+/// out; or why nothing is left, and how many parts were left out.
+type Held = std::result::Result<(Stack, Vec<[u32; 2]>, usize), (String, usize)>;
+
+/// The layers of the `marked` surface cut from the planes of `plan`, threaded on shafts
+/// together with the plates of `merged` lying where layers lie (their slots cut into them), less
+/// the groups of parts no shaft holds to a plate.
+fn held_stack(
+    inputs: &Inputs<'_>,
+    marked: &[bool],
+    plan: SlicePlan,
+    merged: &mut PlanInput,
+    settings: &Settings,
+    cx: &mut StepContext<'_>,
+) -> Result<Held> {
+    let name = &inputs.model.name;
+    let geometry = |e: GridError| Error::model(name, ModelProblem::OffGrid(e));
+    let tolerance = settings
+        .straight_tolerance
+        .unwrap_or(inputs.cleaned.tolerances.straight);
+    let sliced = stacked::slice_marked(inputs.mesh, &plan, tolerance, marked);
+    cx.check_cancel()?;
+    let filled = layer_material(&sliced.loops, &plan, inputs.parts)?;
+    let islands = stacked::islands_from(filled, &settings.stacked).map_err(geometry)?;
+    if islands.islands.iter().all(Vec::is_empty) {
+        let why = "the surface no plate builds leaves no layer large enough to cut beside the plates";
+        return Ok(Err((why.to_string(), 0)));
+    }
+    let (plan, islands, aligned) = aligned::take_in(plan, islands, &merged.parts);
+    let mut stack = stacked::build(name, plan, islands, sliced.stats, settings, cx)?;
+    let tenons = aligned::take_out(&mut stack, &aligned, &mut merged.parts).map_err(geometry)?;
+    let left_out = unheld(&stack, &tenons, !merged.parts.is_empty());
+    stack.retain_parts(|part| !left_out.contains(&part));
+    let why = format!(
+        "{} layer part(s) no shaft holds to a plate were left out (nothing would hold them in place); the stacked method builds the whole model in layers",
+        left_out.len()
+    );
+    if !left_out.is_empty() {
+        cx.warn(WarningKind::CuttingPlan, why.clone());
+    }
+    if stack.layers.iter().all(|l| l.islands.is_empty()) {
+        return Ok(Err((why, left_out.len())));
+    }
+    Ok(Ok((stack, tenons, left_out.len())))
+}
+
+/// The stack's part ids that no chain of shafts holds to a plate (none of their shaft group's
+/// shafts is a tenon), when the plan has plates to hold them (a plan of layers alone keeps all).
+fn unheld(stack: &Stack, tenons: &[[u32; 2]], plates: bool) -> Vec<u32> {
+    if !plates {
+        return Vec::new();
+    }
+    let (ids, mut groups) = stacked::shaft_groups(stack);
+    let index = |part: u32| ids.binary_search(&part).expect("a stack part");
+    let held: Vec<usize> = tenons.iter().map(|t| groups.root(index(t[0]))).collect();
+    (0..ids.len())
+        .filter(|&i| !held.contains(&groups.root(i)))
+        .map(|i| ids[i])
+        .collect()
 }
 
 /// Layers parallel to the resting face, starting on it (or on a whole number of layers below it
@@ -206,64 +274,68 @@ fn slice_plan(
     })
 }
 
-/// Per layer, the material inside its marked loops, less the ground the parts already in the
-/// plan cover there (grown by [`CLEARANCE`]).
-fn layer_material(loops: &[Vec<SliceLoop>], plan: &SlicePlan, parts: &PlanInput) -> Result<Vec<Vec<Polygon>>, GridError> {
-    let slabs: Vec<Slab<'_>> = parts
-        .parts
-        .iter()
-        .flat_map(|p| {
-            let whole = Slab {
-                polygon: &p.polygon,
-                frame: &p.frame,
-                thickness: p.thickness,
-            };
-            let segments = p.segments.iter().map(|s| Slab {
-                polygon: &s.polygon,
-                frame: &s.frame,
-                thickness: p.thickness,
-            });
-            // A bent part's own outline is flat; its segments are where it is.
-            let own = p.segments.is_empty().then_some(whole);
-            own.into_iter().chain(segments).collect::<Vec<_>>()
-        })
-        .collect();
+/// Per layer, the material inside its marked loops, less the columns that meet a part already
+/// in the plan (grown by [`CLEARANCE`]).
+fn layer_material(loops: &[Vec<SliceLoop>], plan: &SlicePlan, parts: &PlanInput) -> Result<Vec<Vec<Polygon>>> {
+    let pieces: Vec<Slab> = parts.parts.iter().flat_map(solid_pieces).collect();
+    let grid = |e: GridError| Error::model(&parts.source.name, ModelProblem::OffGrid(e));
     loops
         .par_iter()
         .enumerate()
         .map(|(k, loops)| {
-            let kept: Vec<SliceLoop> = loops.iter().filter(|l| l.marked >= MARKED_LOOP_SHARE).cloned().collect();
+            let kept: Vec<SliceLoop> = loops
+                .iter()
+                .filter(|l| l.marked >= MARKED_LOOP_SHARE)
+                .cloned()
+                .collect();
             if kept.is_empty() {
                 return Ok(Vec::new());
             }
-            let material = stacked::fill(&kept)?;
-            let (z0, z1) = (plan.bottom(k), plan.bottom(k + 1));
-            let mut covered = Vec::new();
-            for s in &slabs {
-                covered.extend(footprint(s, &plan.frame, z0, z1)?);
-            }
-            if covered.is_empty() {
-                return Ok(material);
-            }
-            let covered = offset::offset(&boolean::union_all(&covered)?, CLEARANCE)?;
-            boolean::difference(&material, &covered)
+            let material = stacked::fill(&kept).map_err(grid)?;
+            give_way(material, plan.layer_frame(k), plan.thickness, &pieces).map_err(grid)
         })
         .collect()
 }
 
-/// Moves the stack's part ids after `last`, the highest id already in the plan.
-fn renumber(stack: &mut Stack, last: u32) {
-    for island in stack.layers.iter_mut().flat_map(|l| l.islands.iter_mut()) {
-        island.part += last;
+/// The rigid pieces of `part` in the model; a bent part whose zones cannot be rebuilt (the
+/// `bends` step keeps none such) falls back to its segments.
+fn solid_pieces(part: &Part) -> Vec<Slab> {
+    part.pieces().unwrap_or_else(|_| {
+        part.segments
+            .iter()
+            .map(|s| Slab {
+                frame: s.frame,
+                polygon: s.polygon.clone(),
+                thickness: part.thickness,
+            })
+            .collect()
+    })
+}
+
+/// `material` (a layer's, in its `frame`, `thickness` thick) less the columns meeting any of
+/// `pieces`, grown by [`CLEARANCE`].
+fn give_way(material: Vec<Polygon>, frame: Frame, thickness: f64, pieces: &[Slab]) -> Result<Vec<Polygon>, GridError> {
+    let mut taken = Vec::new();
+    for polygon in &material {
+        let layer = Slab {
+            frame,
+            polygon: polygon.clone(),
+            thickness,
+        };
+        for piece in pieces {
+            taken.extend(layer.columns_meeting(piece, 1e-3)?);
+        }
     }
-    for shaft in &mut stack.shafts {
-        shaft.part += last;
+    if taken.is_empty() {
+        return Ok(material);
     }
+    let taken = offset::offset(&boolean::union_all(&taken)?, CLEARANCE)?;
+    boolean::difference(&material, &taken)
 }
 
 /// Adds the stack's parts, shaft joints and glue to the plan, and a `slot` joint per tenon;
 /// joint labels continue the plan's.
-fn merge(plan: &mut PlanInput, stack: PlanInput, joined: &tenon::Joined) {
+fn merge(plan: &mut PlanInput, stack: PlanInput, tenons: &[[u32; 2]]) {
     let mut label = plan.joints.iter().map(|j| j.label).max().unwrap_or(0);
     plan.parts.extend(stack.parts);
     for mut j in stack.joints {
@@ -271,7 +343,7 @@ fn merge(plan: &mut PlanInput, stack: PlanInput, joined: &tenon::Joined) {
         j.label = label;
         plan.joints.push(j);
     }
-    for t in &joined.tenons {
+    for t in tenons {
         label += 1;
         plan.joints.push(Joint {
             parts: *t,
@@ -281,5 +353,4 @@ fn merge(plan: &mut PlanInput, stack: PlanInput, joined: &tenon::Joined) {
         });
     }
     plan.glued.extend(stack.glued);
-    plan.glued.extend(joined.glued.iter().cloned());
 }

@@ -18,8 +18,8 @@ use std::time::Instant;
 use crate::error::{Error, Result};
 use crate::settings::Settings;
 use crate::{
-    bends, classify, cleanup, coplanar, export, joints, kerf, labels, layers, mesh, plan, plates, read, shapes,
-    sheets, stacked, weld,
+    bends, classify, cleanup, coplanar, export, joints, kerf, labels, layers, mesh, plan, plates, read, shapes, sheets,
+    stacked, weld,
 };
 
 pub use crate::context::{Cancel, StepContext, StepRecord, Warning, WarningKind};

@@ -136,7 +136,14 @@ impl StepId {
             MethodKind::Stacked => [&FOUNDATION[..], &[StepId::Stacked]].concat(),
             MethodKind::Classifier => {
                 let (f, p) = (&FOUNDATION, &PLATE);
-                [&f[..4], &[StepId::Classify], &f[5..], &p[6..], &[StepId::Parts, StepId::Layers]].concat()
+                [
+                    &f[..4],
+                    &[StepId::Classify],
+                    &f[5..],
+                    &p[6..],
+                    &[StepId::Parts, StepId::Layers],
+                ]
+                .concat()
             }
         };
         steps.extend(CUTTING_PLAN);
@@ -198,23 +205,7 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
             state.stacked = Some(Arc::new(stack));
             state.parts = Some(Arc::new(input));
         }
-        StepId::Layers => {
-            let inputs = layers::Inputs {
-                model: need(&state.read, name, "read")?,
-                cleaned: need(&state.cleanup, name, "cleanup")?,
-                mesh: need(&state.mesh, name, "mesh")?,
-                found: need(&state.classify, name, "classify")?,
-                groups: need(&state.coplanar, name, "classify")?,
-                shapes: need(&state.shapes, name, "shapes")?,
-                plates: need(&state.plates, name, "plates")?,
-                parts: need(&state.parts, name, "parts")?,
-            };
-            let (made, input) = layers::run(&inputs, &s, cx)?;
-            state.layers = Some(Arc::new(made));
-            if let Some(input) = input {
-                state.parts = Some(Arc::new(input));
-            }
-        }
+        StepId::Layers => layers_step(state, &s, cx)?,
         StepId::Kerf => state.kerf = Some(Arc::new(kerf::run(need(&state.parts, name, "parts")?, cx)?)),
         StepId::Labels => state.labels = Some(Arc::new(labels::run(need(&state.parts, name, "parts")?, cx))),
         StepId::Sheets => {
@@ -229,6 +220,27 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
             );
             state.export = Some(Arc::new(export::run(input, cut, labels, nesting, &state.records)?));
         }
+    }
+    Ok(())
+}
+
+/// Step `layers`: stores its snapshot, and the parts with the layers added when it made any.
+fn layers_step(state: &mut State, s: &crate::settings::Settings, cx: &mut StepContext<'_>) -> Result<()> {
+    let name = StepId::Layers.name();
+    let inputs = layers::Inputs {
+        model: need(&state.read, name, "read")?,
+        cleaned: need(&state.cleanup, name, "cleanup")?,
+        mesh: need(&state.mesh, name, "mesh")?,
+        found: need(&state.classify, name, "classify")?,
+        groups: need(&state.coplanar, name, "classify")?,
+        shapes: need(&state.shapes, name, "shapes")?,
+        plates: need(&state.plates, name, "plates")?,
+        parts: need(&state.parts, name, "parts")?,
+    };
+    let (made, input) = layers::run(&inputs, s, cx)?;
+    state.layers = Some(Arc::new(made));
+    if let Some(input) = input {
+        state.parts = Some(Arc::new(input));
     }
     Ok(())
 }

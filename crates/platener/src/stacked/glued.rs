@@ -16,14 +16,8 @@ use crate::plan::{Glue, Plan};
 /// The pairs of parts of different shaft groups that touch and must be glued, and the
 /// warning naming those groups (none when nothing needs glue).
 pub(crate) fn glued(stack: &Stack) -> (Vec<Glue>, Option<String>) {
-    let ids = part_ids(stack);
+    let (ids, mut groups) = shaft_groups(stack);
     let index = |part: u32| ids.binary_search(&part).expect("every island is a part");
-    let mut groups = UnionFind::new(ids.len());
-    for shaft in &stack.shafts {
-        for b in &shaft.bands {
-            groups.join(index(shaft.part), index(stack.layers[b.layer].islands[b.island].part));
-        }
-    }
     let glue: Vec<Glue> = stack
         .unjoined
         .iter()
@@ -98,6 +92,20 @@ pub fn glued_groups(plan: &Plan) -> Vec<Vec<u32>> {
                 .collect()
         })
         .collect()
+}
+
+/// Every part id of the stack (islands and shafts), ascending, and the groups the shafts hold
+/// together (indices into the ids).
+pub(crate) fn shaft_groups(stack: &Stack) -> (Vec<u32>, UnionFind) {
+    let ids = part_ids(stack);
+    let index = |part: u32| ids.binary_search(&part).expect("every island is a part");
+    let mut groups = UnionFind::new(ids.len());
+    for shaft in &stack.shafts {
+        for b in &shaft.bands {
+            groups.join(index(shaft.part), index(stack.layers[b.layer].islands[b.island].part));
+        }
+    }
+    (ids, groups)
 }
 
 /// Every part id of the stack (islands and shafts), ascending.

@@ -44,7 +44,11 @@ pub struct LayerIslands {
 
 /// The islands of every layer of `sliced`.
 pub fn islands_of(sliced: &Sliced, settings: &StackedSettings) -> Result<LayerIslands, GridError> {
-    let filled: Vec<Vec<Polygon>> = sliced.loops.par_iter().map(|loops| fill(loops)).collect::<Result<_, _>>()?;
+    let filled: Vec<Vec<Polygon>> = sliced
+        .loops
+        .par_iter()
+        .map(|loops| fill(loops))
+        .collect::<Result<_, _>>()?;
     islands_from(filled, settings)
 }
 

@@ -70,7 +70,11 @@ pub(crate) struct Marked {
 impl Marked {
     /// The marked share of the length, 0 for a loop of no length.
     pub fn share(self) -> f64 {
-        if self.length > 0.0 { self.marked / self.length } else { 0.0 }
+        if self.length > 0.0 {
+            self.marked / self.length
+        } else {
+            0.0
+        }
     }
 }
 

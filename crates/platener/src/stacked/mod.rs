@@ -23,6 +23,7 @@
 //! | `marks` | layer and shaft numbers with alignment arrows |
 //! | `tabs` | a tab for the number of a layer too thin for its digits |
 //! | `parts` | the [`Stack`] as parts and joints for the cutting plan |
+//! | `select` | part of a stack kept, numbered after other parts (the classifier's layers) |
 //!
 //! The decisions (orientation rule, shaft phases, margins) are in docs/stacked.md.
 
@@ -37,6 +38,7 @@ mod notch;
 mod orient;
 mod parts;
 mod peg;
+mod select;
 mod shafts;
 mod slice;
 mod support;
@@ -56,14 +58,15 @@ use crate::read::Model;
 use crate::settings::Settings;
 
 pub use glued::glued_groups;
+pub(crate) use glued::shaft_groups;
 pub use islands::{DroppedIsland, LayerIslands, islands_of};
+pub(crate) use islands::{fill, islands_from};
 pub use loops::LoopStats;
 pub use orient::{AxisChoice, SlicePlan, choose_up};
 pub use parts::{Numbers, plan_input};
 pub use peg::PEG_MIN_WALL;
-pub(crate) use islands::{fill, islands_from};
-pub(crate) use slice::{section, slice_marked};
 pub use slice::{SliceLoop, Sliced, slice};
+pub(crate) use slice::{section, slice_marked};
 pub use support::KeptIsland;
 pub use tabs::{TAB_SIZE, tab_size};
 

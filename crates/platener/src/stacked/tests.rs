@@ -336,3 +336,27 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_loop_knows_the_share_of_its_length_cut_from_marked_triangles() {
+    // A 10 × 30 × 20 box: each section is a loop 80 mm round …
+    let tris = cuboid(DVec3::ZERO, DVec3::new(10.0, 30.0, 20.0));
+    let m = mesh(&tris);
+    let marked: Vec<bool> = m
+        .triangles
+        .iter()
+        .map(|t| t.iter().all(|&v| m.vertices[v as usize].y == 0.0))
+        .collect();
+    let plan = SlicePlan::new(&m, DVec3::Z, AxisChoice::Given, 5.0).expect("triangles");
+    let sliced = super::slice_marked(&m, &plan, 1e-6, &marked);
+    assert_eq!(sliced.loops.len(), 4);
+    for loops in &sliced.loops {
+        let [l] = &loops[..] else {
+            panic!("one loop per section")
+        };
+        // … the face y = 0 is 10 mm of the 80.
+        assert!((l.marked - 10.0 / 80.0).abs() < 1e-12, "{}", l.marked);
+    }
+    // Unmarked slicing marks nothing.
+    assert!(slice(&m, &plan, 1e-6).loops.iter().flatten().all(|l| l.marked == 0.0));
+}
