@@ -237,11 +237,28 @@ pub fn closed_box(w: f64, d: f64, h: f64, t: f64) -> Vec<Triangle> {
 
 /// A closed box `w × d × h` (walls `t` thick) with a solid dome on the middle of its lid: a
 /// hemisphere of `radius` with `segments` meridians and `rings` bands from its rim up to its
-/// top. Plates and a sphere in one closed model, the classifier's mixed plan's reference. The
-/// box is an outer shell and an inward-wound cavity, so the lid's face is a plain rectangle
-/// with the dome's rim as a hole.
+/// top. Plates and a sphere in one closed model, the classifier's mixed plan's reference.
 pub fn domed_box(w: f64, d: f64, h: f64, t: f64, radius: f64, segments: usize, rings: usize) -> Vec<Triangle> {
-    let (segments, rings) = (segments.max(3), rings.max(1));
+    let rings = rings.max(1);
+    let profile: Vec<DVec2> = (0..=rings)
+        .map(|i| {
+            let (s, c) = (std::f64::consts::FRAC_PI_2 * i as f64 / rings as f64).sin_cos();
+            if i == rings {
+                DVec2::new(0.0, radius)
+            } else {
+                DVec2::new(radius * c, radius * s)
+            }
+        })
+        .collect();
+    knobbed_box(w, d, h, t, &profile, segments)
+}
+
+/// A closed box `w × d × h` (walls `t` thick) with a solid knob on the middle of its lid: the
+/// solid of revolution of `profile` (radius, height above the lid) from its rim `(r, 0)` up
+/// to its apex `(0, top)`, with `segments` meridians. The box is an outer shell and an
+/// inward-wound cavity, so the lid's face is a plain rectangle with the knob's rim as a hole.
+pub fn knobbed_box(w: f64, d: f64, h: f64, t: f64, profile: &[DVec2], segments: usize) -> Vec<Triangle> {
+    let segments = segments.max(3);
     let mut out: Vec<Triangle> = cuboid(DVec3::ZERO, DVec3::new(w, d, h))
         .into_iter()
         .filter(|tri| !tri.iter().all(|p| p.z == h))
@@ -250,10 +267,9 @@ pub fn domed_box(w: f64, d: f64, h: f64, t: f64, radius: f64, segments: usize, r
     out.extend(cavity.into_iter().map(|[a, b, c]| [a, c, b]));
     let c = DVec2::new(w / 2.0, d / 2.0);
     let at = |i: usize, j: usize| {
-        let (se, ce) = (std::f64::consts::FRAC_PI_2 * i as f64 / rings as f64).sin_cos();
         let (sp, cp) = (std::f64::consts::TAU * (j % segments) as f64 / segments as f64).sin_cos();
-        let r = if i == 0 { radius } else { radius * ce };
-        DVec3::new(c.x + r * cp, c.y + r * sp, h + radius * se)
+        let DVec2 { x: r, y: z } = profile[i];
+        DVec3::new(c.x + r * cp, c.y + r * sp, h + z)
     };
     let lid = platener_geom::Polygon {
         outer: vec![DVec2::ZERO, DVec2::new(w, 0.0), DVec2::new(w, d), DVec2::new(0.0, d)],
@@ -263,13 +279,14 @@ pub fn domed_box(w: f64, d: f64, h: f64, t: f64, radius: f64, segments: usize, r
     for tri in &lid.triangles {
         out.push(tri.map(|i| lid.points[i as usize].extend(h)));
     }
+    let last = profile.len() - 1;
     for j in 0..segments {
-        for i in 0..rings - 1 {
+        for i in 0..last - 1 {
             let (a, b, c2, e) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
             out.push([a, b, c2]);
             out.push([a, c2, e]);
         }
-        out.push([at(rings - 1, j), at(rings - 1, j + 1), DVec3::new(c.x, c.y, h + radius)]);
+        out.push([at(last - 1, j), at(last - 1, j + 1), at(last, 0)]);
     }
     out
 }

@@ -2,9 +2,9 @@
 //! whose walls carry a texture becomes its six walls with finger joints, a knurled cylinder a
 //! bent wrap with two discs; each plan rebuilds its model (verify with the model).
 
-use glam::{DQuat, DVec3};
+use glam::{DQuat, DVec2, DVec3};
 use platener::classify::ShapeKind;
-use platener::convert::convert;
+use platener::convert::{Request, convert, convert_all};
 use platener::method::MethodKind;
 use platener::plan::{JointKind, PartKind, Plan};
 use platener::read::Triangle;
@@ -115,6 +115,36 @@ fn the_plate_method_cannot_read_the_texture_the_classifier_can() {
         "{inside} → {:?}",
         w.volume_inside
     );
+}
+
+/// `--method all` on the textured box: the plate method's plan scores as the classifier's
+/// does (the score weighs the surface reproduced), but a third of its volume stands proud of
+/// the walls; the tie goes to the plan that keeps its volume inside, the classifier's.
+#[test]
+fn the_classifier_is_named_best_on_the_textured_box() {
+    let settings = Settings {
+        thicknesses: vec![3.0],
+        ..Settings::default()
+    };
+    let request = Request {
+        methods: vec![MethodKind::Plate, MethodKind::Classifier],
+        ..Request::new(Source::triangles("textured box", textured_box()), settings)
+    };
+    let all = convert_all(request, &Cancel::default(), platener::convert::no_progress());
+    let [plate, classifier] = &all.methods[..] else {
+        panic!("two methods")
+    };
+    let total = |m: &platener::convert::MethodResult| m.score.as_ref().expect("scored").total;
+    let inside =
+        |m: &platener::convert::MethodResult| m.verification.as_ref().and_then(|v| v.volume_inside).expect("measured");
+    assert!((total(plate) - total(classifier)).abs() <= platener::convert::SCORE_TIE);
+    assert!(
+        inside(classifier) > inside(plate) + 0.2,
+        "{} {}",
+        inside(classifier),
+        inside(plate)
+    );
+    assert_eq!(all.best, Some(MethodKind::Classifier));
 }
 
 #[test]
@@ -287,6 +317,56 @@ fn a_domed_box_becomes_plates_and_a_stack_of_layers_jointed_to_the_lid() {
     assert!(slots > 0.0 && slots < 3.0 * 60.0 * tenons.len() as f64, "{slots}");
     let report = state.layers.as_ref().expect("the layers step ran");
     assert!(report.rests_on.is_some() && report.skipped.is_none());
+}
+
+/// A solid peg (r 15, 40 tall) on a box's lid is too narrow for a living hinge to wrap in
+/// 3 mm plywood: it becomes stacked discs on a shaft through the lid, not a prism of facets.
+#[test]
+fn a_small_solid_cylinder_becomes_stacked_discs() {
+    let (h, r, tall, t) = (50.0, 15.0, 40.0, 3.0);
+    let profile = [DVec2::new(r, 0.0), DVec2::new(r, tall), DVec2::new(0.0, tall)];
+    let state = convert_with(
+        MethodKind::Classifier,
+        samples::knobbed_box(120.0, 90.0, h, t, &profile, 96),
+    );
+    let found = state.classify.as_ref().expect("classified");
+    let peg = found
+        .primitives
+        .iter()
+        .find(|p| p.shape.kind() == ShapeKind::Cylinder)
+        .expect("the peg is a cylinder");
+    assert!(peg.outward);
+    let (plan, v) = checked(&state);
+    rebuilds(&v);
+    assert!(plan.parts.iter().all(|p| p.kind != PartKind::Bent));
+    let stack = state.layers.as_ref().and_then(|l| l.stack.as_ref()).expect("a stack");
+    // The peg's discs: 13 layers (40 mm in 3 mm), every one a single island of the circle's
+    // area (a 96-gon's, less 0.07 %) within 1 %, the first on the lid.
+    let layers = &stack.layers;
+    assert_eq!(layers.len(), 13);
+    for (k, layer) in layers.iter().enumerate() {
+        let [island] = &layer.islands[..] else {
+            panic!("layer {k} is one disc")
+        };
+        let area = island.outline.area();
+        let disc = std::f64::consts::PI * r * r;
+        assert!((area / disc - 1.0).abs() < 0.01, "layer {k}: {area} for {disc}");
+    }
+    assert!((stack.layer_frame(0).origin.z - h).abs() < 1e-6);
+    let tenons = &state.layers.as_ref().expect("layers").tenons;
+    assert!(!tenons.is_empty());
+    let walls = plan.parts.iter().filter(|p| p.kind == PartKind::Plate).count();
+    assert_eq!(walls, 6, "the box's walls");
+    // With bending off the peg stays what the plate method makes of it: facet plates.
+    let settings = Settings {
+        thicknesses: vec![3.0],
+        bending: platener::Bending::None,
+        ..Settings::default()
+    };
+    let source = Source::triangles("peg", samples::knobbed_box(120.0, 90.0, h, t, &profile, 96));
+    let plain = convert(MethodKind::Classifier, source, settings, &Cancel::default()).expect("converts");
+    let (plan, _) = checked(&plain);
+    assert!(plan.parts.iter().all(|p| p.kind == PartKind::Plate) && plan.parts.len() > 6);
 }
 
 /// Models the plates explain whole get no layers: the classifier's plan of a textured box is

@@ -8,7 +8,9 @@
 //!   them as narrow plates and the `bends` step wraps them into one bent part. Coaxial
 //!   cylinders (a tube's outer and inner wall) share their sectors, so facets pair into
 //!   plates of the wall's thickness.
-//! - Spheres and what no primitive explains are grouped as the plate method groups them.
+//! - Spheres and what no primitive explains are grouped as the plate method groups them, and
+//!   so is a solid cylinder too narrow to wrap ([`stacked_instead`]): step `layers` stacks
+//!   them.
 //! - So is a primitive whose triangles are mostly one exact planar group ([`fragmented`]):
 //!   on a clean CAD model the exact faces are better than any fit, and RANSAC may lay a
 //!   huge, nearly flat cylinder over a plate.
@@ -26,6 +28,7 @@ use super::shape::{Shape, basis};
 use super::{Classification, Primitive};
 use crate::coplanar::{Fixed, PlanarGroup, PlanarGroups};
 use crate::mesh::Mesh;
+use crate::settings::Settings;
 
 /// Fewest and most facets a curved primitive is cut into.
 const FACETS: (usize, usize) = (8, 48);
@@ -90,14 +93,33 @@ pub fn snap_distance(c: &Classification, tolerance: f64) -> f64 {
     2.0 * c.thresholds.eps + tolerance
 }
 
+/// Whether `p` is a small solid cylinder the classifier stacks as discs (step `layers`)
+/// instead of wrapping it: the material fills it, and a bend of the material's style
+/// (`--bend`) turning from one of its facets to the next needs a zone wider than a facet
+/// (3 mm plywood: a radius under about 26 mm). With bending off, never: its facets are
+/// jointed plates as before.
+pub fn stacked_instead(p: &Primitive, settings: &Settings) -> bool {
+    let Shape::Cylinder { radius, .. } = p.shape else {
+        return false;
+    };
+    let material = settings.cut.material;
+    let Some(style) = settings.bending.style(material) else {
+        return false;
+    };
+    let t = settings.thinnest();
+    let n = facet_count(radius, t / 2.0);
+    let facet = 2.0 * facet_distance(radius, n) * (PI / n as f64).tan();
+    p.outward && crate::hinge::design(style, material, t, TAU / n as f64, facet).is_err()
+}
+
 /// The fixed groups of a classification (see the module doc), for [`crate::coplanar::group_rest`].
-pub fn fixed_groups(mesh: &Mesh, c: &Classification, exact: &PlanarGroups, thickness: f64) -> Fixed {
-    let tolerance = thickness / 2.0;
+pub fn fixed_groups(mesh: &Mesh, c: &Classification, exact: &PlanarGroups, settings: &Settings) -> Fixed {
+    let tolerance = settings.thinnest() / 2.0;
     let sectors = curved_sectors(mesh, &c.primitives, tolerance, c.thresholds.eps);
     let mut groups = Vec::new();
     for (k, p) in c.primitives.iter().enumerate() {
         let pieces = sectors[k].map_or(1, |s| s.n);
-        if !fragmented(mesh, p, exact, pieces) {
+        if !fragmented(mesh, p, exact, pieces) || stacked_instead(p, settings) {
             continue;
         }
         match (&p.shape, sectors[k]) {

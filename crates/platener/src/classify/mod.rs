@@ -239,7 +239,7 @@ pub fn step(
         .map_err(|e| crate::error::Error::model(cx.model(), crate::error::ModelProblem::Classify(e)))?;
     let angle = settings.coplanar_angle_deg.to_radians();
     let exact = crate::coplanar::group_faces(mesh, angle);
-    let fixed = groups::fixed_groups(mesh, &found, &exact, settings.thinnest());
+    let fixed = groups::fixed_groups(mesh, &found, &exact, settings);
     let planar = crate::coplanar::group_rest(mesh, angle, fixed);
     Ok((found, planar))
 }

@@ -290,7 +290,9 @@ fn judge(state: &State) -> Option<(Score, Verification)> {
     let (mesh, bundle) = (state.mesh.as_deref()?, state.export.as_deref()?);
     let analysis = analyse(&bundle.plan, Some(mesh));
     let score = score::score_analysed(mesh, bundle, state.plates.as_deref(), &analysis);
-    let verification = verify::check(&bundle.plan, &analysis, verify::MIN_COVERAGE);
+    let mut verification = verify::check(&bundle.plan, &analysis, verify::MIN_COVERAGE);
+    // The tie-break between methods scored alike (`best_of`).
+    verification.volume_inside = Some(verify::volume_inside(&bundle.plan, mesh, &analysis));
     Some((score, verification))
 }
 

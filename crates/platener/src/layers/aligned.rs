@@ -10,7 +10,7 @@
 //! slots become holes in the plates, and every shaft through one is a tenon through it (joint
 //! kind `slot`).
 
-use glam::{DVec2, DVec3};
+use glam::DVec2;
 use platener_geom::{GridError, Polygon, boolean};
 
 use crate::plan::{Part, PartKind};
@@ -72,22 +72,10 @@ fn slot_of(part: &Part, plan: &SlicePlan) -> Option<i64> {
     if part.kind != PartKind::Plate || !parallel || (part.thickness - plan.thickness).abs() > 1e-6 {
         return None;
     }
-    let (lo, _) = heights(part, plan);
+    let (lo, _) = super::heights_in(&part.polygon.outer, &part.frame, part.thickness, &plan.frame);
     let k = (lo / plan.thickness).round();
     let on_a_layer = (lo - k * plan.thickness).abs() < TOUCH;
     (on_a_layer && k >= -1.0 && k <= plan.count as f64).then_some(k as i64)
-}
-
-/// The heights (stack z) `part` spans.
-fn heights(part: &Part, plan: &SlicePlan) -> (f64, f64) {
-    let mut range = (f64::INFINITY, f64::NEG_INFINITY);
-    for &p in &part.polygon.outer {
-        for z in [0.0, part.thickness] {
-            let h = plan.frame.to_local(part.frame.to_model(DVec3::new(p.x, p.y, z))).z;
-            range = (range.0.min(h), range.1.max(h));
-        }
-    }
-    range
 }
 
 /// `polygon` mapped point by point.

@@ -1,16 +1,19 @@
 //! Which triangles the layers build, and which plate face they rest on.
 //!
-//! A triangle is *marked* when no plate builds it (its planar group became no plate) and no
-//! plane, cylinder or cone explains it: it is a sphere's, or nothing's (a freeform). Planes,
-//! cylinders and cones left without a plate are details the plates leave out (a small boss, a
+//! A triangle is *marked* when no plate builds it (its planar group became no plate) and it
+//! is a sphere's, a small solid cylinder's (too narrow to wrap: stacked discs,
+//! [`crate::classify::groups::stacked_instead`]) or nothing's (a freeform). Planes, cones and
+//! other cylinders left without a plate are details the plates leave out (a small boss, a
 //! rounded edge), not volumes to rebuild in layers.
 
 use glam::DVec3;
 
-use crate::classify::{Classification, ShapeKind};
+use crate::classify::ShapeKind;
+use crate::classify::groups::stacked_instead;
 use crate::coplanar::PlanarGroups;
 use crate::mesh::Mesh;
 use crate::plates::Plates;
+use crate::settings::Settings;
 use crate::shapes::Shapes;
 
 /// The marked triangles and their area.
@@ -22,26 +25,21 @@ pub(crate) struct Marked {
     pub area: f64,
 }
 
-/// The triangles of `mesh` no plate builds that a sphere or nothing explains.
-pub(crate) fn marked(
-    mesh: &Mesh,
-    found: &Classification,
-    groups: &PlanarGroups,
-    shapes: &Shapes,
-    plates: &Plates,
-) -> Marked {
-    let built = built_groups(groups, shapes, plates);
+/// The triangles of `mesh` no plate builds that a sphere, a small solid cylinder or nothing
+/// explains.
+pub(crate) fn marked(inputs: &super::Inputs<'_>, settings: &Settings) -> Marked {
+    let (mesh, found, groups) = (inputs.mesh, inputs.found, inputs.groups);
+    let built = built_groups(groups, inputs.shapes, inputs.plates);
+    let stacked: Vec<bool> = found
+        .primitives
+        .iter()
+        .map(|p| p.shape.kind() == ShapeKind::Sphere || stacked_instead(p, settings))
+        .collect();
     let faces: Vec<bool> = (0..mesh.triangles.len())
         .map(|f| {
-            let kind = found
-                .labels
-                .get(f)
-                .copied()
-                .flatten()
-                .and_then(|p| found.primitives.get(p as usize))
-                .map(|p| p.shape.kind());
+            let primitive = found.labels.get(f).copied().flatten();
             let in_plate = groups.face_group.get(f).is_some_and(|&g| built[g as usize]);
-            !in_plate && matches!(kind, None | Some(ShapeKind::Sphere))
+            !in_plate && primitive.is_none_or(|p| stacked.get(p as usize).copied().unwrap_or(false))
         })
         .collect();
     let area = faces.iter().zip(&mesh.areas).filter(|(m, _)| **m).map(|(_, a)| a).sum();

@@ -8,11 +8,11 @@
 //! triangles: a dome's circles, not the lid's square it stands on. Where a part already in the
 //! plan passes through a layer (the columns of the layer meeting its volume, bend zones
 //! included), the layer gives way with a clearance, so layers never overlap plates. The layers
-//! are threaded on shafts by the stacked method's own code, with the plates lying where layers
-//! lie taking part as islands of those layers (`aligned`): shafts go on through slots in them, so the stack is
-//! jointed to the plates. Groups of layers no shaft holds to a plate are left out: nothing
-//! would hold them in place. The layers are laid parallel to the plate face the marked surface
-//! meets along the longest boundary and start on it.
+//! are laid parallel to the plate face the marked surface meets along the longest boundary,
+//! starting on it, and threaded on shafts by the stacked method's own code, the plates lying
+//! where layers lie taking part as islands of those layers (`aligned`): shafts go on through
+//! slots in them, so the stack is jointed to the plates. Groups of layers no shaft holds to a
+//! plate are left out: nothing would hold them in place.
 //!
 //! docs/classifier.md ("Spheres and freeforms") gives the rules and their limits.
 
@@ -118,7 +118,7 @@ pub struct Inputs<'a> {
 /// and, when layers were made, the parts with them added (plates with their slots).
 pub fn run(inputs: &Inputs<'_>, settings: &Settings, cx: &mut StepContext<'_>) -> Result<(Layers, Option<PlanInput>)> {
     let mesh = inputs.mesh;
-    let marked = mark::marked(mesh, inputs.found, inputs.groups, inputs.shapes, inputs.plates);
+    let marked = mark::marked(inputs, settings);
     let share = if mesh.surface_area > 0.0 {
         marked.area / mesh.surface_area
     } else {
@@ -278,6 +278,11 @@ fn slice_plan(
 /// in the plan (grown by [`CLEARANCE`]).
 fn layer_material(loops: &[Vec<SliceLoop>], plan: &SlicePlan, parts: &PlanInput) -> Result<Vec<Vec<Polygon>>> {
     let pieces: Vec<Slab> = parts.parts.iter().flat_map(solid_pieces).collect();
+    // Each piece's heights up the stack, so a layer looks only at the pieces reaching it.
+    let heights: Vec<(f64, f64)> = pieces
+        .iter()
+        .map(|p| heights_in(&p.polygon.outer, &p.frame, p.thickness, &plan.frame))
+        .collect();
     let grid = |e: GridError| Error::model(&parts.source.name, ModelProblem::OffGrid(e));
     loops
         .par_iter()
@@ -292,9 +297,27 @@ fn layer_material(loops: &[Vec<SliceLoop>], plan: &SlicePlan, parts: &PlanInput)
                 return Ok(Vec::new());
             }
             let material = stacked::fill(&kept).map_err(grid)?;
-            give_way(material, plan.layer_frame(k), plan.thickness, &pieces).map_err(grid)
+            let (z0, z1) = (plan.bottom(k), plan.bottom(k + 1));
+            let near: Vec<&Slab> = (0..pieces.len())
+                .filter(|&i| heights[i].0 < z1 && heights[i].1 > z0)
+                .map(|i| &pieces[i])
+                .collect();
+            give_way(material, plan.layer_frame(k), plan.thickness, &near).map_err(grid)
         })
         .collect()
+}
+
+/// The heights (local z of `frame`) spanned by `ring`, placed by `placed` and extruded
+/// `thickness` along its normal.
+fn heights_in(ring: &[glam::DVec2], placed: &Frame, thickness: f64, frame: &Frame) -> (f64, f64) {
+    let mut range = (f64::INFINITY, f64::NEG_INFINITY);
+    for &p in ring {
+        for z in [0.0, thickness] {
+            let h = frame.to_local(placed.to_model(DVec3::new(p.x, p.y, z))).z;
+            range = (range.0.min(h), range.1.max(h));
+        }
+    }
+    range
 }
 
 /// The rigid pieces of `part` in the model; a bent part whose zones cannot be rebuilt (the
@@ -314,7 +337,7 @@ fn solid_pieces(part: &Part) -> Vec<Slab> {
 
 /// `material` (a layer's, in its `frame`, `thickness` thick) less the columns meeting any of
 /// `pieces`, grown by [`CLEARANCE`].
-fn give_way(material: Vec<Polygon>, frame: Frame, thickness: f64, pieces: &[Slab]) -> Result<Vec<Polygon>, GridError> {
+fn give_way(material: Vec<Polygon>, frame: Frame, thickness: f64, pieces: &[&Slab]) -> Result<Vec<Polygon>, GridError> {
     let mut taken = Vec::new();
     for polygon in &material {
         let layer = Slab {

@@ -152,11 +152,15 @@ pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
 pub fn verify_with(plan: &Plan, model: Option<&Mesh>, min_coverage: f64) -> Verification {
     let analysis = analyse(plan, model);
     let mut v = check(plan, &analysis, min_coverage);
-    v.volume_inside = model.map(|m| {
-        let solids: Vec<Solid> = plan.parts.iter().map(Solid::from_part).collect();
-        crate::assembly::sample::volume_inside(m, &solids, analysis.step.max(0.5))
-    });
+    v.volume_inside = model.map(|m| volume_inside(plan, m, &analysis));
     v
+}
+
+/// The share of `plan`'s parts' volume inside `model`, sampled on the `analysis`'s step (at
+/// least 0.5 mm).
+pub fn volume_inside(plan: &Plan, model: &Mesh, analysis: &Analysis) -> f64 {
+    let solids: Vec<Solid> = plan.parts.iter().map(Solid::from_part).collect();
+    crate::assembly::sample::volume_inside(model, &solids, analysis.step.max(0.5))
 }
 
 /// The verdict on `plan` from its `analysis` (made by [`analyse`], with the model when the
