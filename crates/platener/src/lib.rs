@@ -63,6 +63,7 @@ pub mod pipeline;
 pub mod plan;
 pub mod plates;
 pub mod read;
+pub mod relief;
 pub mod samples;
 pub mod scene;
 pub mod score;

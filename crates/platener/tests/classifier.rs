@@ -6,7 +6,7 @@ use glam::{DQuat, DVec2, DVec3};
 use platener::classify::ShapeKind;
 use platener::convert::{Request, convert, convert_all};
 use platener::method::MethodKind;
-use platener::plan::{JointKind, PartKind, Plan};
+use platener::plan::{JointKind, MarkKind, PartKind, Plan};
 use platener::read::Triangle;
 use platener::verify::{Verification, verify};
 use platener::{Cancel, Settings, Source, State, samples};
@@ -98,6 +98,55 @@ fn a_textured_hollow_box_becomes_its_six_walls_with_finger_joints() {
     assert!((ratio - 1.0).abs() < 0.03, "parts hold {ratio} of the walls' volume");
     let found = state.classify.as_ref().expect("classified");
     assert_eq!(found.primitives.len(), 12, "six outer and six inner walls");
+}
+
+/// The texture flattened onto each wall comes back as score marks on that wall's outer face:
+/// one ring per bump (the surface standing out of the fitted plane), 12 × 9 on a 120 × 90
+/// wall, 12 × 7 and 9 × 7 on the others.
+#[test]
+fn the_texture_is_engraved_on_the_walls_it_was_on() {
+    let state = convert_with(MethodKind::Classifier, textured_box());
+    let relief = state.relief.as_ref().expect("the relief step ran");
+    let mut bumps: Vec<usize> = relief.textures.iter().map(|t| t.regions).collect();
+    bumps.sort_unstable();
+    assert_eq!(bumps, [63, 63, 84, 84, 108, 108]);
+    let parts = &state.parts.as_ref().expect("parts").parts;
+    for t in &relief.textures {
+        // Bumps 0.5 mm high over a plane at their mean height (an eighth of the bump's square
+        // of sines, about 0.125 mm): they stand out up to about 0.375 mm.
+        assert!(t.amplitude > 0.3 && t.amplitude < 0.45, "{}", t.amplitude);
+        // Each region is about the middle half of its 10 mm cell.
+        let each = t.area / t.regions as f64;
+        assert!(each > 15.0 && each < 40.0, "{each} mm² per bump");
+        let part = parts.iter().find(|p| p.id == t.part).expect("the wall");
+        let scores: Vec<_> = part.marks.iter().filter(|m| m.kind == MarkKind::Score).collect();
+        assert_eq!(scores.len(), t.regions);
+        assert!(scores.iter().all(|m| m.side == Some(t.side)));
+        // Every mark lies on the part.
+        let outline = &part.polygon;
+        assert!(
+            scores
+                .iter()
+                .flat_map(|m| &m.path)
+                .all(|p| outline.contains(*p) || outline.boundary_distance_squared(*p) < 1e-6)
+        );
+    }
+    // With --features ignore nothing is engraved.
+    let settings = Settings {
+        thicknesses: vec![3.0],
+        features: platener::Features::Ignore,
+        ..Settings::default()
+    };
+    let plain = convert(
+        MethodKind::Classifier,
+        Source::triangles("m", textured_box()),
+        settings,
+        &Cancel::default(),
+    );
+    let plain = plain.expect("converts");
+    assert!(plain.relief.as_ref().expect("ran").textures.is_empty());
+    let parts = &plain.parts.as_ref().expect("parts").parts;
+    assert!(parts.iter().flat_map(|p| &p.marks).all(|m| m.kind != MarkKind::Score));
 }
 
 #[test]

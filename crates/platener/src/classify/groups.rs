@@ -112,11 +112,13 @@ pub fn stacked_instead(p: &Primitive, settings: &Settings) -> bool {
     p.outward && crate::hinge::design(style, material, t, TAU / n as f64, facet).is_err()
 }
 
-/// The fixed groups of a classification (see the module doc), for [`crate::coplanar::group_rest`].
-pub fn fixed_groups(mesh: &Mesh, c: &Classification, exact: &PlanarGroups, settings: &Settings) -> Fixed {
+/// The fixed groups of a classification (see the module doc), for [`crate::coplanar::group_rest`],
+/// and the primitives they replace the exact groups of.
+pub fn fixed_groups(mesh: &Mesh, c: &Classification, exact: &PlanarGroups, settings: &Settings) -> (Fixed, Vec<u32>) {
     let tolerance = settings.thinnest() / 2.0;
     let sectors = curved_sectors(mesh, &c.primitives, tolerance, c.thresholds.eps);
     let mut groups = Vec::new();
+    let mut replaced = Vec::new();
     for (k, p) in c.primitives.iter().enumerate() {
         let pieces = sectors[k].map_or(1, |s| s.n);
         if !fragmented(mesh, p, exact, pieces) || stacked_instead(p, settings) {
@@ -127,12 +129,13 @@ pub fn fixed_groups(mesh: &Mesh, c: &Classification, exact: &PlanarGroups, setti
             (shape @ (Shape::Cylinder { .. } | Shape::Cone { .. }), Some(s)) => {
                 groups.extend(facet_groups(mesh, p, shape, &s));
             }
-            _ => {}
+            _ => continue,
         }
+        replaced.push(k as u32);
     }
     groups.retain(|g| !g.faces.is_empty());
     let snap = vec![snap_distance(c, tolerance); groups.len()];
-    Fixed { groups, snap }
+    (Fixed { groups, snap }, replaced)
 }
 
 /// Whether the exact planar groups (those the plate method uses) split `p`'s triangles

@@ -194,6 +194,9 @@ pub struct Classification {
     pub graph: Graph,
     /// Total surface area, mm².
     pub surface_area: f64,
+    /// The primitives whose triangles the classifier's planar groups replaced (a texture, a
+    /// knurl, noise over exact faces): set by step `classify`, empty from [`run`].
+    pub replaced: Vec<u32>,
 }
 
 /// Classifies `mesh`: samples, primitives, triangle labels, volumes and the graph.
@@ -224,6 +227,7 @@ pub fn run(mesh: &Mesh, settings: &ClassifySettings) -> Result<Classification, C
         volumes,
         graph,
         surface_area: area,
+        replaced: Vec::new(),
     })
 }
 
@@ -239,7 +243,9 @@ pub fn step(
         .map_err(|e| crate::error::Error::model(cx.model(), crate::error::ModelProblem::Classify(e)))?;
     let angle = settings.coplanar_angle_deg.to_radians();
     let exact = crate::coplanar::group_faces(mesh, angle);
-    let fixed = groups::fixed_groups(mesh, &found, &exact, settings);
+    let mut found = found;
+    let (fixed, replaced) = groups::fixed_groups(mesh, &found, &exact, settings);
+    found.replaced = replaced;
     let planar = crate::coplanar::group_rest(mesh, angle, fixed);
     Ok((found, planar))
 }

@@ -18,8 +18,8 @@ use std::time::Instant;
 use crate::error::{Error, Result};
 use crate::settings::Settings;
 use crate::{
-    bends, classify, cleanup, coplanar, export, joints, kerf, labels, layers, mesh, plan, plates, read, shapes, sheets,
-    stacked, weld,
+    bends, classify, cleanup, coplanar, export, joints, kerf, labels, layers, mesh, plan, plates, read, relief, shapes,
+    sheets, stacked, weld,
 };
 
 pub use crate::context::{Cancel, StepContext, StepRecord, Warning, WarningKind};
@@ -58,6 +58,8 @@ pub struct State {
     pub joints: Option<Arc<joints::Joints>>,
     /// Step `stacked`: layers and shafts of the stacked method.
     pub stacked: Option<Arc<stacked::Stack>>,
+    /// Step `relief`: the classifier's flattened textures engraved on their plates.
+    pub relief: Option<Arc<relief::Relief>>,
     /// Step `layers`: the classifier's spheres and freeforms as layers among its plates.
     pub layers: Option<Arc<layers::Layers>>,
     /// Input of the cutting-plan steps: the parts a method made, with the cutting settings.
@@ -90,6 +92,7 @@ impl State {
             bends: None,
             joints: None,
             stacked: None,
+            relief: None,
             layers: None,
             parts: None,
             kerf: None,
@@ -136,6 +139,7 @@ impl State {
             StepId::Joints => self.joints = None,
             StepId::Parts => self.parts = None,
             StepId::Stacked => self.stacked = None,
+            StepId::Relief => self.relief = None,
             StepId::Layers => self.layers = None,
             StepId::Kerf => self.kerf = None,
             StepId::Labels => self.labels = None,

@@ -8,8 +8,8 @@ use crate::context::StepContext;
 use crate::error::Result;
 use crate::method::MethodKind;
 use crate::{
-    bends, classify, cleanup, coplanar, export, joints, kerf, labels, layers, mesh, parts, plates, read, shapes,
-    sheets, stacked, weld,
+    bends, classify, cleanup, coplanar, export, joints, kerf, labels, layers, mesh, parts, plates, read, relief,
+    shapes, sheets, stacked, weld,
 };
 
 /// Every pipeline step, named as in report.json and as the module it lives in.
@@ -39,6 +39,8 @@ pub enum StepId {
     Parts,
     /// [`stacked`]: layers and shafts as parts to cut (stacked method).
     Stacked,
+    /// [`relief`]: flattened textures engraved on their plates (classifier method).
+    Relief,
     /// [`layers`]: spheres and freeforms as stacked layers among the plates (classifier
     /// method).
     Layers,
@@ -83,7 +85,7 @@ pub const CUTTING_PLAN: [StepId; 4] = [StepId::Kerf, StepId::Labels, StepId::She
 
 impl StepId {
     /// Every step, in pipeline order.
-    pub const ALL: [StepId; 17] = {
+    pub const ALL: [StepId; 18] = {
         let (p, c) = (PLATE, CUTTING_PLAN);
         [
             p[0],
@@ -97,6 +99,7 @@ impl StepId {
             p[7],
             p[8],
             StepId::Parts,
+            StepId::Relief,
             StepId::Layers,
             StepId::Stacked,
             c[0],
@@ -121,6 +124,7 @@ impl StepId {
             StepId::Joints => "joints",
             StepId::Parts => "parts",
             StepId::Stacked => "stacked",
+            StepId::Relief => "relief",
             StepId::Layers => "layers",
             StepId::Kerf => "kerf",
             StepId::Labels => "labels",
@@ -141,7 +145,7 @@ impl StepId {
                     &[StepId::Classify],
                     &f[5..],
                     &p[6..],
-                    &[StepId::Parts, StepId::Layers],
+                    &[StepId::Parts, StepId::Relief, StepId::Layers],
                 ]
                 .concat()
             }
@@ -204,6 +208,17 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
             let (stack, input) = stacked::run(model, cleaned, mesh, state.coplanar.as_deref(), &s, cx)?;
             state.stacked = Some(Arc::new(stack));
             state.parts = Some(Arc::new(input));
+        }
+        StepId::Relief => {
+            let (mesh, found) = (
+                need(&state.mesh, name, "mesh")?,
+                need(&state.classify, name, "classify")?,
+            );
+            let (made, input) = relief::run(mesh, found, need(&state.parts, name, "parts")?, &s, cx)?;
+            state.relief = Some(Arc::new(made));
+            if let Some(input) = input {
+                state.parts = Some(Arc::new(input));
+            }
         }
         StepId::Layers => layers_step(state, &s, cx)?,
         StepId::Kerf => state.kerf = Some(Arc::new(kerf::run(need(&state.parts, name, "parts")?, cx)?)),

@@ -109,7 +109,7 @@ pub(crate) fn shaft_groups(stack: &Stack) -> (Vec<u32>, UnionFind) {
 }
 
 /// Every part id of the stack (islands and shafts), ascending.
-fn part_ids(stack: &Stack) -> Vec<u32> {
+pub(super) fn part_ids(stack: &Stack) -> Vec<u32> {
     let mut ids: Vec<u32> = stack
         .layers
         .iter()

@@ -172,14 +172,8 @@ mod tests {
                 .all(|i| i.outline.bounds().1.x < split)
         );
         let map = stack.number_from(100);
-        let mut ids: Vec<u32> = stack
-            .layers
-            .iter()
-            .flat_map(|l| l.islands.iter().map(|i| i.part))
-            .chain(stack.shafts.iter().map(|s| s.part))
-            .collect();
+        let ids = super::super::glued::part_ids(&stack);
         assert_eq!(map.len(), ids.len());
-        ids.sort_unstable();
         assert_eq!(ids, (100..100 + map.len() as u32).collect::<Vec<_>>());
     }
 
