@@ -9,7 +9,7 @@
 //! |---|---|
 //! | plate | foundation, `plates`, `joints`, `parts` (plates with joints → parts) |
 //! | stacked | foundation without welding, `stacked` (layers and shafts → parts) |
-//! | classifier | read to mesh, `classify` (primitives → planar groups), then as plate, then `layers` (spheres and freeforms stacked among the plates) |
+//! | classifier | read to mesh, `classify` (primitives → planar groups), then as plate, then `relief` (textures engraved) and `layers` (spheres and freeforms stacked among the plates) |
 
 use serde::Serialize;
 
