@@ -67,9 +67,10 @@ pub(crate) fn resting_face(mesh: &Mesh, marked: &[bool], groups: &PlanarGroups, 
     let mut shared = vec![0.0; groups.groups.len()];
     let topology = &mesh.topology;
     for (e, [a, b]) in topology.edges.iter().enumerate() {
-        let corners = topology.edge_corners(e as u32);
-        let faces: Vec<usize> = corners.iter().map(|c| (c / 3) as usize).collect();
-        let [f, g] = faces[..] else { continue };
+        let &[c, d] = topology.edge_corners(e as u32) else {
+            continue;
+        };
+        let (f, g) = ((c / 3) as usize, (d / 3) as usize);
         let other = match (marked[f], marked[g]) {
             (true, false) => g,
             (false, true) => f,
