@@ -418,8 +418,8 @@ fn a_small_solid_cylinder_becomes_stacked_discs() {
     assert!(plan.parts.iter().all(|p| p.kind == PartKind::Plate) && plan.parts.len() > 6);
 }
 
-/// Models the plates explain whole get no layers: the classifier's plan of a textured box is
-/// its six walls, with nothing left over for the layers step.
+/// Models the plates explain whole get no layers: the classifier's plan of a clean box is its
+/// six walls, with nothing left over for the layers step.
 #[test]
 fn a_box_leaves_nothing_to_the_layers() {
     let state = convert_with(MethodKind::Classifier, samples::closed_box(120.0, 90.0, 70.0, 3.0));

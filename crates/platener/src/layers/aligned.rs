@@ -10,10 +10,10 @@
 //! slots become holes in the plates, and every shaft through one is a tenon through it (joint
 //! kind `slot`).
 
-use glam::DVec2;
 use platener_geom::{GridError, Polygon, boolean};
 
 use crate::plan::{Part, PartKind};
+use crate::plates::map_polygon;
 use crate::stacked::{LayerIslands, SlicePlan, Stack};
 
 /// A plate's faces count as lying on a layer's faces within this, mm.
@@ -78,25 +78,9 @@ fn slot_of(part: &Part, plan: &SlicePlan) -> Option<i64> {
     (on_a_layer && k >= -1.0 && k <= plan.count as f64).then_some(k as i64)
 }
 
-/// `polygon` mapped point by point.
-fn mapped(polygon: &Polygon, f: impl Fn(DVec2) -> DVec2) -> Polygon {
-    let mut out = Polygon {
-        outer: polygon.outer.iter().map(|&p| f(p)).collect(),
-        holes: polygon
-            .holes
-            .iter()
-            .map(|h| h.iter().map(|&p| f(p)).collect())
-            .collect(),
-    };
-    out.normalize_orientation();
-    out
-}
-
 /// `part`'s outline seen down the stack of `plan`, in the stack's 2D frame.
 fn seen(part: &Part, plan: &SlicePlan) -> Polygon {
-    mapped(&part.polygon, |p| {
-        plan.frame.to_local(part.frame.to_model_2d(p)).truncate()
-    })
+    map_polygon(&part.polygon, &part.frame, &plan.frame)
 }
 
 /// Takes the plates [`take_in`] added out of `stack` again: their slots are cut into the plates
@@ -134,10 +118,9 @@ pub(crate) fn take_out(stack: &mut Stack, aligned: &Aligned, parts: &mut [Part])
 /// Cuts `slots` (in the stack's 2D frame) out of `plate`; the plate keeps its largest piece
 /// (slots keep a margin from the outline, so there is one).
 fn cut_into(plate: &mut Part, slots: &[Polygon], plan: &SlicePlan) -> Result<(), GridError> {
-    let frame = plate.frame;
     let mapped: Vec<Polygon> = slots
         .iter()
-        .map(|s| mapped(s, |p| frame.to_local(plan.frame.to_model_2d(p)).truncate()))
+        .map(|s| map_polygon(s, &plan.frame, &plate.frame))
         .collect();
     let cut = boolean::difference(std::slice::from_ref(&plate.polygon), &mapped)?;
     if let Some(largest) = cut.into_iter().max_by(|a, b| a.area().total_cmp(&b.area())) {

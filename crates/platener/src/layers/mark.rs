@@ -89,26 +89,29 @@ pub(crate) fn resting_face(mesh: &Mesh, marked: &[bool], groups: &PlanarGroups, 
         .map(|(g, l)| (g as u32, *l))
 }
 
+/// The corners of the marked triangles (shared corners once per triangle).
+fn corners<'a>(mesh: &'a Mesh, marked: &'a [bool]) -> impl Iterator<Item = DVec3> + 'a {
+    mesh.triangles
+        .iter()
+        .zip(marked)
+        .filter(|(_, m)| **m)
+        .flat_map(|(t, _)| t.iter().map(|&v| mesh.vertices[v as usize]))
+}
+
 /// The extent of the marked triangles' vertices along `up`, from `origin`: (lowest, highest).
 pub(crate) fn extent(mesh: &Mesh, marked: &[bool], origin: DVec3, up: DVec3) -> Option<(f64, f64)> {
-    let mut range: Option<(f64, f64)> = None;
-    for (t, _) in mesh.triangles.iter().zip(marked).filter(|(_, m)| **m) {
-        for &v in t {
-            let h = (mesh.vertices[v as usize] - origin).dot(up);
-            range = Some(range.map_or((h, h), |(lo, hi)| (lo.min(h), hi.max(h))));
-        }
-    }
-    range
+    corners(mesh, marked)
+        .map(|p| (p - origin).dot(up))
+        .fold(None, |range, h| {
+            Some(range.map_or((h, h), |(lo, hi): (f64, f64)| (lo.min(h), hi.max(h))))
+        })
 }
 
 /// The centre of the marked triangles' bounding box.
 pub(crate) fn centre(mesh: &Mesh, marked: &[bool]) -> Option<DVec3> {
-    let mut bounds: Option<(DVec3, DVec3)> = None;
-    for (t, _) in mesh.triangles.iter().zip(marked).filter(|(_, m)| **m) {
-        for &v in t {
-            let p = mesh.vertices[v as usize];
-            bounds = Some(bounds.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))));
-        }
-    }
-    bounds.map(|(lo, hi)| (lo + hi) / 2.0)
+    corners(mesh, marked)
+        .fold(None, |b, p| {
+            Some(b.map_or((p, p), |(lo, hi): (DVec3, DVec3)| (lo.min(p), hi.max(p))))
+        })
+        .map(|(lo, hi)| (lo + hi) / 2.0)
 }

@@ -80,7 +80,8 @@ pub struct Layers {
 }
 
 impl Layers {
-    fn none(marked_area: f64, marked_share: f64, why: String) -> Self {
+    /// Nothing stacked yet: the marked surface's area and share.
+    fn marked(marked_area: f64, marked_share: f64) -> Self {
         Self {
             marked_area,
             marked_share,
@@ -88,7 +89,15 @@ impl Layers {
             stack: None,
             tenons: Vec::new(),
             left_out: 0,
+            skipped: None,
+        }
+    }
+
+    /// Nothing stacked, and why.
+    fn none(marked_area: f64, marked_share: f64, why: String) -> Self {
+        Self {
             skipped: Some(why),
+            ..Self::marked(marked_area, marked_share)
         }
     }
 }
@@ -140,7 +149,7 @@ pub fn run(inputs: &Inputs<'_>, settings: &Settings, cx: &mut StepContext<'_>) -
     };
     let layers = Layers {
         rests_on,
-        ..Layers::none(marked.area, share, String::new())
+        ..Layers::marked(marked.area, share)
     };
     let mut merged = inputs.parts.clone();
     let (mut stack, tenons, left_out) = match held_stack(inputs, &marked.faces, plan, &mut merged, settings, cx)? {
@@ -159,20 +168,12 @@ pub fn run(inputs: &Inputs<'_>, settings: &Settings, cx: &mut StepContext<'_>) -
     };
     let ids = stack.number_from(merged.parts.iter().map(|p| p.id).max().unwrap_or(0) + 1);
     let tenons: Vec<[u32; 2]> = tenons.iter().map(|[s, p]| [ids[s], *p]).collect();
-    let (mut input, numbers) = stacked::plan_input(&stack, inputs.model, settings)?;
-    crate::parts::clean::clean_input(&mut input, cx);
-    for w in stacked::warnings(&stack)
-        .into_iter()
-        .chain(stacked::number_warnings(&numbers))
-    {
-        cx.warn(WarningKind::CuttingPlan, w);
-    }
+    let input = stacked::parts_of(&stack, inputs.model, settings, cx)?;
     merge(&mut merged, input, &tenons);
     let layers = Layers {
         stack: Some(stack),
         tenons,
         left_out,
-        skipped: None,
         ..layers
     };
     Ok((layers, Some(merged)))
@@ -210,7 +211,8 @@ fn held_stack(
     let mut stack = stacked::build(name, plan, islands, sliced.stats, settings, cx)?;
     let tenons = aligned::take_out(&mut stack, &aligned, &mut merged.parts).map_err(geometry)?;
     let left_out = unheld(&stack, &tenons, !merged.parts.is_empty());
-    stack.retain_parts(|part| !left_out.contains(&part));
+    // `unheld` lists ids ascending.
+    stack.retain_parts(|part| left_out.binary_search(&part).is_err());
     let why = format!(
         "{} layer part(s) no shaft holds to a plate were left out (nothing would hold them in place); the stacked method builds the whole model in layers",
         left_out.len()
@@ -224,7 +226,7 @@ fn held_stack(
     Ok(Ok((stack, tenons, left_out.len())))
 }
 
-/// The stack's part ids that no chain of shafts holds to a plate (none of their shaft group's
+/// The stack's part ids (ascending) that no chain of shafts holds to a plate (none of their shaft group's
 /// shafts is a tenon), when the plan has plates to hold them (a plan of layers alone keeps all).
 fn unheld(stack: &Stack, tenons: &[[u32; 2]], plates: bool) -> Vec<u32> {
     if !plates {

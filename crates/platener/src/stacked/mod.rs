@@ -212,15 +212,27 @@ pub fn run(
     }
     cx.check_cancel()?;
     let stack = build(&model.name, plan, layers, sliced.stats, settings, cx)?;
-    for w in warnings(&stack) {
+    let input = parts_of(&stack, model, settings, cx)?;
+    Ok((stack, input))
+}
+
+/// The parts of `stack` for the cutting plan, their outlines cleaned, with the stack's warnings
+/// (dropped islands, unjoined layers, numbers moved to tabs) told to `cx`.
+pub(crate) fn parts_of(
+    stack: &Stack,
+    model: &Model,
+    settings: &Settings,
+    cx: &mut StepContext<'_>,
+) -> Result<PlanInput> {
+    for w in warnings(stack) {
         cx.warn(WarningKind::CuttingPlan, w);
     }
-    let (mut input, numbers) = plan_input(&stack, model, settings)?;
+    let (mut input, numbers) = plan_input(stack, model, settings)?;
     for w in number_warnings(&numbers) {
         cx.warn(WarningKind::CuttingPlan, w);
     }
     crate::parts::clean::clean_input(&mut input, cx);
-    Ok((stack, input))
+    Ok(input)
 }
 
 /// The stack of `layers` (their islands as cut from the planes of `plan`) of model `name`:
@@ -240,7 +252,7 @@ pub(crate) fn build(
 }
 
 /// Where the numbers of layers too thin for them went.
-pub(crate) fn number_warnings(n: &Numbers) -> Vec<String> {
+fn number_warnings(n: &Numbers) -> Vec<String> {
     let mut out = Vec::new();
     if !n.on_tab.is_empty() {
         out.push(format!(
