@@ -215,19 +215,23 @@ fn feature_marks(features: &[Feature], plate: u32, outline: &Polygon) -> Vec<Mar
         }
         // A region that the booleans cannot clip is drawn as found: it lay inside the plate.
         let clipped = intersection(&regions, std::slice::from_ref(outline)).unwrap_or(regions);
-        marks.extend(
-            clipped
-                .iter()
-                .flat_map(|p| std::iter::once(&p.outer).chain(&p.holes))
-                .filter(|r| r.len() >= 3)
-                .map(|r| Mark {
-                    kind: MarkKind::Score,
-                    path: r.iter().copied().chain(r.first().copied()).collect(),
-                    side: Some(mark_side),
-                }),
-        );
+        marks.extend(score_rings(&clipped, mark_side));
     }
     marks
+}
+
+/// A closed `score` mark on `side` along every ring of `regions` (one-sided features, the
+/// classifier's engraved textures).
+pub(crate) fn score_rings(regions: &[Polygon], side: MarkSide) -> impl Iterator<Item = Mark> + '_ {
+    regions
+        .iter()
+        .flat_map(|p| std::iter::once(&p.outer).chain(&p.holes))
+        .filter(|r| r.len() >= 3)
+        .map(move |r| Mark {
+            kind: MarkKind::Score,
+            path: r.iter().copied().chain(r.first().copied()).collect(),
+            side: Some(side),
+        })
 }
 
 /// A connection as plan.json's joint.

@@ -10,7 +10,7 @@
 //! Regions smaller than a sheet's thickness squared are noise, not a pattern, and are dropped.
 //! With `--features cut` or `ignore` the step changes nothing.
 
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use platener_geom::{GridError, Polygon, boolean};
 use serde::Serialize;
 
@@ -18,7 +18,8 @@ use crate::classify::{Classification, Shape};
 use crate::context::StepContext;
 use crate::error::{Error, ModelProblem, Result};
 use crate::mesh::Mesh;
-use crate::plan::{Mark, MarkKind, MarkSide, Part, PartKind, PlanInput};
+use crate::parts::score_rings;
+use crate::plan::{MarkSide, Part, PartKind, PlanInput};
 use crate::settings::{Features, Settings};
 
 /// One texture engraved.
@@ -86,7 +87,7 @@ pub fn run(
             continue;
         }
         let area = regions.iter().map(Polygon::area).sum();
-        part.marks.extend(outlines(&regions, side));
+        part.marks.extend(score_rings(&regions, side));
         textures.push(Texture {
             primitive: k,
             part: part.id,
@@ -182,19 +183,6 @@ fn above_plane(corners: &[DVec3; 3], heights: &[f64; 3]) -> Vec<DVec3> {
         }
     }
     out
-}
-
-/// Score marks along every ring of `regions`, closed, on `side`.
-fn outlines(regions: &[Polygon], side: MarkSide) -> impl Iterator<Item = Mark> + '_ {
-    regions
-        .iter()
-        .flat_map(|p| std::iter::once(&p.outer).chain(&p.holes))
-        .filter(|r| r.len() >= 3)
-        .map(move |r| Mark {
-            kind: MarkKind::Score,
-            path: r.iter().copied().chain(r.first().copied()).collect::<Vec<DVec2>>(),
-            side: Some(side),
-        })
 }
 
 #[cfg(test)]
