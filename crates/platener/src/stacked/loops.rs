@@ -40,9 +40,8 @@ pub(crate) struct Chain {
     pub edges: Vec<u32>,
     /// Whether the last segment ends where the first starts.
     pub closed: bool,
-    /// A triangle of the chain (its first).
-    pub face: u32,
-    /// Each segment's triangle, in order (segment i runs from edge i to edge i + 1).
+    /// Each segment's triangle, in order (segment i runs from edge i to edge i + 1; never
+    /// empty).
     pub faces: Vec<u32>,
 }
 
@@ -118,12 +117,7 @@ pub(crate) fn chain(segments: &[Segment]) -> Vec<Chain> {
         if !closed {
             edges.push(segments[at].to);
         }
-        Chain {
-            edges,
-            closed,
-            face: segments[start].face,
-            faces,
-        }
+        Chain { edges, closed, faces }
     };
     // Open chains first, from their true starts, so they are not cut in two.
     for i in 0..n {

@@ -227,7 +227,7 @@ fn plane_loops(cut: &Cut<'_>, k: usize, segments: &[Segment], tolerance: f64, ga
     let mut closed: Vec<(Ring, u32, Marked)> = Vec::new();
     let mut open: Vec<OpenChain> = Vec::new();
     for c in chains {
-        let component = cut.mesh.component.get(c.face as usize).copied().unwrap_or(0);
+        let component = cut.mesh.component.get(c.faces[0] as usize).copied().unwrap_or(0);
         let points: Ring = c.edges.iter().map(|&e| point(e)).collect();
         let marked = cut.marked(&points, &c.faces);
         if c.closed {
