@@ -149,7 +149,11 @@ impl Bends {
 pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Result<Bends> {
     cx.check_cancel()?;
     let material = settings.cut.material;
-    let margin = 2.0 * settings.cut.margin;
+    // A bent part's flat shape grows by its joints' fingers at its ends (a sheet's thickness
+    // each) and by the nesting's spacing: a strip that fitted the margins alone was refused by
+    // the nesting after every costly step (three 40-gon boxes, issue 29).
+    let thickest = settings.thicknesses.iter().copied().fold(0.0, f64::max);
+    let margin = 2.0 * settings.cut.margin + settings.cut.spacing + 2.0 * thickest;
     let sheet = match settings.cut.sheet {
         SheetSize::Fixed { width, height } => (width - margin, height - margin),
         SheetSize::Fit => (f64::INFINITY, f64::INFINITY),
@@ -297,16 +301,7 @@ fn zone_of(
 /// The orders in which candidates are tried: the easiest bends first (smallest turn, then
 /// longest), the longest first, and outward from the largest plate.
 fn orders(candidates: &[Candidate], plates: &[Plate]) -> Vec<Vec<usize>> {
-    let mut easiest: Vec<usize> = (0..candidates.len()).collect();
-    easiest.sort_by(|&i, &j| {
-        let (a, b) = (&candidates[i], &candidates[j]);
-        let by_turn = if (a.turn() - b.turn()).abs() > 1e-6 {
-            a.turn().total_cmp(&b.turn())
-        } else {
-            std::cmp::Ordering::Equal
-        };
-        by_turn.then(b.length().total_cmp(&a.length())).then(i.cmp(&j))
-    });
+    let easiest = easiest_first(&candidates.iter().map(|c| (c.turn(), c.length())).collect::<Vec<_>>());
     let mut longest: Vec<usize> = (0..candidates.len()).collect();
     longest.sort_by(|&i, &j| {
         candidates[j]
@@ -315,6 +310,24 @@ fn orders(candidates: &[Candidate], plates: &[Plate]) -> Vec<Vec<usize>> {
             .then(i.cmp(&j))
     });
     vec![easiest.clone(), longest, outward(&easiest, candidates, plates)]
+}
+
+/// The indices of `(turn, length)` pairs, smallest turn first, then longest, then in order.
+/// Turns equal to a µrad are one key: a tolerance inside a comparator is not transitive (a
+/// cup beside its saucer made the sort panic), integer keys are.
+fn easiest_first(keys: &[(f64, f64)]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..keys.len()).collect();
+    order.sort_by(|&i, &j| {
+        let ((ta, la), (tb, lb)) = (keys[i], keys[j]);
+        turn_key(ta).cmp(&turn_key(tb)).then(lb.total_cmp(&la)).then(i.cmp(&j))
+    });
+    order
+}
+
+/// A turn (radians) on a grid of 1 µrad, for sorting turns that differ by rounding alike.
+fn turn_key(turn: f64) -> i64 {
+    // Saturating float-to-int cast: a NaN turn sorts as 0, never panics.
+    (turn * 1e6).round() as i64
 }
 
 /// The candidates in breadth-first order from the largest plate (then from the largest

@@ -299,3 +299,31 @@ fn the_joints_step_takes_the_joints_the_bends_step_computed_when_every_part_hold
     assert_eq!(joints.connections.len(), 1);
     assert_eq!(joints.connections[0].plates, fresh.connections[0].plates);
 }
+
+mod orders {
+    //! The easiest-first comparator over turns that differ only by rounding (a cup beside its
+    //! saucer made a tolerance comparator panic: "does not correctly implement a total order").
+
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 64, .. ProptestConfig::default() })]
+        #[test]
+        fn near_equal_turns_sort_without_panic_into_a_consistent_order(
+            base in 0.0f64..3.0,
+            jitter in prop::collection::vec((-3e-6f64..3e-6, 1.0f64..100.0), 2..60),
+        ) {
+            let keys: Vec<(f64, f64)> = jitter.iter().map(|&(d, l)| (base + d, l)).collect();
+            let order = super::super::easiest_first(&keys);
+            let mut seen = order.clone();
+            seen.sort_unstable();
+            prop_assert_eq!(seen, (0..keys.len()).collect::<Vec<_>>());
+            // Sorted by the integer turn key, then longest first: a total order.
+            for w in order.windows(2) {
+                let (a, b) = (keys[w[0]], keys[w[1]]);
+                let (ka, kb) = (super::super::turn_key(a.0), super::super::turn_key(b.0));
+                prop_assert!(ka < kb || (ka == kb && (a.1 > b.1 || (a.1 == b.1 && w[0] < w[1]))));
+            }
+        }
+    }
+}

@@ -169,3 +169,55 @@ fn report_json_lists_the_warnings_of_exactly_the_cutting_plan_steps_before_expor
         .collect();
     assert_eq!(names, crate::export::CUTTING_PLAN_STEPS);
 }
+
+/// The rule of docs/architecture.md ("Floats in comparators"): every comparator over floats is
+/// a total order (`total_cmp`, or integer keys on a grid). `partial_cmp` panics or misorders on
+/// NaN, and a tolerance that answers `Equal` is not transitive, so `sort_by` may panic ("does
+/// not correctly implement a total order"), as it did on a cup beside its saucer.
+#[test]
+fn comparators_are_total_orders() {
+    let crates = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut closures = 0;
+    for krate in ["platener", "platener-geom", "platener-web", "platener-cli"] {
+        for file in rust_files(&crates.join(krate).join("src")) {
+            let text = std::fs::read_to_string(&file).expect("readable");
+            assert!(
+                !text.contains(".partial_cmp("),
+                "{} uses partial_cmp: use total_cmp",
+                file.display()
+            );
+            for comparator in comparator_closures(&text) {
+                closures += 1;
+                assert!(
+                    !comparator.contains("Ordering::Equal"),
+                    "{}: a comparator answers Equal by hand (a tolerance is not a total order; \
+                     compare integer keys instead):\n{comparator}",
+                    file.display()
+                );
+            }
+        }
+    }
+    assert!(closures > 50, "found only {closures} comparators: the scan is broken");
+}
+
+/// The argument text of every `sort_by(…)`, `max_by(…)`, `min_by(…)` and the like in `text`.
+fn comparator_closures(text: &str) -> Vec<&str> {
+    let mut out = Vec::new();
+    for call in [".sort_by(", ".sort_unstable_by(", ".max_by(", ".min_by(", ".binary_search_by("] {
+        let mut from = 0;
+        while let Some(at) = text[from..].find(call) {
+            let open = from + at + call.len();
+            let mut depth = 1;
+            let end = text[open..]
+                .char_indices()
+                .find_map(|(k, c)| {
+                    depth += i32::from(c == '(') - i32::from(c == ')');
+                    (depth == 0).then_some(open + k)
+                })
+                .unwrap_or(text.len());
+            out.push(&text[open..end]);
+            from = open;
+        }
+    }
+    out
+}

@@ -127,7 +127,8 @@ fn longest_chord(piece: &Polygon, d: DVec2, centre: DVec2) -> Option<(f64, DVec2
         .iter()
         .map(|p| m.dot(*p))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
-    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
+    // Also refuses NaN (an empty or broken ring).
+    if !(hi > lo) {
         return None;
     }
     // (length, distance of the middle from the centre, start)
