@@ -5,10 +5,10 @@
 
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::mpsc;
+use std::sync::{Arc, Mutex, PoisonError, mpsc};
 use std::time::Duration;
 
-use platener::convert::{Conversions, Fault, MethodResult, PanicHook, Request, Status, convert_all, no_progress};
+use platener::convert::{Conversions, Event, Fault, MethodResult, PanicHook, Request, Status, convert_all};
 use platener::method::MethodKind;
 use platener::{Cancel, Settings, Source};
 use tracing::Span;
@@ -59,7 +59,7 @@ pub fn run(
                 loop {
                     let i = next.fetch_add(1, Ordering::Relaxed);
                     let Some(model) = models.get(i) else { break };
-                    let report = convert_model(model, config, progress);
+                    let report = convert_model(model, config, models.len(), progress);
                     if tx.send((i, report)).is_err() {
                         break;
                     }
@@ -81,23 +81,49 @@ pub fn run(
 }
 
 /// Converts one model with every method through the library and writes its files.
-fn convert_model(model: &ModelFile, config: &BatchConfig, progress: &Span) -> ModelReport {
+fn convert_model(model: &ModelFile, config: &BatchConfig, models_at_once: usize, progress: &Span) -> ModelReport {
     let file = model.path.display().to_string();
     progress.pb_set_message(&file);
     tracing::info!(file = %file, "converting");
     let request = Request {
         methods: config.methods.clone(),
         timeout: config.timeout,
+        parallel: methods_at_once(config.jobs, models_at_once),
         faults: config.faults.clone(),
         ..Request::new(Source::File(model.path.clone()), config.settings.clone())
     };
+    // Each method's files are written the moment it ends, while the others still run.
+    let written: Arc<Mutex<Vec<MethodReport>>> = Arc::default();
+    let on_event = {
+        let (written, model, config, file) = (written.clone(), model.clone(), config.clone(), file.clone());
+        move |event: Event<'_>| {
+            if let Event::Method(m) = event {
+                let report = finish(m, &model, &config);
+                tracing::info!(file = %file, method = report.method, status = ?report.status, seconds = m.seconds, "done");
+                written.lock().unwrap_or_else(PoisonError::into_inner).push(report);
+            }
+        }
+    };
     let span = tracing::info_span!(parent: progress, "model", file = %file);
-    let all = span.in_scope(|| convert_all(request, &Cancel::default(), no_progress()));
-    let methods: Vec<MethodReport> = all.methods.iter().map(|m| finish(m, model, config)).collect();
-    for m in &methods {
-        tracing::info!(file = %file, method = m.method, status = ?m.status, "done");
-    }
+    let all = span.in_scope(|| convert_all(request, &Cancel::default(), Arc::new(on_event)));
+    let mut written = std::mem::take(&mut *written.lock().unwrap_or_else(PoisonError::into_inner));
+    let methods: Vec<MethodReport> = all
+        .methods
+        .iter()
+        .map(|m| match written.iter().position(|r| r.method == m.method.name()) {
+            Some(k) => written.swap_remove(k),
+            None => finish(m, model, config),
+        })
+        .collect();
     ModelReport::new(file, model.stem.clone(), model.bytes, methods, best(&all), all.seconds)
+}
+
+/// How many methods of one model run at once: the cores the batch's models leave each (all
+/// methods when one model has the machine), so every method gets a core's time within its
+/// own time limit.
+fn methods_at_once(jobs: usize, models_at_once: usize) -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    (cores / jobs.clamp(1, models_at_once.max(1))).max(1)
 }
 
 /// The library's best method, by name.

@@ -2,11 +2,13 @@
 //!
 //! This is the product's one orchestration; the CLI and the web service only fill a
 //! [`Request`], watch the [`Event`]s and render the [`Conversions`]. It runs the steps every
-//! method shares (`read`, `cleanup`) once, and the rest of the foundation once per distinct
-//! weld setting (the stacked method keeps every surface detail, so it welds exact duplicates
-//! only and cannot share the plate method's welded mesh), forking the state for each method.
-//! It applies the time limit to the model as a whole, catches errors and panics per method,
-//! scores and verifies every plan (one analysis of its assembly for both) and names the best.
+//! method shares (`read`, `cleanup`) once, and `weld` and `mesh` once per distinct weld
+//! setting (the stacked method keeps every surface detail, so it welds exact duplicates only
+//! and cannot share the plate method's welded mesh), forking the state for each method.
+//! The methods run side by side, each on its own thread within its own time limit (one slow
+//! method never starves the others), errors and panics are caught per method, every plan is
+//! scored and verified (one analysis of its assembly for both) and the best of those that
+//! finished is named.
 
 mod panic;
 #[cfg(test)]
@@ -14,7 +16,6 @@ mod tests;
 mod work;
 
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use serde::Serialize;
@@ -39,8 +40,14 @@ pub struct Request {
     pub settings: Settings,
     /// The methods to run, in order.
     pub methods: Vec<MethodKind>,
-    /// The time limit for the model, all its methods together; `None`: no limit.
+    /// Each method's time limit, counted from its start less the time the shared steps took
+    /// (the methods run side by side, so with `parallel` at least the number of methods the
+    /// model as a whole ends within it too); a method past it is cancelled and reported timed
+    /// out alone. `None`: no limit.
     pub timeout: Option<Duration>,
+    /// How many methods run at once (each on a thread of its own; the steps inside share
+    /// rayon's pool); 0: all of them. Methods start in the order asked for.
+    pub parallel: usize,
     /// Failures to inject, for tests of callers that must survive them.
     pub faults: Vec<Fault>,
 }
@@ -53,6 +60,7 @@ impl Request {
             settings,
             methods: MethodKind::ALL.to_vec(),
             timeout: None,
+            parallel: 0,
             faults: Vec::new(),
         }
     }
@@ -92,6 +100,8 @@ pub enum Status {
     TimedOut,
     /// The caller cancelled the run.
     Cancelled,
+    /// The method had nothing to add for this model and stopped early (the error says why).
+    Skipped,
 }
 
 impl Status {
@@ -100,6 +110,7 @@ impl Status {
         match error {
             Error::Cancelled { .. } => Status::Cancelled,
             Error::TimedOut { .. } => Status::TimedOut,
+            Error::Skipped { .. } => Status::Skipped,
             Error::Internal {
                 problem: Internal::Panic { .. },
                 ..
@@ -188,7 +199,7 @@ pub enum Event<'a> {
     Method(&'a MethodResult),
 }
 
-/// Receives [`Event`]s; called from the conversion's thread.
+/// Receives [`Event`]s; called from the conversion's threads (one per method, at once).
 pub trait Progress: Send + Sync {
     /// Handles one event.
     fn event(&self, event: Event<'_>);
@@ -207,28 +218,19 @@ pub fn no_progress() -> Arc<dyn Progress> {
 
 /// Converts the request's model with each of its methods: see the module documentation.
 ///
-/// The work runs on a thread of its own, so a model past its time limit is cancelled and,
-/// when a step does not notice within a grace period, left behind while the call returns.
-/// `cancel` stops the run at the next check of any step. Never fails: every error is a
-/// method's (or, for the shared steps, every method's).
+/// Every method runs on a thread of its own with its own time limit, so a method past it is
+/// cancelled (and, when a step does not notice within a grace period, left behind) while the
+/// others finish; each method's [`Event::Method`] is sent the moment it ends. `cancel` stops
+/// the run at the next check of any step. Never fails: every error is a method's (or, for the
+/// shared steps, every method's).
 pub fn convert_all(request: Request, cancel: &Cancel, progress: Arc<dyn Progress>) -> Conversions {
     let start = Instant::now();
     let name = request.source.name();
-    let live = Arc::new(AtomicBool::new(true));
-    let gated: Arc<dyn Progress> = Arc::new(Gate {
-        live: live.clone(),
-        inner: progress.clone(),
-    });
-    let received = work::run(&request, cancel, gated);
-    let methods = work::complete(&request, received.results, received.timed_out, &received.missing);
-    live.store(false, Ordering::Relaxed);
-    for m in methods.iter().filter(|m| m.status == Status::TimedOut) {
-        progress.event(Event::Method(m));
-    }
+    let (shared, methods) = work::run(&request, cancel, progress);
     let best = best_of(&methods);
     Conversions {
         name,
-        shared: received.shared,
+        shared,
         methods,
         best,
         seconds: start.elapsed().as_secs_f64(),
@@ -282,17 +284,3 @@ fn best_of(methods: &[MethodResult]) -> Option<MethodKind> {
     best.map(|(m, ..)| m)
 }
 
-/// Forwards events until the call returns; a thread left behind after a time limit reports
-/// nothing more.
-struct Gate {
-    live: Arc<AtomicBool>,
-    inner: Arc<dyn Progress>,
-}
-
-impl Progress for Gate {
-    fn event(&self, event: Event<'_>) {
-        if self.live.load(Ordering::Relaxed) {
-            self.inner.event(event);
-        }
-    }
-}

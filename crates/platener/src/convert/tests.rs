@@ -176,17 +176,115 @@ fn a_failing_panicking_or_hanging_method_leaves_the_others_converted() {
         let all = convert_all(request.clone(), &Cancel::default(), no_progress());
         assert_eq!(all.methods[0].status, status, "{kind:?}: {:?}", all.methods[0].error);
         assert!(all.best.is_none());
-        if kind != FaultKind::Hang {
-            // The next method still runs.
-            let two = Request {
-                methods: vec![MethodKind::Plate, MethodKind::Stacked],
-                ..request
-            };
-            let all = convert_all(two, &Cancel::default(), no_progress());
-            assert_eq!(all.methods[1].status, Status::Converted);
-            assert_eq!(all.best, Some(MethodKind::Stacked));
+        // The other method still runs and converts, a hanging one's time limit its own.
+        let two = Request {
+            methods: vec![MethodKind::Plate, MethodKind::Stacked],
+            timeout: (kind == FaultKind::Hang).then(|| std::time::Duration::from_secs(5)),
+            ..request
+        };
+        let all = convert_all(two, &Cancel::default(), no_progress());
+        assert_eq!(all.methods[0].status, status, "{kind:?}");
+        assert_eq!(all.methods[1].status, Status::Converted, "{kind:?}: {:?}", all.methods[1].error);
+        assert_eq!(all.best, Some(MethodKind::Stacked));
+    }
+}
+
+/// A method past its time limit no longer starves the others (issue 29): the stacked plan's
+/// event comes while the hanging plate method still runs, and only the plate method is
+/// reported timed out, after it.
+#[test]
+fn a_method_past_its_limit_times_out_alone_and_the_others_report_first() {
+    let seen = Arc::new(std::sync::Mutex::new(Vec::new()));
+    let sink = {
+        let seen = seen.clone();
+        move |e: Event<'_>| {
+            if let Event::Method(m) = e {
+                seen.lock().expect("not poisoned").push((m.method, m.status));
+            }
+        }
+    };
+    let request = Request {
+        faults: vec![Fault {
+            method: MethodKind::Plate,
+            kind: FaultKind::Hang,
+        }],
+        timeout: Some(std::time::Duration::from_secs(5)),
+        ..box_request(vec![MethodKind::Plate, MethodKind::Stacked])
+    };
+    let all = convert_all(request, &Cancel::default(), Arc::new(sink));
+    let seen = seen.lock().expect("not poisoned").clone();
+    assert_eq!(
+        seen,
+        [
+            (MethodKind::Stacked, Status::Converted),
+            (MethodKind::Plate, Status::TimedOut)
+        ]
+    );
+    assert_eq!(all.method(MethodKind::Stacked).map(|m| m.status), Some(Status::Converted));
+}
+
+/// With one method at a time, each still gets its whole limit from its own start.
+#[test]
+fn methods_run_one_at_a_time_when_asked_each_with_its_own_limit() {
+    let request = Request {
+        faults: vec![Fault {
+            method: MethodKind::Plate,
+            kind: FaultKind::Hang,
+        }],
+        timeout: Some(std::time::Duration::from_secs(5)),
+        parallel: 1,
+        ..box_request(vec![MethodKind::Plate, MethodKind::Stacked])
+    };
+    let all = convert_all(request, &Cancel::default(), no_progress());
+    assert_eq!(all.methods[0].status, Status::TimedOut);
+    // The stacked method started when the plate method's time was up, with 5 s of its own.
+    assert_eq!(all.methods[1].status, Status::Converted, "{:?}", all.methods[1].error);
+    // One after the other: the call lasted both.
+    assert!(all.seconds >= all.methods[0].seconds + all.methods[1].seconds);
+}
+
+/// A model no sheet holds is refused by every method right after its outlines are known,
+/// before joints, shafts and nesting (issue 29: a workbench frame took minutes to say so).
+#[test]
+fn a_workbench_no_sheet_holds_is_refused_by_every_method_before_the_costly_steps() {
+    let source = Source::triangles("workbench", samples::workbench());
+    let all = convert_all(Request::new(source, Settings::default()), &Cancel::default(), no_progress());
+    for m in &all.methods {
+        let error = m.error.as_ref().map(ToString::to_string).unwrap_or_default();
+        match m.method {
+            // Nothing in a workbench for the classifier to replace.
+            MethodKind::Classifier => assert_eq!(m.status, Status::Skipped, "{error}"),
+            _ => {
+                assert_eq!(m.status, Status::Failed, "{}", m.method.name());
+                assert!(error.contains("does not fit a 600 × 400 mm sheet"), "{error}");
+                let steps: Vec<&str> = m.steps().iter().map(|r| r.name).collect();
+                assert!(!steps.contains(&"joints") && !steps.contains(&"sheets"), "{steps:?}");
+            }
         }
     }
+    // The plate method names a plate of the frame's long side: 1526 − 6 mm long at least.
+    let plate = all.method(MethodKind::Plate).and_then(|m| m.error.as_ref()).expect("refused");
+    let long: f64 = plate
+        .to_string()
+        .split(" is ")
+        .nth(1)
+        .and_then(|s| s.split(" × ").next())
+        .and_then(|s| s.parse().ok())
+        .expect("a size in the message");
+    assert!((1500.0..=1526.0).contains(&long), "{plate}");
+}
+
+/// The classifier skips a model whose faces are exact, with the reason, and no method counts
+/// that as a failure.
+#[test]
+fn the_classifier_skips_exact_faces_and_says_why() {
+    let all = convert_all(box_request(vec![MethodKind::Classifier]), &Cancel::default(), no_progress());
+    let m = &all.methods[0];
+    assert_eq!(m.status, Status::Skipped);
+    let reason = m.error.as_ref().map(ToString::to_string).unwrap_or_default();
+    assert!(reason.contains("faces are exact"), "{reason}");
+    // It stopped before sampling: no classify snapshot.
+    assert!(m.state.as_ref().is_none_or(|s| s.classify.is_none()));
 }
 
 #[test]
