@@ -97,10 +97,12 @@ impl ModelReport {
         best: Option<&'static str>,
         seconds: f64,
     ) -> Self {
+        // A method that skipped the model (nothing to add) does not make it partial.
         let converted = methods.iter().filter(|m| m.status == Status::Converted).count();
+        let applied = methods.iter().filter(|m| m.status != Status::Skipped).count();
         let status = match converted {
             0 => ModelStatus::Failed,
-            n if n == methods.len() => ModelStatus::Converted,
+            n if n == applied => ModelStatus::Converted,
             _ => ModelStatus::Partial,
         };
         let best = best.filter(|b| methods.iter().any(|m| m.method == *b && m.status == Status::Converted));
@@ -160,6 +162,8 @@ pub struct MethodStats {
     pub panicked: usize,
     /// Models that timed out before it finished.
     pub timed_out: usize,
+    /// Models it skipped: it had nothing to add (the classifier on exact faces).
+    pub skipped: usize,
     /// Models it was the best method for.
     pub best: usize,
     /// Mean score over the models it converted.
@@ -230,6 +234,7 @@ fn status_name(s: Status) -> &'static str {
         Status::Panicked => "panicked",
         Status::TimedOut => "timed out",
         Status::Cancelled => "cancelled",
+        Status::Skipped => "skipped",
     }
 }
 
@@ -268,8 +273,9 @@ pub fn summarize(
                     s.panicked += 1;
                 }
                 Status::TimedOut => s.timed_out += 1,
+                Status::Skipped => s.skipped += 1,
             }
-            if m.status != Status::Converted {
+            if !matches!(m.status, Status::Converted | Status::Skipped) {
                 failures.push(Failure {
                     file: model.file.clone(),
                     method: Some(m.method),
@@ -405,8 +411,8 @@ pub fn render_summary(r: &BatchReport) -> String {
         let mean = m.mean_score.map_or(String::new(), |v| format!(", mean score {v:.3}"));
         let _ = writeln!(
             s,
-            "  {method:<10} {} converted, {} failed ({} panicked), {} timed out; best for {}{mean}",
-            m.converted, m.failed, m.panicked, m.timed_out, m.best
+            "  {method:<10} {} converted, {} failed ({} panicked), {} timed out, {} skipped; best for {}{mean}",
+            m.converted, m.failed, m.panicked, m.timed_out, m.skipped, m.best
         );
     }
     if !u.failures.is_empty() {

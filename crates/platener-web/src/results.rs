@@ -131,6 +131,7 @@ pub fn status_name(status: Status) -> &'static str {
         Status::Panicked => "panicked",
         Status::TimedOut => "timed-out",
         Status::Cancelled => "cancelled",
+        Status::Skipped => "skipped",
     }
 }
 

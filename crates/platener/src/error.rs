@@ -44,6 +44,13 @@ pub enum Error {
         /// The limit, seconds.
         seconds: f64,
     },
+    /// The method has nothing to add for this model and did not run its costly steps (the
+    /// classifier on a model whose faces are exact); not a failure.
+    #[error("skipped: {reason}")]
+    Skipped {
+        /// Why, in words the page can show.
+        reason: String,
+    },
     /// A bug of ours: an invariant broke in `step` (please report it).
     #[error("{problem}")]
     Internal {
@@ -177,7 +184,9 @@ impl Error {
     pub fn culprit(&self) -> Culprit {
         match self {
             Error::Read(_) | Error::Model { .. } => Culprit::Model,
-            Error::Setting { .. } | Error::Cancelled { .. } | Error::TimedOut { .. } => Culprit::Caller,
+            Error::Setting { .. } | Error::Cancelled { .. } | Error::TimedOut { .. } | Error::Skipped { .. } => {
+                Culprit::Caller
+            }
             Error::Internal { .. } => Culprit::Internal,
         }
     }

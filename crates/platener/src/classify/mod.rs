@@ -239,10 +239,13 @@ pub fn step(
     cx: &mut crate::context::StepContext<'_>,
 ) -> crate::error::Result<(Classification, crate::coplanar::PlanarGroups)> {
     cx.check_cancel()?;
-    let found = run(mesh, &ClassifySettings::from_settings(settings))
-        .map_err(|e| crate::error::Error::model(cx.model(), crate::error::ModelProblem::Classify(e)))?;
     let angle = settings.coplanar_angle_deg.to_radians();
     let exact = crate::coplanar::group_faces(mesh, angle);
+    if let Some(reason) = groups::nothing_to_replace(mesh, &exact, settings.thinnest()) {
+        return Err(crate::error::Error::Skipped { reason });
+    }
+    let found = run(mesh, &ClassifySettings::from_settings(settings))
+        .map_err(|e| crate::error::Error::model(cx.model(), crate::error::ModelProblem::Classify(e)))?;
     let mut found = found;
     let (fixed, replaced) = groups::fixed_groups(mesh, &found, &exact, settings);
     found.replaced = replaced;
