@@ -387,6 +387,36 @@ pub fn box_grid(nx: usize, ny: usize, size: f64, t: f64, gap: f64) -> Vec<Triang
     out
 }
 
+/// A workbench frame of 89 × 89 mm lumber, 1526 × 612 × 900 mm: four legs, a ring of
+/// rails at the top and one 150 mm above the floor, as one closed solid. The stand-in for a
+/// real frame (236 triangles) whose top ring, 1526 × 612 mm, fits no 600 × 400 sheet: every
+/// method must refuse it at once, naming that part and the sheet.
+pub fn workbench() -> Vec<Triangle> {
+    let (w, d, h, s) = (1526.0, 612.0, 900.0, 89.0);
+    let (xs, ys, zs) = ([0.0, s, w - s, w], [0.0, s, d - s, d], [0.0, 150.0, 150.0 + s, h - s, h]);
+    voxels(&xs, &ys, &zs, |i, j, k| {
+        let leg = i != 1 && j != 1;
+        let ring = (k == 1 || k == 3) && (i != 1 || j != 1);
+        leg || ring
+    })
+}
+
+/// Three `n`-gon boxes with their lids beside them, as an OpenSCAD print plate lays them out:
+/// boxes of radius 125 mm and 75 mm high, lids 20 mm high, every wall and floor `wall` thick
+/// (`polygon_boxes(40, 5.0)`: 751 × 520 mm, about 3,900 triangles). The stand-in for a real
+/// model of polygonal boxes whose plate method took minutes (issue 29).
+pub fn polygon_boxes(n: usize, wall: f64) -> Vec<Triangle> {
+    let radius = 125.0;
+    let mut out = Vec::new();
+    for k in 0..3 {
+        for (row, height) in [(0.0, 75.0), (1.0, 20.0)] {
+            let shift = DVec3::new(radius + k as f64 * 250.5, radius + row * 270.0, 0.0);
+            out.extend(cup(n, radius, height, wall).into_iter().map(|t| t.map(|p| p + shift)));
+        }
+    }
+    out
+}
+
 /// The models shipped in `examples/`: file name, STL header, triangles.
 pub fn shipped_examples() -> Vec<(&'static str, &'static str, Vec<Triangle>)> {
     vec![

@@ -188,7 +188,10 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
         StepId::Plates => {
             let (shapes, mesh) = (need(&state.shapes, name, "shapes")?, need(&state.mesh, name, "mesh")?);
             let model = need(&state.read, name, "read")?;
-            state.plates = Some(Arc::new(plates::run(shapes, mesh, model, &s, cx)?));
+            let plates = Arc::new(plates::run(shapes, mesh, model, &s, cx)?);
+            state.plates = Some(plates.clone());
+            // Cheap refusals first: the snapshot stays for the viewer.
+            plates.fit_sheets(&s.cut)?;
         }
         StepId::Bends => state.bends = Some(Arc::new(bends::run(need(&state.plates, name, "plates")?, &s, cx)?)),
         StepId::Joints => {

@@ -3,6 +3,7 @@
 //! Every default is here and documented in docs/cutting-plans.md; the CLI and the web service
 //! only fill this struct.
 
+use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
 use super::error::PlanError;
@@ -164,6 +165,51 @@ impl Default for CutSettings {
 pub const MAX_KERF: f64 = 2.0;
 
 impl CutSettings {
+    /// Why an outline with the points `outline`, grown by `grow` mm on every side (less when
+    /// negative), fits no sheet in any orientation (`what` names it in the message); `None`
+    /// when it fits, or when sheets are sized to fit. Methods ask it as soon as they know
+    /// their outlines, so a model no sheet holds is refused in a moment instead of after the
+    /// joints and the nesting; the nesting refuses whatever this refuses (it tries 4 or 8 of
+    /// the orientations this tries every degree of).
+    pub fn oversize(&self, what: &str, outline: &[DVec2], grow: f64) -> Option<String> {
+        let SheetSize::Fixed { width, height } = self.sheet else {
+            return None;
+        };
+        let room = DVec2::new(width, height) - 2.0 * self.margin;
+        let mut smallest: Option<DVec2> = None;
+        for degree in 0..90 {
+            let (sin, cos) = f64::from(degree).to_radians().sin_cos();
+            let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+            for p in outline {
+                let q = DVec2::new(p.x * cos - p.y * sin, p.x * sin + p.y * cos);
+                (lo, hi) = (lo.min(q), hi.max(q));
+            }
+            let size = (hi - lo + DVec2::splat(2.0 * grow)).max(DVec2::ZERO);
+            if !size.is_finite() || (size.x <= room.x && size.y <= room.y) || (size.y <= room.x && size.x <= room.y) {
+                return None;
+            }
+            if smallest.is_none_or(|s| size.x * size.y < s.x * s.y) {
+                smallest = Some(size);
+            }
+        }
+        let size = smallest?;
+        Some(self.oversize_message(what, "its outline", size.max_element(), size.min_element()))
+    }
+
+    /// The message for a part of `a × b` mm (measured as `measured` says) that fits no
+    /// sheet: the same words from every method and step.
+    pub fn oversize_message(&self, what: &str, measured: &str, a: f64, b: f64) -> String {
+        let (width, height) = match self.sheet {
+            SheetSize::Fixed { width, height } => (width, height),
+            SheetSize::Fit => (a, b),
+        };
+        format!(
+            "{what} is {a:.1} × {b:.1} mm ({measured}) and does not fit a {width:.0} × {height:.0} mm sheet \
+             within its {} mm margins: use --sheet fit, a larger --sheet, or scale the model down (--scale)",
+            self.margin
+        )
+    }
+
     /// The kerf in effect, mm.
     pub fn kerf(&self) -> f64 {
         self.kerf.unwrap_or_else(|| self.material.default_kerf())

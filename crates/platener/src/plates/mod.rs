@@ -121,6 +121,22 @@ pub struct Plates {
     pub overlaps: Vec<Overlap>,
 }
 
+impl Plates {
+    /// Refuses plates no sheet holds, right after plate finding: a 1.5 m workbench frame
+    /// spent minutes in joints and nesting to say what its plates already show (issue 29).
+    /// Conservative: a plate shrunk by its thickness on every side (the most a joint trims)
+    /// must still fit no sheet.
+    pub fn fit_sheets(&self, cut: &crate::plan::CutSettings) -> Result<()> {
+        for (k, p) in self.plates.iter().enumerate() {
+            let what = format!("plate {} of the model", k + 1);
+            if let Some(message) = cut.oversize(&what, &p.polygon.outer, -p.thickness) {
+                return Err(Error::Setting { name: "sheet", message });
+            }
+        }
+        Ok(())
+    }
+}
+
 /// One overlap between two plates and how it was resolved: the lower-ranked plate gave up
 /// the columns of its outline that meet the higher-ranked plate's volume. Plates are named
 /// by the shapes they were made from, since trimming and rejoining renumber them after.

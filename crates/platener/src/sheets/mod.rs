@@ -126,6 +126,14 @@ impl Group<'_> {
     /// their own.
     fn nest(&self, nesting: &mut Nesting) -> Result<(), PlanError> {
         let (shapes, settings, spacing) = (self.shapes, self.settings, self.settings.spacing);
+        // A part no sheet holds ends the plan before the holes are filled (a part too large
+        // for an empty sheet fits no hole of a part that fits one).
+        if let SheetSize::Fixed { width, height } = settings.sheet {
+            let region = sheet_region(width, height, settings.margin, spacing);
+            if let Some(&i) = self.members.iter().find(|&&i| !fits_empty(&shapes[i], region.1 - region.0)) {
+                return Err(self.too_large(i));
+            }
+        }
         let by_area = search::order(shapes, &self.members, 0, 0);
         let hosted = if settings.fill_holes {
             holes::fill_holes(shapes, &by_area, spacing, self.cancelled)
@@ -138,7 +146,7 @@ impl Group<'_> {
         let (fitting, oversize): (Vec<usize>, Vec<usize>) =
             top.iter().partition(|&&i| fits_empty(&shapes[i], region.1 - region.0));
         if let Some(&i) = oversize.first() {
-            return Err(self.too_large(i, (width, height)));
+            return Err(self.too_large(i));
         }
         let cancelled = self.cancelled;
         let layout =
@@ -189,10 +197,10 @@ impl Group<'_> {
         }
     }
 
-    /// Part `i` does not fit a `width` × `height` sheet in any orientation: the sheet is too
+    /// Part `i` does not fit the sheet in any orientation: the sheet is too
     /// small for this model (a part on a sheet of its own would be cut from a sheet the user
     /// does not have), so the plan stops here, naming the part, its size and what to do.
-    fn too_large(&self, i: usize, (width, height): (f64, f64)) -> PlanError {
+    fn too_large(&self, i: usize) -> PlanError {
         let smallest = self.shapes[i]
             .templates
             .iter()
@@ -201,10 +209,11 @@ impl Group<'_> {
             .unwrap_or_default();
         PlanError::Setting {
             name: "sheet",
-            message: format!(
-                "part {} is {:.1} × {:.1} mm (cut path and spacing) and does not fit a {width:.0} × {height:.0} mm \
-                 sheet within its {} mm margins: use --sheet fit, a larger --sheet, or scale the model down (--scale)",
-                self.parts[i].id, smallest.x, smallest.y, self.settings.margin
+            message: self.settings.oversize_message(
+                &format!("part {}", self.parts[i].id),
+                "cut path and spacing",
+                smallest.x,
+                smallest.y,
             ),
         }
     }

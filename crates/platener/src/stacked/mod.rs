@@ -210,10 +210,25 @@ pub fn run(
             },
         ));
     }
+    fit_sheets(&layers, settings)?;
     cx.check_cancel()?;
     let stack = build(&model.name, plan, layers, sliced.stats, settings, cx)?;
     let input = parts_of(&stack, model, settings, cx)?;
     Ok((stack, input))
+}
+
+/// Refuses layers no sheet holds before the shafts and the cutting plan (the nesting would
+/// say the same seconds later).
+fn fit_sheets(layers: &LayerIslands, settings: &Settings) -> Result<()> {
+    for (k, islands) in layers.islands.iter().enumerate() {
+        for island in islands {
+            let what = format!("layer {}", k + 1);
+            if let Some(message) = settings.cut.oversize(&what, &island.outer, 0.0) {
+                return Err(Error::Setting { name: "sheet", message });
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The parts of `stack` for the cutting plan, their outlines cleaned, with the stack's warnings
