@@ -52,6 +52,10 @@ pub struct Analysis {
     pub cover_distance: f64,
     /// Share of the model's surface within `cover_distance` of a part, when the model was given.
     pub surface_covered: Option<f64>,
+    /// Share of the parts' volume inside the model, when the model was given: the tie-break
+    /// between methods scored alike (measured on the same cells as the rest, at most
+    /// [`sample::VOLUME_SAMPLES`] of them).
+    pub volume_inside: Option<f64>,
 }
 
 impl Analysis {
@@ -130,6 +134,7 @@ pub fn analyse(plan: &Plan, model: Option<&Mesh>) -> Analysis {
         model_solids: model.map(|m| m.health.solids.max(1)),
         cover_distance: cover,
         surface_covered: model.map(|m| sample::surface_covered(m, &solids, cover)),
+        volume_inside: model.map(|m| sample::volume_inside(m, &cells)),
     }
 }
 

@@ -14,6 +14,8 @@ pub(crate) use groups::UnionFind;
 pub(crate) use inside::Inside;
 pub(crate) use solid::Solid;
 
+use glam::DVec3;
+
 /// Whether two parts (as slabs) meet as the assembly analysis counts it for a joint: the same
 /// sampling as [`analyse`] at the step of these two, so a step that drops joints whose
 /// parts do not meet agrees with `verify`.
@@ -21,5 +23,8 @@ pub(crate) fn slabs_meet(a: &platener_geom::slab::Slab, b: &platener_geom::slab:
     let solids = [Solid::from_slab(0, a.clone()), Solid::from_slab(1, b.clone())];
     let step = sample::step_for(&solids);
     let [sa, sb] = &solids;
-    sample::meet(sa, &sample::cells(sa, step).0, sb, step) || sample::meet(sb, &sample::cells(sb, step).0, sa, step)
+    // Only the cells that can meet the other slab: within reach of its box.
+    let near = |s: &Solid| (s.lo - DVec3::splat(step), s.hi + DVec3::splat(step));
+    sample::meet(sa, &sample::cells_near(sa, step, near(sb)), sb, step)
+        || sample::meet(sb, &sample::cells_near(sb, step, near(sa)), sa, step)
 }

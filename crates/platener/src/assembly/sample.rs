@@ -29,21 +29,42 @@ pub(crate) fn cells(s: &Solid, step: f64) -> (Vec<DVec3>, f64) {
     let dz = s.thickness / layers as f64;
     let mut out = Vec::new();
     for piece in &s.pieces {
-        piece_cells(piece, step, layers, &mut out);
+        piece_cells(piece, step, layers, None, &mut out);
     }
     (out, step * step * dz)
 }
 
-/// The cell centres of one piece, `layers` through its thickness.
-fn piece_cells(piece: &Slab, step: f64, layers: usize, out: &mut Vec<DVec3>) {
+/// The cell centres of [`cells`] that lie in the model box `(lo, hi)`: the same grid, only
+/// visited where the box falls. Whether two plates meet asks only about their contact, and
+/// a 250 mm floor's 150 000 centres, tested for each of its 40 joints, were most of a minute.
+pub(crate) fn cells_near(s: &Solid, step: f64, near: (DVec3, DVec3)) -> Vec<DVec3> {
+    let layers = ((s.thickness / step).ceil() as usize).max(1);
+    let mut out = Vec::new();
+    for piece in &s.pieces {
+        piece_cells(piece, step, layers, Some(near), &mut out);
+    }
+    out.retain(|p| p.cmpge(near.0).all() && p.cmple(near.1).all());
+    out
+}
+
+/// The cell centres of one piece, `layers` through its thickness; with `near`, only the grid
+/// columns whose local box meets that model box (the grid stays anchored where it is).
+fn piece_cells(piece: &Slab, step: f64, layers: usize, near: Option<(DVec3, DVec3)>, out: &mut Vec<DVec3>) {
     let (lo, hi) = piece.polygon.bounds();
     let dz = piece.thickness / layers as f64;
     let (nx, ny) = (
         ((hi.x - lo.x) / step).ceil() as usize,
         ((hi.y - lo.y) / step).ceil() as usize,
     );
-    for i in 0..=nx {
-        for j in 0..=ny {
+    let (mut i_range, mut j_range) = (0..=nx, 0..=ny);
+    if let Some(near) = near {
+        let (a, b) = local_box(piece, near);
+        let index = |v: f64, origin: f64, shift: f64| ((v - origin) / step - 0.5 - shift).clamp(0.0, 1e9);
+        i_range = (index(a.x, lo.x, SHIFT).floor() as usize)..=(index(b.x, lo.x, SHIFT).ceil() as usize).min(nx);
+        j_range = (index(a.y, lo.y, -SHIFT).floor() as usize)..=(index(b.y, lo.y, -SHIFT).ceil() as usize).min(ny);
+    }
+    for i in i_range {
+        for j in j_range.clone() {
             // Centres shifted by an irrational fraction of a step: never exactly on a face of
             // another part, which CAD models put on round numbers.
             let q = DVec2::new(
@@ -58,6 +79,19 @@ fn piece_cells(piece: &Slab, step: f64, layers: usize, out: &mut Vec<DVec3>) {
             }
         }
     }
+}
+
+/// The 2D box, in `piece`'s frame, of the model box `(lo, hi)`'s eight corners.
+fn local_box(piece: &Slab, (lo, hi): (DVec3, DVec3)) -> (DVec2, DVec2) {
+    (0..8).fold((DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)), |(a, b), k| {
+        let corner = DVec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        );
+        let l = piece.frame.to_local(corner).truncate();
+        (a.min(l), b.max(l))
+    })
 }
 
 /// Every pair of parts that shares volume, with the volume; `cells[i]` are part i's cell
@@ -124,14 +158,59 @@ pub(super) fn surface_covered(mesh: &Mesh, solids: &[Solid], distance: f64) -> f
     if total > 0.0 { covered / total } else { 0.0 }
 }
 
-/// Share of the parts' volume inside the model ([`Inside`]: ray parity voted over three axes).
-pub(crate) fn volume_inside(mesh: &Mesh, solids: &[Solid], step: f64) -> f64 {
+/// The most cell centres [`volume_inside`] tests: every k-th of the analysis' cells, a
+/// coarser regular lattice of the same volume. Ray parity over three axes costs about a
+/// microsecond a point; 100 000 centres of a 6-plate box were half its conversion's time, and
+/// the share changes by well under a percent.
+pub const VOLUME_SAMPLES: usize = 16_384;
+
+/// Share of the parts' cell centres (`cells`, as [`cells`] made them) inside the model
+/// ([`Inside`]: ray parity voted over three axes).
+pub(crate) fn volume_inside(mesh: &Mesh, cells: &[(Vec<DVec3>, f64)]) -> f64 {
     let inside = Inside::new(&mesh.vertices, &mesh.triangles);
-    let (mut hits, mut total) = (0usize, 0usize);
-    for s in solids {
-        let (points, _) = cells(s, step);
-        total += points.len();
-        hits += points.iter().filter(|p| inside.contains(**p)).count();
+    let total: usize = cells.iter().map(|c| c.0.len()).sum();
+    let stride = total.div_ceil(VOLUME_SAMPLES).max(1);
+    let (mut hits, mut tested) = (0usize, 0usize);
+    for p in cells.iter().flat_map(|c| c.0.iter()).step_by(stride) {
+        tested += 1;
+        hits += usize::from(inside.contains(*p));
     }
-    if total > 0 { hits as f64 / total as f64 } else { 0.0 }
+    if tested > 0 { hits as f64 / tested as f64 } else { 0.0 }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DVec2, DVec3};
+    use platener_geom::slab::Slab;
+    use platener_geom::{Frame, Polygon};
+    use proptest::prelude::*;
+
+    use super::{Solid, cells, cells_near};
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 48, .. ProptestConfig::default() })]
+        /// `cells_near` is exactly the cells of `cells` inside the box, whatever the slab's
+        /// frame and the box.
+        #[test]
+        fn cells_near_are_the_cells_in_the_box(
+            (w, h) in (5.0f64..60.0, 5.0f64..60.0),
+            (ax, ay, az) in (-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0),
+            origin in prop::array::uniform3(-20.0f64..20.0),
+            corner in prop::array::uniform3(-40.0f64..40.0),
+            size in prop::array::uniform3(1.0f64..30.0),
+        ) {
+            let n = DVec3::new(ax, ay, az + 1e-3).normalize();
+            let frame = Frame::on_plane(DVec3::from_array(origin), n);
+            let polygon = Polygon::new(vec![
+                DVec2::ZERO, DVec2::new(w, 0.0), DVec2::new(w, h * 0.4), DVec2::new(w * 0.5, h), DVec2::new(0.0, h),
+            ]);
+            let solid = Solid::from_slab(0, Slab { frame, polygon, thickness: 3.0 });
+            let lo = DVec3::from_array(corner);
+            let hi = lo + DVec3::from_array(size);
+            let all: Vec<DVec3> = cells(&solid, 1.0).0.into_iter()
+                .filter(|p| p.cmpge(lo).all() && p.cmple(hi).all())
+                .collect();
+            prop_assert_eq!(cells_near(&solid, 1.0, (lo, hi)), all);
+        }
+    }
 }

@@ -24,7 +24,7 @@ mod tests;
 
 use serde::Serialize;
 
-use crate::assembly::{Analysis, Solid, analyse};
+use crate::assembly::{Analysis, analyse};
 pub use crate::assembly::{COVER_SLACK, Interference, cover_distance};
 use crate::mesh::Mesh;
 use crate::plan::Plan;
@@ -150,17 +150,7 @@ pub fn verify(plan: &Plan, model: Option<&Mesh>) -> Verification {
 /// Verifies a plan; against a model, it fails when the parts cover less than `min_coverage`
 /// of the model's surface, and measures the share of the parts' volume inside the model.
 pub fn verify_with(plan: &Plan, model: Option<&Mesh>, min_coverage: f64) -> Verification {
-    let analysis = analyse(plan, model);
-    let mut v = check(plan, &analysis, min_coverage);
-    v.volume_inside = model.map(|m| volume_inside(plan, m, &analysis));
-    v
-}
-
-/// The share of `plan`'s parts' volume inside `model`, sampled on the `analysis`'s step (at
-/// least 0.5 mm).
-pub fn volume_inside(plan: &Plan, model: &Mesh, analysis: &Analysis) -> f64 {
-    let solids: Vec<Solid> = plan.parts.iter().map(Solid::from_part).collect();
-    crate::assembly::sample::volume_inside(model, &solids, analysis.step.max(0.5))
+    check(plan, &analyse(plan, model), min_coverage)
 }
 
 /// The verdict on `plan` from its `analysis` (made by [`analyse`], with the model when the
@@ -205,7 +195,7 @@ pub fn check(plan: &Plan, analysis: &Analysis, min_coverage: f64) -> Verificatio
         model_solids: analysis.model_solids,
         cover_distance: analysis.cover_distance,
         surface_covered: analysis.surface_covered,
-        volume_inside: None,
+        volume_inside: analysis.volume_inside,
         joints_not_meeting: analysis.joints_not_meeting.clone(),
         step: analysis.step,
         problems: failures.iter().map(|f| f.message.clone()).collect(),
