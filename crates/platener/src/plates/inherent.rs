@@ -5,6 +5,8 @@
 //! free of both shapes: a shape is consumed only where a plate covers it, and the rest may pair
 //! with another face. The plate keeps the model's mid-plane between the two faces.
 
+use std::cell::OnceCell;
+
 use glam::DVec3;
 use platener_geom::boolean::{difference, intersection};
 use platener_geom::slab::Slab;
@@ -243,12 +245,15 @@ pub(super) fn extrude_leftovers(
 ) -> Result<(), GridError> {
     let t = settings.extrusion_thickness();
     let inherent: Vec<Slab> = found.plates.iter().map(Plate::slab).collect();
+    // Each inherent plate grown once, when a piece first needs it: growing it again for every
+    // piece of every partly used face was 8 of the 9 s of a tray with 200 holes (issue 29).
+    let grown: Vec<OnceCell<Slab>> = inherent.iter().map(|_| OnceCell::new()).collect();
     for (i, shape) in shapes.shapes.iter().enumerate() {
         let mut pieces = std::mem::take(&mut found.remaining[i]);
         let partly_used = pieces.len() != 1 || (pieces[0].area() - shape.area).abs() > 1e-6 * shape.area.max(1.0);
         let needed = if partly_used { 2.0 * t } else { t };
         if partly_used {
-            pieces = outside_neighbours(pieces, shape, &inherent, t);
+            pieces = outside_neighbours(pieces, shape, (&inherent, &grown), t);
         }
         let frame = shape.frame.shifted(-t);
         let face = || {
@@ -287,7 +292,13 @@ pub(super) fn extrude_leftovers(
 /// What is left of a partly used face, minus the parts lying in the layer of an inherent plate
 /// that touches it: near a corner, the rim of a face between two plates lies in the other
 /// plate's layer (the wider the sharper the angle) and belongs to the joint there, not to a plate.
-fn outside_neighbours(pieces: Vec<Polygon>, shape: &crate::shapes::Shape, inherent: &[Slab], t: f64) -> Vec<Polygon> {
+/// `grown` holds each inherent plate's slab grown by `2t`, made on first use.
+fn outside_neighbours(
+    pieces: Vec<Polygon>,
+    shape: &crate::shapes::Shape,
+    (inherent, grown): (&[Slab], &[OnceCell<Slab>]),
+    t: f64,
+) -> Vec<Polygon> {
     let mut out = Vec::new();
     for piece in pieces {
         let slab = Slab {
@@ -296,21 +307,19 @@ fn outside_neighbours(pieces: Vec<Polygon>, shape: &crate::shapes::Shape, inhere
             thickness: t,
         };
         let mut rest = vec![piece];
-        for other in inherent {
+        for (other, grown) in inherent.iter().zip(grown) {
             let Ok(inside) = slab.part_within_slab_of(other, 1e-3) else {
                 continue;
             };
             // Only plates that actually touch the piece: their grown outline must meet it.
+            let grown = || {
+                grown.get_or_init(|| Slab {
+                    polygon: grow(&other.polygon, 2.0 * t),
+                    ..other.clone()
+                })
+            };
             let touching = inside.iter().any(|p| p.area() > 0.0)
-                && slab
-                    .columns_meeting(
-                        &Slab {
-                            polygon: grow(&other.polygon, 2.0 * t),
-                            ..other.clone()
-                        },
-                        1e-3,
-                    )
-                    .is_ok_and(|c| !c.is_empty());
+                && slab.columns_meeting(grown(), 1e-3).is_ok_and(|c| !c.is_empty());
             if touching && let Ok(r) = difference(&rest, &inside) {
                 rest = r;
             }
