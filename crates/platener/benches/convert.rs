@@ -1,7 +1,8 @@
 //! One-call conversion (`convert_all`, both methods, the shared steps once) against one call
-//! per method (each reading and cleaning the model again), on a model file read from bytes.
+//! per method (each reading and cleaning the model again), on a model file read from bytes;
+//! and the answers of issue 29 (`answers`: the box alone, the slow stand-ins).
 //!
-//! Run: `cargo bench -p platener --bench convert`. Figures go in docs/performance.md.
+//! Run: `cargo bench -p platener --bench convert [-- answers]`. Figures go in docs/performance.md.
 
 use std::sync::Arc;
 
@@ -53,5 +54,25 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench);
+/// Issue 29's figures: the 6-plate box with the plate method alone (all steps, scoring and
+/// verifying included; goal ≤ 60 ms), and the stand-ins for the slow real models with every
+/// method (`samples::workbench`, refused by every method; `samples::polygon_boxes`).
+fn answers(c: &mut Criterion) {
+    let mut group = c.benchmark_group("answers");
+    group.sample_size(10);
+    let cases = [
+        ("box-plate", samples::closed_box(120.0, 90.0, 70.0, 3.0), vec![MethodKind::Plate]),
+        ("workbench-all", samples::workbench(), MethodKind::ALL.to_vec()),
+        ("polygon-boxes-all", samples::polygon_boxes(40, 5.0), MethodKind::ALL.to_vec()),
+    ];
+    for (name, triangles, methods) in cases {
+        let bytes: Arc<[u8]> = samples::to_binary_stl(&triangles, name).into();
+        group.bench_function(name, |b| {
+            b.iter(|| convert_all(request(&bytes, methods.clone()), &Cancel::default(), no_progress()))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench, answers);
 criterion_main!(benches);
