@@ -44,7 +44,10 @@ fn closed_box_gives_exactly_its_six_walls() {
     );
     // Each wall is exactly the material between the inner and outer faces.
     let mut boxes: Vec<(DVec3, DVec3)> = plates.plates.iter().map(box_of).collect();
-    boxes.sort_by(|a, b| a.0.to_array().partial_cmp(&b.0.to_array()).expect("finite"));
+    boxes.sort_by(|a, b| {
+        let (a, b) = (a.0, b.0);
+        a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)).then(a.z.total_cmp(&b.z))
+    });
     let want = [
         (DVec3::new(0.0, 3.0, 3.0), DVec3::new(3.0, 77.0, 57.0)),
         (DVec3::new(3.0, 0.0, 3.0), DVec3::new(97.0, 3.0, 57.0)),
