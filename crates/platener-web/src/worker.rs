@@ -174,7 +174,7 @@ fn request_with_limits(mut request: Request, config: &WorkerConfig) -> Request {
 /// settings are unusable.
 fn parse_settings(job: &Claimed) -> Result<(Request, bool), String> {
     let job_settings: JobSettings = serde_json::from_str(&job.settings).map_err(|e| e.to_string())?;
-    let (settings, methods) = job_settings.to_library()?;
+    let (settings, methods) = job_settings.to_library().map_err(|e| e.to_string())?;
     let source = Source::Bytes {
         name: job.name.clone(),
         bytes: Arc::from(job.model.as_slice()),
