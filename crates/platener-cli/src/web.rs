@@ -74,6 +74,9 @@ pub struct WorkerArgs {
     /// Exit when standard input closes (how `serve` keeps its workers from outliving it).
     #[arg(long)]
     pub lifeline: bool,
+    /// Seconds a claimed job stays this worker's without a heartbeat (one every quarter).
+    #[arg(long, value_name = "S", default_value_t = 30, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub lease: u64,
 }
 
 /// Logs at info level on stderr, coloured only on a terminal (so log files stay plain text).
@@ -118,8 +121,9 @@ pub fn serve(args: &ServeArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Runs a worker until its lifeline closes or the database fails.
-pub fn worker(args: &WorkerArgs) -> anyhow::Result<()> {
+/// Runs a worker until its lifeline closes, a conversion leaves a thread behind (exit code
+/// [`platener_web::worker::EXIT_RESTART`]: replace me) or the database fails.
+pub fn worker(args: &WorkerArgs) -> anyhow::Result<u8> {
     init_logs();
     let mut config = WorkerConfig::new(args.database.clone());
     config.memory_mb = args.memory_mb;
@@ -127,6 +131,9 @@ pub fn worker(args: &WorkerArgs) -> anyhow::Result<()> {
     config.name.clone_from(&args.name);
     config.lifeline = args.lifeline;
     config.test_hooks = test_hooks();
-    platener_web::worker::run(&config)?;
-    Ok(())
+    config.lease_ms = i64::try_from(args.lease.saturating_mul(1000)).unwrap_or(i64::MAX);
+    match platener_web::worker::run(&config)? {
+        platener_web::worker::Stop::Lifeline => Ok(0),
+        platener_web::worker::Stop::Restart => Ok(platener_web::worker::EXIT_RESTART),
+    }
 }
