@@ -51,6 +51,10 @@ pub struct ServeArgs {
     /// Seconds a SIGTERM waits for running conversions before re-queuing them.
     #[arg(long, value_name = "S", default_value_t = 20)]
     pub grace: u64,
+    /// Seconds a worker's claim lasts without a heartbeat; one silent for half of it while
+    /// converting is killed and replaced.
+    #[arg(long, value_name = "S", default_value_t = 30, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub worker_lease: u64,
     /// Do not queue and publish the shipped examples on the first start.
     #[arg(long)]
     pub no_examples: bool,
@@ -112,6 +116,7 @@ pub fn serve(args: &ServeArgs) -> anyhow::Result<()> {
     config.rate_limit = args.rate_limit;
     config.worker_memory_mb = args.worker_memory_mb;
     config.grace = Duration::from_secs(args.grace);
+    config.worker_lease = Duration::from_secs(args.worker_lease);
     config.examples = !args.no_examples;
     config.test_hooks = test_hooks();
     platener_web::serve(config, |addr| {
