@@ -322,3 +322,50 @@ fn health_reports_a_queue_no_worker_serves_as_stalled() {
         "{stalled}"
     );
 }
+
+/// Issue 29, bug 2: a worker whose model ran past the time limit used to hang on its way out
+/// (its runtime waited on the lifeline's read), so with one worker every later upload stayed
+/// queued. Now it exits, another process takes its place, and the next box converts.
+#[test]
+fn a_worker_past_its_time_limit_is_replaced_and_the_next_model_converts() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let args = ["--workers", "1", "--no-examples", "--timeout", "1"];
+    let server = Server::start(dir.path(), &args, &[("PLATENER_TEST_HOOKS", "1")]);
+    let box_stl = example_box();
+    let hang = server.upload("platener-test-hang.stl", &box_stl, &[("method", "plate")]);
+    assert_eq!(hang.status, 202, "{}", hang.text());
+    let hang = hang.json()["id"].as_str().expect("id").to_string();
+    let first = server.wait_for(&hang, |s| s == "running");
+    let before = server.worker_pids();
+    let next = server.upload("box.stl", &box_stl, &[("method", "plate")]);
+    assert_eq!(next.status, 202, "{}", next.text());
+    let next = next.json()["id"].as_str().expect("id").to_string();
+    let c = server.wait_ended(&hang);
+    assert_eq!(
+        (c["status"].as_str(), c["error"]["code"].as_str()),
+        (Some("failed"), Some("timed_out")),
+        "{c}"
+    );
+    assert_eq!(first["attempts"], 1);
+    // Its turn came when the hang ended; 15 s is far more than a box takes and less than the
+    // server's own kill of a worker stuck on one job (limit + 30 s), so a worker that hangs on
+    // its way out fails here, with a message.
+    let start = Instant::now();
+    let c = loop {
+        let c = server.get(&format!("/api/conversions/{next}")).json();
+        if c["status"] != "queued" && c["status"] != "running" {
+            break c;
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(15),
+            "the box after a timed-out model was not converted within 15 s of its turn \
+             (the worker did not exit?): {c}; workers {:?}",
+            server.worker_pids()
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    assert_eq!(c["status"], "done", "{c}");
+    let after = server.worker_pids();
+    assert_eq!(after.len(), 1, "{after:?}");
+    assert_ne!(before, after, "the worker that timed out was replaced by a new process");
+}
