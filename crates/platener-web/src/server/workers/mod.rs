@@ -78,6 +78,12 @@ impl Pool {
     }
 }
 
+/// The workers' lease in whole seconds (at least 1), as `worker --lease` takes it: the
+/// watch holds them to the same value they were given.
+fn lease_s(config: &super::ServeConfig) -> u64 {
+    config.worker_lease.as_secs().max(1)
+}
+
 fn spawn_worker(app: &App, name: &str) -> std::io::Result<Child> {
     let c = &app.config;
     let mut cmd = Command::new(&c.worker_exe);
@@ -91,7 +97,7 @@ fn spawn_worker(app: &App, name: &str) -> std::io::Result<Child> {
         .arg("--timeout")
         .arg(c.timeout.to_string())
         .arg("--lease")
-        .arg(c.worker_lease.as_secs().max(1).to_string())
+        .arg(lease_s(c).to_string())
         .arg("--lifeline")
         .stdin(Stdio::piped())
         .stdout(Stdio::null())
@@ -189,7 +195,7 @@ async fn supervise(app: &App, k: usize, worker: &str, child: &mut Child, phase: 
     let mut lifeline = child.stdin.take();
     let limits = Limits {
         timeout: (app.config.timeout > 0.0).then(|| Duration::from_secs_f64(app.config.timeout)),
-        lease_ms: i64::try_from(app.config.worker_lease.as_millis()).unwrap_or(i64::MAX),
+        lease_ms: i64::try_from(lease_s(&app.config).saturating_mul(1000)).unwrap_or(i64::MAX),
     };
     let mut watch = Watch::default();
     let mut tick = tokio::time::interval(WATCH_PERIOD);
