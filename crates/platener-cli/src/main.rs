@@ -33,7 +33,7 @@ fn main() -> ExitCode {
         args::Command::Verify(a) => verify::run(&a),
         args::Command::Scene(a) => scene::run(&a).map(|()| 0),
         args::Command::Serve(a) => web::serve(&a).map(|()| 0),
-        args::Command::Worker(a) => web::worker(&a).map(|()| 0),
+        args::Command::Worker(a) => web::worker(&a),
         args::Command::Completions(a) => {
             completions::run(&a);
             Ok(0)

@@ -51,6 +51,10 @@ pub struct ServeArgs {
     /// Seconds a SIGTERM waits for running conversions before re-queuing them.
     #[arg(long, value_name = "S", default_value_t = 20)]
     pub grace: u64,
+    /// Seconds a worker's claim lasts without a heartbeat; one silent for half of it while
+    /// converting is killed and replaced.
+    #[arg(long, value_name = "S", default_value_t = 30, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub worker_lease: u64,
     /// Do not queue and publish the shipped examples on the first start.
     #[arg(long)]
     pub no_examples: bool,
@@ -74,6 +78,9 @@ pub struct WorkerArgs {
     /// Exit when standard input closes (how `serve` keeps its workers from outliving it).
     #[arg(long)]
     pub lifeline: bool,
+    /// Seconds a claimed job stays this worker's without a heartbeat (one every quarter).
+    #[arg(long, value_name = "S", default_value_t = 30, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub lease: u64,
 }
 
 /// Logs at info level on stderr, coloured only on a terminal (so log files stay plain text).
@@ -109,6 +116,7 @@ pub fn serve(args: &ServeArgs) -> anyhow::Result<()> {
     config.rate_limit = args.rate_limit;
     config.worker_memory_mb = args.worker_memory_mb;
     config.grace = Duration::from_secs(args.grace);
+    config.worker_lease = Duration::from_secs(args.worker_lease);
     config.examples = !args.no_examples;
     config.test_hooks = test_hooks();
     platener_web::serve(config, |addr| {
@@ -118,8 +126,9 @@ pub fn serve(args: &ServeArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Runs a worker until its lifeline closes or the database fails.
-pub fn worker(args: &WorkerArgs) -> anyhow::Result<()> {
+/// Runs a worker until its lifeline closes, a conversion leaves a thread behind (exit code
+/// [`platener_web::worker::EXIT_RESTART`]: replace me) or the database fails.
+pub fn worker(args: &WorkerArgs) -> anyhow::Result<u8> {
     init_logs();
     let mut config = WorkerConfig::new(args.database.clone());
     config.memory_mb = args.memory_mb;
@@ -127,6 +136,9 @@ pub fn worker(args: &WorkerArgs) -> anyhow::Result<()> {
     config.name.clone_from(&args.name);
     config.lifeline = args.lifeline;
     config.test_hooks = test_hooks();
-    platener_web::worker::run(&config)?;
-    Ok(())
+    config.lease_ms = i64::try_from(args.lease.saturating_mul(1000)).unwrap_or(i64::MAX);
+    match platener_web::worker::run(&config)? {
+        platener_web::worker::Stop::Lifeline => Ok(0),
+        platener_web::worker::Stop::Restart => Ok(platener_web::worker::EXIT_RESTART),
+    }
 }

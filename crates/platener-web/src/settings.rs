@@ -2,7 +2,9 @@
 //! the job as JSON and turned into the library's [`Settings`] by the worker.
 //!
 //! The server checks them with [`JobSettings::to_library`] before accepting an upload (cheap:
-//! no model is read), so a bad value is a `400` rather than a failed job.
+//! no model is read), so a bad value is refused rather than a failed job: a `400` for a value
+//! the API does not understand, a `422` with the library's own message
+//! ([`Settings::validate`]) for one out of range.
 
 use platener::joints::JointStyle;
 use platener::method::MethodKind;
@@ -64,6 +66,32 @@ impl Default for JobSettings {
     }
 }
 
+/// Why a conversion's settings are refused; each is a sentence that names the setting and
+/// never echoes the value sent.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SettingsError {
+    /// A value the API does not understand (an unknown material, a sheet that is not `WxH`):
+    /// the request is malformed, `400`.
+    #[error("{0}")]
+    Unknown(String),
+    /// A value of the right kind out of the library's range ([`Settings::validate`]): the
+    /// request is understood but cannot be converted, `422`.
+    #[error("{0}")]
+    OutOfRange(String),
+}
+
+impl From<&str> for SettingsError {
+    fn from(message: &str) -> Self {
+        SettingsError::Unknown(message.to_string())
+    }
+}
+
+impl From<String> for SettingsError {
+    fn from(message: String) -> Self {
+        SettingsError::Unknown(message)
+    }
+}
+
 impl JobSettings {
     /// Sets one form field; the error is a sentence for a `400`.
     pub fn set_field(&mut self, field: &str, value: &str, thicknesses_seen: &mut bool) -> Result<(), String> {
@@ -97,9 +125,9 @@ impl JobSettings {
         Ok(())
     }
 
-    /// The library's settings and the methods to run; the error is a sentence for a `400`
-    /// that names the setting (never echoing the value).
-    pub fn to_library(&self) -> Result<(Settings, Vec<MethodKind>), String> {
+    /// The library's settings and the methods to run, checked by the library's own
+    /// [`Settings::validate`] (the same check the CLI and the worker make).
+    pub fn to_library(&self) -> Result<(Settings, Vec<MethodKind>), SettingsError> {
         let mut settings = Settings::default();
         settings.thicknesses.clone_from(&self.thicknesses);
         settings.cut.material = match self.material.as_str() {
@@ -140,27 +168,28 @@ impl JobSettings {
                     .map_err(|_| "method must be plate, stacked, classifier or all".to_string())?,
             ],
         };
-        if let Some(k) = self.kerf
-            && !(k.is_finite() && (0.0..5.0).contains(&k))
-        {
-            return Err("kerf must be a number of mm from 0 to 5".into());
-        }
-        settings.validate().map_err(|e| e.to_string())?;
+        settings
+            .validate()
+            .map_err(|e| SettingsError::OutOfRange(e.to_string()))?;
         Ok((settings, methods))
     }
 
     /// The options the debug view re-runs with: weld distance, plate mode, features.
-    fn debug_options(&self, settings: &mut Settings) -> Result<(), String> {
+    fn debug_options(&self, settings: &mut Settings) -> Result<(), SettingsError> {
         settings.weld = match self.weld {
             None => Weld::Auto,
             Some(0.0) => Weld::Off,
             Some(d) if d.is_finite() && (0.0..=10.0).contains(&d) => Weld::Distance(d),
-            Some(_) => return Err("weld must be a number of mm from 0 to 10".into()),
+            Some(_) => {
+                return Err(SettingsError::OutOfRange(
+                    "weld must be a number of mm from 0 to 10".into(),
+                ));
+            }
         };
         settings.plates.mode = match self.plates.as_str() {
             "all" => PlateMode::InherentAndExtruded,
             "inherent" => PlateMode::InherentOnly,
-            _ => return Err("plates must be all or inherent".into()),
+            _ => return Err(SettingsError::Unknown("plates must be all or inherent".into())),
         };
         settings.features = self
             .features
@@ -247,7 +276,8 @@ mod tests {
                 .with_changes(&bad)
                 .expect("well typed")
                 .to_library()
-                .expect_err("refused");
+                .expect_err("refused")
+                .to_string();
             assert!(!e.contains('<'), "{e}");
         }
     }
@@ -273,13 +303,19 @@ mod tests {
                 .with_changes(&bad)
                 .expect("well typed")
                 .to_library()
-                .expect_err("refused");
+                .expect_err("refused")
+                .to_string();
             assert!(e.starts_with("bend must be") && !e.contains('<'), "{e}");
         }
         assert!(s.with_changes(&json_of("bend", "3")).is_err(), "bend is text");
         let mut form = JobSettings::default();
         form.set_field("bend", "<b>crease</b>", &mut false).expect("text");
-        assert!(form.to_library().expect_err("refused").starts_with("bend must be"));
+        assert!(
+            form.to_library()
+                .expect_err("refused")
+                .to_string()
+                .starts_with("bend must be")
+        );
     }
 
     fn json_of(key: &str, value: &str) -> serde_json::Value {
@@ -298,12 +334,33 @@ mod tests {
             s.set_field(field, value, &mut false)
                 .expect("text fields take any text");
             let e = s.to_library().expect_err("refused");
-            assert!(!e.contains('<'), "{e}");
+            assert!(matches!(e, SettingsError::Unknown(_)), "{e}");
+            assert!(!e.to_string().contains('<'), "{e}");
         }
         let s = JobSettings {
             thicknesses: vec![-1.0],
             ..JobSettings::default()
         };
         assert!(s.to_library().is_err());
+    }
+
+    /// The page's custom thickness field says min="0.1", but a form may send anything: 0.05 mm
+    /// hung a conversion (issue 29). The library's range check refuses it, by the page's name.
+    #[test]
+    fn out_of_range_values_are_the_librarys_refusals() {
+        for (field, value, named) in [
+            ("thickness", "0.05", "sheet thickness"),
+            ("thickness", "60", "sheet thickness"),
+            ("scale", "0", "scale"),
+            ("kerf", "7", "kerf"),
+            ("sheet", "20000x400", "sheet size"),
+        ] {
+            let mut s = JobSettings::default();
+            s.set_field(field, value, &mut false).expect("a number or text");
+            match s.to_library() {
+                Err(SettingsError::OutOfRange(m)) => assert!(m.contains(named), "{field}={value}: {m}"),
+                other => panic!("{field}={value}: {other:?}"),
+            }
+        }
     }
 }

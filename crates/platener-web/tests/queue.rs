@@ -115,6 +115,68 @@ fn an_expired_lease_requeues_then_fails_after_two_attempts() {
     });
 }
 
+/// A gone worker's jobs end with the server's reason: retried with it while attempts remain,
+/// failed with its code after; an ending without retry fails at once. Only that worker's
+/// running jobs are touched, and what `held_by` reports is what it holds.
+#[test]
+fn a_released_worker_s_job_ends_with_the_reason_given() {
+    use platener_web::db::Ending;
+    runtime().block_on(async {
+        let dir = tempfile::tempdir().expect("dir");
+        for db in databases(&dir).await {
+            let (a, b) = (job(now_ms()), job(now_ms() + 1));
+            db.insert_job(&a).await.expect("insert");
+            db.insert_job(&b).await.expect("insert");
+            db.claim("w1", 60_000).await.expect("claim").expect("job");
+            db.claim("w2", 60_000).await.expect("claim").expect("job");
+            let held = db.held_by("w1").await.expect("held").expect("a job");
+            assert_eq!((held.id.as_str(), held.attempts), (a.id.as_str(), 1));
+            assert!(held.lease_until.is_some_and(|l| l > now_ms()));
+            let oom = Ending {
+                code: "out_of_memory",
+                message: "ran out of memory".into(),
+                retry: Some("the worker ran out of memory".into()),
+            };
+            assert_eq!(
+                db.release_worker("w1", &oom, 2).await.expect("release"),
+                (vec![a.id.clone()], vec![])
+            );
+            assert_eq!(db.held_by("w1").await.expect("held"), None);
+            assert_eq!(db.held_by("w2").await.expect("held").map(|h| h.id), Some(b.id.clone()));
+            db.claim("w3", 60_000).await.expect("claim").expect("job");
+            assert_eq!(
+                db.release_worker("w3", &oom, 2).await.expect("release"),
+                (vec![], vec![a.id.clone()])
+            );
+            let row = db.job(&a.id).await.expect("read").expect("row");
+            let error: serde_json::Value = serde_json::from_str(row.error.as_deref().expect("error")).expect("json");
+            assert_eq!(
+                (row.status.as_str(), error["code"].as_str()),
+                ("failed", Some("out_of_memory"))
+            );
+            let kinds: Vec<String> = db
+                .events_after(&a.id, 0, 100)
+                .await
+                .expect("events")
+                .into_iter()
+                .map(|e| e.kind)
+                .collect();
+            assert_eq!(kinds, ["retry", "failed"]);
+            let overtime = Ending {
+                code: "timed_out",
+                message: "ran past the time limit".into(),
+                retry: None,
+            };
+            assert_eq!(
+                db.release_worker("w2", &overtime, 2).await.expect("release"),
+                (vec![], vec![b.id.clone()])
+            );
+            let stats = db.queue_stats().await.expect("stats");
+            assert_eq!((stats.queued, stats.running, stats.oldest_created), (0, 0, None));
+        }
+    });
+}
+
 #[test]
 fn results_status_and_last_event_are_written_together() {
     runtime().block_on(async {

@@ -346,24 +346,37 @@ pub const AUTO_WELD_MAX: f64 = 2.0;
 /// spare for the averaging that moves welded vertices (see docs/decisions.md).
 pub const AUTO_WELD_WALL_SHARE: f64 = 0.45;
 
+/// The thinnest sheet a conversion takes, mm: thinner sheets make every tolerance derived from
+/// the thickness (weld distance, plate pairing, finger width) so small that a model's steps
+/// multiply without bound (a 0.05 mm sheet hung a conversion, issue 29); 0.1 mm is the page's
+/// own minimum and thinner than any paper a laser cuts.
+pub const MIN_THICKNESS: f64 = 0.1;
+/// The thickest sheet, mm: the page's maximum, beyond any desktop laser's cutting depth.
+pub const MAX_THICKNESS: f64 = 50.0;
+/// At most this many sheet thicknesses: each is a candidate for every plate (the page offers 8).
+pub const MAX_THICKNESSES: usize = 10;
+/// The scale factor's range: a model 1000 times smaller or larger than its file says is a
+/// mistake, and the geometry kernel's 1 µm grid cannot hold what lies beyond.
+pub const SCALE_RANGE: (f64, f64) = (0.001, 1000.0);
+/// The longest sheet side, mm (10 m): beyond it nesting searches a bed no laser has.
+pub const MAX_SHEET_SIDE: f64 = 10_000.0;
+
 impl Settings {
-    /// Checks ranges; the error names the setting and what is allowed.
+    /// Checks ranges; the error names the setting as the web page and `--help` show it, and
+    /// what is allowed. Every caller (CLI, web upload, worker) runs this before converting,
+    /// so a value that would make a conversion hang is refused before any work is queued.
     pub fn validate(&self) -> Result<()> {
         let bad = |name, message: String| Err(Error::Setting { name, message });
-        if !(self.scale.is_finite() && self.scale > 0.0) {
-            return bad("scale", format!("{} is not a positive number", self.scale));
+        let (low, high) = SCALE_RANGE;
+        if !(self.scale.is_finite() && (low..=high).contains(&self.scale)) {
+            return bad("scale", format!("{} must be a number from {low} to {high}", self.scale));
         }
         if let Weld::Distance(d) = self.weld
             && !(d.is_finite() && d >= 0.0)
         {
             return bad("weld", format!("{d} is not a distance ≥ 0 mm"));
         }
-        if self.thicknesses.is_empty() || self.thicknesses.iter().any(|t| !(t.is_finite() && *t > 0.0)) {
-            return bad(
-                "thickness",
-                format!("{:?} must be positive numbers of mm", self.thicknesses),
-            );
-        }
+        self.validate_thicknesses()?;
         if !(self.coplanar_angle_deg.is_finite() && (0.0..45.0).contains(&self.coplanar_angle_deg)) {
             return bad(
                 "coplanar angle",
@@ -399,6 +412,44 @@ impl Settings {
             return bad("minimum plate area", format!("{} is not an area ≥ 0 mm²", p.min_area));
         }
         self.stacked.validate()?;
+        self.validate_sheet()
+    }
+
+    /// The sheet thicknesses: one to [`MAX_THICKNESSES`], each from [`MIN_THICKNESS`] to
+    /// [`MAX_THICKNESS`] mm.
+    fn validate_thicknesses(&self) -> Result<()> {
+        let name = "sheet thickness";
+        let range = format!("each must be from {MIN_THICKNESS} to {MAX_THICKNESS} mm");
+        if self.thicknesses.is_empty() || self.thicknesses.len() > MAX_THICKNESSES {
+            return Err(Error::Setting {
+                name,
+                message: format!("give 1 to {MAX_THICKNESSES} thicknesses; {range}"),
+            });
+        }
+        match self
+            .thicknesses
+            .iter()
+            .find(|t| !(t.is_finite() && (MIN_THICKNESS..=MAX_THICKNESS).contains(*t)))
+        {
+            Some(t) => Err(Error::Setting {
+                name,
+                message: format!("{t} mm is out of range; {range}"),
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// A fixed sheet's sides are at most [`MAX_SHEET_SIDE`] (their lower bound, twice the
+    /// margin, is the cutting plan's own check).
+    fn validate_sheet(&self) -> Result<()> {
+        if let crate::plan::SheetSize::Fixed { width, height } = self.cut.sheet
+            && !(width <= MAX_SHEET_SIDE && height <= MAX_SHEET_SIDE)
+        {
+            return Err(Error::Setting {
+                name: "sheet size",
+                message: format!("{width} × {height} mm: each side must be at most {MAX_SHEET_SIDE} mm"),
+            });
+        }
         Ok(())
     }
 
@@ -453,5 +504,53 @@ impl Settings {
                 (extent / 50.0).min(AUTO_WELD_MAX).min(0.6 * thinnest)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The setting's name in the refusal, or `None` when the settings pass.
+    fn refused(change: impl FnOnce(&mut Settings)) -> Option<&'static str> {
+        let mut s = Settings::default();
+        change(&mut s);
+        match s.validate() {
+            Ok(()) => None,
+            Err(Error::Setting { name, .. }) => Some(name),
+            Err(e) => panic!("not a setting error: {e}"),
+        }
+    }
+
+    #[test]
+    fn out_of_range_settings_are_refused_by_name() {
+        assert_eq!(refused(|_| {}), None);
+        assert_eq!(refused(|s| s.thicknesses = vec![0.05]), Some("sheet thickness"));
+        assert_eq!(refused(|s| s.thicknesses = vec![3.0, 51.0]), Some("sheet thickness"));
+        assert_eq!(refused(|s| s.thicknesses = vec![f64::NAN]), Some("sheet thickness"));
+        assert_eq!(refused(|s| s.thicknesses = vec![3.0; 11]), Some("sheet thickness"));
+        assert_eq!(refused(|s| s.thicknesses = Vec::new()), Some("sheet thickness"));
+        assert_eq!(refused(|s| s.thicknesses = vec![0.1, 50.0]), None);
+        assert_eq!(refused(|s| s.scale = 0.0001), Some("scale"));
+        assert_eq!(refused(|s| s.scale = 1001.0), Some("scale"));
+        assert_eq!(refused(|s| s.scale = 0.001), None);
+        assert_eq!(refused(|s| s.cut.kerf = Some(2.5)), Some("kerf"));
+        let sheet = |width, height| crate::plan::SheetSize::Fixed { width, height };
+        assert_eq!(refused(|s| s.cut.sheet = sheet(20_000.0, 400.0)), Some("sheet size"));
+        assert_eq!(refused(|s| s.cut.sheet = sheet(600.0, f64::INFINITY)), Some("sheet"));
+        assert_eq!(refused(|s| s.cut.sheet = sheet(10_000.0, 10_000.0)), None);
+    }
+
+    #[test]
+    fn the_refusal_names_the_setting_and_the_range() {
+        let s = Settings {
+            thicknesses: vec![0.05],
+            ..Settings::default()
+        };
+        let message = s.validate().expect_err("refused").to_string();
+        assert!(
+            message.contains("sheet thickness") && message.contains("0.1 to 50 mm"),
+            "{message}"
+        );
     }
 }

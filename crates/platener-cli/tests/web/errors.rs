@@ -66,16 +66,25 @@ pub fn every_error_has_its_status_and_code(backend: Backend) {
     ] {
         server.get(&format!("{base}/{missing}")).assert_error(404, "not_found");
     }
-    for body in [&b"[1]"[..], b"{\"colour\":1}", b"{\"kerf\":-1}"] {
-        server
-            .request(
-                "POST",
-                &format!("{base}/recut"),
-                &[("Content-Type", "application/json")],
-                body,
-            )
-            .assert_error(400, "bad_request");
+    let recut = |body: &[u8]| {
+        server.request(
+            "POST",
+            &format!("{base}/recut"),
+            &[("Content-Type", "application/json")],
+            body,
+        )
+    };
+    for body in [&b"[1]"[..], b"{\"colour\":1}"] {
+        recut(body).assert_error(400, "bad_request");
     }
+    // Understood but out of the library's range: 422 with its sentence.
+    let r = recut(b"{\"kerf\":-1}");
+    r.assert_error(422, "invalid_setting");
+    assert!(
+        r.json()["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("kerf"))
+    );
     for (method, path) in [("POST", format!("{base}/publish")), ("DELETE", base.clone())] {
         server
             .request(method, &path, &[], b"")
@@ -114,6 +123,20 @@ fn not_found_and_bad_requests(server: &Server) {
     server
         .upload("box.stl", &box_stl, &[("colour", "red")])
         .assert_error(400, "bad_request");
+    // The page's custom thickness says min="0.1"; a form may send less, and 0.05 mm hung a
+    // conversion (issue 29): refused before the job is stored, naming the page's field.
+    for (field, value, named) in [
+        ("thickness", "0.05", "sheet thickness"),
+        ("thickness", "51", "sheet thickness"),
+        ("scale", "5000", "scale"),
+        ("kerf", "3", "kerf"),
+        ("sheet", "60000x400", "sheet size"),
+    ] {
+        let r = server.upload("box.stl", &box_stl, &[(field, value)]);
+        r.assert_error(422, "invalid_setting");
+        let message = r.json()["error"]["message"].as_str().unwrap_or_default().to_string();
+        assert!(message.contains(named), "{field}={value}: {message}");
+    }
     server
         .request(
             "POST",

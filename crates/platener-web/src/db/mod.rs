@@ -16,7 +16,29 @@ use sqlx::{AnyPool, Row};
 
 pub use dialect::Dialect;
 pub use rows::{Claimed, EventRow, Finished, GalleryRow, JobRow, NewJob, ResultFile};
-pub use transitions::Cancelled;
+pub use transitions::{Cancelled, Ending};
+
+/// The queue at one moment ([`Db::queue_stats`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct QueueStats {
+    /// Jobs waiting for a worker.
+    pub queued: i64,
+    /// Jobs a worker holds.
+    pub running: i64,
+    /// When the oldest queued job was created, ms since 1970.
+    pub oldest_created: Option<i64>,
+}
+
+/// The job a worker holds ([`Db::held_by`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Held {
+    /// The job.
+    pub id: String,
+    /// Its attempts so far, this one included.
+    pub attempts: i64,
+    /// When its lease runs out unless the worker heartbeats, ms since 1970.
+    pub lease_until: Option<i64>,
+}
 
 /// What went wrong with the database.
 #[derive(Debug, thiserror::Error)]
@@ -299,6 +321,43 @@ impl Db {
             .fetch_one(&self.pool)
             .await?;
         Ok(row.try_get("n")?)
+    }
+
+    /// The queue as `/api/health` reports it: jobs queued, jobs running, and when the oldest
+    /// queued job was created (ms), in two statements.
+    pub async fn queue_stats(&self) -> Result<QueueStats> {
+        let queued = sqlx::query(
+            "SELECT COUNT(*) AS n, CAST(MIN(created) AS BIGINT) AS oldest FROM jobs WHERE status = 'queued'",
+        )
+        .fetch_one(&self.pool)
+        .await?;
+        let running = sqlx::query("SELECT COUNT(*) AS n FROM jobs WHERE status = 'running'")
+            .fetch_one(&self.pool)
+            .await?;
+        Ok(QueueStats {
+            queued: queued.try_get("n")?,
+            oldest_created: queued.try_get("oldest")?,
+            running: running.try_get("n")?,
+        })
+    }
+
+    /// The job `worker` holds now (running, leased to it), if any: what the server watches
+    /// its workers by.
+    pub async fn held_by(&self, worker: &str) -> Result<Option<Held>> {
+        let row = sqlx::query(
+            "SELECT id, attempts, lease_until FROM jobs WHERE worker = $1 AND status = 'running' ORDER BY id LIMIT 1",
+        )
+        .bind(worker)
+        .fetch_optional(&self.pool)
+        .await?;
+        row.map(|r| {
+            Ok(Held {
+                id: r.try_get("id")?,
+                attempts: r.try_get("attempts")?,
+                lease_until: r.try_get("lease_until")?,
+            })
+        })
+        .transpose()
     }
 
     /// Jobs held by one of `workers`.

@@ -134,6 +134,65 @@ impl Db {
     }
 }
 
+/// How the jobs of a worker that is gone end ([`Db::release_worker`]): the server knows why
+/// it went (crashed, out of memory, killed as stuck), so the job's `failed` error or `retry`
+/// event says so instead of the reaper's guess.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Ending {
+    /// The error code of a job failed now.
+    pub code: &'static str,
+    /// The sentence of a job failed now.
+    pub message: String,
+    /// The reason in a `retry` event; `None`: fail at once whatever the attempts (retrying a
+    /// model that ran past its time limit would only spend the limit again).
+    pub retry: Option<String>,
+}
+
+impl Db {
+    /// Ends the running jobs `worker` holds, whose process is gone: back to the queue with a
+    /// `retry` event while attempts remain and `ending` allows it, else `failed` with its
+    /// error; states and events in one transaction, like [`Db::reap`]. Returns the ids
+    /// requeued and failed.
+    pub async fn release_worker(
+        &self,
+        worker: &str,
+        ending: &Ending,
+        max_attempts: i64,
+    ) -> Result<(Vec<String>, Vec<String>)> {
+        let now = now_ms();
+        let error = serde_json::json!({"code": ending.code, "message": ending.message}).to_string();
+        let attempts_left_below = if ending.retry.is_some() { max_attempts } else { 0 };
+        let mut tx = self.pool.begin().await?;
+        let failed: Vec<AnyRow> = sqlx::query(
+            "UPDATE jobs SET status = 'failed', finished = $1, error = $2, lease_until = NULL \
+             WHERE status = 'running' AND worker = $3 AND attempts >= $4 RETURNING id",
+        )
+        .bind(now)
+        .bind(&error)
+        .bind(worker)
+        .bind(attempts_left_below)
+        .fetch_all(&mut *tx)
+        .await?;
+        let requeued: Vec<AnyRow> = sqlx::query(
+            "UPDATE jobs SET status = 'queued', worker = NULL, lease_until = NULL \
+             WHERE status = 'running' AND worker = $1 RETURNING id",
+        )
+        .bind(worker)
+        .fetch_all(&mut *tx)
+        .await?;
+        let (requeued, failed) = (sorted_ids(&requeued)?, sorted_ids(&failed)?);
+        for id in &failed {
+            self.insert_event(&mut tx, id, "failed", &error).await?;
+        }
+        let retry = serde_json::json!({"reason": ending.retry}).to_string();
+        for id in &requeued {
+            self.insert_event(&mut tx, id, "retry", &retry).await?;
+        }
+        tx.commit().await?;
+        Ok((requeued, failed))
+    }
+}
+
 /// The `id` column of rows, sorted.
 fn sorted_ids(rows: &[AnyRow]) -> Result<Vec<String>> {
     let mut ids: Vec<String> = rows

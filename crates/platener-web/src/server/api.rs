@@ -15,7 +15,7 @@ use super::error::{ApiError, ApiResult};
 use super::{App, inspect, view};
 use crate::db::{JobRow, NewJob, now_ms};
 use crate::ids;
-use crate::settings::JobSettings;
+use crate::settings::{JobSettings, SettingsError};
 use crate::sniff::{self, Refusal};
 
 /// Bytes a multipart form may have beyond the model (boundaries, headers, settings fields).
@@ -127,7 +127,10 @@ async fn enqueue(
     parent: Option<String>,
 ) -> ApiResult<Response> {
     let sniffed = sniff::sniff(&model, app.config.max_triangles).map_err(refusal)?;
-    let (library, _) = settings.to_library().map_err(ApiError::bad_request)?;
+    let (library, _) = settings.to_library().map_err(|e| match e {
+        SettingsError::Unknown(m) => ApiError::bad_request(m),
+        SettingsError::OutOfRange(m) => ApiError::invalid_setting(m),
+    })?;
     let name = format!("{}.{}", safe_stem(name.as_deref()), sniffed.kind.extension());
     let limits = inspect::ReadLimits {
         max_triangles: app.config.max_triangles,

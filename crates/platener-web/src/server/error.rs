@@ -68,6 +68,11 @@ impl ApiError {
         Self::new(StatusCode::UNPROCESSABLE_ENTITY, "unreadable_model", message)
     }
 
+    /// 422: a setting out of range, with the library's sentence naming it as the page does.
+    pub fn invalid_setting(message: impl Into<String>) -> Self {
+        Self::new(StatusCode::UNPROCESSABLE_ENTITY, "invalid_setting", message)
+    }
+
     /// 429: too many uploads from one address.
     pub fn rate_limited(retry_after: u64) -> Self {
         Self {

@@ -1,4 +1,4 @@
-//! Gallery, test strip, health, metrics, the 404 fallback and the request counter.
+//! Gallery, test strip, metrics, the 404 fallback and the request counter.
 
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -184,19 +184,6 @@ fn points(ring: &[platener::glam::DVec2]) -> Value {
     ring.iter().map(|p| json!([p.x, p.y])).collect()
 }
 
-/// `GET /api/health`: `200` when the service can take work, else `503 busy`.
-pub async fn health(State(app): State<Arc<App>>) -> ApiResult<Json<Value>> {
-    let queue = app.db.queue_len().await?;
-    let workers = app.live_workers.load(Ordering::SeqCst);
-    if app.draining.load(Ordering::SeqCst) {
-        return Err(ApiError::busy("the server is stopping", 60));
-    }
-    if queue >= app.config.max_queue {
-        return Err(ApiError::busy("the conversion queue is full", 30));
-    }
-    Ok(Json(json!({"status": "ok", "queue": queue, "workers": workers})))
-}
-
 /// Upper bounds of the conversion time histogram, ms.
 const BUCKETS_MS: [i64; 8] = [500, 1000, 2000, 5000, 10_000, 30_000, 60_000, 120_000];
 
@@ -229,7 +216,7 @@ pub async fn metrics(State(app): State<Arc<App>>) -> ApiResult<Response> {
     let _ = writeln!(s, "# TYPE platener_queue_length gauge");
     let _ = writeln!(s, "platener_queue_length {}", app.db.queue_len().await?);
     let _ = writeln!(s, "# TYPE platener_workers gauge");
-    let _ = writeln!(s, "platener_workers {}", app.live_workers.load(Ordering::SeqCst));
+    let _ = writeln!(s, "platener_workers {}", app.roster.census().live);
     let (counts, n, total) = app.db.durations(&BUCKETS_MS).await?;
     let _ = writeln!(
         s,

@@ -14,6 +14,7 @@ mod error;
 mod events;
 mod examples;
 mod files;
+mod health;
 mod inspect;
 mod limits;
 mod misc;
@@ -24,7 +25,7 @@ mod workers;
 use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, AtomicUsize};
+use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
 use axum::Router;
@@ -71,6 +72,9 @@ pub struct ServeConfig {
     pub worker_memory_mb: u64,
     /// Let workers honour the test-only model names (`PLATENER_TEST_HOOKS=1`).
     pub test_hooks: bool,
+    /// How long a worker's claim lasts without a heartbeat; a worker silent for half of it
+    /// while it holds a job is killed and replaced.
+    pub worker_lease: Duration,
 }
 
 impl ServeConfig {
@@ -91,6 +95,7 @@ impl ServeConfig {
             worker_exe,
             worker_memory_mb: 2048,
             test_hooks: false,
+            worker_lease: Duration::from_millis(crate::worker::DEFAULT_LEASE_MS.unsigned_abs()),
         }
     }
 
@@ -124,8 +129,8 @@ pub(crate) struct App {
     pub config: ServeConfig,
     /// Set by SIGTERM: uploads are refused while running jobs finish.
     pub draining: AtomicBool,
-    /// Worker processes alive now.
-    pub live_workers: AtomicUsize,
+    /// What each of this server's workers is doing.
+    pub roster: workers::Roster,
     pub limiter: limits::RateLimiter,
     pub metrics: misc::Metrics,
     /// Becomes true when the server stops: event streams end.
@@ -157,7 +162,7 @@ async fn run(config: ServeConfig, on_listening: impl FnOnce(SocketAddr) + Send +
         db,
         events: hub,
         draining: AtomicBool::new(false),
-        live_workers: AtomicUsize::new(0),
+        roster: workers::Roster::default(),
         limiter: limits::RateLimiter::new(config.rate_limit),
         metrics: misc::Metrics::default(),
         stopping: stop_rx.clone(),
@@ -226,7 +231,7 @@ fn router(app: Arc<App>) -> Router {
         .route("/api/gallery", get(misc::gallery))
         .route("/api/test-strip.svg", get(misc::test_strip_svg))
         .route("/api/test-strip.json", get(misc::test_strip_json))
-        .route("/api/health", get(misc::health))
+        .route("/api/health", get(health::health))
         .route("/metrics", get(misc::metrics))
         .layer(TimeoutLayer::with_status_code(
             axum::http::StatusCode::REQUEST_TIMEOUT,
