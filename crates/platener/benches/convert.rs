@@ -61,9 +61,17 @@ fn answers(c: &mut Criterion) {
     let mut group = c.benchmark_group("answers");
     group.sample_size(10);
     let cases = [
-        ("box-plate", samples::closed_box(120.0, 90.0, 70.0, 3.0), vec![MethodKind::Plate]),
+        (
+            "box-plate",
+            samples::closed_box(120.0, 90.0, 70.0, 3.0),
+            vec![MethodKind::Plate],
+        ),
         ("workbench-all", samples::workbench(), MethodKind::ALL.to_vec()),
-        ("polygon-boxes-all", samples::polygon_boxes(40, 5.0), MethodKind::ALL.to_vec()),
+        (
+            "polygon-boxes-all",
+            samples::polygon_boxes(40, 5.0),
+            MethodKind::ALL.to_vec(),
+        ),
     ];
     for (name, triangles, methods) in cases {
         let bytes: Arc<[u8]> = samples::to_binary_stl(&triangles, name).into();

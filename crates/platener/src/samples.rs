@@ -393,7 +393,11 @@ pub fn box_grid(nx: usize, ny: usize, size: f64, t: f64, gap: f64) -> Vec<Triang
 /// method must refuse it at once, naming that part and the sheet.
 pub fn workbench() -> Vec<Triangle> {
     let (w, d, h, s) = (1526.0, 612.0, 900.0, 89.0);
-    let (xs, ys, zs) = ([0.0, s, w - s, w], [0.0, s, d - s, d], [0.0, 150.0, 150.0 + s, h - s, h]);
+    let (xs, ys, zs) = (
+        [0.0, s, w - s, w],
+        [0.0, s, d - s, d],
+        [0.0, 150.0, 150.0 + s, h - s, h],
+    );
     voxels(&xs, &ys, &zs, |i, j, k| {
         let leg = i != 1 && j != 1;
         let ring = (k == 1 || k == 3) && (i != 1 || j != 1);

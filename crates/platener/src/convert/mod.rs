@@ -283,4 +283,3 @@ fn best_of(methods: &[MethodResult]) -> Option<MethodKind> {
     }
     best.map(|(m, ..)| m)
 }
-

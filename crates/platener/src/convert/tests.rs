@@ -84,7 +84,11 @@ fn the_shared_steps_run_once_and_every_method_starts_from_them() {
         "textured",
         samples::textured_box(glam::DVec3::new(120.0, 90.0, 70.0), 3.0, 0.5, 10.0),
     );
-    let all = convert_all(Request::new(source, Settings::default()), &Cancel::default(), no_progress());
+    let all = convert_all(
+        Request::new(source, Settings::default()),
+        &Cancel::default(),
+        no_progress(),
+    );
     assert_eq!(all.methods.len(), MethodKind::ALL.len());
     let shared = all.shared.as_ref().expect("shared steps ran");
     let read = shared.read.as_ref().expect("read");
@@ -110,7 +114,13 @@ fn the_shared_steps_run_once_and_every_method_starts_from_them() {
     assert!(!Arc::ptr_eq(&weld(0), &weld(1)));
     // The classifier welds as the stacked method does: their weld and mesh were made once.
     assert!(Arc::ptr_eq(&weld(1), &weld(2)));
-    let mesh = |k: usize| all.methods[k].state.as_ref().and_then(|s| s.mesh.clone()).expect("mesh");
+    let mesh = |k: usize| {
+        all.methods[k]
+            .state
+            .as_ref()
+            .and_then(|s| s.mesh.clone())
+            .expect("mesh")
+    };
     assert!(Arc::ptr_eq(&mesh(1), &mesh(2)));
 }
 
@@ -192,7 +202,12 @@ fn a_failing_panicking_or_hanging_method_leaves_the_others_converted() {
         };
         let all = convert_all(two, &Cancel::default(), no_progress());
         assert_eq!(all.methods[0].status, status, "{kind:?}");
-        assert_eq!(all.methods[1].status, Status::Converted, "{kind:?}: {:?}", all.methods[1].error);
+        assert_eq!(
+            all.methods[1].status,
+            Status::Converted,
+            "{kind:?}: {:?}",
+            all.methods[1].error
+        );
         assert_eq!(all.best, Some(MethodKind::Stacked));
     }
 }
@@ -228,7 +243,10 @@ fn a_method_past_its_limit_times_out_alone_and_the_others_report_first() {
             (MethodKind::Plate, Status::TimedOut)
         ]
     );
-    assert_eq!(all.method(MethodKind::Stacked).map(|m| m.status), Some(Status::Converted));
+    assert_eq!(
+        all.method(MethodKind::Stacked).map(|m| m.status),
+        Some(Status::Converted)
+    );
 }
 
 /// With one method at a time, each still gets its whole limit from its own start.
@@ -256,7 +274,11 @@ fn methods_run_one_at_a_time_when_asked_each_with_its_own_limit() {
 #[test]
 fn a_workbench_no_sheet_holds_is_refused_by_every_method_before_the_costly_steps() {
     let source = Source::triangles("workbench", samples::workbench());
-    let all = convert_all(Request::new(source, Settings::default()), &Cancel::default(), no_progress());
+    let all = convert_all(
+        Request::new(source, Settings::default()),
+        &Cancel::default(),
+        no_progress(),
+    );
     for m in &all.methods {
         let error = m.error.as_ref().map(ToString::to_string).unwrap_or_default();
         match m.method {
@@ -271,7 +293,10 @@ fn a_workbench_no_sheet_holds_is_refused_by_every_method_before_the_costly_steps
         }
     }
     // The plate method names a plate of the frame's long side: 1526 − 6 mm long at least.
-    let plate = all.method(MethodKind::Plate).and_then(|m| m.error.as_ref()).expect("refused");
+    let plate = all
+        .method(MethodKind::Plate)
+        .and_then(|m| m.error.as_ref())
+        .expect("refused");
     let long: f64 = plate
         .to_string()
         .split(" is ")
@@ -286,7 +311,11 @@ fn a_workbench_no_sheet_holds_is_refused_by_every_method_before_the_costly_steps
 /// that as a failure.
 #[test]
 fn the_classifier_skips_exact_faces_and_says_why() {
-    let all = convert_all(box_request(vec![MethodKind::Classifier]), &Cancel::default(), no_progress());
+    let all = convert_all(
+        box_request(vec![MethodKind::Classifier]),
+        &Cancel::default(),
+        no_progress(),
+    );
     let m = &all.methods[0];
     assert_eq!(m.status, Status::Skipped);
     let reason = m.error.as_ref().map(ToString::to_string).unwrap_or_default();

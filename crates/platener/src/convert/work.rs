@@ -54,7 +54,11 @@ struct Slot {
 
 /// Runs the conversion: the shared steps, then the methods side by side, at most
 /// `request.parallel` at once, each within `request.timeout` of its start.
-pub(super) fn run(request: &Request, caller: &Cancel, progress: Arc<dyn Progress>) -> (Option<State>, Vec<MethodResult>) {
+pub(super) fn run(
+    request: &Request,
+    caller: &Cancel,
+    progress: Arc<dyn Progress>,
+) -> (Option<State>, Vec<MethodResult>) {
     let start = Instant::now();
     let request = Arc::new(request.clone());
     let all = Cancel::default();
@@ -112,7 +116,12 @@ fn spawn(name: String, f: impl FnOnce() + Send + 'static) -> Result<(), Error> {
 
 /// Waits for the shared steps, within the first `deadline` (they count against every
 /// method's budget).
-fn wait_shared(rx: &Receiver<Message>, caller: &Cancel, all: &Cancel, deadline: Option<Instant>) -> Result<Outcome, Error> {
+fn wait_shared(
+    rx: &Receiver<Message>,
+    caller: &Cancel,
+    all: &Cancel,
+    deadline: Option<Instant>,
+) -> Result<Outcome, Error> {
     loop {
         if caller.is_cancelled() {
             all.cancel();
@@ -217,7 +226,12 @@ impl Scheduler {
                 self.start(k);
             }
             let now = Instant::now();
-            let next = self.slots.iter().filter(|s| s.running()).filter_map(|s| s.deadline).min();
+            let next = self
+                .slots
+                .iter()
+                .filter(|s| s.running())
+                .filter_map(|s| s.deadline)
+                .min();
             let wait = next.map_or(POLL, |d| d.saturating_duration_since(now).min(POLL));
             match rx.recv_timeout(wait) {
                 Ok(message) => self.receive(message),
@@ -403,7 +417,8 @@ impl MethodJob {
             .into_iter()
             .filter(|s| !state.records.iter().any(|r| r.name == s.name()))
             .collect();
-        let ran = pipeline::run_observed(&todo, &mut state, &self.cancel, &observe).and_then(|()| has_parts(method, &state));
+        let ran =
+            pipeline::run_observed(&todo, &mut state, &self.cancel, &observe).and_then(|()| has_parts(method, &state));
         (state, ran)
     }
 }

@@ -203,7 +203,13 @@ fn comparators_are_total_orders() {
 /// The argument text of every `sort_by(…)`, `max_by(…)`, `min_by(…)` and the like in `text`.
 fn comparator_closures(text: &str) -> Vec<&str> {
     let mut out = Vec::new();
-    for call in [".sort_by(", ".sort_unstable_by(", ".max_by(", ".min_by(", ".binary_search_by("] {
+    for call in [
+        ".sort_by(",
+        ".sort_unstable_by(",
+        ".max_by(",
+        ".min_by(",
+        ".binary_search_by(",
+    ] {
         let mut from = 0;
         while let Some(at) = text[from..].find(call) {
             let open = from + at + call.len();

@@ -130,7 +130,11 @@ impl Group<'_> {
         // for an empty sheet fits no hole of a part that fits one).
         if let SheetSize::Fixed { width, height } = settings.sheet {
             let region = sheet_region(width, height, settings.margin, spacing);
-            if let Some(&i) = self.members.iter().find(|&&i| !fits_empty(&shapes[i], region.1 - region.0)) {
+            if let Some(&i) = self
+                .members
+                .iter()
+                .find(|&&i| !fits_empty(&shapes[i], region.1 - region.0))
+            {
                 return Err(self.too_large(i));
             }
         }
