@@ -139,24 +139,25 @@ pub fn fixed_groups(mesh: &Mesh, c: &Classification, exact: &PlanarGroups, setti
 }
 
 /// Why the classifier would change nothing on this model, decided before sampling and
-/// RANSAC (issue 29: it cost every model a second or more and won on 2 of 53 real ones).
+/// RANSAC (issue 29: it cost every model a second or more and won on 1 of 53 real ones).
 /// Primitives replace exact groups only where at least [`FINE_GROUPS`] of them split one
-/// primitive finely ([`fragmented`]): a texture, noise or a fine tessellation. Such groups are
-/// fragments, smaller than the smallest primitive the classifier detects (a square four
-/// sheets wide) or narrower than a sheet (a facet strip of a tessellated cylinder). With
-/// fewer than [`FINE_GROUPS`] fragments, or fragments covering under [`FRAGMENT_SHARE`] of
-/// the surface, the exact faces stay exact and the classifier's plan would be the plate
-/// method's: `Some(reason)`.
+/// primitive finely ([`fragmented`]): a texture, noise or a fine tessellation, whose faces
+/// are fragments: smaller than a sheet's thickness squared, or narrower than a sheet and
+/// turning by less than [`SMOOTH_TURN_DEG`] into a neighbouring face (a facet strip of a
+/// tessellated cylinder or sphere, not the rim of a plate, which turns by 90°). Drawn faces of
+/// a CAD model or a low-poly figure are larger. With fewer than [`FINE_GROUPS`] fragments, or
+/// fragments covering under [`FRAGMENT_SHARE`] of the surface, the exact faces stay exact and
+/// the classifier's plan would be the plate method's: `Some(reason)`.
 pub fn nothing_to_replace(mesh: &Mesh, exact: &PlanarGroups, thickness: f64) -> Option<String> {
-    let smallest = (4.0 * thickness).powi(2);
+    let smooth = smooth_neighbours(mesh, exact);
     let (mut count, mut area) = (0usize, 0.0);
-    for g in &exact.groups {
+    for (k, g) in exact.groups.iter().enumerate() {
         let (lo, hi) = g.faces.iter().flat_map(|&f| mesh.corners(f as usize)).fold(
             (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
             |(lo, hi), p| (lo.min(p), hi.max(p)),
         );
         let width = g.area / (hi - lo).length().max(f64::MIN_POSITIVE);
-        if g.area < smallest || width < thickness {
+        if g.area < thickness * thickness || (width < thickness && smooth[k]) {
             count += 1;
             area += g.area;
         }
@@ -165,12 +166,38 @@ pub fn nothing_to_replace(mesh: &Mesh, exact: &PlanarGroups, thickness: f64) -> 
     let share = if total > 0.0 { area / total } else { 0.0 };
     (count < FINE_GROUPS || share < FRAGMENT_SHARE).then(|| {
         format!(
-            "the model's faces are exact ({count} small or narrow faces, {:.1} % of its surface): \
-             there is no texture, noise or fine tessellation for the classifier to replace, so its plan \
-             would be the plate method's",
+            "the model's faces are exact ({count} faces smaller than the sheet's thickness squared or narrower than \
+             a sheet, {:.1} % of its surface): there is no texture, noise or fine tessellation for the classifier to \
+             replace, so its plan would be the plate method's",
             100.0 * share
         )
     })
+}
+
+/// Two faces meeting at a turn below this (degrees) are one smooth surface tessellated.
+pub const SMOOTH_TURN_DEG: f64 = 30.0;
+
+/// Per exact group, whether it meets another group along an edge at a turn below
+/// [`SMOOTH_TURN_DEG`].
+fn smooth_neighbours(mesh: &Mesh, exact: &PlanarGroups) -> Vec<bool> {
+    let mut smooth = vec![false; exact.groups.len()];
+    let cos = SMOOTH_TURN_DEG.to_radians().cos();
+    let topology = &mesh.topology;
+    for e in 0..topology.edges.len() as u32 {
+        let corners = topology.edge_corners(e);
+        let [a, b] = match corners {
+            [a, b] => [a / 3, b / 3].map(|f| exact.face_group[f as usize] as usize),
+            _ => continue,
+        };
+        if a != b
+            && let (Some(ga), Some(gb)) = (exact.groups.get(a), exact.groups.get(b))
+            && ga.normal.dot(gb.normal) > cos
+        {
+            smooth[a] = true;
+            smooth[b] = true;
+        }
+    }
+    smooth
 }
 
 /// The least share of the surface in fragments (see [`nothing_to_replace`]) for which the
