@@ -30,12 +30,16 @@ const WELDED: [StepId; 2] = [StepId::Weld, StepId::Mesh];
 
 /// What the conversion's threads hand back.
 enum Message {
-    Shared(Result<Outcome, Internal>),
+    Shared(Box<Result<Outcome, Internal>>),
     Method(usize, Box<MethodResult>),
 }
 
 /// The state a run reached, and whether it finished.
 type Outcome = (State, Result<(), Error>);
+
+/// What a method's thread caught: its state, its plan's judgement, whether it finished; or
+/// its panic.
+type Caught = Result<(State, Option<(Score, Verification)>, Result<(), Error>), Internal>;
 
 /// One method of the request, as the caller's thread sees it.
 struct Slot {
@@ -72,7 +76,7 @@ pub(super) fn run(
         });
         spawn(format!("convert {}", request.source.name()), move || {
             let outcome = catch(|| shared_steps(&request, &all, gated.as_ref()));
-            let _ = tx.send(Message::Shared(outcome));
+            let _ = tx.send(Message::Shared(Box::new(outcome)));
         })
     };
     let deadline = request.timeout.map(|t| start + t);
@@ -128,9 +132,8 @@ fn wait_shared(
         }
         let wait = deadline.map_or(POLL, |d| d.saturating_duration_since(Instant::now()).min(POLL));
         match rx.recv_timeout(wait) {
-            Ok(Message::Shared(Ok(outcome))) => return Ok(outcome),
-            Ok(Message::Shared(Err(panic))) => {
-                return Err(Error::Internal {
+            Ok(Message::Shared(caught)) => {
+                return (*caught).map_err(|panic| Error::Internal {
                     step: "convert",
                     problem: panic,
                 });
@@ -441,11 +444,7 @@ impl Foundations {
 }
 
 /// A method's result from what its thread caught.
-fn result_of(
-    method: MethodKind,
-    outcome: Result<(State, Option<(Score, Verification)>, Result<(), Error>), Internal>,
-    seconds: f64,
-) -> MethodResult {
+fn result_of(method: MethodKind, outcome: Caught, seconds: f64) -> MethodResult {
     match outcome {
         Ok((state, judged, Ok(()))) => {
             let (score, verification) = judged.map_or((None, None), |(s, v)| (Some(s), Some(v)));

@@ -185,14 +185,7 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
             let cleaned = need(&state.cleanup, name, "cleanup")?;
             state.shapes = Some(Arc::new(shapes::run(mesh, groups, cleaned, &s, cx)?));
         }
-        StepId::Plates => {
-            let (shapes, mesh) = (need(&state.shapes, name, "shapes")?, need(&state.mesh, name, "mesh")?);
-            let model = need(&state.read, name, "read")?;
-            let plates = Arc::new(plates::run(shapes, mesh, model, &s, cx)?);
-            state.plates = Some(plates.clone());
-            // Cheap refusals first: the snapshot stays for the viewer.
-            plates.fit_sheets(&s.cut)?;
-        }
+        StepId::Plates => plates_step(state, &s, cx)?,
         StepId::Bends => state.bends = Some(Arc::new(bends::run(need(&state.plates, name, "plates")?, &s, cx)?)),
         StepId::Joints => {
             let plates = need(&state.plates, name, "plates")?;
@@ -240,6 +233,17 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
         }
     }
     Ok(())
+}
+
+/// Step `plates`: stores its snapshot, then refuses plates no sheet holds (cheap refusals
+/// first: the snapshot stays for the viewer).
+fn plates_step(state: &mut State, s: &crate::settings::Settings, cx: &mut StepContext<'_>) -> Result<()> {
+    let name = StepId::Plates.name();
+    let (shapes, mesh) = (need(&state.shapes, name, "shapes")?, need(&state.mesh, name, "mesh")?);
+    let model = need(&state.read, name, "read")?;
+    let plates = Arc::new(plates::run(shapes, mesh, model, s, cx)?);
+    state.plates = Some(plates.clone());
+    plates.fit_sheets(&s.cut)
 }
 
 /// Step `layers`: stores its snapshot, and the parts with the layers added when it made any.

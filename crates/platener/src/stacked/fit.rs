@@ -128,7 +128,7 @@ fn longest_chord(piece: &Polygon, d: DVec2, centre: DVec2) -> Option<(f64, DVec2
         .map(|p| m.dot(*p))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
     // Also refuses NaN (an empty or broken ring).
-    if !(hi > lo) {
+    if hi.is_nan() || lo.is_nan() || hi <= lo {
         return None;
     }
     // (length, distance of the middle from the centre, start)
