@@ -54,7 +54,8 @@ export function methodEvent(d) {
   const li = item(`method/${d.method}`);
   li.dataset.step = `method:${d.method}`;
   li.dataset.state = d.status;
-  li.className = d.status === 'done' ? 'method done' : 'method failed';
+  // `skipped`: the method had nothing to add (the classifier on exact faces); not a failure.
+  li.className = d.status === 'done' ? 'method done' : d.status === 'skipped' ? 'method skipped' : 'method failed';
   li.textContent = d.status === 'done'
     ? `${d.method}: plan made, score ${Number(d.score).toFixed(2)}`
     : `${d.method}: ${d.status}${d.error ? ` (${d.error.message || d.error})` : ''}`;
