@@ -2,7 +2,7 @@
 //! finishes, each method's result the moment it ends, and the time to the first and the last
 //! plan: where a slow model spends its time (docs/performance.md).
 //!
-//! `cargo run --release -p platener --example step_times -- MODEL [METHOD…] [--timeout S]`
+//! `cargo run --release -p platener --example step_times -- MODEL [METHOD…] [--timeout S] [-t MM]`
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -14,10 +14,16 @@ use platener::{Cancel, Settings, Source};
 
 fn main() -> Result<(), String> {
     let mut args = std::env::args().skip(1);
-    let model = args.next().ok_or("usage: step_times MODEL [METHOD…] [--timeout S]")?;
+    let model = args
+        .next()
+        .ok_or("usage: step_times MODEL [METHOD…] [--timeout S] [-t MM]")?;
     let (mut methods, mut timeout) = (Vec::new(), Some(Duration::from_secs(60)));
+    let mut settings = Settings::default();
     while let Some(a) = args.next() {
-        if a == "--timeout" {
+        if a == "-t" {
+            let t: f64 = args.next().and_then(|s| s.parse().ok()).ok_or("-t MM")?;
+            settings.thicknesses = vec![t];
+        } else if a == "--timeout" {
             let s: f64 = args.next().and_then(|s| s.parse().ok()).ok_or("--timeout S")?;
             timeout = (s > 0.0).then(|| Duration::from_secs_f64(s));
         } else {
@@ -54,7 +60,7 @@ fn main() -> Result<(), String> {
     let request = Request {
         methods,
         timeout,
-        ..Request::new(Source::File(model.into()), Settings::default())
+        ..Request::new(Source::File(model.into()), settings)
     };
     let all = convert_all(request, &Cancel::default(), progress);
     println!("best {:?}, {:.3} s", all.best.map(MethodKind::name), all.seconds);

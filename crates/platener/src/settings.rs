@@ -273,6 +273,9 @@ pub struct Settings {
     pub joints: crate::joints::JointSettings,
     /// Bent parts of the plate method (`--bend`).
     pub bending: Bending,
+    /// Run the classifier even on a model whose faces are exact, where it skips by default
+    /// (its plan is then the plate method's, made more slowly): for comparing and for tests.
+    pub classify_exact_faces: bool,
     /// Kerf, labels, sheets and export of the cutting plan.
     pub cut: crate::plan::CutSettings,
 }
@@ -291,6 +294,7 @@ impl Default for Settings {
             stacked: StackedSettings::default(),
             joints: crate::joints::JointSettings::default(),
             bending: Bending::Auto,
+            classify_exact_faces: false,
             cut: crate::plan::CutSettings::default(),
         }
     }

@@ -241,7 +241,9 @@ pub fn step(
     cx.check_cancel()?;
     let angle = settings.coplanar_angle_deg.to_radians();
     let exact = crate::coplanar::group_faces(mesh, angle);
-    if let Some(reason) = groups::nothing_to_replace(mesh, &exact, settings.thinnest()) {
+    if !settings.classify_exact_faces
+        && let Some(reason) = groups::nothing_to_replace(mesh, &exact, settings.thinnest())
+    {
         return Err(crate::error::Error::Skipped { reason });
     }
     let found = run(mesh, &ClassifySettings::from_settings(settings))
