@@ -19,22 +19,6 @@ fn convert_with(method: MethodKind, model: Vec<Triangle>) -> State {
     convert(method, Source::triangles("m", model), settings, &Cancel::default()).expect("converts")
 }
 
-/// The classifier's plan of a model whose faces are exact (where it skips by default).
-fn convert_exact(model: Vec<Triangle>) -> State {
-    let settings = Settings {
-        thicknesses: vec![3.0],
-        classify_exact_faces: true,
-        ..Settings::default()
-    };
-    convert(
-        MethodKind::Classifier,
-        Source::triangles("m", model),
-        settings,
-        &Cancel::default(),
-    )
-    .expect("converts")
-}
-
 fn checked(state: &State) -> (Plan, Verification) {
     let plan = state.export.as_ref().expect("exported").plan.clone();
     let v = verify(&plan, state.mesh.as_deref());
@@ -273,16 +257,20 @@ fn a_knurled_cylinder_becomes_a_bent_wrap_with_two_discs() {
 fn a_clean_box_converts_as_the_plate_method_converts_it() {
     let model = samples::closed_box(120.0, 90.0, 70.0, 3.0);
     let (plate, _) = checked(&convert_with(MethodKind::Plate, model.clone()));
-    // By default the classifier sees the exact faces and skips, saying why.
-    let skipped = convert(
-        MethodKind::Classifier,
-        Source::triangles("m", model.clone()),
-        Settings::default(),
-        &Cancel::default(),
-    );
-    let reason = skipped.expect_err("skipped").to_string();
+    // Beside the plate method, the classifier sees the exact faces and skips, saying why.
+    let request = Request {
+        methods: vec![MethodKind::Plate, MethodKind::Classifier],
+        ..Request::new(Source::triangles("m", model.clone()), Settings::default())
+    };
+    let both = convert_all(request, &Cancel::default(), platener::convert::no_progress());
+    let reason = both.methods[1]
+        .error
+        .as_ref()
+        .map(ToString::to_string)
+        .unwrap_or_default();
     assert!(reason.contains("faces are exact"), "{reason}");
-    let state = convert_exact(model);
+    // Alone, it makes the plate method's plan.
+    let state = convert_with(MethodKind::Classifier, model);
     let (plan, v) = checked(&state);
     rebuilds(&v);
     assert_eq!(plan.parts.len(), plate.parts.len());
@@ -447,7 +435,7 @@ fn a_small_solid_cylinder_becomes_stacked_discs() {
 /// six walls, with nothing left over for the layers step.
 #[test]
 fn a_box_leaves_nothing_to_the_layers() {
-    let state = convert_exact(samples::closed_box(120.0, 90.0, 70.0, 3.0));
+    let state = convert_with(MethodKind::Classifier, samples::closed_box(120.0, 90.0, 70.0, 3.0));
     let layers = state.layers.as_ref().expect("the layers step ran");
     assert!(layers.stack.is_none() && layers.skipped.is_some(), "{layers:?}");
     assert!(layers.marked_share < 0.001);
@@ -456,10 +444,9 @@ fn a_box_leaves_nothing_to_the_layers() {
 /// The classifier's plan of a corpus model, or `None` (with a message) without the corpus.
 fn corpus_plan(name: &str) -> Option<State> {
     let dir = samples::shared_corpus().map_err(|m| eprintln!("{m}")).ok()?;
-    // Exact faces too: the house's walls are exact, but the layers step is tested on them.
+    // Asked for alone, the classifier runs on exact faces too (the house's walls are).
     let settings = Settings {
         thicknesses: vec![3.0],
-        classify_exact_faces: true,
         ..Settings::default()
     };
     let source = Source::File(dir.join(name));

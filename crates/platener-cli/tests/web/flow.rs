@@ -191,10 +191,19 @@ pub fn upload_convert_and_every_link_works(backend: Backend) {
     for view in ["model", "wireframe", "coplanar", "plates", "bent", "final"] {
         assert!(c["links"]["scenes"][view].is_string(), "scene {view}");
     }
-    // The classifier's primitives are among its own method's scenes (checked below like every
-    // link), not the best method's: the plate method classifies nothing.
-    let primitives = &c["links"]["methods"]["classifier"]["scenes"]["primitives"];
-    assert!(primitives.is_string(), "{}", c["links"]);
+    // Beside the plate method the classifier skips the box's exact faces, saying why: no
+    // primitives of its own, and none among the best method's scenes (the plate method
+    // classifies nothing). `recut` below asks for the classifier alone, which runs.
+    let classifier = c["methods"]
+        .as_array()
+        .and_then(|m| m.iter().find(|m| m["method"] == "classifier"))
+        .expect("classifier");
+    assert_eq!(classifier["status"], "skipped", "{classifier}");
+    assert!(
+        classifier["error"].to_string().contains("faces are exact"),
+        "{classifier}"
+    );
+    assert!(c["links"]["methods"]["classifier"]["scenes"]["primitives"].is_null());
     assert!(c["links"]["scenes"]["primitives"].is_null());
     assert!(links.iter().any(|l| l.ends_with(".svg")), "{links:?}");
     for link in links.iter().filter(|l| !l.ends_with("/events")) {
@@ -226,7 +235,8 @@ fn publish_recut_delete(server: &Server, id: &str, token: &str) {
     assert_eq!(item["parts"], 6);
     assert_eq!(server.get(item["thumbnail"].as_str().expect("thumbnail")).status, 200);
 
-    let body = json!({"kerf": 0.15}).to_string();
+    // The classifier alone: it runs on the box's exact faces (beside the plate method it skips).
+    let body = json!({"kerf": 0.15, "method": "classifier"}).to_string();
     let r = server.request(
         "POST",
         &format!("/api/conversions/{id}/recut"),
@@ -242,6 +252,11 @@ fn publish_recut_delete(server: &Server, id: &str, token: &str) {
     assert_eq!(recut["model"]["triangles"], 120, "a recut is read too");
     let done = server.wait_ended(rid);
     assert_eq!(done["status"], "done", "{done}");
+    // Its primitives are among its own method's scenes, not the best method's.
+    let primitives = done["links"]["methods"]["classifier"]["scenes"]["primitives"]
+        .as_str()
+        .expect("the classifier's primitives");
+    assert_eq!(server.get(primitives).status, 200);
 
     let path = format!("/api/conversions/{id}");
     server

@@ -312,16 +312,28 @@ fn a_workbench_no_sheet_holds_is_refused_by_every_method_before_the_costly_steps
 #[test]
 fn the_classifier_skips_exact_faces_and_says_why() {
     let all = convert_all(
-        box_request(vec![MethodKind::Classifier]),
+        box_request(vec![MethodKind::Plate, MethodKind::Classifier]),
         &Cancel::default(),
         no_progress(),
     );
-    let m = &all.methods[0];
+    let m = &all.methods[1];
     assert_eq!(m.status, Status::Skipped);
     let reason = m.error.as_ref().map(ToString::to_string).unwrap_or_default();
     assert!(reason.contains("faces are exact"), "{reason}");
     // It stopped before sampling: no classify snapshot.
     assert!(m.state.as_ref().is_none_or(|s| s.classify.is_none()));
+    // Asked for alone, it runs: nothing else would make the plan.
+    let alone = convert_all(
+        box_request(vec![MethodKind::Classifier]),
+        &Cancel::default(),
+        no_progress(),
+    );
+    assert_eq!(
+        alone.methods[0].status,
+        Status::Converted,
+        "{:?}",
+        alone.methods[0].error
+    );
 }
 
 #[test]

@@ -416,6 +416,13 @@ impl MethodJob {
         if ran.is_err() {
             return (state, ran);
         }
+        // The classifier skips exact faces only beside the plate method, whose plan it would
+        // repeat; asked for alone, it runs.
+        if method == MethodKind::Classifier && !request.methods.contains(&MethodKind::Plate) {
+            let mut own = (*state.settings).clone();
+            own.classify_exact_faces = true;
+            state.settings = Arc::new(own);
+        }
         let todo: Vec<StepId> = steps
             .into_iter()
             .filter(|s| !state.records.iter().any(|r| r.name == s.name()))
