@@ -197,7 +197,7 @@ fn a_failing_panicking_or_hanging_method_leaves_the_others_converted() {
         // The other method still runs and converts, a hanging one's time limit its own.
         let two = Request {
             methods: vec![MethodKind::Plate, MethodKind::Stacked],
-            timeout: (kind == FaultKind::Hang).then(|| std::time::Duration::from_secs(5)),
+            timeout: (kind == FaultKind::Hang).then(|| std::time::Duration::from_secs(15)),
             ..request
         };
         let all = convert_all(two, &Cancel::default(), no_progress());
@@ -231,7 +231,7 @@ fn a_method_past_its_limit_times_out_alone_and_the_others_report_first() {
             method: MethodKind::Plate,
             kind: FaultKind::Hang,
         }],
-        timeout: Some(std::time::Duration::from_secs(5)),
+        timeout: Some(std::time::Duration::from_secs(15)),
         ..box_request(vec![MethodKind::Plate, MethodKind::Stacked])
     };
     let all = convert_all(request, &Cancel::default(), Arc::new(sink));
@@ -257,13 +257,13 @@ fn methods_run_one_at_a_time_when_asked_each_with_its_own_limit() {
             method: MethodKind::Plate,
             kind: FaultKind::Hang,
         }],
-        timeout: Some(std::time::Duration::from_secs(5)),
+        timeout: Some(std::time::Duration::from_secs(15)),
         parallel: 1,
         ..box_request(vec![MethodKind::Plate, MethodKind::Stacked])
     };
     let all = convert_all(request, &Cancel::default(), no_progress());
     assert_eq!(all.methods[0].status, Status::TimedOut);
-    // The stacked method started when the plate method's time was up, with 5 s of its own.
+    // The stacked method started when the plate method's time was up, with 15 s of its own.
     assert_eq!(all.methods[1].status, Status::Converted, "{:?}", all.methods[1].error);
     // One after the other: the call lasted both.
     assert!(all.seconds >= all.methods[0].seconds + all.methods[1].seconds);
