@@ -79,8 +79,7 @@ pub(super) fn run(
             let _ = tx.send(Message::Shared(Box::new(outcome)));
         })
     };
-    let deadline = request.timeout.map(|t| start + t);
-    let base = match shared.and_then(|()| wait_shared(&rx, caller, &all, deadline)) {
+    let base = match shared.and_then(|()| wait_shared(&rx, caller, &all, (start, request.timeout))) {
         Ok((state, Ok(()))) => state,
         Ok((state, Err(error))) => return (Some(state.clone()), every(&request, &error, Some(state))),
         Err(error) => return (None, every(&request, &error, None)),
@@ -118,14 +117,15 @@ fn spawn(name: String, f: impl FnOnce() + Send + 'static) -> Result<(), Error> {
         })
 }
 
-/// Waits for the shared steps, within the first `deadline` (they count against every
-/// method's budget).
+/// Waits for the shared steps, begun at `start`, within the `timeout` (they count against
+/// every method's limit).
 fn wait_shared(
     rx: &Receiver<Message>,
     caller: &Cancel,
     all: &Cancel,
-    deadline: Option<Instant>,
+    (start, timeout): (Instant, Option<Duration>),
 ) -> Result<Outcome, Error> {
+    let deadline = timeout.map(|t| start + t);
     loop {
         if caller.is_cancelled() {
             all.cancel();
@@ -141,8 +141,8 @@ fn wait_shared(
             Ok(Message::Method(..)) => {}
             Err(RecvTimeoutError::Timeout) if deadline.is_some_and(|d| Instant::now() >= d) => {
                 all.cancel();
-                // `every` puts the budget in.
-                return Err(Error::TimedOut { seconds: 0.0 });
+                let seconds = timeout.map_or(0.0, |t| t.as_secs_f64());
+                return Err(Error::TimedOut { seconds });
             }
             Err(RecvTimeoutError::Timeout) => {}
             Err(RecvTimeoutError::Disconnected) => {
@@ -159,12 +159,6 @@ fn wait_shared(
 
 /// The same failure for every method (the shared steps failed).
 fn every(request: &Request, error: &Error, state: Option<State>) -> Vec<MethodResult> {
-    let error = match error {
-        Error::TimedOut { .. } => Error::TimedOut {
-            seconds: request.timeout.map_or(0.0, |t| t.as_secs_f64()),
-        },
-        e => e.clone(),
-    };
     request
         .methods
         .iter()

@@ -178,12 +178,8 @@ impl CutSettings {
         let room = DVec2::new(width, height) - 2.0 * self.margin;
         let mut smallest: Option<DVec2> = None;
         for degree in 0..90 {
-            let (sin, cos) = f64::from(degree).to_radians().sin_cos();
-            let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-            for p in outline {
-                let q = DVec2::new(p.x * cos - p.y * sin, p.x * sin + p.y * cos);
-                (lo, hi) = (lo.min(q), hi.max(q));
-            }
+            let turn = DVec2::from_angle(f64::from(degree).to_radians());
+            let (lo, hi) = platener_geom::polygon::bounds_of(outline.iter().map(|p| turn.rotate(*p)));
             let size = (hi - lo + DVec2::splat(2.0 * grow)).max(DVec2::ZERO);
             if !size.is_finite() || (size.x <= room.x && size.y <= room.y) || (size.y <= room.x && size.x <= room.y) {
                 return None;
