@@ -2,11 +2,9 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, Parser, Subcommand, ValueEnum};
-use platener::method::MethodKind;
-use platener::plan::{LabelMode, Material, SheetSize};
-use platener::{Settings, Units, Weld};
-use serde::Serialize;
+use clap::{Args, Parser, Subcommand};
+
+use crate::setting_args::{Every, ForMaterial, ForModel, ForScene, SettingArgs};
 
 /// Examples shown under `platener --help`.
 const MAIN_EXAMPLES: &str = "Examples:
@@ -95,21 +93,9 @@ pub struct SceneArgs {
     /// The .glb file to write.
     #[arg(short = 'o', long = "output", value_name = "FILE.glb")]
     pub output: PathBuf,
-    /// The method whose snapshots are drawn (`all`: the best by score).
-    #[arg(long, value_enum, default_value = "all")]
-    pub method: MethodArg,
-    /// The sheet material (decides the default joint).
-    #[arg(short = 'm', long, value_enum, default_value = "wood")]
-    pub material: MaterialArg,
-    /// The joint type.
-    #[arg(long, value_enum, default_value = "auto")]
-    pub joint: JointArg,
-    /// The stacked method's slicing direction.
-    #[arg(long, value_name = "x|y|z|auto", default_value = "auto")]
-    pub axis: String,
-    /// Model options.
+    /// The settings (`--method all`: the best method's snapshots are drawn).
     #[command(flatten)]
-    pub model_args: ModelArgs,
+    pub settings: SettingArgs<ForScene>,
 }
 
 /// `platener verify`.
@@ -127,9 +113,9 @@ pub struct VerifyArgs {
     /// half a sheet plus 0.5 mm of.
     #[arg(long, value_name = "PERCENT", default_value_t = 80.0, value_parser = parse_percent)]
     pub min_coverage: f64,
-    /// Options for reading the model.
+    /// How the model is read.
     #[command(flatten)]
-    pub model_args: ModelArgs,
+    pub settings: SettingArgs<ForModel>,
 }
 
 /// `platener completions`.
@@ -140,40 +126,15 @@ pub struct CompletionsArgs {
     pub shell: clap_complete::Shell,
 }
 
-/// The sheet material (sets the default kerf the strip marks with `*`).
-#[derive(Debug, Clone, Copy, ValueEnum)]
-pub enum MaterialArg {
-    /// Acrylic (PMMA), default kerf 0.15 mm.
-    Acrylic,
-    /// Plywood, MDF, solid wood, default kerf 0.2 mm.
-    Wood,
-    /// Cardboard, default kerf 0.3 mm.
-    Cardboard,
-    /// Paper and thin card, default kerf 0.1 mm.
-    Paper,
-}
-
-impl MaterialArg {
-    /// The library's material.
-    pub fn material(self) -> Material {
-        match self {
-            MaterialArg::Acrylic => Material::Acrylic,
-            MaterialArg::Wood => Material::Wood,
-            MaterialArg::Cardboard => Material::Cardboard,
-            MaterialArg::Paper => Material::Paper,
-        }
-    }
-}
-
 /// `platener test-strip`.
 #[derive(Debug, Args)]
 pub struct TestStripArgs {
     /// Sheet thickness in mm.
     #[arg(short = 't', long = "thickness")]
     pub thickness: f64,
-    /// The material.
-    #[arg(long, value_enum, default_value = "wood")]
-    pub material: MaterialArg,
+    /// The material (its kerf is the strip's starred hole).
+    #[command(flatten)]
+    pub material: SettingArgs<ForMaterial>,
     /// Where to write the SVG.
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
@@ -186,8 +147,8 @@ pub struct HingeTestArgs {
     #[arg(short = 't', long = "thickness")]
     pub thickness: f64,
     /// The material.
-    #[arg(short = 'm', long, value_enum, default_value = "wood")]
-    pub material: MaterialArg,
+    #[command(flatten)]
+    pub material: SettingArgs<ForMaterial>,
     /// The bend style: auto (the material's: wood → living-hinge, cardboard → perforation,
     /// paper → score, acrylic → heat), living-hinge, perforation, score or heat.
     #[arg(long, default_value = "auto", value_parser = parse_bend_style)]
@@ -208,39 +169,6 @@ fn parse_bend_style(s: &str) -> Result<platener::Bending, String> {
     }
 }
 
-/// The unit of a model file's numbers.
-#[derive(Debug, Clone, Copy, ValueEnum)]
-pub enum UnitArg {
-    /// Millimetres (default; STL has no unit).
-    Mm,
-    /// Centimetres.
-    Cm,
-    /// Inches.
-    In,
-}
-
-/// Options shared by every command that reads a model.
-#[derive(Debug, Args)]
-pub struct ModelArgs {
-    /// The unit the model's numbers are in.
-    #[arg(long, value_enum, default_value = "mm")]
-    pub units: UnitArg,
-    /// Extra scale factor applied after the unit conversion.
-    #[arg(long, default_value_t = 1.0)]
-    pub scale: f64,
-    /// Weld distance in mm (`auto`: from the model size, at most 2 mm; `0`: exact duplicates only).
-    #[arg(long, default_value = "auto")]
-    pub weld: String,
-    /// Sheet thickness in mm; repeat for several.
-    #[arg(short = 't', long = "thickness", default_values_t = [3.0])]
-    pub thickness: Vec<f64>,
-    /// Plate method: features on one face of a plate that do not go through it (engraved text,
-    /// pockets, standoff footprints) are scored on it (`engrave`), cut through (`cut`, the
-    /// behaviour before) or left out of a solid plate (`ignore`).
-    #[arg(long, value_name = "engrave|cut|ignore", default_value = "engrave")]
-    pub features: String,
-}
-
 /// `platener inspect`.
 #[derive(Debug, Args)]
 pub struct InspectArgs {
@@ -256,106 +184,9 @@ pub struct InspectArgs {
     /// Find inherent plates only (no extruded plates); implies --plates.
     #[arg(long)]
     pub inherent_only: bool,
-    /// Model options.
+    /// How the model is read.
     #[command(flatten)]
-    pub model_args: ModelArgs,
-}
-
-impl ModelArgs {
-    /// The library settings these flags ask for.
-    pub fn settings(&self) -> anyhow::Result<Settings> {
-        let weld = match self.weld.trim() {
-            "auto" => Weld::Auto,
-            s => match s.parse::<f64>() {
-                Ok(0.0) => Weld::Off,
-                Ok(d) => Weld::Distance(d),
-                Err(_) => anyhow::bail!("--weld takes `auto` or a distance in mm, not {s:?}"),
-            },
-        };
-        let settings = Settings {
-            units: match self.units {
-                UnitArg::Mm => Units::Mm,
-                UnitArg::Cm => Units::Cm,
-                UnitArg::In => Units::In,
-            },
-            scale: self.scale,
-            weld,
-            thicknesses: self.thickness.clone(),
-            features: self.features.parse().map_err(|e| anyhow::anyhow!("--features: {e}"))?,
-            ..Settings::default()
-        };
-        settings.validate()?;
-        Ok(settings)
-    }
-}
-
-/// Which methods `convert` runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum MethodArg {
-    /// Flat plates joined by joints.
-    Plate,
-    /// Stacked layers joined by shafts.
-    Stacked,
-    /// Primitives found by RANSAC made into plates and bent parts (textured, noisy models).
-    Classifier,
-    /// Every method; each result is written and the best by score is named.
-    All,
-}
-
-impl MethodArg {
-    /// The library's methods, in the order they run.
-    pub fn methods(self) -> Vec<MethodKind> {
-        match self {
-            MethodArg::Plate => vec![MethodKind::Plate],
-            MethodArg::Stacked => vec![MethodKind::Stacked],
-            MethodArg::Classifier => vec![MethodKind::Classifier],
-            MethodArg::All => MethodKind::ALL.to_vec(),
-        }
-    }
-}
-
-/// The joint type.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum JointArg {
-    /// Finger (box) joints.
-    Finger,
-    /// The thesis' jim joints.
-    Jim,
-    /// Dovetails.
-    Dovetail,
-    /// Chosen per edge from the material and the angle.
-    Auto,
-}
-
-/// Which labels are engraved.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum LabelsArg {
-    /// Part numbers and connection numbers next to every jointed edge.
-    Edges,
-    /// Part numbers only.
-    Parts,
-    /// Nothing (saves laser time).
-    None,
-}
-
-impl LabelsArg {
-    /// The library's label mode.
-    pub fn mode(self) -> LabelMode {
-        match self {
-            LabelsArg::Edges => LabelMode::Edges,
-            LabelsArg::Parts => LabelMode::Parts,
-            LabelsArg::None => LabelMode::None,
-        }
-    }
-}
-
-fn parse_bend(s: &str) -> Result<platener::Bending, String> {
-    s.parse::<platener::Bending>().map_err(|e| e.to_string())
-}
-
-fn parse_sheet(s: &str) -> Result<SheetSize, String> {
-    s.parse::<SheetSize>().map_err(|e| e.to_string())
+    pub settings: SettingArgs<ForModel>,
 }
 
 fn parse_percent(s: &str) -> Result<f64, String> {
@@ -388,50 +219,13 @@ pub struct ConvertArgs {
     /// Folder the ZIPs are written to, as OUT_DIR/<model>-<method>.zip (created if missing).
     #[arg(short = 'o', long = "output", value_name = "OUT_DIR")]
     pub output: PathBuf,
-    /// The sheet material; sets the default kerf.
-    #[arg(short = 'm', long, value_enum, default_value = "wood")]
-    pub material: MaterialArg,
-    /// Which methods to run; `all` writes every result and names the best by score.
-    #[arg(long, value_enum, default_value = "all")]
-    pub method: MethodArg,
-    /// Kerf in mm (default: the material's; `platener test-strip` measures yours).
-    #[arg(long, value_name = "MM")]
-    pub kerf: Option<f64>,
-    /// Sheet size in mm as WxH (e.g. 600x400), or `fit` for one sheet per thickness just large
-    /// enough.
-    #[arg(long, value_name = "WxH|fit", default_value = "600x400", value_parser = parse_sheet)]
-    pub sheet: SheetSize,
-    /// Joint type: `auto` takes finger joints for wood and acrylic, JimJoints (snapping) for
-    /// cardboard and paper.
-    #[arg(long, value_enum, default_value = "auto")]
-    pub joint: JointArg,
-    /// Stacked method: the axis the layers are stacked along (`auto`: the model's largest flat
-    /// face is laid flat).
-    #[arg(long, value_name = "x|y|z|auto", default_value = "auto")]
-    pub axis: String,
-    /// Which labels to engrave.
-    #[arg(long, value_enum, default_value = "edges")]
-    pub labels: LabelsArg,
-    /// Plate method: how plates that meet at an edge become one bent part instead of two
-    /// jointed ones. `living-hinge`: rows of slits that let wood flex; `perforation`: dashed
-    /// cuts, for cardboard; `score`: an engraved line to fold paper along; `heat`: an engraved
-    /// line to bend acrylic along over a heater; `none`: no bends, joints everywhere; `auto`
-    /// (default): chosen by the material (wood → living hinge, cardboard → perforation, paper
-    /// → score, acrylic → heat).
-    #[arg(
-        long,
-        value_name = "auto|none|living-hinge|perforation|score|heat",
-        default_value = "auto",
-        value_parser = parse_bend
-    )]
-    pub bend: platener::Bending,
     /// Skip (and list) model files larger than this many MB (10^6 bytes).
     #[arg(long, value_name = "MB", value_parser = parse_non_negative)]
     pub max_filesize: Option<f64>,
     /// Models converted at the same time (default: one per core).
     #[arg(short = 'j', long, value_name = "N", value_parser = parse_jobs)]
     pub jobs: Option<usize>,
-    /// Give up a model after this many seconds (all its methods together); 0: never.
+    /// Give up a method after this many seconds (each method's own limit; they run side by side); 0: never.
     #[arg(long, value_name = "S", default_value_t = 60.0, value_parser = parse_non_negative)]
     pub timeout: f64,
     /// More output: warnings of every model, step progress and logs (-vv: debug logs).
@@ -444,9 +238,9 @@ pub struct ConvertArgs {
     /// Print the batch report as one JSON object on stdout instead of text.
     #[arg(long)]
     pub json: bool,
-    /// Model options.
+    /// The settings.
     #[command(flatten)]
-    pub model_args: ModelArgs,
+    pub settings: SettingArgs<Every>,
 }
 
 #[cfg(test)]
@@ -457,10 +251,10 @@ mod tests {
 
     use super::{Cli, Command};
 
-    fn bend_of(extra: &[&str]) -> Result<Bending, clap::Error> {
+    fn bend_of(extra: &[&str]) -> anyhow::Result<Bending> {
         let args = ["platener", "convert", "m.stl", "-o", "out"].iter().chain(extra);
         match Cli::try_parse_from(args)?.command {
-            Command::Convert(c) => Ok(c.bend),
+            Command::Convert(c) => Ok(c.settings.chosen()?.settings.bending),
             other => panic!("parsed as {other:?}"),
         }
     }
@@ -481,15 +275,24 @@ mod tests {
         assert!(e.contains("--bend") && e.contains("living-hinge"), "{e}");
     }
 
+    /// Every command's flags are consistent (no name twice, defaults among the values).
     #[test]
-    fn bend_reaches_the_library_settings() {
-        let Command::Convert(c) = Cli::try_parse_from(["platener", "convert", "m.stl", "-o", "o", "--bend", "score"])
-            .expect("valid")
-            .command
-        else {
-            panic!("not convert")
-        };
-        let settings = crate::convert::settings(&c).expect("valid settings");
-        assert_eq!(settings.bending, Bending::Style(BendStyle::Score));
+    fn the_command_line_is_well_formed() {
+        use clap::CommandFactory as _;
+        Cli::command().debug_assert();
+    }
+
+    /// Out-of-range values are refused by the library's check, named as flags.
+    #[test]
+    fn refusals_name_the_flag() {
+        for (flag, value) in [
+            ("--kerf", "3"),
+            ("--thickness", "0.05"),
+            ("--scale", "0"),
+            ("--weld", "11"),
+        ] {
+            let e = bend_of(&[flag, value]).expect_err("out of range").to_string();
+            assert!(e.starts_with(flag), "{flag} {value}: {e}");
+        }
     }
 }

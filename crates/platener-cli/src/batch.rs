@@ -14,9 +14,9 @@ use platener::{Cancel, Settings, Source};
 use tracing::Span;
 use tracing_indicatif::span_ext::IndicatifSpanExt as _;
 
-use crate::args::JointArg;
 use crate::inputs::ModelFile;
 use crate::report::{MethodReport, ModelReport, VerifySummary};
+use crate::setting_args::flags;
 
 /// What every model of the batch is converted with.
 #[derive(Debug, Clone)]
@@ -31,8 +31,8 @@ pub struct BatchConfig {
     pub out_dir: PathBuf,
     /// Write a report per model and method.
     pub sub_reports: bool,
-    /// The joint type asked for (recorded in sub-reports).
-    pub joint: JointArg,
+    /// The `joint` setting as asked for (`auto` or a style), recorded in sub-reports.
+    pub joint: serde_json::Value,
     /// Workers.
     pub jobs: usize,
     /// Failures the tests inject (`PLATENER_FAULT`).
@@ -151,9 +151,12 @@ fn finish(result: &MethodResult, model: &ModelFile, config: &BatchConfig) -> Met
         sheets: bundle.map(|b| b.plan.sheets.len()),
         warnings: result
             .warnings()
-            .map(|w| format!("[{}] {}", w.step, w.message))
+            .map(|w| format!("[{}] {}", w.step, flags(&w.message)))
             .collect(),
-        error: result.error.as_ref().map(ToString::to_string),
+        error: result.error.as_ref().map(|e| match e {
+            platener::Error::TimedOut { .. } => format!("{e} (--timeout)"),
+            e => flags(&e.to_string()),
+        }),
         seconds: result.seconds,
     };
     if let Some(bundle) = bundle {

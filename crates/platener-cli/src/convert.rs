@@ -2,16 +2,12 @@
 
 use std::time::{Duration, Instant};
 
-use anyhow::Context as _;
-use platener::Settings;
-use platener::joints::JointStyle;
-use platener::plan::SheetSize;
-
-use crate::args::{ConvertArgs, JointArg, MaterialArg, ModelArgs};
+use crate::args::ConvertArgs;
 use crate::batch::{self, BatchConfig};
 use crate::inputs;
 use crate::progress::Ui;
 use crate::report::{self, BatchReport, RunSettings};
+use anyhow::Context as _;
 
 /// Examples shown under `platener convert --help`.
 pub const EXAMPLES: &str = "Examples:
@@ -44,60 +40,21 @@ impl std::fmt::Display for UsageError {
 
 impl std::error::Error for UsageError {}
 
-/// The library settings the flags ask for.
-pub fn settings(args: &ConvertArgs) -> anyhow::Result<Settings> {
-    let mut settings = part_settings(&args.model_args, args.material, args.joint, &args.axis)?;
-    settings.cut.kerf = args.kerf;
-    settings.cut.labels = args.labels.mode();
-    settings.cut.sheet = args.sheet;
-    settings.bending = args.bend;
-    settings.validate()?;
-    Ok(settings)
-}
-
-/// The settings that decide the parts (what `convert` and `scene` share): model options,
-/// material, joint style and stacking axis.
-pub fn part_settings(
-    model_args: &ModelArgs,
-    material: MaterialArg,
-    joint: JointArg,
-    axis: &str,
-) -> anyhow::Result<Settings> {
-    let mut settings = model_args.settings()?;
-    settings.cut.material = material.material();
-    settings.joints.style = match joint {
-        JointArg::Auto => None,
-        JointArg::Finger => Some(JointStyle::Finger),
-        JointArg::Jim => Some(JointStyle::Jim),
-        JointArg::Dovetail => Some(JointStyle::Dovetail),
-    };
-    settings.stacked.axis = axis.parse().map_err(|e| anyhow::anyhow!("--axis: {e}"))?;
-    settings.validate()?;
-    Ok(settings)
-}
-
-fn sheet_name(sheet: SheetSize) -> String {
-    match sheet {
-        SheetSize::Fixed { width, height } => format!("{width}x{height}"),
-        SheetSize::Fit => "fit".into(),
-    }
-}
-
 /// Runs the command; the exit code says whether everything converted.
 pub fn run(args: &ConvertArgs) -> anyhow::Result<u8> {
-    let settings = settings(args).map_err(|e| anyhow::Error::new(UsageError(e)))?;
+    let chosen = args.settings.chosen().map_err(|e| anyhow::Error::new(UsageError(e)))?;
     let ui = Ui::init(args.verbose);
     std::fs::create_dir_all(&args.output).with_context(|| format!("cannot create {}", args.output.display()))?;
     let jobs = args
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let config = BatchConfig {
-        settings,
-        methods: args.method.methods(),
+        settings: chosen.settings.clone(),
+        methods: chosen.methods.clone(),
         timeout: (args.timeout > 0.0).then(|| Duration::from_secs_f64(args.timeout)),
         out_dir: args.output.clone(),
         sub_reports: args.sub_reports,
-        joint: args.joint,
+        joint: chosen.to_json().remove("joint").unwrap_or_default(),
         jobs,
         faults: crate::fault::from_env(),
     };
@@ -121,20 +78,12 @@ pub fn run(args: &ConvertArgs) -> anyhow::Result<u8> {
         found.skipped.len(),
         start.elapsed().as_secs_f64(),
     );
-    let s = &config.settings;
     let batch = BatchReport {
         generator: concat!("platener ", env!("CARGO_PKG_VERSION")).into(),
         settings: RunSettings {
             methods,
-            thicknesses: s.thicknesses.clone(),
-            material: s.cut.material.name(),
-            kerf: s.cut.kerf(),
-            sheet: sheet_name(s.cut.sheet),
-            joint: args.joint,
-            labels: format!("{:?}", s.cut.labels).to_lowercase(),
-            units: format!("{:?}", s.units).to_lowercase(),
-            scale: s.scale,
-            weld: args.model_args.weld.clone(),
+            chosen: chosen.to_json(),
+            kerf_mm: config.settings.cut.kerf(),
             timeout_seconds: config.timeout.map(|t| t.as_secs_f64()),
             jobs,
             max_filesize_mb: args.max_filesize,

@@ -10,7 +10,7 @@ use crate::args::HingeTestArgs;
 
 /// Runs the command.
 pub fn run(args: &HingeTestArgs) -> anyhow::Result<()> {
-    let material = args.material.material();
+    let material = args.material.chosen()?.settings.cut.material;
     let swatch = hinge_swatch(args.bend.style(material), material, args.thickness, args.angle)?;
     std::fs::write(&args.output, swatch.svg()).with_context(|| format!("cannot write {}", args.output.display()))?;
     print!("{}", render(&swatch, &args.output.display().to_string()));

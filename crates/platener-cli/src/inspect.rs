@@ -11,7 +11,7 @@ use crate::args::InspectArgs;
 
 /// Runs the command.
 pub fn run(args: &InspectArgs) -> anyhow::Result<()> {
-    let mut settings = args.model_args.settings()?;
+    let mut settings = args.settings.chosen()?.settings;
     if args.inherent_only {
         settings.plates.mode = platener::PlateMode::InherentOnly;
     }

@@ -15,6 +15,7 @@ mod inspect;
 mod progress;
 mod report;
 mod scene;
+mod setting_args;
 mod test_strip;
 mod verify;
 mod web;
@@ -42,11 +43,11 @@ fn main() -> ExitCode {
     match result {
         Ok(code) => ExitCode::from(code),
         Err(e) if e.is::<convert::UsageError>() => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", setting_args::flags(&format!("{e:#}")));
             ExitCode::from(2)
         }
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", setting_args::flags(&format!("{e:#}")));
             ExitCode::from(1)
         }
     }

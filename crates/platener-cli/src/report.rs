@@ -8,7 +8,6 @@ use platener::convert::Status;
 use platener::score::Score;
 use serde::Serialize;
 
-use crate::args::JointArg;
 use crate::inputs::Problem;
 
 /// One method on one model.
@@ -123,24 +122,12 @@ impl ModelReport {
 pub struct RunSettings {
     /// Methods run, in order.
     pub methods: Vec<&'static str>,
-    /// Sheet thicknesses, mm.
-    pub thicknesses: Vec<f64>,
-    /// Material.
-    pub material: &'static str,
-    /// Kerf in effect, mm.
-    pub kerf: f64,
-    /// Sheet size (`WxH` in mm, or `fit`).
-    pub sheet: String,
-    /// Joint type asked for (recorded; the joint steps do not take it yet).
-    pub joint: JointArg,
-    /// Labels engraved.
-    pub labels: String,
-    /// Units of the files' numbers.
-    pub units: String,
-    /// Extra scale.
-    pub scale: f64,
-    /// Weld setting (`auto` or mm).
-    pub weld: String,
+    /// Every setting, by the web API's key (`material`, `thicknesses`, `kerf`: `null` for the
+    /// material's, …), as `platener::options` writes them.
+    #[serde(flatten)]
+    pub chosen: serde_json::Map<String, serde_json::Value>,
+    /// The kerf in effect, mm (the material's unless `kerf` is set).
+    pub kerf_mm: f64,
     /// Per-model time limit, seconds (`null`: none).
     pub timeout_seconds: Option<f64>,
     /// Models converted at the same time.

@@ -6,7 +6,7 @@ use platener::scene::View;
 use platener::{Cancel, Source};
 
 use crate::args::SceneArgs;
-use crate::convert::{UsageError, part_settings};
+use crate::convert::UsageError;
 
 /// Examples shown under `platener scene --help`.
 pub const EXAMPLES: &str = "Examples:
@@ -25,11 +25,11 @@ Y-up.";
 pub fn run(args: &SceneArgs) -> anyhow::Result<()> {
     let usage = |e: anyhow::Error| anyhow::Error::new(UsageError(e));
     let view: View = args.view.parse().map_err(|e| usage(anyhow::Error::new(e)))?;
-    let settings = part_settings(&args.model_args, args.material, args.joint, &args.axis).map_err(usage)?;
+    let chosen = args.settings.chosen().map_err(usage)?;
     let _hook = PanicHook::install();
     let request = Request {
-        methods: args.method.methods(),
-        ..Request::new(Source::File(args.model.clone()), settings)
+        methods: chosen.methods,
+        ..Request::new(Source::File(args.model.clone()), chosen.settings)
     };
     let all = convert_all(request, &Cancel::default(), no_progress());
     // The best method first, then the others in order: the first that reached this view.

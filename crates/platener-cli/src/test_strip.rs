@@ -9,7 +9,7 @@ use crate::args::TestStripArgs;
 
 /// Runs the command.
 pub fn run(args: &TestStripArgs) -> anyhow::Result<()> {
-    let material = args.material.material();
+    let material = args.material.chosen()?.settings.cut.material;
     let strip = test_strip(args.thickness, material)?;
     std::fs::write(&args.output, strip.svg()).with_context(|| format!("cannot write {}", args.output.display()))?;
     print!(

@@ -17,7 +17,7 @@ pub fn run(args: &VerifyArgs) -> anyhow::Result<u8> {
             // Measured against the mesh convert judged the plan on: the model welded as the plan records.
             let settings = platener::Settings {
                 weld: model_weld(&plan),
-                ..args.model_args.settings()?
+                ..args.settings.chosen()?.settings
             };
             let (state, _) =
                 platener::inspect::run_foundation(Source::File(path.clone()), settings, &Cancel::default())?;

@@ -25,7 +25,7 @@ pub enum Error {
         problem: ModelProblem,
     },
     /// A setting is out of range (the caller's fault).
-    #[error("invalid setting {name}: {message}")]
+    #[error("`{name}`: {message}")]
     Setting {
         /// The setting.
         name: &'static str,
@@ -39,7 +39,7 @@ pub enum Error {
         step: &'static str,
     },
     /// The run took longer than the caller's time limit and was cancelled.
-    #[error("timed out after {seconds} s (--timeout); cancelled")]
+    #[error("timed out after {seconds} s (the time limit); cancelled")]
     TimedOut {
         /// The limit, seconds.
         seconds: f64,
@@ -68,7 +68,9 @@ pub enum ModelProblem {
     #[error("the model has no triangles")]
     NoTriangles,
     /// A coordinate is NaN or infinite after units and scale.
-    #[error("triangle {triangle} has a coordinate that is not a finite number after scaling; check --scale")]
+    #[error(
+        "triangle {triangle} has a coordinate that is not a finite number after scaling; check `scale` and `units`"
+    )]
     NonFinite {
         /// The triangle, 0-based.
         triangle: usize,
@@ -77,10 +79,10 @@ pub enum ModelProblem {
     #[error("no triangle with an area is left after cleanup")]
     EmptyAfterCleanup,
     /// Welding collapsed every triangle.
-    #[error("no triangle with an area is left after welding; try --weld 0")]
+    #[error("no triangle with an area is left after welding; set `weld` to 0")]
     EmptyAfterWeld,
     /// A coordinate is beyond what the 2D grid holds.
-    #[error("{0}: scale the model down (--scale) or check its units")]
+    #[error("{0}: scale the model down (`scale`) or check its `units`")]
     OffGrid(GridError),
     /// The stacked method found nothing to slice.
     #[error("the model has no triangles to slice")]
@@ -88,7 +90,7 @@ pub enum ModelProblem {
     /// Every layer of the stacked method was too small to cut.
     #[error(
         "no layer is large enough to cut ({islands} island(s) under {min_area} mm² or thinner than {min_width} mm; \
-         the stack is {height:.1} mm tall): scale the model up (--scale) or use thinner sheets"
+         the stack is {height:.1} mm tall): scale the model up (`scale`) or use thinner sheets (`thickness`)"
     )]
     NoLayer {
         /// Islands dropped.
@@ -104,7 +106,7 @@ pub enum ModelProblem {
     #[error("{0}; use the plate or stacked method")]
     Classify(crate::classify::ClassifyError),
     /// A method made no parts (its step warnings say why).
-    #[error("the {method} method made no parts to cut (the warnings say why; `platener inspect --plates` shows more)")]
+    #[error("the {method} method made no parts to cut (the warnings say why)")]
     NoParts {
         /// The method.
         method: &'static str,

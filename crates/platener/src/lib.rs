@@ -58,6 +58,7 @@ pub mod labels;
 pub mod layers;
 pub mod mesh;
 pub mod method;
+pub mod options;
 pub mod parts;
 pub mod pipeline;
 pub mod plan;

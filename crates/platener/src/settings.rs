@@ -364,6 +364,9 @@ pub const MAX_THICKNESSES: usize = 10;
 pub const SCALE_RANGE: (f64, f64) = (0.001, 1000.0);
 /// The longest sheet side, mm (10 m): beyond it nesting searches a bed no laser has.
 pub const MAX_SHEET_SIDE: f64 = 10_000.0;
+/// The largest weld distance, mm: welding merges vertices this close, and beyond a
+/// centimetre it would merge the walls of any model a laser cuts.
+pub const MAX_WELD: f64 = 10.0;
 
 impl Settings {
     /// Checks ranges; the error names the setting as the web page and `--help` show it, and
@@ -376,9 +379,9 @@ impl Settings {
             return bad("scale", format!("{} must be a number from {low} to {high}", self.scale));
         }
         if let Weld::Distance(d) = self.weld
-            && !(d.is_finite() && d >= 0.0)
+            && !(d.is_finite() && (0.0..=MAX_WELD).contains(&d))
         {
-            return bad("weld", format!("{d} is not a distance ≥ 0 mm"));
+            return bad("weld", format!("{d} mm must be from 0 to {MAX_WELD} mm"));
         }
         self.validate_thicknesses()?;
         if !(self.coplanar_angle_deg.is_finite() && (0.0..45.0).contains(&self.coplanar_angle_deg)) {
@@ -416,13 +419,14 @@ impl Settings {
             return bad("minimum plate area", format!("{} is not an area ≥ 0 mm²", p.min_area));
         }
         self.stacked.validate()?;
+        self.joints.validate()?;
         self.validate_sheet()
     }
 
     /// The sheet thicknesses: one to [`MAX_THICKNESSES`], each from [`MIN_THICKNESS`] to
     /// [`MAX_THICKNESS`] mm.
     fn validate_thicknesses(&self) -> Result<()> {
-        let name = "sheet thickness";
+        let name = "thickness";
         let range = format!("each must be from {MIN_THICKNESS} to {MAX_THICKNESS} mm");
         if self.thicknesses.is_empty() || self.thicknesses.len() > MAX_THICKNESSES {
             return Err(Error::Setting {
@@ -450,7 +454,7 @@ impl Settings {
             && !(width <= MAX_SHEET_SIDE && height <= MAX_SHEET_SIDE)
         {
             return Err(Error::Setting {
-                name: "sheet size",
+                name: "sheet",
                 message: format!("{width} × {height} mm: each side must be at most {MAX_SHEET_SIDE} mm"),
             });
         }
@@ -529,18 +533,18 @@ mod tests {
     #[test]
     fn out_of_range_settings_are_refused_by_name() {
         assert_eq!(refused(|_| {}), None);
-        assert_eq!(refused(|s| s.thicknesses = vec![0.05]), Some("sheet thickness"));
-        assert_eq!(refused(|s| s.thicknesses = vec![3.0, 51.0]), Some("sheet thickness"));
-        assert_eq!(refused(|s| s.thicknesses = vec![f64::NAN]), Some("sheet thickness"));
-        assert_eq!(refused(|s| s.thicknesses = vec![3.0; 11]), Some("sheet thickness"));
-        assert_eq!(refused(|s| s.thicknesses = Vec::new()), Some("sheet thickness"));
+        assert_eq!(refused(|s| s.thicknesses = vec![0.05]), Some("thickness"));
+        assert_eq!(refused(|s| s.thicknesses = vec![3.0, 51.0]), Some("thickness"));
+        assert_eq!(refused(|s| s.thicknesses = vec![f64::NAN]), Some("thickness"));
+        assert_eq!(refused(|s| s.thicknesses = vec![3.0; 11]), Some("thickness"));
+        assert_eq!(refused(|s| s.thicknesses = Vec::new()), Some("thickness"));
         assert_eq!(refused(|s| s.thicknesses = vec![0.1, 50.0]), None);
         assert_eq!(refused(|s| s.scale = 0.0001), Some("scale"));
         assert_eq!(refused(|s| s.scale = 1001.0), Some("scale"));
         assert_eq!(refused(|s| s.scale = 0.001), None);
         assert_eq!(refused(|s| s.cut.kerf = Some(2.5)), Some("kerf"));
         let sheet = |width, height| crate::plan::SheetSize::Fixed { width, height };
-        assert_eq!(refused(|s| s.cut.sheet = sheet(20_000.0, 400.0)), Some("sheet size"));
+        assert_eq!(refused(|s| s.cut.sheet = sheet(20_000.0, 400.0)), Some("sheet"));
         assert_eq!(refused(|s| s.cut.sheet = sheet(600.0, f64::INFINITY)), Some("sheet"));
         assert_eq!(refused(|s| s.cut.sheet = sheet(10_000.0, 10_000.0)), None);
     }
@@ -553,7 +557,7 @@ mod tests {
         };
         let message = s.validate().expect_err("refused").to_string();
         assert!(
-            message.contains("sheet thickness") && message.contains("0.1 to 50 mm"),
+            message.contains("`thickness`") && message.contains("0.1 to 50 mm"),
             "{message}"
         );
     }

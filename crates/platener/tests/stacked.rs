@@ -443,7 +443,7 @@ fn organic_corpus_models_convert() {
             }
             Err(e) => {
                 eprintln!("{name} as given: {e}");
-                assert!(e.to_string().contains("--scale"), "{name}: {e}");
+                assert!(e.to_string().contains("`scale`"), "{name}: {e}");
             }
         }
         // At 100 mm across, as a user would convert it with --scale: converts, and every pair

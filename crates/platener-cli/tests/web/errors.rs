@@ -126,16 +126,16 @@ fn not_found_and_bad_requests(server: &Server) {
     // The page's custom thickness says min="0.1"; a form may send less, and 0.05 mm hung a
     // conversion (issue 29): refused before the job is stored, naming the page's field.
     for (field, value, named) in [
-        ("thickness", "0.05", "sheet thickness"),
-        ("thickness", "51", "sheet thickness"),
-        ("scale", "5000", "scale"),
-        ("kerf", "3", "kerf"),
-        ("sheet", "60000x400", "sheet size"),
+        ("thickness", "0.05", "Sheet thickness"),
+        ("thickness", "51", "Sheet thickness"),
+        ("scale", "5000", "Scale"),
+        ("kerf", "3", "Kerf"),
+        ("sheet", "60000x400", "Sheet size"),
     ] {
         let r = server.upload("box.stl", &box_stl, &[(field, value)]);
         r.assert_error(422, "invalid_setting");
         let message = r.json()["error"]["message"].as_str().unwrap_or_default().to_string();
-        assert!(message.contains(named), "{field}={value}: {message}");
+        assert!(message.starts_with(named), "{field}={value}: {message}");
     }
     server
         .request(

@@ -58,7 +58,6 @@ async fn read_form(mut form: Multipart, app: &App) -> ApiResult<Upload> {
         name: None,
         settings: JobSettings::default(),
     };
-    let mut thicknesses_seen = false;
     let body_error = |e: axum::extract::multipart::MultipartError| {
         if e.status() == StatusCode::PAYLOAD_TOO_LARGE {
             too_large(app)
@@ -84,7 +83,7 @@ async fn read_form(mut form: Multipart, app: &App) -> ApiResult<Upload> {
                 let value = field.text().await.map_err(body_error)?;
                 upload
                     .settings
-                    .set_field(other, &value, &mut thicknesses_seen)
+                    .set_field(other, &value)
                     .map_err(ApiError::bad_request)?;
             }
         }

@@ -19,6 +19,7 @@ mod inspect;
 mod limits;
 mod misc;
 mod page;
+mod settings;
 mod view;
 mod workers;
 
@@ -232,6 +233,7 @@ fn router(app: Arc<App>) -> Router {
         .route("/api/test-strip.svg", get(misc::test_strip_svg))
         .route("/api/test-strip.json", get(misc::test_strip_json))
         .route("/api/health", get(health::health))
+        .route("/api/settings", get(settings::schema))
         .route("/metrics", get(misc::metrics))
         .layer(TimeoutLayer::with_status_code(
             axum::http::StatusCode::REQUEST_TIMEOUT,

@@ -164,7 +164,7 @@ pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Re
         cx.warn(
             WarningKind::Joints,
             format!(
-                "a {} bend does not work in {} mm {}: no plates are bent (try another --bend)",
+                "a {} bend does not work in {} mm {}: no plates are bent (try another `bend`)",
                 style.name(),
                 plate.thickness,
                 material.name()
@@ -193,7 +193,7 @@ pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Re
         cx.warn(
             WarningKind::Joints,
             format!(
-                "{merged} plates are merged into {} bent part(s) ({}); `--bend none` keeps them as jointed plates",
+                "{merged} plates are merged into {} bent part(s) ({}); `bend` none keeps them as jointed plates",
                 bends.parts.len(),
                 bends.style.map_or("", BendStyle::name)
             ),

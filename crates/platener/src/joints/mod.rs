@@ -102,6 +102,26 @@ impl Default for JointSettings {
     }
 }
 
+impl JointSettings {
+    /// Checks ranges; the error names the setting and what is allowed.
+    pub fn validate(&self) -> crate::Result<()> {
+        let bad = |name, message: String| Err(crate::Error::Setting { name, message });
+        if !(self.finger_factor.is_finite() && (0.5..=20.0).contains(&self.finger_factor)) {
+            return bad(
+                "finger width",
+                format!("{} sheet thicknesses must be from 0.5 to 20", self.finger_factor),
+            );
+        }
+        if !(self.min_angle_deg.is_finite() && (0.0..90.0).contains(&self.min_angle_deg)) {
+            return bad(
+                "least joint angle",
+                format!("{}° must be from 0° to under 90°", self.min_angle_deg),
+            );
+        }
+        Ok(())
+    }
+}
+
 /// A connection between two plates (an edge of the plate graph).
 #[derive(Debug, Clone, Serialize)]
 pub struct Connection {

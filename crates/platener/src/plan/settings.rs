@@ -161,8 +161,9 @@ impl Default for CutSettings {
     }
 }
 
-/// Kerfs from this (mm) on are refused: no laser burns a 2 mm line.
-pub const MAX_KERF: f64 = 2.0;
+/// Kerfs beyond this (mm) are refused: a CO₂ laser's kerf is 0.1–0.5 mm, and the nesting's
+/// spacing between parts (2 mm) must exceed the kerf.
+pub const MAX_KERF: f64 = 1.0;
 
 impl CutSettings {
     /// Why an outline with the points `outline`, grown by `grow` mm on every side (less when
@@ -201,7 +202,7 @@ impl CutSettings {
         };
         format!(
             "{what} is {a:.1} × {b:.1} mm ({measured}) and does not fit a {width:.0} × {height:.0} mm sheet \
-             within its {} mm margins: use --sheet fit, a larger --sheet, or scale the model down (--scale)",
+             within its {} mm margins: set `sheet` to fit or a larger size, or scale the model down (`scale`)",
             self.margin
         )
     }
@@ -215,8 +216,8 @@ impl CutSettings {
     pub fn validate(&self) -> Result<(), PlanError> {
         let bad = |name, message: String| Err(PlanError::Setting { name, message });
         let kerf = self.kerf();
-        if !(kerf.is_finite() && (0.0..MAX_KERF).contains(&kerf)) {
-            return bad("kerf", format!("{kerf} mm must be in [0, {MAX_KERF})"));
+        if !(kerf.is_finite() && (0.0..=MAX_KERF).contains(&kerf)) {
+            return bad("kerf", format!("{kerf} mm must be from 0 to {MAX_KERF} mm"));
         }
         if !(self.spacing.is_finite() && self.spacing > kerf) {
             return bad(

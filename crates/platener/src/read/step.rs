@@ -146,7 +146,7 @@ fn warn_units(extent: f64, thinnest: f64, cx: &mut StepContext<'_>) {
             WarningKind::Units,
             format!(
                 "the model is only {extent:.4} mm across ({:.1} sheets of {thinnest} mm): if its numbers are not mm, \
-                 use --units cm|in or --scale F",
+                 set `units` to cm or in, or `scale` it up",
                 extent / thinnest
             ),
         );
@@ -154,7 +154,7 @@ fn warn_units(extent: f64, thinnest: f64, cx: &mut StepContext<'_>) {
         cx.warn(
             WarningKind::Units,
             format!(
-                "the model is {:.1} m across: if its unit is not mm, use --scale F (e.g. 0.001 for µm)",
+                "the model is {:.1} m across: if its unit is not mm, set `units` or `scale` it down (e.g. 0.001 for µm)",
                 extent / 1000.0
             ),
         );

@@ -58,7 +58,7 @@ pub fn run(
     cx: &mut StepContext<'_>,
 ) -> Result<(Relief, Option<PlanInput>)> {
     if settings.features != Features::Engrave {
-        let why = "textures are engraved with --features engrave".to_string();
+        let why = "textures are engraved with `features` engrave".to_string();
         return Ok((
             Relief {
                 textures: Vec::new(),

@@ -43,7 +43,7 @@ pub fn bent(plates_snapshot: &Plates, bends: Option<&Bends>) -> Result<Scene, Sc
     }
     let note = match bends {
         None => "bent parts were not computed (the bends step did not run)".to_string(),
-        Some(b) if b.style.is_none() => "bending is off (--bend none): every plate is its own part".to_string(),
+        Some(b) if b.style.is_none() => "bending is off (`bend` none): every plate is its own part".to_string(),
         Some(b) => format!(
             "{} bent part(s) from {} plates; each bent part in one colour",
             b.parts.len(),

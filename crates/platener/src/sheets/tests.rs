@@ -73,7 +73,7 @@ fn an_oversized_part_is_an_error_naming_it_its_size_and_what_to_do() {
     // 700 × 100 grown by half the kerf on each side and the spacing.
     assert!(message.starts_with("part 1 is 70"), "{message}");
     assert!(
-        message.contains("600 × 400 mm") && message.contains("--sheet fit"),
+        message.contains("600 × 400 mm") && message.contains("`sheet` to fit"),
         "{message}"
     );
     // With --sheet fit the same parts nest on one sheet wide enough for the long part.

@@ -166,7 +166,7 @@ pub fn check(plan: &Plan, analysis: &Analysis, min_coverage: f64) -> Verificatio
             parts: Vec::new(),
             message: format!(
                 "the parts reproduce only {:.1} % of the model's surface (within {:.1} mm of a part); \
-                 at least {:.0} % is required (--min-coverage)",
+                 at least {:.0} % is required (the minimum coverage)",
                 100.0 * covered,
                 analysis.cover_distance,
                 100.0 * min_coverage
@@ -326,7 +326,7 @@ pub fn source_mismatch(plan: &Plan, model: &crate::read::Model) -> Option<String
         let size = |d: glam::DVec3| format!("{:.1} × {:.1} × {:.1} mm", d.x, d.y, d.z);
         format!(
             "the model is {} but the plan was made from one of {} (units {}, scale {}): \
-             is it the same model, read with the same --units and --scale?",
+             is it the same model, read with the same `units` and `scale`?",
             size(model.bounds.size()),
             size(hi - lo),
             format!("{:?}", plan.source.units).to_lowercase(),

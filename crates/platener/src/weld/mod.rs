@@ -252,7 +252,7 @@ pub fn run(model: &Model, cleaned: &Cleaned, settings: &Settings, cx: &mut StepC
         cx.warn(
             WarningKind::WeldReduced,
             format!(
-                "welding at {first:.3} mm would close holes or fuse parts; welded at {:.3} mm instead (set --weld to choose)",
+                "welding at {first:.3} mm would close holes or fuse parts; welded at {:.3} mm instead (set `weld` to choose)",
                 welded.distance
             ),
         );
@@ -261,7 +261,7 @@ pub fn run(model: &Model, cleaned: &Cleaned, settings: &Settings, cx: &mut StepC
         cx.warn(
             WarningKind::WeldFallback,
             format!(
-                "welding at {:.3} mm would remove every triangle; the unwelded mesh is used (try --weld 0)",
+                "welding at {:.3} mm would remove every triangle; the unwelded mesh is used (try `weld` 0)",
                 welded.distance
             ),
         );
@@ -315,7 +315,7 @@ fn distance_for_walls(settings: &Settings, asked: f64, wall: Option<f64>, cx: &m
             cx.warn(
                 WarningKind::WeldThinWall,
                 format!(
-                    "--weld {d:.3} mm reaches the thinnest wall of the model ({wall:.3} mm): that wall may be welded away (the automatic weld would use at most {cap:.3} mm)"
+                    "`weld` {d:.3} mm reaches the thinnest wall of the model ({wall:.3} mm): that wall may be welded away (the automatic weld would use at most {cap:.3} mm)"
                 ),
             );
             asked

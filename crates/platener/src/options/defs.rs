@@ -1,0 +1,662 @@
+//! The table of settings: one entry per setting, in the order forms and `--help` show them.
+
+use serde_json::{Value, json};
+
+use super::{Choice, Chosen, Def, Group, Kind};
+use crate::joints::JointStyle;
+use crate::method::MethodKind;
+use crate::plan::{BendStyle, LabelMode, MAX_KERF, Material, SheetSize};
+use crate::settings::{
+    Bending, Features, MAX_SHEET_SIDE, MAX_THICKNESS, MAX_THICKNESSES, MAX_WELD, MIN_THICKNESS, PlateMode, SCALE_RANGE,
+    StackAxis, Units, Weld,
+};
+
+type SetResult = Result<(), String>;
+
+/// Every setting, in the order a form shows them within their groups.
+pub static DEFS: &[Def] = &[
+    Def {
+        name: "material",
+        key: "material",
+        short: Some('m'),
+        label: "Material",
+        group: Group::Material,
+        kind: Kind::Choice { choices: MATERIALS },
+        help: "The sheet material; it sets the default kerf, joint and bend style.",
+        doc: "Wood (plywood, MDF) and acrylic get straight finger joints, cardboard and paper snapping \
+              JimJoints; bends are living hinges in wood, perforations in cardboard, scores in paper and \
+              heat lines in acrylic.",
+        set: set_material,
+        get: |c| json!(c.settings.cut.material.name()),
+    },
+    Def {
+        name: "thickness",
+        key: "thicknesses",
+        short: Some('t'),
+        label: "Sheet thickness",
+        group: Group::Material,
+        kind: Kind::Numbers {
+            unit: "mm",
+            min: MIN_THICKNESS,
+            max: MAX_THICKNESS,
+            max_count: MAX_THICKNESSES,
+            common: &[1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0],
+        },
+        help: "The thicknesses of the sheets you have, mm; give several to let each plate take the one that fits.",
+        doc: "A plate of the model becomes a part of the sheet closest to its wall thickness; the stacked \
+              method's layers take the thinnest.",
+        set: set_thicknesses,
+        get: |c| json!(c.settings.thicknesses),
+    },
+    Def {
+        name: "kerf",
+        key: "kerf",
+        short: None,
+        label: "Kerf",
+        group: Group::Material,
+        kind: Kind::Number {
+            unit: "mm",
+            min: 0.0,
+            max: MAX_KERF,
+            auto: Some("the material's: wood 0.2, acrylic 0.15, cardboard 0.3, paper 0.1 mm"),
+        },
+        help: "The width the laser burns away, mm; measure yours with the kerf test strip.",
+        doc: "Every outline is offset by half the kerf so parts come out at their true size and joints fit.",
+        set: |c, v| {
+            c.settings.cut.kerf = auto_number(v)?;
+            Ok(())
+        },
+        get: |c| json!(c.settings.cut.kerf),
+    },
+    Def {
+        name: "units",
+        key: "units",
+        short: None,
+        label: "Units",
+        group: Group::Model,
+        kind: Kind::Choice { choices: UNITS },
+        help: "The unit of the model file's numbers (STL files do not say).",
+        doc: "Most 3D-print models are in millimetres; models from CAD tools in inches or centimetres come \
+              out 25.4 or 10 times too small without this.",
+        set: set_units,
+        get: |c| json!(units_name(c.settings.units)),
+    },
+    Def {
+        name: "scale",
+        key: "scale",
+        short: None,
+        label: "Scale",
+        group: Group::Model,
+        kind: Kind::Number {
+            unit: "×",
+            min: SCALE_RANGE.0,
+            max: SCALE_RANGE.1,
+            auto: None,
+        },
+        help: "A factor the model is scaled by after its unit.",
+        doc: "Scale a model up when its walls are thinner than your sheets or its parts too small to cut, \
+              down when it does not fit your sheets.",
+        set: |c, v| {
+            c.settings.scale = number(one(v)?)?;
+            Ok(())
+        },
+        get: |c| json!(c.settings.scale),
+    },
+    Def {
+        name: "sheet",
+        key: "sheet",
+        short: None,
+        label: "Sheet size",
+        group: Group::Sheets,
+        kind: Kind::Sheet {
+            presets: SHEETS,
+            max: MAX_SHEET_SIDE,
+        },
+        help: "The sheet size, width × height in mm (e.g. 600x400), or fit for one sheet per thickness just large enough.",
+        doc: "Parts are nested on as many sheets of this size as they need; a part larger than the sheet \
+              within its margins is refused.",
+        set: |c, v| {
+            c.settings.cut.sheet = one(v)?
+                .parse::<SheetSize>()
+                .map_err(|_| "must be width x height in mm (e.g. 600x400) or fit".to_string())?;
+            Ok(())
+        },
+        get: |c| json!(sheet_name(c.settings.cut.sheet)),
+    },
+    Def {
+        name: "joint",
+        key: "joint",
+        short: None,
+        label: "Joint",
+        group: Group::Joints,
+        kind: Kind::Choice { choices: JOINTS },
+        help: "The joint between plates; auto takes finger joints for wood and acrylic, JimJoints for cardboard and paper.",
+        doc: "Finger joints are exact negatives of each other; JimJoints widen towards the tip and snap \
+              behind the other part; dovetails are wedged by small keys cut from the same sheet.",
+        set: set_joint,
+        get: |c| json!(c.settings.joints.style.map_or("auto", joint_name)),
+    },
+    Def {
+        name: "labels",
+        key: "labels",
+        short: None,
+        label: "Labels",
+        group: Group::Joints,
+        kind: Kind::Choice { choices: LABELS },
+        help: "What is engraved on the parts: part and edge numbers, part numbers, or nothing.",
+        doc: "Edge numbers say which edges join (the same number on both); engraving costs laser time.",
+        set: set_labels,
+        get: |c| json!(labels_name(c.settings.cut.labels)),
+    },
+    Def {
+        name: "bend",
+        key: "bend",
+        short: None,
+        label: "Bends",
+        group: Group::Joints,
+        kind: Kind::Choice { choices: BENDS },
+        help: "How plates meeting at a shallow edge become one bent part; auto takes the material's style.",
+        doc: "Living hinges (rows of slits) flex wood, perforations fold cardboard, scores fold paper and \
+              heat lines mark where acrylic is bent over a heater; none keeps every plate its own part.",
+        set: |c, v| {
+            c.settings.bending = one(v)?.parse::<Bending>().map_err(|_| choices_message(BENDS))?;
+            Ok(())
+        },
+        get: |c| json!(bending_name(c.settings.bending)),
+    },
+    Def {
+        name: "features",
+        key: "features",
+        short: None,
+        label: "Features on plates",
+        group: Group::Joints,
+        kind: Kind::Choice { choices: FEATURES },
+        help: "Text, pockets and bosses on one face of a plate: engraved, cut through, or left out.",
+        doc: "Features that do not go through a plate cannot be cut; engraving draws them as score marks \
+              on the face where they are.",
+        set: |c, v| {
+            c.settings.features = one(v)?.parse::<Features>().map_err(|_| choices_message(FEATURES))?;
+            Ok(())
+        },
+        get: |c| json!(features_name(c.settings.features)),
+    },
+    Def {
+        name: "method",
+        key: "method",
+        short: None,
+        label: "Method",
+        group: Group::Method,
+        kind: Kind::Choice { choices: METHODS },
+        help: "How the model is made from sheets; all tries every method side by side and names the best.",
+        doc: "Plates suit boxes and enclosures, stacked layers suit organic shapes, the classifier suits \
+              textured or noisy models of plates.",
+        set: set_method,
+        get: |c| json!(method_name(&c.methods)),
+    },
+    Def {
+        name: "axis",
+        key: "axis",
+        short: None,
+        label: "Stacking axis",
+        group: Group::Method,
+        kind: Kind::Choice { choices: AXES },
+        help: "The stacked method's slicing direction; auto lays the model's largest flat face flat.",
+        doc: "Layers stacked along z are the model as it would be 3D-printed.",
+        set: |c, v| {
+            c.settings.stacked.axis = one(v)?.parse::<StackAxis>().map_err(|_| choices_message(AXES))?;
+            Ok(())
+        },
+        get: |c| json!(axis_name(c.settings.stacked.axis)),
+    },
+    Def {
+        name: "weld",
+        key: "weld",
+        short: None,
+        label: "Weld distance",
+        group: Group::Advanced,
+        kind: Kind::Number {
+            unit: "mm",
+            min: 0.0,
+            max: MAX_WELD,
+            auto: Some("from the model's size, at most 2 mm"),
+        },
+        help: "Vertices closer than this are merged before plates are found; 0 merges exact duplicates only.",
+        doc: "Welding removes the bevels and tiny steps editors leave, so faces that should be one plane \
+              are; a distance near a wall's thickness would fuse the wall's faces.",
+        set: set_weld,
+        get: |c| match c.settings.weld {
+            Weld::Auto => Value::Null,
+            Weld::Off => json!(0.0),
+            Weld::Distance(d) => json!(d),
+        },
+    },
+    Def {
+        name: "plates",
+        key: "plates",
+        short: None,
+        label: "Plates",
+        group: Group::Advanced,
+        kind: Kind::Choice { choices: PLATES },
+        help: "Which plates the plate method looks for: pairs of faces a sheet apart, and leftover faces made into plates.",
+        doc: "Inherent plates only keeps a solid block from becoming a hull of extruded plates.",
+        set: |c, v| {
+            c.settings.plates.mode = match one(v)? {
+                "all" => PlateMode::InherentAndExtruded,
+                "inherent" => PlateMode::InherentOnly,
+                _ => return Err(choices_message(PLATES)),
+            };
+            Ok(())
+        },
+        get: |c| {
+            json!(match c.settings.plates.mode {
+                PlateMode::InherentAndExtruded => "all",
+                PlateMode::InherentOnly => "inherent",
+            })
+        },
+    },
+];
+
+const MATERIALS: &[Choice] = &[
+    Choice {
+        value: "wood",
+        label: "Wood",
+        help: "Plywood, MDF, solid wood (kerf 0.2 mm).",
+    },
+    Choice {
+        value: "acrylic",
+        label: "Acrylic",
+        help: "Cast or extruded acrylic (kerf 0.15 mm).",
+    },
+    Choice {
+        value: "cardboard",
+        label: "Cardboard",
+        help: "Corrugated or grey cardboard (kerf 0.3 mm).",
+    },
+    Choice {
+        value: "paper",
+        label: "Paper",
+        help: "Paper and thin card (kerf 0.1 mm).",
+    },
+];
+
+const UNITS: &[Choice] = &[
+    Choice {
+        value: "mm",
+        label: "Millimetres",
+        help: "The file's numbers are millimetres (most 3D-print models).",
+    },
+    Choice {
+        value: "cm",
+        label: "Centimetres",
+        help: "The file's numbers are centimetres.",
+    },
+    Choice {
+        value: "in",
+        label: "Inches",
+        help: "The file's numbers are inches.",
+    },
+];
+
+const SHEETS: &[Choice] = &[
+    Choice {
+        value: "600x400",
+        label: "600 × 400 mm",
+        help: "The bed of common 60 W desktop CO₂ lasers.",
+    },
+    Choice {
+        value: "495x279",
+        label: "Glowforge 495 × 279 mm",
+        help: "The Glowforge's cutting area.",
+    },
+    Choice {
+        value: "600x308",
+        label: "xTool P2 600 × 308 mm",
+        help: "The xTool P2's cutting area.",
+    },
+    Choice {
+        value: "300x200",
+        label: "K40 300 × 200 mm",
+        help: "The K40's cutting area.",
+    },
+    Choice {
+        value: "2440x1220",
+        label: "Board 2440 × 1220 mm",
+        help: "A full 8 × 4 ft board, for a large-format laser.",
+    },
+    Choice {
+        value: "fit",
+        label: "Fit",
+        help: "One sheet per thickness, just large enough for its parts.",
+    },
+];
+
+const JOINTS: &[Choice] = &[
+    Choice {
+        value: "auto",
+        label: "Auto",
+        help: "By material: finger joints for wood and acrylic, JimJoints for cardboard and paper.",
+    },
+    Choice {
+        value: "finger",
+        label: "Finger",
+        help: "Straight fingers, exact negatives of each other.",
+    },
+    Choice {
+        value: "jim",
+        label: "JimJoint",
+        help: "Fingers that widen towards the tip and snap behind the other part.",
+    },
+    Choice {
+        value: "dovetail",
+        label: "Dovetail",
+        help: "Dovetails wedged tight by small keys.",
+    },
+];
+
+const LABELS: &[Choice] = &[
+    Choice {
+        value: "edges",
+        label: "Parts and edges",
+        help: "Part numbers, and the connection number next to every jointed edge.",
+    },
+    Choice {
+        value: "parts",
+        label: "Parts only",
+        help: "Part numbers only.",
+    },
+    Choice {
+        value: "none",
+        label: "None",
+        help: "Nothing engraved (saves laser time).",
+    },
+];
+
+const BENDS: &[Choice] = &[
+    Choice {
+        value: "auto",
+        label: "Auto",
+        help: "The material's style: living hinge, perforation, score or heat line.",
+    },
+    Choice {
+        value: "none",
+        label: "None",
+        help: "No bent parts: joints everywhere.",
+    },
+    Choice {
+        value: "living-hinge",
+        label: "Living hinge",
+        help: "Rows of slits that let wood flex.",
+    },
+    Choice {
+        value: "perforation",
+        label: "Perforation",
+        help: "Dashed cuts to fold cardboard along.",
+    },
+    Choice {
+        value: "score",
+        label: "Score",
+        help: "An engraved line to fold paper along.",
+    },
+    Choice {
+        value: "heat",
+        label: "Heat line",
+        help: "An engraved line to bend acrylic along over a heater.",
+    },
+];
+
+const FEATURES: &[Choice] = &[
+    Choice {
+        value: "engrave",
+        label: "Engrave",
+        help: "Scored on the face where they are.",
+    },
+    Choice {
+        value: "cut",
+        label: "Cut through",
+        help: "Every hole of a plate's faces is cut through.",
+    },
+    Choice {
+        value: "ignore",
+        label: "Ignore",
+        help: "Left out: plain plates.",
+    },
+];
+
+const METHODS: &[Choice] = &[
+    Choice {
+        value: "all",
+        label: "Best of all",
+        help: "Every method side by side; the best by score is named.",
+    },
+    Choice {
+        value: "plate",
+        label: "Plates",
+        help: "Flat plates joined by joints.",
+    },
+    Choice {
+        value: "stacked",
+        label: "Stacked layers",
+        help: "Layers joined by shafts.",
+    },
+    Choice {
+        value: "classifier",
+        label: "Classifier",
+        help: "Primitives found in textured or noisy models, made into plates and bent parts.",
+    },
+];
+
+const AXES: &[Choice] = &[
+    Choice {
+        value: "auto",
+        label: "Auto",
+        help: "The model's largest flat face is laid flat.",
+    },
+    Choice {
+        value: "x",
+        label: "x",
+        help: "Layers stacked along the model's x axis.",
+    },
+    Choice {
+        value: "y",
+        label: "y",
+        help: "Layers stacked along the model's y axis.",
+    },
+    Choice {
+        value: "z",
+        label: "z",
+        help: "Layers stacked along z, as the model would be printed.",
+    },
+];
+
+const PLATES: &[Choice] = &[
+    Choice {
+        value: "all",
+        label: "All",
+        help: "Inherent plates, then leftover faces extruded into plates.",
+    },
+    Choice {
+        value: "inherent",
+        label: "Inherent only",
+        help: "Only pairs of faces a sheet thickness apart.",
+    },
+];
+
+/// The one value of a single-valued setting.
+fn one<'a>(values: &[&'a str]) -> Result<&'a str, String> {
+    match values {
+        [v] => Ok(v.trim()),
+        [] => Err("needs a value".into()),
+        _ => Err("takes one value".into()),
+    }
+}
+
+/// A number; ranges are [`crate::Settings::validate`]'s, which names them.
+fn number(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err("takes a number".into()),
+    }
+}
+
+/// "must be one of a, b, c".
+fn choices_message(choices: &[Choice]) -> String {
+    let values: Vec<&str> = choices.iter().map(|c| c.value).collect();
+    format!("must be one of {}", values.join(", "))
+}
+
+/// The choice's value that `text` names, ignoring case and spaces around it.
+fn pick<'a>(text: &str, choices: &'a [Choice]) -> Result<&'a str, String> {
+    let text = text.trim();
+    choices
+        .iter()
+        .find(|c| c.value.eq_ignore_ascii_case(text))
+        .map(|c| c.value)
+        .ok_or_else(|| choices_message(choices))
+}
+
+/// `auto` (or an empty field) leaves a number to platener.
+fn is_auto(text: &str) -> bool {
+    let t = text.trim();
+    t.is_empty() || t.eq_ignore_ascii_case("auto")
+}
+
+/// `None` for `auto`, else the number (its range is checked by `validate`).
+fn auto_number(values: &[&str]) -> Result<Option<f64>, String> {
+    let text = one(values)?;
+    if is_auto(text) {
+        Ok(None)
+    } else {
+        number(text).map(Some)
+    }
+}
+
+fn set_material(c: &mut Chosen, v: &[&str]) -> SetResult {
+    c.settings.cut.material = match pick(one(v)?, MATERIALS)? {
+        "acrylic" => Material::Acrylic,
+        "cardboard" => Material::Cardboard,
+        "paper" => Material::Paper,
+        _ => Material::Wood,
+    };
+    Ok(())
+}
+
+fn set_thicknesses(c: &mut Chosen, v: &[&str]) -> SetResult {
+    if v.is_empty() {
+        return Err("needs at least one thickness".into());
+    }
+    c.settings.thicknesses = v.iter().map(|t| number(t)).collect::<Result<_, _>>()?;
+    Ok(())
+}
+
+fn set_units(c: &mut Chosen, v: &[&str]) -> SetResult {
+    c.settings.units = match pick(one(v)?, UNITS)? {
+        "cm" => Units::Cm,
+        "in" => Units::In,
+        _ => Units::Mm,
+    };
+    Ok(())
+}
+
+fn set_joint(c: &mut Chosen, v: &[&str]) -> SetResult {
+    c.settings.joints.style = match pick(one(v)?, JOINTS)? {
+        "finger" => Some(JointStyle::Finger),
+        "jim" => Some(JointStyle::Jim),
+        "dovetail" => Some(JointStyle::Dovetail),
+        _ => None,
+    };
+    Ok(())
+}
+
+fn set_labels(c: &mut Chosen, v: &[&str]) -> SetResult {
+    c.settings.cut.labels = match pick(one(v)?, LABELS)? {
+        "parts" => LabelMode::Parts,
+        "none" => LabelMode::None,
+        _ => LabelMode::Edges,
+    };
+    Ok(())
+}
+
+fn set_method(c: &mut Chosen, v: &[&str]) -> SetResult {
+    c.methods = match pick(one(v)?, METHODS)? {
+        "all" => MethodKind::ALL.to_vec(),
+        name => vec![name.parse::<MethodKind>().map_err(|_| choices_message(METHODS))?],
+    };
+    Ok(())
+}
+
+fn set_weld(c: &mut Chosen, v: &[&str]) -> SetResult {
+    c.settings.weld = match auto_number(v)? {
+        None => Weld::Auto,
+        Some(0.0) => Weld::Off,
+        Some(d) => Weld::Distance(d),
+    };
+    Ok(())
+}
+
+fn units_name(u: Units) -> &'static str {
+    match u {
+        Units::Mm => "mm",
+        Units::Cm => "cm",
+        Units::In => "in",
+    }
+}
+
+/// A sheet size as the `sheet` setting writes it.
+pub fn sheet_name(sheet: SheetSize) -> String {
+    match sheet {
+        SheetSize::Fixed { width, height } => format!("{width}x{height}"),
+        SheetSize::Fit => "fit".into(),
+    }
+}
+
+fn joint_name(style: JointStyle) -> &'static str {
+    match style {
+        JointStyle::Finger => "finger",
+        JointStyle::Jim => "jim",
+        JointStyle::Dovetail => "dovetail",
+    }
+}
+
+fn labels_name(labels: LabelMode) -> &'static str {
+    match labels {
+        LabelMode::Edges => "edges",
+        LabelMode::Parts => "parts",
+        LabelMode::None => "none",
+    }
+}
+
+fn bending_name(bending: Bending) -> &'static str {
+    match bending {
+        Bending::Auto => "auto",
+        Bending::None => "none",
+        Bending::Style(style) => bend_style_name(style),
+    }
+}
+
+fn bend_style_name(style: BendStyle) -> &'static str {
+    style.name()
+}
+
+fn features_name(features: Features) -> &'static str {
+    match features {
+        Features::Engrave => "engrave",
+        Features::Cut => "cut",
+        Features::Ignore => "ignore",
+    }
+}
+
+fn method_name(methods: &[MethodKind]) -> &'static str {
+    match methods {
+        [one] => one.name(),
+        _ => "all",
+    }
+}
+
+fn axis_name(axis: StackAxis) -> &'static str {
+    match axis {
+        StackAxis::Auto => "auto",
+        StackAxis::X => "x",
+        StackAxis::Y => "y",
+        StackAxis::Z => "z",
+    }
+}
