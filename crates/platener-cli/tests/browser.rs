@@ -571,7 +571,7 @@ fn drop_keyboard_download_dialog_test_strip_and_zip() {
     page.screenshot("10-dropped-tray", None);
 
     // The main controls are reachable by Tab, in a sensible order.
-    let order = tab_order(&page, 40);
+    let order = tab_order(&page, 60);
     let wanted = ["upload", "thickness", "material", "method"]
         .into_iter()
         .map(String::from)
@@ -1035,4 +1035,150 @@ fn debug_view_isolated_step_and_converting() {
     );
     page.screenshot("45-debug-converting-joints", None);
     page.assert_no_problems("debug view");
+}
+
+/// The form is built from `GET /api/settings`, and the CLI's `--help` comes from the same
+/// definitions: every setting is a control with the same choices and default in all three.
+/// A model exported in metres fails with its size and a button that applies the scale that
+/// fixes it; three quick setting changes make one re-cut.
+#[test]
+fn settings_form_cli_and_api_agree_and_a_metre_model_is_fixed_by_its_advice() {
+    let Some(rig) = Rig::start(&["--workers", "1", "--no-examples"]) else {
+        return;
+    };
+    let page = rig.open("/");
+    let schema = page.eval("fetch('/api/settings').then(r => r.json())");
+    let help = std::process::Command::new(env!("CARGO_BIN_EXE_platener"))
+        .args(["convert", "--help"])
+        .output()
+        .expect("platener convert --help");
+    let help = String::from_utf8_lossy(&help.stdout).to_string();
+    for def in schema["settings"].as_array().expect("settings") {
+        assert_form_control_matches(&page, def);
+        assert_help_matches(&help, def);
+    }
+    assert_fits_width(&page, "aside.side", "the settings column, as built from the schema");
+
+    let dir = tempfile::tempdir().expect("temp dir");
+    let metres = dir.path().join("box-in-metres.stl");
+    std::fs::write(
+        &metres,
+        platener::samples::to_binary_stl(&platener::samples::closed_box(0.12, 0.09, 0.07, 0.003), "box in metres"),
+    )
+    .expect("write");
+    upload_by_button(&page, &metres);
+    page.wait_until("window.platener.state.status === 'failed'", "the metre-scale box fails");
+    let error = page.eval("document.querySelector('[data-testid=error]').textContent");
+    let error = error.as_str().unwrap_or_default();
+    assert!(
+        error.contains("0.12 × 0.09 × 0.07 mm") && error.contains("metres"),
+        "{error}"
+    );
+    assert!(!error.contains('`'), "settings are named by their labels: {error}");
+    let failed = page.state()["id"].as_str().expect("id").to_string();
+    page.click(&tid("apply-scale"));
+    page.wait_until(
+        &format!("window.platener.state.id !== {failed:?}"),
+        "the re-cut at the suggested scale",
+    );
+    let fixed = wait_converted(&page, Some(&failed));
+    let c = conversion(&rig, &fixed);
+    assert_eq!(c["settings"]["scale"], 1000.0, "{c}");
+    assert!(
+        c["methods"]
+            .as_array()
+            .expect("methods")
+            .iter()
+            .any(|m| m["parts"] == 6),
+        "{c}"
+    );
+    page.screenshot("30-metre-box-fixed", None);
+
+    // Three changes within the form's pause: one re-cut with all three.
+    page.eval("performance.clearResourceTimings(); true");
+    page.eval(
+        "(() => { for (const [id, v] of [['material', 'acrylic'], ['labels', 'parts'], ['sheet', 'fit']]) { \
+         const s = document.getElementById(id); s.value = v; s.dispatchEvent(new Event('change', { bubbles: true })); } \
+         return true; })()",
+    );
+    let recut = wait_converted(&page, Some(&fixed));
+    let settings = conversion(&rig, &recut)["settings"].clone();
+    assert_eq!(
+        (&settings["material"], &settings["labels"], &settings["sheet"]),
+        (&Value::from("acrylic"), &Value::from("parts"), &Value::from("fit")),
+        "{settings}"
+    );
+    let recuts = page.eval("performance.getEntriesByType('resource').filter(e => e.name.endsWith('/recut')).length");
+    assert_eq!(recuts, 1, "three quick changes make one conversion");
+    page.assert_no_problems("settings form, metre-scale advice, quick changes");
+}
+
+/// The page's control of one setting has the schema's values and default.
+fn assert_form_control_matches(page: &Page, def: &Value) {
+    let name = def["name"].as_str().expect("name");
+    let js = format!(
+        "(() => {{ const el = document.getElementById({name:?}); if (!el) return null; \
+         if (el.tagName === 'SELECT') return {{ values: [...el.options].map(o => o.value).filter(v => v !== 'custom'), value: el.value }}; \
+         if (el.tagName === 'FIELDSET') return {{ value: [...el.querySelectorAll('input:checked')].map(i => Number(i.value)) }}; \
+         return {{ value: el.value === '' ? null : Number(el.value) }}; }})()"
+    );
+    let control = page.eval(&js);
+    assert!(!control.is_null(), "the form has no control for {name}");
+    let kind = &def["kind"];
+    match kind["type"].as_str() {
+        Some("choice") => {
+            let values: Vec<&Value> = kind["choices"]
+                .as_array()
+                .expect("choices")
+                .iter()
+                .map(|c| &c["value"])
+                .collect();
+            let shown: Vec<&Value> = control["values"].as_array().expect("options").iter().collect();
+            assert_eq!(shown, values, "{name}: the form's choices");
+        }
+        Some("sheet") => {
+            let values: Vec<&Value> = kind["presets"]
+                .as_array()
+                .expect("presets")
+                .iter()
+                .map(|c| &c["value"])
+                .collect();
+            let shown: Vec<&Value> = control["values"].as_array().expect("options").iter().collect();
+            assert_eq!(shown, values, "{name}: the form's presets");
+        }
+        _ => {}
+    }
+    let default = &def["default"];
+    let same = match (default.as_f64(), control["value"].as_f64()) {
+        (Some(a), Some(b)) => (a - b).abs() < 1e-9,
+        _ => &control["value"] == default || control["value"] == serde_json::json!(default),
+    };
+    assert!(
+        same,
+        "{name}: the form shows {} for the default {default}",
+        control["value"]
+    );
+}
+
+/// `platener convert --help` has the setting's flag, its choices and its default.
+fn assert_help_matches(help: &str, def: &Value) {
+    let name = def["name"].as_str().expect("name");
+    assert!(help.contains(&format!("--{name} ")), "--help has no --{name}");
+    if let Some(choices) = def["kind"]["choices"].as_array() {
+        for c in choices {
+            let value = c["value"].as_str().expect("value");
+            assert!(help.contains(&format!("- {value}:")), "--{name}: --help lacks {value}");
+        }
+    }
+    let number = |v: &Value| v.as_f64().map_or_else(|| v.to_string(), |f| f.to_string());
+    let default = match &def["default"] {
+        Value::Null => "auto".to_string(),
+        Value::Array(items) => items.iter().map(number).collect::<Vec<_>>().join(" "),
+        Value::String(s) => s.clone(),
+        other => number(other),
+    };
+    assert!(
+        help.contains(&format!("[default: {default}]")),
+        "--{name}: --help lacks its default {default}"
+    );
 }

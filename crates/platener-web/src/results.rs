@@ -42,12 +42,14 @@ pub fn finished(all: &Conversions, debug: bool) -> Finished {
         None => json!({"status": status, "best": all.best.map(|b| b.name())}),
         Some(e) => json!({"status": status, "error": e}),
     };
+    // Library messages name settings in backticks; the page shows them by their labels.
+    let labelled = |text: String| crate::settings::labelled(&text);
     Finished {
         status: status.into(),
-        error: error.map(|e| e.to_string()),
-        summary: summary.to_string(),
+        error: error.map(|e| labelled(e.to_string())),
+        summary: labelled(summary.to_string()),
         files,
-        event: event.to_string(),
+        event: labelled(event.to_string()),
     }
 }
 

@@ -83,7 +83,7 @@ pub fn every_error_has_its_status_and_code(backend: Backend) {
     assert!(
         r.json()["error"]["message"]
             .as_str()
-            .is_some_and(|m| m.contains("kerf"))
+            .is_some_and(|m| m.starts_with("Kerf: "))
     );
     for (method, path) in [("POST", format!("{base}/publish")), ("DELETE", base.clone())] {
         server

@@ -53,9 +53,11 @@ export async function getBuffer(url) {
 /** POST /api/conversions with the model file and settings; the answer holds the delete token. */
 export async function upload(file, settings) {
   const form = new FormData();
-  for (const t of settings.thicknesses) form.append('thickness', String(t));
-  form.append('material', settings.material);
-  form.append('method', settings.method);
+  for (const [key, value] of Object.entries(settings)) {
+    const name = key === 'thicknesses' ? 'thickness' : key;
+    if (value == null) continue; // auto: the server's default
+    for (const v of Array.isArray(value) ? value : [value]) form.append(name, String(v));
+  }
   form.append('model', file, file.name);
   return (await request('/api/conversions', { method: 'POST', body: form })).json();
 }

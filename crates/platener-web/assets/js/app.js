@@ -3,10 +3,11 @@
 // download dialog, publishing and the gallery. Exposes window.platener.state (read-only).
 
 import * as api from './api.js';
-import { createConversionArea, uploadModel, recutModel, readSettings } from './conversion.js';
+import { createConversionArea, uploadModel, recutModel } from './conversion.js';
 import { createGallery } from './gallery.js';
 import { drawStrip } from './strip.js';
 import { showError, status } from './progress.js';
+import { buildForm, onSettled } from './settings-form.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -17,6 +18,14 @@ const state = {
 Object.defineProperty(window, 'platener', {
   value: Object.freeze({ get state() { return JSON.parse(JSON.stringify(state)); } }),
 });
+
+// The form comes from the server's definition of the settings; the app starts once it is
+// built, so nothing reads a form that is not there yet.
+try {
+  buildForm($('settings'), await api.getJson('/api/settings'));
+} catch (e) {
+  $('settings').textContent = `The settings could not be loaded (${e.message}); conversions use the defaults.`;
+}
 
 const area = createConversionArea({ state });
 const gallery = createGallery($('gallery'), {
@@ -85,12 +94,14 @@ async function recut(changes) {
   }
 }
 
-// Settings: a change re-cuts the open conversion (a material change also resets the kerf to
-// the new material's own).
-$('settings').addEventListener('change', (e) => {
-  const s = readSettings();
-  const changes = { thicknesses: s.thicknesses, material: s.material, method: s.method };
-  if (e.target.id === 'material') changes.kerf = null;
+// Settings: once the form has been still for a moment, the changes re-cut the open
+// conversion (a material change also resets the kerf to the new material's own).
+onSettled($('settings'), (settings, changed) => {
+  const changes = Object.fromEntries(changed.map((name) => {
+    const key = name === 'thickness' ? 'thicknesses' : name;
+    return [key, settings[key]];
+  }));
+  if (changed.includes('material') && !changed.includes('kerf')) changes.kerf = null;
   recut(changes);
 });
 $('settings').addEventListener('submit', (e) => e.preventDefault());

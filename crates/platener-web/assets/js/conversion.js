@@ -7,32 +7,11 @@ import { createViewer } from './viewer.js';
 import { createSheets } from './sheets.js';
 import { assemblyOrder } from './assembly.js';
 import * as progress from './progress.js';
+import { adviceFor, readSettings, showModelSize, writeSettings } from './settings-form.js';
 
 const $ = (id) => document.getElementById(id);
 export const VIEWS = ['model', 'wireframe', 'coplanar', 'primitives', 'plates', 'bent', 'final'];
 const FINISHED = new Set(['done', 'failed', 'cancelled']);
-
-/** The settings form as the API takes them. */
-export function readSettings() {
-  const thicknesses = [...document.querySelectorAll('input[name="thickness"]:checked')].map((i) => Number(i.value));
-  const custom = Number($('thickness-custom').value);
-  if (custom > 0 && !thicknesses.includes(custom)) thicknesses.push(custom);
-  return { thicknesses: thicknesses.length ? thicknesses : [3], material: $('material').value, method: $('method').value };
-}
-
-function writeSettings(s) {
-  if (!s) return;
-  const ts = (s.thicknesses || []).map(Number);
-  const common = [];
-  for (const box of document.querySelectorAll('input[name="thickness"]')) {
-    box.checked = ts.includes(Number(box.value));
-    if (box.checked) common.push(Number(box.value));
-  }
-  const other = ts.find((t) => !common.includes(t));
-  $('thickness-custom').value = other === undefined ? '' : String(other);
-  if (s.material) $('material').value = s.material;
-  if (s.method) $('method').value = s.method;
-}
 
 export function createConversionArea({ state, onGalleryChange }) {
   let viewer = null;
@@ -211,6 +190,7 @@ export function createConversionArea({ state, onGalleryChange }) {
       return;
     }
     writeSettings(current.settings);
+    showModelSize(current.model && current.model.bbox_mm, current.settings && current.settings.scale);
     state.status = current.status;
     if (FINISHED.has(current.status)) return finished(current);
     progress.status(`Converting ${current.model.name}…`);
@@ -253,7 +233,14 @@ export function createConversionArea({ state, onGalleryChange }) {
     showWarnings(progress.warningsOf(c));
     progress.status(c.best ? `${c.model.name}: plan made by the ${c.best} method.` : `${c.model.name}: no plan.`);
     setViewButtons();
-    if (!c.best) return emit('finished', c);
+    if (!c.best) {
+      const advice = adviceFor(c);
+      if (advice) {
+        $('error').prepend(advice);
+        $('error').hidden = false;
+      }
+      return emit('finished', c);
+    }
     $('download').disabled = false;
     const token = api.tokens.get(c.id);
     $('publish').hidden = !token || c.published;

@@ -85,9 +85,10 @@ impl Group {
         }
     }
 
-    /// Folded away until opened: the settings a maker rarely needs.
+    /// Folded away until opened: the settings a maker rarely needs. The method stays open:
+    /// its select also switches the page between the methods' plans.
     pub fn folded(self) -> bool {
-        matches!(self, Group::Joints | Group::Method | Group::Advanced)
+        matches!(self, Group::Joints | Group::Advanced)
     }
 }
 
@@ -189,6 +190,8 @@ impl Def {
             Value::Null => vec!["auto".into()],
             Value::Array(items) => items.iter().flat_map(Def::texts).collect(),
             Value::String(s) => vec![s.clone()],
+            // `3`, not serde_json's `3.0`: as a person writes it on a command line.
+            Value::Number(n) => vec![n.as_f64().map_or_else(|| n.to_string(), |f| f.to_string())],
             other => vec![other.to_string()],
         }
     }

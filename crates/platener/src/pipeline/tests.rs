@@ -110,7 +110,13 @@ fn no_step_module_imports_the_pipeline() {
                 continue;
             }
             let text = std::fs::read_to_string(&file).expect("readable");
-            for forbidden in ["crate::pipeline", "crate::convert", "crate::inspect", "super::pipeline"] {
+            for forbidden in [
+                "crate::pipeline",
+                "crate::convert",
+                "crate::inspect",
+                "crate::options",
+                "super::pipeline",
+            ] {
                 assert!(
                     !text.contains(forbidden),
                     "{} (step {}) uses {forbidden}: steps take their inputs as arguments",
