@@ -86,8 +86,10 @@ async function recut(changes) {
 }
 
 // Settings: a change re-cuts the open conversion (a material change also resets the kerf to
-// the new material's own).
+// the new material's own). Choosing a method this conversion already ran shows its stored plan
+// instead of converting again.
 $('settings').addEventListener('change', (e) => {
+  if (e.target.id === 'method' && area.chooseMethod(e.target.value)) return;
   const s = readSettings();
   const changes = { thicknesses: s.thicknesses, material: s.material, method: s.method };
   if (e.target.id === 'material') changes.kerf = null;
@@ -114,8 +116,8 @@ $('publish').addEventListener('click', async () => {
 async function fillDownload() {
   const c = area.conversion;
   const plan = area.plan;
-  if (!c || !c.best) return;
-  $('download-zip').href = c.links.plan;
+  if (!c || !area.planLink) return;
+  $('download-zip').href = area.planLink;
   const thickness = (plan && plan.parts[0] && plan.parts[0].thickness) || c.settings.thicknesses[0] || 3;
   const material = (plan && plan.settings.material) || c.settings.material;
   state.kerf = plan && plan.settings ? plan.settings.kerf : c.settings.kerf;
