@@ -1,7 +1,8 @@
 //! `platener serve` end to end: the real binary on 127.0.0.1, SQLite in a temp dir (and, for
 //! the API's tests, PostgreSQL in the harness' throwaway cluster), worker processes that are the
 //! same binary (issue 17). Every wait is bounded by `web_support::PATIENCE`; nothing asserts on
-//! speed. The API's tests live in `web/`: the main flow, the error table, names.
+//! speed. The API's tests live in `web/`: the main flow, the error table, names, results as
+//! they come.
 
 mod web_support;
 
@@ -9,6 +10,8 @@ mod web_support;
 mod errors;
 #[path = "web/flow.rs"]
 mod flow;
+#[path = "web/live.rs"]
+mod live;
 #[path = "web/names.rs"]
 mod names;
 
@@ -41,6 +44,7 @@ on_both_databases!(
     errors::every_error_has_its_status_and_code,
     errors::rate_limit_and_full_queue_are_429_and_503,
     errors::broken_corpus_files_give_the_readers_message,
+    live::results_land_as_they_come,
 );
 
 #[test]

@@ -2,13 +2,22 @@
 //!
 //! Everything the server answers is made here, in the worker, so the server only copies bytes
 //! out of the database (it runs no step but `read` on an upload, not even to draw a scene).
+//! The model scene and each method's files are made as soon as they can be (the worker stores
+//! them while the others still run, `worker::live`); [`finished`] makes the rest.
 
 use platener::convert::{Conversions, MethodResult, Status};
+use platener::method::MethodKind;
 use platener::scene::View;
 use platener::{Error, State};
 use serde_json::{Value, json};
 
 use crate::db::{Finished, ResultFile};
+
+/// The `method` of result files that belong to no method: the model as read, one scene for
+/// every method, stored once as soon as the shared steps have read it.
+pub const SHARED: &str = "shared";
+/// The file name of the model scene (under [`SHARED`]).
+pub const MODEL_SCENE: &str = "scenes/model.glb";
 
 /// The content type of a ZIP.
 pub const ZIP: &str = "application/zip";
@@ -21,14 +30,26 @@ pub const PNG: &str = "image/png";
 /// The content type of a glTF binary scene.
 pub const GLB: &str = "model/gltf-binary";
 
+/// What a worker stored of a conversion while it ran, so the end stores only the rest.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Landed {
+    /// The model scene is stored.
+    pub model: bool,
+    /// The methods whose files are stored.
+    pub methods: Vec<MethodKind>,
+}
+
 /// How a finished conversion is recorded: `done` when a method converted, else `failed` with
-/// the first method's error (the reader's message for an unreadable model). With `debug`, the
-/// debug view's snapshots are stored too ([`crate::debug`]), also for a failed conversion:
-/// the steps that ran are what one debugs.
-pub fn finished(all: &Conversions, debug: bool) -> Finished {
+/// the first method's error (the reader's message for an unreadable model); the files of what
+/// was not `landed` while it ran. With `debug`, the debug view's snapshots are stored too
+/// ([`crate::debug`]), also for a failed conversion: the steps that ran are what one debugs.
+pub fn finished(all: &Conversions, debug: bool, landed: &Landed) -> Finished {
     let summary = summary(all);
     let mut files = Vec::new();
-    for m in &all.methods {
+    if let Some(shared) = all.shared.as_ref().filter(|_| !landed.model) {
+        files.extend(model_files(shared));
+    }
+    for m in all.methods.iter().filter(|m| !landed.methods.contains(&m.method)) {
         files.extend(method_files(m));
     }
     if debug {
@@ -86,10 +107,7 @@ fn error_of(all: &Conversions) -> Value {
 
 /// The summary JSON: the model, the shared steps, every method and the best.
 pub fn summary(all: &Conversions) -> Value {
-    let model = all.shared.as_ref().and_then(|s| s.read.as_ref()).map(|m| {
-        let size = m.bounds.max - m.bounds.min;
-        json!({"triangles": m.triangles.len(), "bbox_mm": [size.x, size.y, size.z]})
-    });
+    let model = all.shared.as_ref().map_or(Value::Null, model_json);
     let steps: Vec<Value> = all.shared.as_ref().map_or_else(Vec::new, steps_json);
     let methods: Vec<Value> = all.methods.iter().map(method_json).collect();
     json!({
@@ -101,7 +119,16 @@ pub fn summary(all: &Conversions) -> Value {
     })
 }
 
-fn steps_json(state: &State) -> Vec<Value> {
+/// The model as read: `{"triangles", "bbox_mm"}`, or null before (or without) `read`.
+pub fn model_json(state: &State) -> Value {
+    state.read.as_ref().map_or(Value::Null, |m| {
+        let size = m.bounds.max - m.bounds.min;
+        json!({"triangles": m.triangles.len(), "bbox_mm": [size.x, size.y, size.z]})
+    })
+}
+
+/// The records of the steps a state ran, as the summary lists them.
+pub fn steps_json(state: &State) -> Vec<Value> {
     state
         .records
         .iter()
@@ -109,7 +136,8 @@ fn steps_json(state: &State) -> Vec<Value> {
         .collect()
 }
 
-fn method_json(m: &MethodResult) -> Value {
+/// A method's line of the summary.
+pub fn method_json(m: &MethodResult) -> Value {
     let plan = m.bundle().map(|b| &b.plan);
     let warnings: Vec<&platener::Warning> = m.warnings().collect();
     json!({
@@ -137,9 +165,35 @@ pub fn status_name(status: Status) -> &'static str {
     }
 }
 
+/// The data of a `method` event (written when the method's files are stored): its line of
+/// the summary without the warnings, which the conversion JSON lists.
+pub fn method_event(m: &MethodResult) -> Value {
+    let mut line = method_json(m);
+    if let Some(fields) = line.as_object_mut() {
+        fields.remove("warnings");
+    }
+    line
+}
+
+/// The model scene, decimated for viewing like every scene (`scene::TRIANGLE_LIMIT`), under
+/// [`SHARED`]; nothing before (or without) `read`.
+pub fn model_files(state: &State) -> Vec<ResultFile> {
+    state.scene(View::Model).map_or_else(
+        |_| Vec::new(),
+        |scene| {
+            vec![ResultFile {
+                method: SHARED.into(),
+                file: MODEL_SCENE.into(),
+                content_type: GLB.into(),
+                data: scene.glb,
+            }]
+        },
+    )
+}
+
 /// A method's files: the ZIP, plan.json, report.json, sheets (SVG, PNG) and the scenes it
-/// reached.
-fn method_files(m: &MethodResult) -> Vec<ResultFile> {
+/// reached but the model's (one for all methods, [`model_files`]).
+pub fn method_files(m: &MethodResult) -> Vec<ResultFile> {
     let method = m.method.name();
     let file = |file: String, content_type: &str, data: Vec<u8>| ResultFile {
         method: method.into(),
@@ -167,7 +221,7 @@ fn method_files(m: &MethodResult) -> Vec<ResultFile> {
         }
     }
     if let Some(state) = &m.state {
-        for view in View::ALL {
+        for view in View::ALL.into_iter().filter(|v| *v != View::Model) {
             if let Ok(scene) = state.scene(view) {
                 files.push(file(format!("scenes/{view}.glb"), GLB, scene.glb));
             }

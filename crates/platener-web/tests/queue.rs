@@ -3,7 +3,7 @@
 //! test's own in the test binary's throwaway cluster (crates/platener-testpg; skipped with a
 //! message when PostgreSQL is not installed, a failure under `PLATENER_REQUIRE_POSTGRES=1`).
 
-use platener_web::db::{Db, Finished, NewJob, ResultFile, now_ms};
+use platener_web::db::{Db, Finished, Hold, NewJob, ResultFile, now_ms};
 use platener_web::ids;
 
 /// The databases a test runs on: SQLite in `dir`, and a fresh PostgreSQL database when
@@ -253,6 +253,168 @@ fn a_graceful_stop_requeues_without_counting_and_the_gallery_is_newest_first() {
             assert!(db.set_meta_once("k", "v").await.expect("meta"));
             assert!(!db.set_meta_once("k", "w").await.expect("meta"));
             assert_eq!(db.meta("k").await.expect("meta").as_deref(), Some("v"));
+        }
+    });
+}
+
+/// A plate file of a running job, landed before the job ends.
+fn landed_file(file: &str) -> ResultFile {
+    ResultFile {
+        method: "plate".into(),
+        file: file.into(),
+        content_type: "application/zip".into(),
+        data: vec![b'P', b'K'],
+    }
+}
+
+/// A new job claimed by `worker`: the hold of that attempt.
+async fn claimed_job(db: &Db, worker: &str) -> Hold {
+    let j = job(now_ms());
+    db.insert_job(&j).await.expect("insert");
+    let claimed = db.claim(worker, 60_000).await.expect("claim").expect("job");
+    Hold {
+        id: claimed.id,
+        worker: worker.into(),
+        attempt: claimed.attempts,
+    }
+}
+
+/// The kinds of a job's events, in order.
+async fn kinds(db: &Db, id: &str) -> Vec<String> {
+    let events = db.events_after(id, 0, 100).await.expect("events");
+    events.into_iter().map(|e| e.kind).collect()
+}
+
+/// The event of a landed method.
+const LANDED: (&str, &str) = ("method", r#"{"method":"plate"}"#);
+
+/// Results as they come (issue 30): a running job's files land with its summary so far and
+/// their event only while the attempt that writes them holds it; the end keeps them.
+#[test]
+fn results_land_only_for_the_attempt_holding_the_job() {
+    runtime().block_on(async {
+        let dir = tempfile::tempdir().expect("dir");
+        for db in databases(&dir).await {
+            let hold = claimed_job(&db, "w1").await;
+            let summary = r#"{"methods":[1]}"#;
+            assert!(
+                db.land(&hold, summary, &[landed_file("plan.zip")], LANDED)
+                    .await
+                    .expect("land")
+            );
+            let stale = Hold {
+                attempt: 2,
+                ..hold.clone()
+            };
+            assert!(
+                !db.land(&stale, "{}", &[landed_file("other.zip")], LANDED)
+                    .await
+                    .expect("land")
+            );
+            let row = db.job(&hold.id).await.expect("read").expect("row");
+            assert_eq!(row.summary.as_deref(), Some(summary));
+            let index = db.result_index(&hold.id).await.expect("index");
+            assert_eq!(index, [("plate".to_string(), "plan.zip".to_string())]);
+            assert_eq!(kinds(&db, &hold.id).await, ["method"]);
+            // The end writes the rest (a landed name again replaces it) and keeps what landed.
+            let mut end = finished(1);
+            end.files.push(landed_file("plan.zip"));
+            assert!(db.finish(&hold.id, "w1", &end).await.expect("finish"));
+            assert_eq!(db.result_index(&hold.id).await.expect("index").len(), 2);
+            assert_eq!(kinds(&db, &hold.id).await, ["method", "done"]);
+        }
+    });
+}
+
+/// A cancel keeps what landed, and nothing lands after it.
+#[test]
+fn a_cancel_keeps_what_landed() {
+    runtime().block_on(async {
+        let dir = tempfile::tempdir().expect("dir");
+        for db in databases(&dir).await {
+            let hold = claimed_job(&db, "w1").await;
+            assert!(
+                db.land(&hold, "{}", &[landed_file("plan.zip")], LANDED)
+                    .await
+                    .expect("land")
+            );
+            db.cancel(&hold.id).await.expect("cancel");
+            assert!(
+                !db.land(&hold, "{}", &[landed_file("late.zip")], LANDED)
+                    .await
+                    .expect("land")
+            );
+            assert_eq!(db.result_index(&hold.id).await.expect("index").len(), 1);
+            assert_eq!(kinds(&db, &hold.id).await, ["method", "cancelled"]);
+        }
+    });
+}
+
+/// A requeued job (its worker died, or a graceful stop) loses its attempt's results and
+/// summary with the retry event, so a retry never mixes its results with its predecessor's;
+/// the old attempt can write nothing more, the new one can.
+#[test]
+fn a_requeue_clears_the_attempts_results() {
+    runtime().block_on(async {
+        let dir = tempfile::tempdir().expect("dir");
+        for db in databases(&dir).await {
+            let first = claimed_job(&db, "w1").await;
+            let id = first.id.clone();
+            assert!(
+                db.land(&first, "{}", &[landed_file("plan.zip")], LANDED)
+                    .await
+                    .expect("land")
+            );
+            db.expire_worker("w1").await.expect("expire");
+            assert_eq!(db.reap(2).await.expect("reap"), (vec![id.clone()], vec![]));
+            assert!(
+                db.result_index(&id).await.expect("index").is_empty(),
+                "cleared for the retry"
+            );
+            assert!(db.job(&id).await.expect("read").expect("row").summary.is_none());
+            assert!(
+                !db.land(&first, "{}", &[landed_file("plan.zip")], LANDED)
+                    .await
+                    .expect("land")
+            );
+            let again = db.claim("w2", 60_000).await.expect("claim").expect("job");
+            let second = Hold {
+                id: id.clone(),
+                worker: "w2".into(),
+                attempt: again.attempts,
+            };
+            assert!(
+                db.land(&second, "{}", &[landed_file("plan.zip")], LANDED)
+                    .await
+                    .expect("land")
+            );
+            assert_eq!(kinds(&db, &id).await, ["method", "retry", "method"]);
+            assert_eq!(db.requeue_worker("w2").await.expect("requeue"), 1);
+            assert!(
+                db.result_index(&id).await.expect("index").is_empty(),
+                "a graceful stop too"
+            );
+        }
+    });
+}
+
+/// `queue_ahead`: the queued jobs a worker takes first (by creation, then id).
+#[test]
+fn queue_ahead_counts_the_queued_jobs_taken_first() {
+    runtime().block_on(async {
+        let dir = tempfile::tempdir().expect("dir");
+        for db in databases(&dir).await {
+            let t = now_ms();
+            let mut jobs = [job(t), job(t + 1), job(t + 1), job(t + 2)];
+            jobs[1..3].sort_by(|a, b| a.id.cmp(&b.id));
+            for j in jobs.iter().rev() {
+                db.insert_job(j).await.expect("insert");
+            }
+            for (k, j) in jobs.iter().enumerate() {
+                assert_eq!(db.queue_ahead(&j.id, j.created).await.expect("ahead"), k as i64);
+            }
+            db.claim("w1", 60_000).await.expect("claim").expect("job");
+            assert_eq!(db.queue_ahead(&jobs[3].id, jobs[3].created).await.expect("ahead"), 2);
         }
     });
 }

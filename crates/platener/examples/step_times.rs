@@ -46,7 +46,7 @@ fn main() -> Result<(), String> {
             r.millis,
             r.warnings.len()
         ),
-        Event::Step { .. } => {}
+        Event::Step { .. } | Event::Shared(_) => {}
         Event::Method(m) => println!(
             "{:>8.3} s  {:<10} {:?} in {:.3} s, score {:?}{}",
             start.elapsed().as_secs_f64(),

@@ -118,35 +118,38 @@ fn method_files(method: &Value) -> Vec<String> {
     files
 }
 
-/// What is wrong with a job as seen: a `done` job must have its last event `done` and every
-/// file of each method that made a plan; any other job has no files, and its last event
-/// matches its status when it has ended (and is no ending while it has not).
+/// What is wrong with a job as seen: a `done` job must have its last event `done` and a best
+/// plan; a queued job has no files (a retry starts from nothing); every job's files belong to
+/// methods its summary lists (or to none: the shared model scene), and each listed method that
+/// made a plan has every file (a method lands whole, while the job runs or at its end); an
+/// ended job's last event matches its status, and a running or queued job has no ending.
 pub fn half_written(job: &JobSnap) -> Option<String> {
     let last = job.last_kind.as_deref();
     let ended = matches!(last, Some("done" | "failed" | "cancelled"));
+    let summary: Value = job
+        .summary
+        .as_deref()
+        .and_then(|s| serde_json::from_str(s).ok())
+        .unwrap_or_default();
+    let methods = summary["methods"].as_array().cloned().unwrap_or_default();
+    let missing: Vec<String> = methods
+        .iter()
+        .filter(|m| m["status"] == "done")
+        .flat_map(method_files)
+        .filter(|f| !job.files.contains(f))
+        .collect();
+    let listed = |f: &&String| {
+        let method = f.split('/').next().unwrap_or_default();
+        method == "shared" || methods.iter().any(|m| m["method"] == method)
+    };
+    let stray: Vec<&String> = job.files.iter().filter(|f| !listed(f)).collect();
     let problem = match job.status.as_str() {
-        "done" => {
-            let summary: Value = job
-                .summary
-                .as_deref()
-                .and_then(|s| serde_json::from_str(s).ok())
-                .unwrap_or_default();
-            let methods = summary["methods"].as_array().cloned().unwrap_or_default();
-            let missing: Vec<String> = methods
-                .iter()
-                .filter(|m| m["status"] == "done")
-                .flat_map(method_files)
-                .filter(|f| !job.files.contains(f))
-                .collect();
-            if last != Some("done") {
-                Some(format!("done but its last event is {last:?}"))
-            } else if summary["best"].is_null() || !missing.is_empty() {
-                Some(format!("done without a best plan or without {missing:?}"))
-            } else {
-                None
-            }
-        }
-        status if !job.files.is_empty() => Some(format!("{status} with {} files", job.files.len())),
+        "done" if last != Some("done") => Some(format!("done but its last event is {last:?}")),
+        "done" if summary["best"].is_null() => Some("done without a best plan".to_string()),
+        "queued" if !job.files.is_empty() => Some(format!("queued with {} files", job.files.len())),
+        _ if !missing.is_empty() || !stray.is_empty() => Some(format!(
+            "without {missing:?}, or with files of methods its summary does not list: {stray:?}"
+        )),
         "failed" | "cancelled" if last != Some(job.status.as_str()) => Some(format!("last event {last:?}")),
         "queued" | "running" if ended => Some(format!("last event {last:?}")),
         _ => None,

@@ -76,6 +76,16 @@ export async function recut(id, changes) {
   return r.json();
 }
 
+/** POST …/cancel with the delete token: the conversion, now cancelled (the methods that
+ * ended before stay). */
+export async function cancel(id, token) {
+  const r = await request(`/api/conversions/${encodeURIComponent(id)}/cancel`, {
+    method: 'POST',
+    headers: { authorization: `Bearer ${token}` },
+  });
+  return r.json();
+}
+
 export async function publish(id, token) {
   const r = await request(`/api/conversions/${encodeURIComponent(id)}/publish`, {
     method: 'POST',
@@ -101,14 +111,15 @@ function stripQuery(thickness, material) {
 }
 
 /**
- * Follows a conversion's event stream. `on(kind, data)` gets `step`, `method`, `done`, `failed`
- * and `cancelled` with their parsed data; the stream closes itself after the last one.
- * Returns a function that closes it early.
+ * Follows a conversion's event stream. `on(kind, data)` gets `step`, `model` (the model scene
+ * is stored), `method` (a method ended; its files are stored), `retry` (a worker stopped: the
+ * job runs again from the start), `done`, `failed` and `cancelled` with their parsed data;
+ * the stream closes itself after the last one. Returns a function that closes it early.
  */
 export function events(id, on) {
   const source = new EventSource(`/api/conversions/${encodeURIComponent(id)}/events`);
   const last = new Set(['done', 'failed', 'cancelled']);
-  for (const kind of ['step', 'method', 'done', 'failed', 'cancelled']) {
+  for (const kind of ['step', 'model', 'method', 'retry', 'done', 'failed', 'cancelled']) {
     source.addEventListener(kind, (e) => {
       let data = {};
       try {

@@ -96,7 +96,13 @@ async function recut(changes) {
 
 // Settings: once the form has been still for a moment, the changes re-cut the open
 // conversion (a material change also resets the kerf to the new material's own).
+// Choosing a method this conversion already ran shows its stored plan instead of converting
+// again.
 onSettled($('settings'), (settings, changed) => {
+  if (changed.includes('method') && area.chooseMethod(settings.method)) {
+    changed = changed.filter((name) => name !== 'method');
+    if (!changed.length) return;
+  }
   const changes = Object.fromEntries(changed.map((name) => {
     const key = name === 'thickness' ? 'thicknesses' : name;
     return [key, settings[key]];
@@ -125,8 +131,8 @@ $('publish').addEventListener('click', async () => {
 async function fillDownload() {
   const c = area.conversion;
   const plan = area.plan;
-  if (!c || !c.best) return;
-  $('download-zip').href = c.links.plan;
+  if (!c || !area.planLink) return;
+  $('download-zip').href = area.planLink;
   const thickness = (plan && plan.parts[0] && plan.parts[0].thickness) || c.settings.thicknesses[0] || 3;
   const material = (plan && plan.settings.material) || c.settings.material;
   state.kerf = plan && plan.settings ? plan.settings.kerf : c.settings.kerf;

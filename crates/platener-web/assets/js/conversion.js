@@ -1,6 +1,8 @@
 // The conversion area: upload, settings (a change re-cuts and keeps the view), progress, the seven
 // 3D views, the sheets with their numbers, hover linking between 3D and sheet, the final view's
-// exploded slider and assembly player, publishing.
+// exploded slider and assembly player, publishing. Results show as they come (live.js): the
+// model view as soon as the model is read, each method's plan when it lands, any stored plan on
+// request without converting again; a running conversion can be cancelled.
 
 import * as api from './api.js';
 import { createViewer } from './viewer.js';
@@ -8,6 +10,8 @@ import { createSheets } from './sheets.js';
 import { assemblyOrder } from './assembly.js';
 import * as progress from './progress.js';
 import { adviceFor, readSettings, showModelSize, writeSettings } from './settings-form.js';
+import { follow } from './live.js';
+import { initBars, barMethod, clearBars, endBars, markShown } from './bars.js';
 
 const $ = (id) => document.getElementById(id);
 export const VIEWS = ['model', 'wireframe', 'coplanar', 'primitives', 'plates', 'bent', 'final'];
@@ -20,6 +24,9 @@ export function createConversionArea({ state, onGalleryChange }) {
   let stopEvents = () => {};
   let playTimer = null;
   let keepCamera = false; // the next scene is a re-cut of the one shown: keep the camera
+  let wanted = state.view || 'final'; // the view asked for by its button, shown with each plan
+  let sceneShown = false; // the viewer holds a scene (a re-cut keeps the old one until its own)
+  let displaying = Promise.resolve(); // plans are shown one after the other: the last asked wins
   const listeners = new Set();
   const sheets = createSheets($('sheets'), { onHover: (n) => hover(n, 'part', 'sheet') });
 
@@ -37,18 +44,42 @@ export function createConversionArea({ state, onGalleryChange }) {
     if (from === 'sheet' && viewer && state.view === 'final') viewer.highlight(n);
   }
 
+  /** The scene of `view` for the method shown; the model view, one for all methods, is there
+   * as soon as the model is read. */
+  function sceneUrl(view) {
+    const links = current && current.links;
+    if (!links) return null;
+    const own = state.method && links.methods && links.methods[state.method];
+    if (own && own.scenes && own.scenes[view]) return own.scenes[view];
+    return view === 'model' && links.scenes ? links.scenes.model || null : null;
+  }
+
+  /** The ZIP of the method shown, once it landed. */
+  function planLink() {
+    const own = current && state.method && current.links.methods && current.links.methods[state.method];
+    return own ? own.plan_zip || null : null;
+  }
+
   function setViewButtons() {
     for (const b of document.querySelectorAll('[data-view]')) {
       b.setAttribute('aria-pressed', String(b.dataset.view === state.view));
-      b.disabled = !(current && current.links && current.links.scenes && current.links.scenes[b.dataset.view]);
+      b.disabled = !sceneUrl(b.dataset.view);
     }
     $('final-tools').hidden = state.view !== 'final' || !state.loadedView;
+  }
+
+  /** Cancel while queued or running (own conversions: the page has their delete token), and
+   * Download once the plan shown has its ZIP. */
+  function syncControls() {
+    const active = !!current && (state.status === 'queued' || state.status === 'running');
+    $('cancel').hidden = !(active && api.tokens.get(current.id));
+    $('download').disabled = !planLink();
   }
 
   async function showView(view) {
     state.view = view;
     setViewButtons();
-    const url = current && current.links.scenes && current.links.scenes[view];
+    const url = sceneUrl(view);
     if (!viewer || !url) return;
     state.loadedView = null;
     hover(null, null, 'viewer');
@@ -59,6 +90,7 @@ export function createConversionArea({ state, onGalleryChange }) {
       // Superseded (another view, or another conversion opened meanwhile): not ours to mark.
       if (!loaded || state.view !== view || state.id !== id) return;
       state.loadedView = view;
+      sceneShown = true;
       $('viewer-note').hidden = true;
       noteSimplified(view, loaded.triangles);
       if (view === 'final') setupFinal();
@@ -127,7 +159,16 @@ export function createConversionArea({ state, onGalleryChange }) {
       showParts(k + 1);
     }, 700);
   });
-  for (const b of document.querySelectorAll('[data-view]')) b.addEventListener('click', () => showView(b.dataset.view));
+  for (const b of document.querySelectorAll('[data-view]')) {
+    b.addEventListener('click', () => {
+      wanted = b.dataset.view;
+      showView(b.dataset.view);
+    });
+  }
+  $('cancel').addEventListener('click', cancelShown);
+  initBars((method) => {
+    if (chooseMethod(method)) $('method').value = method;
+  });
   $('zoom-in').addEventListener('click', () => sheets.zoom(1.5));
   $('zoom-out').addEventListener('click', () => sheets.zoom(1 / 1.5));
   $('zoom-fit').addEventListener('click', () => sheets.zoom('fit'));
@@ -145,14 +186,18 @@ export function createConversionArea({ state, onGalleryChange }) {
   return {
     get conversion() { return current; },
     get plan() { return plan; },
+    get planLink() { return planLink(); },
     get viewer() { return viewer; },
     on(f) { listeners.add(f); },
     writeSettings,
+    chooseMethod,
     open: openConversion,
     reset,
   };
 
-  function reset() {
+  /** Back to no conversion; `keepScene` (a re-cut): the old scene stays drawn until the new
+   * conversion's own is loaded, so the view does not go blank meanwhile. */
+  function reset({ keepScene = false } = {}) {
     stopEvents();
     stopPlaying();
     current = null;
@@ -161,24 +206,32 @@ export function createConversionArea({ state, onGalleryChange }) {
     state.status = null;
     state.loadedView = null;
     state.hovered = null;
-    if (viewer) viewer.clear();
-    $('viewer-note').hidden = false;
+    state.method = null;
+    state.picked = null;
+    if (viewer && !keepScene) {
+      viewer.clear();
+      sceneShown = false;
+    }
+    $('viewer-note').hidden = sceneShown;
     $('part-label').textContent = '';
     $('simplified').hidden = true;
     progress.clearProgress();
+    clearBars();
     progress.status('No model yet.');
     sheets.clear();
-    showStats(null, null);
+    showStats(null, null, null);
     setViewButtons();
-    $('download').disabled = true;
+    syncControls();
     $('publish').hidden = true;
     $('share').hidden = true;
     $('warnings-box').hidden = true;
   }
 
-  /** Opens conversion `id`; `recut`: it re-cuts the one shown, so the camera stays. */
+  /** Opens conversion `id`; `recut`: it re-cuts the one shown, so the camera and the scene stay
+   * and the one shown, if still running, is cancelled (it is superseded). */
   async function openConversion(id, { recut = false } = {}) {
-    reset();
+    if (recut) supersede();
+    reset({ keepScene: recut });
     keepCamera = recut;
     state.id = id;
     progress.status('Loading…');
@@ -189,49 +242,125 @@ export function createConversionArea({ state, onGalleryChange }) {
       progress.showError(e.message);
       return;
     }
+    if (state.id !== id) return;
     writeSettings(current.settings);
     showModelSize(current.model && current.model.bbox_mm, current.settings && current.settings.scale);
     state.status = current.status;
+    syncControls();
     if (FINISHED.has(current.status)) return finished(current);
     progress.status(`Converting ${current.model.name}…`);
-    stopEvents = api.events(id, (kind, data) => onEvent(id, kind, data));
+    landed(current, null);
+    const first = planOf(current, null);
+    if (first) display(first);
+    stopEvents = follow(current, { state, still: () => state.id === id, landed, ended: finished });
   }
 
-  function onEvent(id, kind, data) {
-    if (state.id !== id) return;
-    if (kind === 'step') progress.stepEvent(data);
-    else if (kind === 'method') progress.methodEvent(data);
-    else if (FINISHED.has(kind) || kind === 'lost') reload(id);
+  /** A re-cut replaces the conversion shown: if that one is still queued or running and is the
+   * user's own (its delete token is kept), it is cancelled, so superseded work frees its
+   * worker. It may have ended meanwhile (409): then there is nothing to stop. */
+  function supersede() {
+    const old = current;
+    const token = old && api.tokens.get(old.id);
+    if (token && (state.status === 'queued' || state.status === 'running')) api.cancel(old.id, token).catch(() => {});
   }
 
-  /** After the last event (or a lost stream): the conversion as it is now. A stream lost
-   * while the job still runs (a restarting server) is followed again a moment later. */
-  async function reload(id) {
+  /** The Cancel button: the conversion ends at once as cancelled, keeping the plans made. */
+  async function cancelShown() {
+    const c = current;
+    const token = c && api.tokens.get(c.id);
+    if (!token) return;
+    $('cancel').disabled = true;
     try {
-      const c = await api.conversion(id);
-      if (state.id !== id) return;
-      if (FINISHED.has(c.status)) return await finished(c);
-      setTimeout(() => {
-        if (state.id === id) stopEvents = api.events(id, (kind, data) => onEvent(id, kind, data));
-      }, 2000);
+      const answer = await api.cancel(c.id, token);
+      if (state.id === c.id) {
+        stopEvents();
+        await finished(answer);
+      }
     } catch (e) {
-      progress.showError(e.message);
+      progress.showError(`Cancelling failed: ${e.message}`);
+    } finally {
+      $('cancel').disabled = false;
     }
+  }
+
+  /** The conversion fetched again after something landed: the model scene (`method` null),
+   * drawn at once unless a re-cut still shows the old scene; or a method, whose plan is shown
+   * when it is the first to land or the one chosen. A method that failed changes nothing
+   * shown, so the model view stays. */
+  function landed(c, method) {
+    current = c;
+    setViewButtons();
+    syncControls();
+    if (!method) {
+      if (!sceneShown && !state.method && sceneUrl('model')) showView('model');
+      return;
+    }
+    const line = (c.methods || []).find((m) => m.method === method);
+    if (line && line.status === 'done' && (!state.method || state.picked === method)) display(method);
+  }
+
+  /** The method select (or a bar's Show button) chose `value`: shows that method's stored
+   * plan, or for `all` the best (while running, the first made), without converting again.
+   * A chosen method still running shows when it lands. False when this conversion cannot
+   * show it (it did not run that method, or the method made no plan): the caller re-cuts. */
+  function chooseMethod(value) {
+    const c = current;
+    const ran = c && (c.settings.method === 'all' || c.settings.method === value);
+    if (!ran) return false;
+    if (value === 'all') {
+      state.picked = null;
+      const m = planOf(c, null);
+      if (m && m !== state.method) display(m);
+      return true;
+    }
+    const line = (c.methods || []).find((m) => m.method === value);
+    if (line ? line.status !== 'done' : FINISHED.has(c.status)) return false;
+    state.picked = value;
+    if (line) display(value);
+    else progress.status(`The ${value} plan shows here as soon as it is made…`);
+    return true;
+  }
+
+  /** The method whose plan to show: `picked` if it made one, else the best, else the one shown,
+   * else the first that made a plan (a cancelled conversion keeps what landed); null: none. */
+  function planOf(c, picked) {
+    const made = (m) => !!m && (c.methods || []).some((x) => x.method === m && x.status === 'done') && !!c.links.methods[m];
+    const first = (c.methods || []).find((x) => made(x.method));
+    return [picked, c.best, state.method].find(made) || (first ? first.method : null);
+  }
+
+  /** Shows `method`'s stored plan: its stats, sheets and the wanted view's scene (the final
+   * view when the method has not that one). Plans show one after the other. */
+  function display(method) {
+    const id = state.id;
+    state.method = method;
+    markShown(method);
+    syncControls();
+    displaying = displaying.then(async () => {
+      if (state.id !== id || state.method !== method) return;
+      plan = null;
+      const view = sceneUrl(wanted) ? wanted : 'final';
+      await Promise.all([loadPlanAndSheets(current, method), showView(view)]);
+    });
+    return displaying;
   }
 
   async function finished(c) {
     current = c;
     state.status = c.status;
+    syncControls();
     if (!document.querySelector('#progress li')) {
       progress.finishedSteps(c);
       replayMethodSteps(c.id);
     } else {
       for (const m of c.methods || []) progress.methodEvent(m);
     }
+    for (const m of c.methods || []) barMethod(m);
+    endBars(c.status);
     const err = progress.errorOf(c);
     progress.showError(err);
     showWarnings(progress.warningsOf(c));
-    progress.status(c.best ? `${c.model.name}: plan made by the ${c.best} method.` : `${c.model.name}: no plan.`);
+    progress.status(endText(c));
     setViewButtons();
     if (!c.best) {
       const advice = adviceFor(c);
@@ -239,17 +368,30 @@ export function createConversionArea({ state, onGalleryChange }) {
         $('error').prepend(advice);
         $('error').hidden = false;
       }
-      return emit('finished', c);
     }
-    $('download').disabled = false;
-    const token = api.tokens.get(c.id);
-    $('publish').hidden = !token || c.published;
-    $('publish').disabled = false;
-    $('publish').textContent = 'Publish to gallery';
-    $('share').hidden = false;
-    $('share').href = `#/c/${encodeURIComponent(c.id)}`;
-    await Promise.all([loadPlanAndSheets(c), showView(state.view || 'final')]);
+    if (c.best) {
+      const token = api.tokens.get(c.id);
+      $('publish').hidden = !token || c.published;
+      $('publish').disabled = false;
+      $('publish').textContent = 'Publish to gallery';
+      $('share').hidden = false;
+      $('share').href = `#/c/${encodeURIComponent(c.id)}`;
+    }
+    // A plan already shown (it landed while the conversion ran) is not loaded again.
+    const method = planOf(c, state.picked);
+    if (method && method !== state.method) await display(method);
+    else if (method) await displaying;
+    else if (state.loadedView !== 'model' && sceneUrl('model')) await showView('model');
+    markShown(state.method);
     emit('finished', c);
+  }
+
+  /** The status line of an ended conversion. */
+  function endText(c) {
+    const name = c.model.name;
+    if (c.best) return `${name}: plan made by the ${c.best} method.`;
+    if (c.status === 'cancelled') return `${name}: cancelled${state.method ? '; the plans made before are kept' : ''}.`;
+    return `${name}: no plan.`;
   }
 
   /** A conversion opened after it ran: each method's steps with their times, from the event
@@ -273,21 +415,23 @@ export function createConversionArea({ state, onGalleryChange }) {
     $('warnings-box').hidden = list.length === 0;
   }
 
-  async function loadPlanAndSheets(c) {
-    const links = c.links.methods[c.best] || {};
+  async function loadPlanAndSheets(c, method) {
+    const links = c.links.methods[method] || {};
     try {
       const [p, report] = await Promise.all([api.getJson(links.plan_json), api.getJson(links.report_json), sheets.show(links.sheets || [])]);
+      if (state.id !== c.id || state.method !== method) return;
       plan = p;
-      showStats(c, report);
+      showStats(c, report, method);
       if (state.loadedView === 'final') setupFinal();
     } catch (e) {
       progress.showError(`The sheets could not be shown: ${e.message}`);
     }
   }
 
-  /** Score, counts, cut length and laser time (report.json's estimate at its stated speeds). */
-  function showStats(c, report) {
-    const m = c && (c.methods || []).find((x) => x.method === c.best);
+  /** Score, counts, cut length and laser time (report.json's estimate at its stated speeds) of
+   * `method`'s plan. */
+  function showStats(c, report, method) {
+    const m = c && (c.methods || []).find((x) => x.method === method);
     const set = (k, v) => (document.querySelector(`#stats [data-stat="${k}"]`).textContent = v);
     set('score', m && m.score != null ? Number(m.score).toFixed(2) : '–');
     set('parts', m ? String(m.parts) : '–');

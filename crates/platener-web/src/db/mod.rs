@@ -6,6 +6,7 @@
 
 pub mod dialect;
 mod feed;
+mod live;
 mod rows;
 mod transitions;
 
@@ -15,6 +16,7 @@ use sqlx::any::AnyPoolOptions;
 use sqlx::{AnyPool, Row};
 
 pub use dialect::Dialect;
+pub use live::Hold;
 pub use rows::{Claimed, EventRow, Finished, GalleryRow, JobRow, NewJob, ResultFile};
 pub use transitions::{Cancelled, Ending};
 
@@ -179,16 +181,23 @@ impl Db {
     }
 
     /// Puts the jobs `worker` holds back in the queue without counting the attempt (a graceful
-    /// shutdown stopped it, not the model).
+    /// shutdown stopped it, not the model), without what they stored so far.
     pub async fn requeue_worker(&self, worker: &str) -> Result<u64> {
-        let done = sqlx::query(
+        let mut tx = self.pool.begin().await?;
+        let rows = sqlx::query(
             "UPDATE jobs SET status = 'queued', worker = NULL, lease_until = NULL, attempts = attempts - 1 \
-             WHERE worker = $1 AND status = 'running'",
+             WHERE worker = $1 AND status = 'running' RETURNING id",
         )
         .bind(worker)
-        .execute(&self.pool)
+        .fetch_all(&mut *tx)
         .await?;
-        Ok(done.rows_affected())
+        let ids: Vec<String> = rows
+            .iter()
+            .map(|r| r.try_get("id"))
+            .collect::<std::result::Result<_, _>>()?;
+        live::clear_partial(&mut tx, &ids).await?;
+        tx.commit().await?;
+        Ok(u64::try_from(ids.len()).unwrap_or(u64::MAX))
     }
 
     /// Appends an event to a job's list without checking who holds the job (workers use
@@ -210,9 +219,9 @@ impl Db {
         rows.iter().map(EventRow::from_row).collect()
     }
 
-    /// Records a finished job in one transaction: its status and summary, every result file
-    /// and the last event; nothing is written unless `worker` still holds the job. Returns
-    /// whether it did.
+    /// Records a finished job in one transaction: its status and summary, the result files not
+    /// landed while it ran ([`Db::land`]; those stay) and the last event; nothing is written
+    /// unless `worker` still holds the job. Returns whether it did.
     pub async fn finish(&self, id: &str, worker: &str, outcome: &Finished) -> Result<bool> {
         let mut tx = self.pool.begin().await?;
         let updated = sqlx::query(
@@ -236,16 +245,7 @@ impl Db {
                 .await?;
             return Ok(false);
         }
-        for f in &outcome.files {
-            sqlx::query("INSERT INTO results (job_id, method, file, content_type, data) VALUES ($1, $2, $3, $4, $5)")
-                .bind(id)
-                .bind(&f.method)
-                .bind(&f.file)
-                .bind(&f.content_type)
-                .bind(f.data.clone())
-                .execute(&mut *tx)
-                .await?;
-        }
+        live::insert_files(&mut tx, id, &outcome.files).await?;
         self.insert_event(&mut tx, id, &outcome.status, &outcome.event).await?;
         tx.commit().await?;
         Ok(true)
@@ -263,18 +263,20 @@ impl Db {
             .transpose()
     }
 
-    /// Removes a job, its events and results, in one transaction.
+    /// Removes a job, its events and results, in one transaction. The job's row goes first:
+    /// on PostgreSQL that waits for a worker's write in progress (which locked the row) to
+    /// commit, so the results and events it added are deleted too, not left behind.
     pub async fn delete(&self, id: &str) -> Result<bool> {
         let mut tx = self.pool.begin().await?;
+        let done = sqlx::query("DELETE FROM jobs WHERE id = $1")
+            .bind(id)
+            .execute(&mut *tx)
+            .await?;
         sqlx::query("DELETE FROM results WHERE job_id = $1")
             .bind(id)
             .execute(&mut *tx)
             .await?;
         sqlx::query("DELETE FROM events WHERE job_id = $1")
-            .bind(id)
-            .execute(&mut *tx)
-            .await?;
-        let done = sqlx::query("DELETE FROM jobs WHERE id = $1")
             .bind(id)
             .execute(&mut *tx)
             .await?;

@@ -69,7 +69,8 @@ impl Db {
 
     /// Cancels a queued or running job at once: status `cancelled`, its lease ended and its
     /// last event, in one transaction. A running job's worker learns it at its next progress
-    /// write or heartbeat, stops, and its results are refused by [`Db::finish`].
+    /// write or heartbeat, stops, and its results are refused by [`Db::finish`]; the methods
+    /// it landed before ([`Db::land`]) stay.
     pub async fn cancel(&self, id: &str) -> Result<Cancelled> {
         let mut tx = self.pool.begin().await?;
         let updated = sqlx::query(
@@ -122,6 +123,7 @@ impl Db {
         .fetch_all(&mut *tx)
         .await?;
         let (requeued, failed) = (sorted_ids(&requeued)?, sorted_ids(&failed)?);
+        super::live::clear_partial(&mut tx, &requeued).await?;
         for id in &failed {
             self.insert_event(&mut tx, id, "failed", &error).await?;
         }
@@ -181,6 +183,7 @@ impl Db {
         .fetch_all(&mut *tx)
         .await?;
         let (requeued, failed) = (sorted_ids(&requeued)?, sorted_ids(&failed)?);
+        super::live::clear_partial(&mut tx, &requeued).await?;
         for id in &failed {
             self.insert_event(&mut tx, id, "failed", &error).await?;
         }

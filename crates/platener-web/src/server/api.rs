@@ -152,6 +152,7 @@ async fn enqueue(
     app.metrics.accepted.fetch_add(1, Ordering::Relaxed);
     let mut body = view::conversion(&accepted(&job), &[]);
     body["model"]["bbox_mm"] = serde_json::json!(inspected.bbox_mm);
+    body["queue_ahead"] = serde_json::json!(app.db.queue_ahead(&job.id, job.created).await?);
     body["delete_token"] = Value::String(token);
     let location = format!("/api/conversions/{}", job.id);
     Ok((StatusCode::ACCEPTED, [(header::LOCATION, location)], Json(body)).into_response())
@@ -222,8 +223,19 @@ pub(super) async fn load(app: &App, id: &str) -> ApiResult<JobRow> {
 /// `GET /api/conversions/{id}`.
 pub async fn show(State(app): State<Arc<App>>, Path(id): Path<String>) -> ApiResult<Json<Value>> {
     let row = load(&app, &id).await?;
+    Ok(Json(shown(&app, &row).await?))
+}
+
+/// The conversion JSON of a stored job, with `queue_ahead` (an extension of api.md): while
+/// it is queued, how many queued jobs a worker takes before it; otherwise null.
+async fn shown(app: &App, row: &JobRow) -> ApiResult<Value> {
     let files = app.db.result_index(&row.id).await?;
-    Ok(Json(view::conversion(&row, &files)))
+    let mut body = view::conversion(row, &files);
+    body["queue_ahead"] = match row.status.as_str() {
+        "queued" => serde_json::json!(app.db.queue_ahead(&row.id, row.created).await?),
+        _ => Value::Null,
+    };
+    Ok(body)
 }
 
 /// Checks the `Authorization: Bearer` token against the job's stored hash.
@@ -258,8 +270,7 @@ pub async fn publish(
     authorize(&headers, &row)?;
     app.db.publish(&row.id).await?;
     let row = load(&app, &id).await?;
-    let files = app.db.result_index(&row.id).await?;
-    Ok(Json(view::conversion(&row, &files)))
+    Ok(Json(shown(&app, &row).await?))
 }
 
 /// `POST /api/conversions/{id}/recut`: the same model with changed settings, a new conversion.

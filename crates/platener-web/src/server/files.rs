@@ -12,7 +12,7 @@ use super::App;
 use super::api::load;
 use super::error::{ApiError, ApiResult};
 use crate::db::JobRow;
-use crate::results::{SVG, ZIP};
+use crate::results::{MODEL_SCENE, SHARED, SVG, ZIP};
 
 /// The best method of a finished job, from its summary.
 fn best_of(row: &JobRow) -> ApiResult<String> {
@@ -24,10 +24,12 @@ fn best_of(row: &JobRow) -> ApiResult<String> {
     match summary["best"].as_str() {
         Some(b) => Ok(b.to_string()),
         None if matches!(row.status.as_str(), "queued" | "running") => Err(ApiError::not_ready(
-            "the conversion has not finished yet; follow its events",
+            "the conversion has not finished yet, so no best plan is chosen; follow its events \
+             (each method's plan is under links.methods as soon as that method ends)",
         )),
         None if row.status == "cancelled" => Err(ApiError::not_ready(
-            "this conversion was cancelled before it finished, so there is no plan; upload the model again",
+            "this conversion was cancelled before a best plan was chosen; the plans of the methods \
+             that ended before are under links.methods, or upload the model again",
         )),
         None => Err(ApiError::not_ready(
             "no method converted this model, so there is no plan",
@@ -37,11 +39,16 @@ fn best_of(row: &JobRow) -> ApiResult<String> {
 
 /// Serves one stored file of a job.
 pub(super) async fn serve_file(app: &App, row: &JobRow, method: &str, file: &str) -> ApiResult<Response> {
-    let (content_type, data) = app
-        .db
-        .result_file(&row.id, method, file)
+    stored_file(app, row, method, file)
         .await?
-        .ok_or_else(|| ApiError::not_found("file"))?;
+        .ok_or_else(|| ApiError::not_found("file"))
+}
+
+/// One stored file of a job as an answer, if it is stored.
+async fn stored_file(app: &App, row: &JobRow, method: &str, file: &str) -> ApiResult<Option<Response>> {
+    let Some((content_type, data)) = app.db.result_file(&row.id, method, file).await? else {
+        return Ok(None);
+    };
     let mut response = data.into_response();
     let headers = response.headers_mut();
     headers.insert(
@@ -63,7 +70,7 @@ pub(super) async fn serve_file(app: &App, row: &JobRow, method: &str, file: &str
             HeaderValue::from_static("default-src 'none'; style-src 'unsafe-inline'; sandbox"),
         );
     }
-    Ok(response)
+    Ok(Some(response))
 }
 
 /// `GET /api/conversions/{id}/plan.zip`: the best method's ZIP.
@@ -116,7 +123,9 @@ pub struct SceneQuery {
     method: Option<String>,
 }
 
-/// `GET /api/conversions/{id}/scenes/{view}.glb[?method=]`.
+/// `GET /api/conversions/{id}/scenes/{view}.glb[?method=]`. The model view is one scene for
+/// every method, stored as soon as the model is read, so it answers while the methods still
+/// run (conversions stored before that keep a copy per method, the fallback).
 pub async fn scene(
     State(app): State<Arc<App>>,
     Path((id, file)): Path<(String, String)>,
@@ -125,12 +134,18 @@ pub async fn scene(
     let view = file.strip_suffix(".glb").ok_or_else(|| ApiError::not_found("scene"))?;
     let view: platener::scene::View = view.parse().map_err(|_| ApiError::not_found("scene"))?;
     let row = load(&app, &id).await?;
-    let method = match query.method {
-        Some(m) if m != "best" => {
-            known_method(&m)?;
-            m
-        }
-        _ => best_of(&row)?,
+    let chosen = query.method.filter(|m| m != "best");
+    if let Some(m) = &chosen {
+        known_method(m)?;
+    }
+    if view == platener::scene::View::Model
+        && let Some(shared) = stored_file(&app, &row, SHARED, MODEL_SCENE).await?
+    {
+        return Ok(shared);
+    }
+    let method = match chosen {
+        Some(m) => m,
+        None => best_of(&row)?,
     };
     serve_file(&app, &row, &method, &format!("scenes/{view}.glb")).await
 }

@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use serde_json::{Value, json};
 
 use crate::db::JobRow;
+use crate::results::{MODEL_SCENE, SHARED};
 
 /// An ISO 8601 UTC time of milliseconds since 1970 (`2026-11-23T18:00:00Z`).
 pub fn iso_time(ms: i64) -> String {
@@ -76,12 +77,15 @@ pub fn conversion(row: &JobRow, files: &[(String, String)]) -> Value {
 }
 
 /// Every link of a conversion: its own, its events, the best plan and scenes, and per method
-/// its plan, files, sheets and scenes.
+/// its plan, files, sheets and scenes, for every method stored so far (a running conversion
+/// lists each as it lands). The model scene, stored once for all methods as soon as the model
+/// is read, is in every method's scenes and in `scenes` before a best is chosen.
 fn links(id: &str, best: Option<&str>, files: &[(String, String)]) -> Value {
     let base = format!("/api/conversions/{id}");
+    let shared_model = files.iter().any(|(m, f)| m == SHARED && f == MODEL_SCENE);
     let mut methods: BTreeMap<&str, Value> = BTreeMap::new();
     for (method, file) in files {
-        if file.starts_with("debug/") {
+        if method == SHARED || file.starts_with("debug/") {
             continue;
         }
         let entry = methods
@@ -107,9 +111,17 @@ fn links(id: &str, best: Option<&str>, files: &[(String, String)]) -> Value {
             }
         }
     }
-    let scenes = best
+    if shared_model {
+        for (method, entry) in &mut methods {
+            entry["scenes"]["model"] = Value::String(format!("{base}/{MODEL_SCENE}?method={method}"));
+        }
+    }
+    let mut scenes = best
         .and_then(|b| methods.get(b))
         .map_or_else(|| json!({}), |m| strip_method_query(&m["scenes"]));
+    if shared_model {
+        scenes["model"] = Value::String(format!("{base}/{MODEL_SCENE}"));
+    }
     let debug = files.iter().any(|(_, f)| f == crate::debug::INDEX);
     json!({
         "self": base,
@@ -158,5 +170,32 @@ mod tests {
         // 2026-11-23T18:00:00Z
         assert_eq!(iso_time(1_795_456_800_000), "2026-11-23T18:00:00Z");
         assert_eq!(iso_time(951_782_400_000), "2000-02-29T00:00:00Z");
+    }
+
+    /// The model scene, stored once for all methods, is every method's and is linked before a
+    /// best is chosen (a running conversion).
+    #[test]
+    fn the_model_scene_is_every_methods_and_is_linked_before_a_best() {
+        let files: Vec<(String, String)> = [
+            (SHARED, MODEL_SCENE),
+            ("plate", "plan.zip"),
+            ("plate", "scenes/final.glb"),
+        ]
+        .iter()
+        .map(|(m, f)| ((*m).to_string(), (*f).to_string()))
+        .collect();
+        let links = links("c_1", None, &files);
+        assert_eq!(
+            links["scenes"],
+            json!({"model": "/api/conversions/c_1/scenes/model.glb"})
+        );
+        let plate = &links["methods"]["plate"];
+        assert_eq!(
+            plate["scenes"]["model"],
+            "/api/conversions/c_1/scenes/model.glb?method=plate"
+        );
+        assert_eq!(plate["plan_zip"], "/api/conversions/c_1/methods/plate/plan.zip");
+        assert!(links["methods"].get(SHARED).is_none(), "{links}");
+        assert_eq!(links["plan"], Value::Null, "no best yet");
     }
 }

@@ -2,10 +2,25 @@
 //! does to the service. Honoured only when the worker's `test_hooks` is set (`serve` sets it
 //! under `PLATENER_TEST_HOOKS=1`); otherwise these are ordinary names.
 
-use std::time::Duration;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use platener::Cancel;
+use platener::convert::Event;
+use platener::pipeline::{StepEvent, StepId};
+
+/// The folder of [`Hook::Hold`]'s gates, from the worker's environment (a test sets it for
+/// its server, whose workers inherit it).
+pub const GATE_ENV: &str = "PLATENER_TEST_GATE";
+
+/// The longest a held method waits for its gate: a test that never opens it is not hung.
+const HOLD_LIMIT: Duration = Duration::from_secs(30);
+
+/// How long a method is held when no gate folder is set.
+const HOLD_UNGATED: Duration = Duration::from_secs(3);
 
 /// What a `platener-test-…` model does.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Hook {
     /// `platener-test-abort…`: aborts the worker process (a crash).
     Abort,
@@ -22,6 +37,14 @@ pub enum Hook {
     /// `platener-test-freeze…`: stops the whole worker process (SIGSTOP), heartbeats and all,
     /// as a machine thrashing or a deadlock would: only the server can end it.
     Freeze,
+    /// `platener-test-hold…`: each method waits as its `sheets` step starts until its gate,
+    /// the file `{PLATENER_TEST_GATE}/{model name}.{method}`, exists (at most 30 s, 3 s
+    /// without the folder), or the job is cancelled; so a test decides when each method may
+    /// end and sees the model, and the methods that ended, while the others still run.
+    Hold {
+        /// The gates' path without the method (`None`: no gate folder).
+        gate: Option<PathBuf>,
+    },
 }
 
 /// The allocations of [`Hook::Alloc`]: address space only (never written, so no memory is
@@ -33,12 +56,14 @@ impl Hook {
     /// The hook a model name asks for, if any.
     pub fn of(name: &str) -> Option<Hook> {
         let rest = name.strip_prefix("platener-test-")?;
+        let gate = std::env::var_os(GATE_ENV).map(|dir| PathBuf::from(dir).join(name));
         [
             ("abort", Hook::Abort),
             ("slow", Hook::Slow),
             ("hang", Hook::Hang),
             ("alloc", Hook::Alloc),
             ("freeze", Hook::Freeze),
+            ("hold", Hook::Hold { gate }),
         ]
         .into_iter()
         .find(|(prefix, _)| rest.starts_with(prefix))
@@ -46,7 +71,7 @@ impl Hook {
     }
 
     /// Runs on the conversion thread before `convert_all`.
-    pub fn before_converting(self) {
+    pub fn before_converting(&self) {
         match self {
             Hook::Abort => std::process::abort(),
             Hook::Slow => std::thread::sleep(Duration::from_secs(3)),
@@ -64,18 +89,44 @@ impl Hook {
                     .arg(std::process::id().to_string())
                     .status();
             }
-            Hook::Hang => {}
+            Hook::Hang | Hook::Hold { .. } => {}
         }
     }
 
-    /// Runs at every progress event; `step` for a step's event, which comes from the
-    /// library's own work thread (a method's may come from the caller's).
-    pub fn on_progress(self, step: bool) {
-        if self == Hook::Hang && step {
-            loop {
+    /// Runs at every progress event, on the thread that sent it: a step's comes from the
+    /// library's own work thread (a method's end may come from the caller's). `cancel` is the
+    /// job's.
+    pub fn on_progress(&self, event: &Event<'_>, cancel: &Cancel) {
+        match (self, event) {
+            (Hook::Hang, Event::Step { .. }) => loop {
                 std::thread::sleep(Duration::from_secs(1));
+            },
+            (
+                Hook::Hold { gate },
+                Event::Step {
+                    method: Some(method),
+                    event: StepEvent::Started(step),
+                },
+            ) if *step == StepId::Sheets.name() => {
+                let gate = gate.as_ref().map(|g| {
+                    let mut path = g.clone().into_os_string();
+                    path.push(format!(".{}", method.name()));
+                    PathBuf::from(path)
+                });
+                hold(gate, cancel);
             }
+            _ => {}
         }
+    }
+}
+
+/// Waits until `gate` exists or `cancel` is set, bounded ([`HOLD_LIMIT`], or
+/// [`HOLD_UNGATED`] without a gate).
+fn hold(gate: Option<PathBuf>, cancel: &Cancel) {
+    let start = Instant::now();
+    let limit = if gate.is_some() { HOLD_LIMIT } else { HOLD_UNGATED };
+    while !gate.as_ref().is_some_and(|g| g.exists()) && !cancel.is_cancelled() && start.elapsed() < limit {
+        std::thread::sleep(Duration::from_millis(20));
     }
 }
 
@@ -88,6 +139,7 @@ mod tests {
         assert_eq!(Hook::of("platener-test-hang-3.stl"), Some(Hook::Hang));
         assert_eq!(Hook::of("platener-test-alloc.stl"), Some(Hook::Alloc));
         assert_eq!(Hook::of("platener-test-slowly.stl"), Some(Hook::Slow));
+        assert!(matches!(Hook::of("platener-test-hold-a.stl"), Some(Hook::Hold { .. })));
         assert_eq!(Hook::of("box.stl"), None);
         assert_eq!(Hook::of("platener-test-other.stl"), None);
     }

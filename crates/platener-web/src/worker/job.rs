@@ -1,17 +1,18 @@
 //! One claimed job: its conversion on a thread of its own, watched with bounded waits, its
-//! progress events, heartbeats and results.
+//! progress events, heartbeats and results (stored as they come by [`super::live`], the rest
+//! at the end).
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use platener::convert::{Conversions, Event, Request, Status, convert_all};
-use platener::pipeline::StepEvent;
 use platener::{Cancel, Source};
-use serde_json::json;
+use serde_json::{Value, json};
 use tokio::sync::{mpsc, oneshot};
 
+use super::live::{self, Note, Partial, Writer};
 use super::{WorkerConfig, WorkerError, hooks};
-use crate::db::{Claimed, Db, DbError, Finished};
+use crate::db::{Claimed, Db, Finished, Hold};
 use crate::results;
 use crate::settings::JobSettings;
 
@@ -49,6 +50,12 @@ enum Ran {
 /// Converts one claimed job and records it.
 pub async fn convert(db: &Db, me: &str, job: Claimed, config: &WorkerConfig) -> Result<Ended, WorkerError> {
     tracing::info!(job = %job.id, attempt = job.attempts, "converting");
+    let hold = Hold {
+        id: job.id.clone(),
+        worker: me.to_string(),
+        attempt: job.attempts,
+    };
+    let partial = Arc::new(Mutex::new(Partial::default()));
     let cancel = Cancel::default();
     let heartbeat = tokio::spawn(heartbeat(
         db.clone(),
@@ -60,16 +67,25 @@ pub async fn convert(db: &Db, me: &str, job: Claimed, config: &WorkerConfig) -> 
     let (outcome, ended) = match parse_settings(&job) {
         Ok((mut request, debug)) => {
             request.timeout = config.timeout;
-            match run_observed(db, me, &job, request, &cancel, config).await? {
+            let observed = Observed {
+                hold: &hold,
+                name: &job.name,
+                partial: &partial,
+            };
+            match run_observed(db, observed, request, &cancel, config).await? {
                 Ran::Returned(all) => {
                     let timed_out = all.methods.iter().any(|m| m.status == Status::TimedOut);
-                    let finished = tokio::task::spawn_blocking(move || results::finished(&all, debug))
+                    let landed = live::lock(&partial).landed.clone();
+                    let finished = tokio::task::spawn_blocking(move || results::finished(&all, debug, &landed))
                         .await
                         .map_err(|e| std::io::Error::other(e.to_string()))?;
                     let clean = !timed_out && !cancel.is_cancelled();
                     (Some(finished), if clean { Ended::Clean } else { Ended::Unclean })
                 }
-                Ran::Overran => (Some(overran(config.timeout)), Ended::Unclean),
+                Ran::Overran => {
+                    let summary = live::lock(&partial).summary();
+                    (Some(overran(config.timeout, summary)), Ended::Unclean)
+                }
                 Ran::GivenUp => (None, Ended::Unclean),
             }
         }
@@ -79,7 +95,7 @@ pub async fn convert(db: &Db, me: &str, job: Claimed, config: &WorkerConfig) -> 
     if let Some(outcome) = outcome
         && !db.finish(&job.id, me, &outcome).await?
     {
-        tracing::warn!(job = %job.id, "the job was cancelled, deleted or taken from this worker; its results are dropped");
+        tracing::warn!(job = %job.id, "the job was cancelled, deleted or taken from this worker; the results not landed yet are dropped");
     }
     Ok(ended)
 }
@@ -100,69 +116,82 @@ fn parse_settings(job: &Claimed) -> Result<(Request, bool), String> {
     Ok((request, job_settings.debug))
 }
 
-/// A job failed without results and with `error`, as [`Db::finish`] stores it.
-fn failed(error: &serde_json::Value) -> Finished {
+/// A job failed with `error` and no results but those its `summary` lists (landed while it
+/// ran), as [`Db::finish`] stores it.
+fn failed(error: &Value, summary: Value) -> Finished {
     Finished {
         status: "failed".into(),
         error: Some(error.to_string()),
-        summary: json!({"model": null, "steps": [], "methods": [], "best": null}).to_string(),
+        summary: summary.to_string(),
         files: Vec::new(),
         event: json!({"status": "failed", "error": error}).to_string(),
     }
 }
 
 fn bad_settings(message: &str) -> Finished {
-    failed(&json!({"code": "bad_request", "message": format!("the stored settings are invalid: {message}")}))
+    failed(
+        &json!({"code": "bad_request", "message": format!("the stored settings are invalid: {message}")}),
+        Partial::default().summary(),
+    )
 }
 
-/// The failure of a conversion whose thread did not return after its time limit.
-fn overran(timeout: Option<Duration>) -> Finished {
+/// The failure of a conversion whose thread did not return after its time limit; the
+/// methods that landed before stay.
+fn overran(timeout: Option<Duration>, summary: Value) -> Finished {
     let limit = timeout.map_or(0.0, |t| t.as_secs_f64());
-    failed(&json!({
+    let error = json!({
         "code": "timed_out",
         "message": format!("the conversion ran past the time limit of {limit} s and did not stop; the model was not converted"),
-    }))
+    });
+    failed(&error, summary)
 }
 
-/// Runs `convert_all` on a thread of its own while its events are appended to the database in
-/// order. A progress write that finds the job no longer `me`'s (cancelled, deleted, taken by
-/// another worker) cancels the conversion. Every wait is bounded ([`Ran`]): the thread is
-/// given up past the time limit or after a cancel, never waited for forever.
+/// The attempt a conversion is observed for.
+struct Observed<'a> {
+    hold: &'a Hold,
+    /// The model's name (test hooks go by it).
+    name: &'a str,
+    /// What landed so far ([`Writer::partial`]).
+    partial: &'a Arc<Mutex<Partial>>,
+}
+
+/// Runs `convert_all` on a thread of its own while its events, the model scene and each
+/// method's results are stored in order as they come ([`Writer`]). A write that finds the
+/// job no longer this attempt's (cancelled, deleted, taken by another worker) cancels the
+/// conversion. Every wait is bounded ([`Ran`]): the thread is given up past the time limit or
+/// after a cancel, never waited for forever.
 async fn run_observed(
     db: &Db,
-    me: &str,
-    job: &Claimed,
+    observed: Observed<'_>,
     request: Request,
     cancel: &Cancel,
     config: &WorkerConfig,
 ) -> Result<Ran, WorkerError> {
-    let (tx, mut rx) = mpsc::unbounded_channel::<Option<(&'static str, String)>>();
+    let (tx, rx) = mpsc::unbounded_channel::<Option<Note>>();
     let sender = tx.clone();
-    let hook = config.test_hooks.then(|| hooks::Hook::of(&job.name)).flatten();
+    let hook = config.test_hooks.then(|| hooks::Hook::of(observed.name)).flatten();
+    let (pool, hook_cancel, progress_hook) = (tokio::runtime::Handle::current(), cancel.clone(), hook.clone());
     let progress = Arc::new(move |event: Event<'_>| {
-        if let Some(hook) = hook {
-            hook.on_progress(matches!(event, Event::Step { .. }));
+        if let Some(note) = Note::of(event, &pool) {
+            let _ = sender.send(Some(note));
         }
-        let _ = sender.send(Some(event_json(event)));
+        // After the note: a step a hook holds has been seen to start.
+        if let Some(hook) = &progress_hook {
+            hook.on_progress(&event, &hook_cancel);
+        }
     });
-    let appender = {
-        let (db, id, me, lost) = (db.clone(), job.id.clone(), me.to_string(), cancel.clone());
-        tokio::spawn(async move {
-            let mut held = true;
-            while let Some(Some((kind, data))) = rx.recv().await {
-                if held && !db.append_progress(&id, &me, kind, &data).await? {
-                    // Cancelled, deleted or given to another worker: stop converting.
-                    held = false;
-                    lost.cancel();
-                }
-            }
-            Ok::<(), DbError>(())
-        })
+    let writer = Writer {
+        db: db.clone(),
+        hold: observed.hold.clone(),
+        order: request.methods.clone(),
+        partial: observed.partial.clone(),
+        lost: cancel.clone(),
     };
+    let appender = tokio::spawn(writer.run(rx));
     let (done, result) = oneshot::channel();
     let thread_cancel = cancel.clone();
     std::thread::Builder::new()
-        .name(format!("job {}", job.id))
+        .name(format!("job {}", observed.hold.id))
         .spawn(move || {
             if let Some(hook) = hook {
                 hook.before_converting();
@@ -196,33 +225,6 @@ async fn wait_bounded(mut result: oneshot::Receiver<Conversions>, limit: Option<
         if cancel.is_cancelled() && cancelled_at.get_or_insert_with(tokio::time::Instant::now).elapsed() >= CANCEL_GRACE
         {
             return Ran::GivenUp;
-        }
-    }
-}
-
-/// An SSE event's name and JSON for a library event.
-fn event_json(event: Event<'_>) -> (&'static str, String) {
-    match event {
-        Event::Step { method, event } => {
-            let method = method.map(|m| m.name());
-            let data = match event {
-                StepEvent::Started(step) => json!({"method": method, "step": step, "state": "started"}),
-                StepEvent::Finished(record) => json!({
-                    "method": method, "step": record.name, "state": "finished",
-                    "ms": record.millis, "warnings": record.warnings.len(),
-                }),
-            };
-            ("step", data.to_string())
-        }
-        Event::Method(m) => {
-            let data = json!({
-                "method": m.method.name(),
-                "status": results::status_name(m.status),
-                "score": m.score.as_ref().map(|s| s.total),
-                "seconds": m.seconds,
-                "error": m.error.as_ref().map(ToString::to_string),
-            });
-            ("method", data.to_string())
         }
     }
 }

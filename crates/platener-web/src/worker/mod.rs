@@ -4,8 +4,9 @@
 //! A worker is a process of its own so that a model that crashes, loops or eats memory kills
 //! only it: its lease runs out (or the server that started it notices at once), and the job
 //! is retried once, then failed with a reason ([`Db::reap`]). It keeps its lease alive with
-//! heartbeats while it converts, writes progress events as they happen and the results in one
-//! transaction at the end.
+//! heartbeats while it converts, writes progress events as they happen, the model scene and
+//! each method's results the moment they exist (`live.rs`), and the rest in one transaction
+//! at the end.
 //!
 //! A conversion that does not end cleanly (a method ran past the time limit, the job was
 //! cancelled or its lease lost, or the conversion thread would not stop) may leave a thread
@@ -14,6 +15,7 @@
 
 mod hooks;
 mod job;
+mod live;
 
 use std::io::Read as _;
 use std::time::Duration;

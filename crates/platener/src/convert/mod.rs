@@ -195,6 +195,10 @@ pub enum Event<'a> {
         /// Started or finished, with its record.
         event: StepEvent<'a>,
     },
+    /// The shared steps ended (`read` and `cleanup`, or as far as they got), before any
+    /// method starts: the state holds the model as read when `read` succeeded, so a caller
+    /// can show the model while the methods still run.
+    Shared(&'a State),
     /// A method finished (converted, failed, panicked or timed out).
     Method(&'a MethodResult),
 }

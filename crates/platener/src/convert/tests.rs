@@ -146,6 +146,7 @@ fn events_name_every_step_and_method_in_order() {
                     event: StepEvent::Finished(r),
                 } => format!("{}:{}", method.map_or("shared", MethodKind::name), r.name),
                 Event::Step { .. } => return,
+                Event::Shared(state) => format!("shared ended, read: {}", state.read.is_some()),
                 Event::Method(m) => format!("{} {:?}", m.method.name(), m.status),
             };
             seen.lock().expect("not poisoned").push(line);
@@ -158,6 +159,7 @@ fn events_name_every_step_and_method_in_order() {
         [
             "shared:read",
             "shared:cleanup",
+            "shared ended, read: true",
             "plate:weld",
             "plate:mesh",
             "plate:coplanar",

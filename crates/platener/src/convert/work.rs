@@ -492,6 +492,7 @@ fn shared_steps(request: &Request, cancel: &Cancel, progress: &dyn Progress) -> 
     }
     let observe = |event: StepEvent<'_>| progress.event(Event::Step { method: None, event });
     let ran = pipeline::run_observed(&SHARED, &mut state, cancel, &observe);
+    progress.event(Event::Shared(&state));
     (state, ran)
 }
 

@@ -133,6 +133,37 @@ impl StepId {
         }
     }
 
+    /// The step of a name given by [`StepId::name`] (an event's or report.json's), if any.
+    pub fn named(name: &str) -> Option<StepId> {
+        StepId::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    /// What the step does, in a maker's words, for progress shown to people ("finding
+    /// plates"): the one table of them, so the page and the CLI say the same thing and
+    /// neither copies the pipeline's step list.
+    pub fn label(self) -> &'static str {
+        match self {
+            StepId::Read => "reading the model",
+            StepId::Cleanup => "cleaning up the mesh",
+            StepId::Weld => "closing gaps between faces",
+            StepId::Mesh => "checking the surface",
+            StepId::Coplanar => "finding flat faces",
+            StepId::Classify => "recognising curved shapes",
+            StepId::Shapes => "tracing the faces' outlines",
+            StepId::Plates => "finding plates",
+            StepId::Bends => "finding bends",
+            StepId::Joints => "making joints",
+            StepId::Parts => "shaping the parts",
+            StepId::Stacked => "slicing into layers",
+            StepId::Relief => "engraving the textures",
+            StepId::Layers => "slicing the curved parts",
+            StepId::Kerf => "allowing for the laser's cut",
+            StepId::Labels => "numbering the parts",
+            StepId::Sheets => "nesting the parts",
+            StepId::Export => "writing the files",
+        }
+    }
+
     /// The steps of `method` up to and including its `parts` snapshot, then the cutting plan.
     pub fn of_method(method: MethodKind) -> Vec<StepId> {
         let mut steps = match method {

@@ -46,6 +46,23 @@ fn every_step_leaves_a_snapshot_and_a_record() {
     assert_eq!(state.shapes.expect("shapes").shapes.len(), 6);
 }
 
+/// Every step has its own phrase for people, found again by its name (what an event carries).
+#[test]
+fn every_step_has_a_label_of_its_own_found_by_its_name() {
+    let mut labels = std::collections::HashSet::new();
+    for step in StepId::ALL {
+        assert_eq!(StepId::named(step.name()), Some(step));
+        let label = step.label();
+        assert!(
+            !label.is_empty() && label.chars().all(|c| c.is_ascii_lowercase() || " '".contains(c)),
+            "{}: {label:?}",
+            step.name()
+        );
+        assert!(labels.insert(label), "{label:?} twice");
+    }
+    assert_eq!(StepId::named("no such step"), None);
+}
+
 #[test]
 fn tiny_and_huge_models_get_a_units_warning() {
     for (size, warned) in [(0.5, true), (50.0, false), (6000.0, true)] {

@@ -32,12 +32,13 @@ export async function submit(file, options) {
   return (await request('/api/conversions', { method: 'POST', body: form })).json();
 }
 
-/** Waits for the conversion's last event; `onStep(data)` sees each step as it runs. */
+/** Waits for the conversion's last event (or a lost stream); `onStep(data)` sees each step as
+ * it runs. Results landing while it runs (`model`, `method`) and a `retry` are not the end. */
 export function finished(id, onStep) {
   return new Promise((resolve) => {
     events(id, (kind, data) => {
       if (kind === 'step') onStep(data);
-      else if (kind !== 'method') resolve(kind);
+      else if (!['method', 'model', 'retry'].includes(kind)) resolve(kind);
     });
   });
 }
