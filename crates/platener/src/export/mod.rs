@@ -64,9 +64,12 @@ pub fn run(
 ) -> Result<Bundle, PlanError> {
     let stem = plan_json::file_stem(&input.source.name);
     let stems = plan_json::sheet_stems(&stem, nesting);
-    let plan = plan_json::build_plan(input, cut, labels, nesting, &stems);
     let mut groups = plan_json::sheet_groups(input, cut, labels, nesting);
-    add_legends(input, nesting, &mut groups);
+    let legends = sheet_legends(input, nesting, &groups);
+    for (g, legend) in groups.iter_mut().zip(&legends) {
+        g.extend(legend.as_ref().and_then(legend::Legend::group));
+    }
+    let plan = plan_json::build_plan(input, cut, labels, nesting, &stems, &legends);
     let mut files = BTreeMap::new();
     for ((sheet, stem), g) in nesting.sheets.iter().zip(&stems).zip(&groups) {
         let svg = sheet_svg(sheet.width, sheet.height, g, &SvgStyle::CUT);
@@ -93,10 +96,12 @@ pub fn run(
     })
 }
 
-/// Adds to each sheet's groups the legend saying where the numbers of its parts too thin for
-/// them went ([`legend`]), when there are such parts and room for it.
-fn add_legends(input: &PlanInput, nesting: &Nesting, groups: &mut [Vec<svg::SvgGroup>]) {
-    for (index, (sheet, g)) in nesting.sheets.iter().zip(groups.iter_mut()).enumerate() {
+/// Each sheet's legend saying where the numbers of its parts too thin for them went
+/// ([`legend`]), placed beside its parts when there is room; `None` for a sheet whose every
+/// number is on its own part.
+fn sheet_legends(input: &PlanInput, nesting: &Nesting, groups: &[Vec<svg::SvgGroup>]) -> Vec<Option<legend::Legend>> {
+    let report = input.method_report.as_ref();
+    let lines_of = |index: usize| {
         let mut on_sheet: Vec<u32> = input
             .parts
             .iter()
@@ -105,11 +110,15 @@ fn add_legends(input: &PlanInput, nesting: &Nesting, groups: &mut [Vec<svg::SvgG
             .map(|(part, _)| part.id)
             .collect();
         on_sheet.sort_unstable();
-        let lines = legend::legend_lines(input.method_report.as_ref(), &on_sheet);
-        if let Some(l) = legend::legend_group(&lines, sheet.width, sheet.height, g) {
-            g.push(l);
-        }
-    }
+        legend::legend_lines(report, &on_sheet)
+    };
+    nesting
+        .sheets
+        .iter()
+        .zip(groups)
+        .enumerate()
+        .map(|(index, (sheet, g))| legend::Legend::place(lines_of(index), sheet.width, sheet.height, g))
+        .collect()
 }
 
 fn build_report(
