@@ -135,8 +135,8 @@ pub fn status_name(status: Status) -> &'static str {
     }
 }
 
-/// A method's files: the ZIP, plan.json, report.json, sheets (SVG, PNG) and the scenes it
-/// reached.
+/// A method's files: the ZIP, plan.json, report.json, the gallery's thumbnail, sheets (SVG,
+/// PNG) and the scenes it reached.
 fn method_files(m: &MethodResult) -> Vec<ResultFile> {
     let method = m.method.name();
     let file = |file: String, content_type: &str, data: Vec<u8>| ResultFile {
@@ -152,6 +152,9 @@ fn method_files(m: &MethodResult) -> Vec<ResultFile> {
             if let Some(data) = bundle.files.get(name) {
                 files.push(file(name.into(), JSON, data.clone()));
             }
+        }
+        if let Some(png) = bundle.files.get(platener::export::thumbnail::FILE) {
+            files.push(file(platener::export::thumbnail::FILE.into(), PNG, png.clone()));
         }
         for (i, sheet) in bundle.plan.sheets.iter().enumerate() {
             let n = i + 1;

@@ -90,7 +90,7 @@ pub async fn gallery_page(app: &App, page: i64) -> ApiResult<Value> {
                 "best": best,
                 "parts": method.map(|m| m["parts"].clone()),
                 "score": method.map(|m| m["score"].clone()),
-                "thumbnail": best.map(|b| format!("{base}/methods/{b}/sheets/1.png")),
+                "thumbnail": best.map(|b| format!("{base}/methods/{b}/thumbnail.png")),
                 "published": super::view::iso_time(r.published),
                 "links": {"self": base},
             })

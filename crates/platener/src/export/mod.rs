@@ -2,7 +2,8 @@
 //!
 //! Everything the user takes to the laser and everything third-party programs read comes out
 //! of here as one ZIP: plan.json (the contract in `shared/spec/plan-format.md`), report.json,
-//! assembly.glb (the assembled parts in 3D, [`crate::scene::assembly`]), and per sheet an SVG ([`svg`]), a DXF ([`dxf`]) and a PNG preview ([`png`]). Entries are
+//! assembly.glb (the assembled parts in 3D, [`crate::scene::assembly`]), thumbnail.png (the
+//! assembly drawn small, [`thumbnail`]), and per sheet an SVG ([`svg`]), a DXF ([`dxf`]) and a PNG preview ([`png`]). Entries are
 //! sorted by name and stamped 1980-01-01 with mode 0644, and report.json carries no timings
 //! unless asked, so the same input and settings give a byte-identical ZIP.
 
@@ -12,6 +13,7 @@ pub mod plan_json;
 pub mod png;
 pub mod report;
 pub mod svg;
+pub mod thumbnail;
 
 use std::collections::BTreeMap;
 use std::io::{Cursor, Write};
@@ -44,8 +46,8 @@ pub struct Bundle {
     pub plan: Plan,
     /// report.json as data.
     pub report: Report,
-    /// Every file of the ZIP by name (plan.json, report.json, assembly.glb, the sheets'
-    /// .svg/.dxf/.png).
+    /// Every file of the ZIP by name (plan.json, report.json, assembly.glb, thumbnail.png,
+    /// the sheets' .svg/.dxf/.png).
     #[serde(skip)]
     pub files: BTreeMap<String, Vec<u8>>,
     /// The ZIP.
@@ -85,8 +87,10 @@ pub fn run(
     let report_json = serde_json::to_string_pretty(&report).map_err(|e| PlanError::write("report.json", e))?;
     files.insert("report.json".into(), report_json.into_bytes());
     // The parts were validated by now, so a scene that cannot be written is our bug.
-    let scene = crate::scene::assembly(&input.parts).map_err(|e| PlanError::write("assembly.glb", e))?;
+    let assembly = crate::scene::Assembly::new(&input.parts).map_err(|e| PlanError::write("assembly.glb", e))?;
+    let scene = assembly.scene().map_err(|e| PlanError::write("assembly.glb", e))?;
     files.insert("assembly.glb".into(), scene.glb);
+    files.insert(thumbnail::FILE.into(), thumbnail::thumbnail(&assembly)?);
     let zip = zip_files(&files)?;
     Ok(Bundle {
         plan,
