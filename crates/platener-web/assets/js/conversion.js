@@ -7,6 +7,9 @@ import { createViewer } from './viewer.js';
 import { createSheets } from './sheets.js';
 import { assemblyOrder } from './assembly.js';
 import * as progress from './progress.js';
+import { showPublishing } from './publish.js';
+import { showWarnings } from './warnings.js';
+import { laserNote, partsShown } from './wording.js';
 
 const $ = (id) => document.getElementById(id);
 export const VIEWS = ['model', 'wireframe', 'coplanar', 'primitives', 'plates', 'bent', 'final'];
@@ -50,11 +53,13 @@ export function createConversionArea({ state, onGalleryChange }) {
     $('viewer-note').textContent = 'This browser cannot show 3D (WebGL is off); the sheets and downloads still work.';
   }
 
-  /** Hover from either side: label, and the same part on the other side. */
+  /** Hover from either side: label (with its sheet when there are several), and the same
+   * part on the other side (the sheet list scrolled to it). */
   function hover(n, kind, from) {
     state.hovered = n;
-    $('part-label').textContent = n == null ? '' : `${kind === 'plate' ? 'Plate' : 'Part'} ${n}`;
-    if (from === 'viewer') sheets.highlight(kind === 'part' ? n : null);
+    const sheet = kind === 'part' && sheets.count > 1 ? sheets.sheetOf(n) : null;
+    $('part-label').textContent = n == null ? '' : `${kind === 'plate' ? 'Plate' : 'Part'} ${n}${sheet ? `, sheet ${sheet}` : ''}`;
+    if (from === 'viewer') sheets.highlight(kind === 'part' ? n : null, { reveal: true });
     if (from === 'sheet' && viewer && state.view === 'final') viewer.highlight(n);
   }
 
@@ -119,7 +124,7 @@ export function createConversionArea({ state, onGalleryChange }) {
     $('player').value = String(k);
     const total = state.assembly.length;
     const last = state.assembly[k - 1];
-    $('player-out').textContent = k >= total ? `All ${total} parts` : `${k} of ${total} parts${last ? `: part ${last} joined` : ''}`;
+    $('player-out').textContent = partsShown(k, total, last);
   }
 
   function stopPlaying() {
@@ -192,7 +197,7 @@ export function createConversionArea({ state, onGalleryChange }) {
     showStats(null, null);
     setViewButtons();
     $('download').disabled = true;
-    $('publish').hidden = true;
+    showPublishing(null);
     $('share').hidden = true;
     $('warnings-box').hidden = true;
   }
@@ -250,15 +255,12 @@ export function createConversionArea({ state, onGalleryChange }) {
     }
     const err = progress.errorOf(c);
     progress.showError(err);
-    showWarnings(progress.warningsOf(c));
+    showWarnings(c);
     progress.status(c.best ? `${c.model.name}: plan made by the ${c.best} method.` : `${c.model.name}: no plan.`);
     setViewButtons();
     if (!c.best) return emit('finished', c);
     $('download').disabled = false;
-    const token = api.tokens.get(c.id);
-    $('publish').hidden = !token || c.published;
-    $('publish').disabled = false;
-    $('publish').textContent = 'Publish to gallery';
+    showPublishing(c);
     $('share').hidden = false;
     $('share').href = `#/c/${encodeURIComponent(c.id)}`;
     await Promise.all([loadPlanAndSheets(c), showView(state.view || 'final')]);
@@ -271,19 +273,6 @@ export function createConversionArea({ state, onGalleryChange }) {
     stopEvents = api.events(id, (kind, data) => {
       if (state.id === id && kind === 'step' && data.method && data.state === 'finished') progress.stepEvent(data);
     });
-  }
-
-  function showWarnings(list) {
-    $('warnings').replaceChildren(
-      ...list.map((w) => Object.assign(document.createElement('li'), { textContent: w.line, className: w.shown ? '' : 'other-method' })),
-    );
-    const shown = list.filter((w) => w.shown).length;
-    const others = list.length - shown;
-    const plural = (n) => `${n} warning${n === 1 ? '' : 's'}`;
-    $('warnings-title').textContent = others
-      ? `${plural(shown)} for this plan, ${others} more from other methods`
-      : plural(shown);
-    $('warnings-box').hidden = list.length === 0;
   }
 
   async function loadPlanAndSheets(c) {
@@ -308,10 +297,7 @@ export function createConversionArea({ state, onGalleryChange }) {
     const r = report || {};
     set('cut', r.cut_length != null ? `${(r.cut_length / 1000).toFixed(2)} m` : '–');
     set('minutes', r.estimated_cutting_seconds != null ? `≈ ${(r.estimated_cutting_seconds / 60).toFixed(1)} min` : '–');
-    const s = r.settings || {};
-    $('speed-note').textContent = s.cut_speed
-      ? `Laser time: cutting at ${s.cut_speed} mm/s (3 mm plywood on a 40 W CO₂ laser) and engraving at ${s.engrave_speed} mm/s, without travel moves.`
-      : '';
+    $('speed-note').textContent = laserNote(r.settings);
   }
 }
 
