@@ -908,6 +908,20 @@ fn gallery_hover_view_and_download() {
         "document.querySelectorAll('[data-testid=gallery-item] img').length >= 3",
         "three cards",
     );
+    // Every card shows its assembled model: at least a fifth of each thumbnail is drawn.
+    for item in &items {
+        let img = format!(
+            "[data-testid=gallery-item][data-id=\"{}\"] img",
+            item["id"].as_str().expect("id")
+        );
+        let cover = thumbnail_cover(&page, &img);
+        assert!(
+            cover >= 0.2,
+            "{}: the thumbnail covers {:.0} %",
+            item["name"],
+            cover * 100.0
+        );
+    }
     let id = items[0]["id"].as_str().expect("id").to_string();
     let card = format!("[data-testid=gallery-item][data-id=\"{id}\"]");
     let view = format!("{card} [data-testid=gallery-view]");
