@@ -249,7 +249,7 @@ impl Weights {
             }
         }
         let (from, to) = ((lo - 0.5).ceil(), (hi - 0.5).floor() + 1.0);
-        (from < to).then(|| (from as u32, to as u32))
+        (from < to).then_some((from as u32, to as u32))
     }
 
     /// The depth at sample centre (x, y).

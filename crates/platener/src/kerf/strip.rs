@@ -105,18 +105,7 @@ pub fn test_strip(thickness: f64, material: Material) -> Result<TestStrip, PlanE
 /// Holes are `thickness + 1` mm long across the strip, so the spike (as thick as the sheet)
 /// enters them whatever the real thickness, and only the width decides the fit.
 pub fn test_strip_marking(thickness: f64, material: Material, kerf: f64) -> Result<TestStrip, PlanError> {
-    if !(thickness.is_finite() && thickness > 0.0 && thickness <= MAX_THICKNESS) {
-        return Err(PlanError::Setting {
-            name: "thickness",
-            message: format!("{thickness} mm must be in (0, {MAX_THICKNESS}]"),
-        });
-    }
-    if !(kerf.is_finite() && (0.0..MAX_KERF).contains(&kerf)) {
-        return Err(PlanError::Setting {
-            name: "kerf",
-            message: format!("{kerf} mm must be at least 0 and under {MAX_KERF} mm"),
-        });
-    }
+    check(thickness, kerf)?;
     let (default_hole, marked_hole) = (hole_for_kerf(material.default_kerf()), hole_for_kerf(kerf));
     let hole_len = thickness + 1.0;
     let (x0, y0) = (MARGIN, MARGIN);
@@ -196,6 +185,23 @@ pub fn test_strip_marking(thickness: f64, material: Material, kerf: f64) -> Resu
         marked_hole,
         table,
     })
+}
+
+/// Refuses a thickness or a kerf the strip cannot be drawn for.
+fn check(thickness: f64, kerf: f64) -> Result<(), PlanError> {
+    if !(thickness.is_finite() && thickness > 0.0 && thickness <= MAX_THICKNESS) {
+        return Err(PlanError::Setting {
+            name: "thickness",
+            message: format!("{thickness} mm must be in (0, {MAX_THICKNESS}]"),
+        });
+    }
+    if !(kerf.is_finite() && (0.0..MAX_KERF).contains(&kerf)) {
+        return Err(PlanError::Setting {
+            name: "kerf",
+            message: format!("{kerf} mm must be at least 0 and under {MAX_KERF} mm"),
+        });
+    }
+    Ok(())
 }
 
 impl TestStrip {
