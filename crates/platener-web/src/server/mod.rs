@@ -19,7 +19,7 @@ mod inspect;
 mod limits;
 mod misc;
 mod page;
-mod unpublish;
+mod publish;
 mod view;
 mod workers;
 
@@ -218,7 +218,7 @@ fn router(app: Arc<App>) -> Router {
         .route("/api/conversions/{id}/recut", post(api::recut))
         .route(
             "/api/conversions/{id}/publish",
-            post(api::publish).delete(unpublish::unpublish),
+            post(publish::publish).delete(publish::unpublish),
         )
         .route("/api/conversions/{id}/cancel", post(cancel::cancel))
         .route("/api/conversions/{id}/plan.zip", get(files::best_plan))
