@@ -21,7 +21,7 @@ pub const WIDTH: u32 = 320;
 /// The thumbnail's height, pixels.
 pub const HEIGHT: u32 = 240;
 /// Samples per pixel along each axis.
-const SUPERSAMPLE: u32 = 3;
+const SUPERSAMPLE: u32 = 2;
 /// The background (the gallery card's white).
 pub const BACKGROUND: [u8; 3] = [255, 255, 255];
 /// Room left around the object, as a share of the picture's width or height.
