@@ -56,4 +56,3 @@ fn nothing_to_draw_gives_a_blank_thumbnail() {
     assert_eq!((w, h), (WIDTH, HEIGHT));
     assert!(colours.iter().all(|c| *c == BACKGROUND));
 }
-
