@@ -16,7 +16,7 @@ mod web_support;
 
 use std::path::{Path, PathBuf};
 
-use browser_support::models::million_triangle_box;
+use browser_support::models::{metre_scale_box, million_triangle_box};
 use browser_support::pixels::{Image, assert_view_rendered, assert_viewer_empty, palette_share};
 use browser_support::{Browser, PATIENCE, Page, Rect, chromium};
 use serde_json::Value;
@@ -214,6 +214,7 @@ fn upload_button_progress_six_views_hover_and_settings_recut() {
         );
     }
     page.screenshot("02-box-converted", None);
+    says_it_in_plain_words(&page);
 
     for view in VIEWS {
         let img = show_view(&page, view, &format!("03-view-{view}"));
@@ -264,11 +265,157 @@ fn upload_button_progress_six_views_hover_and_settings_recut() {
         from_sheet.changed_pixels(&before, 24) > 100,
         "part {other} hovered on the sheet is not lit in 3D"
     );
+    every_part_lights_up_hidden_ones_too(&page, &before);
     check_explode_and_player(&rig, &page, &id);
+    multi_sheet_hover_scrolls_to_the_sheet(&rig, &page, &id);
     publish_and_see_in_gallery(&rig, &page, &id);
     recut_keeps_view(&rig, &page, &id);
     classifier_shows_its_primitives(&rig, &page);
     page.assert_no_problems("landing page, upload, views, hover, re-cut");
+}
+
+/// Each part of the box hovered on the sheet lights up in 3D over most of its outline, also
+/// the three walls the camera sees only through the others (the highlight is drawn on top).
+fn every_part_lights_up_hidden_ones_too(page: &Page, before: &Image) {
+    let parts =
+        page.eval("[...document.querySelectorAll('[data-testid=sheet-part]')].map(g => Number(g.dataset.part))");
+    let parts: Vec<u64> = serde_json::from_value(parts).expect("numbers");
+    assert_eq!(parts.len(), 6, "the box's six walls");
+    // Focus marks a sheet's part as hovering does, with no mouse to wander when the page
+    // scrolls for a screenshot.
+    page.mouse_move(5.0, 5.0);
+    let mut lit = Vec::new();
+    for part in parts {
+        page.eval(&format!(
+            "document.querySelector('[data-testid=sheet-part][data-part=\"{part}\"]').focus({{ preventScroll: true }})"
+        ));
+        page.wait_until(
+            &format!("window.platener.state.hovered === {part}"),
+            "a wall marked on the sheet",
+        );
+        settle(page);
+        let img = canvas_pixels(page, &format!("06-hover-wall-{part}"));
+        assert_eq!(page.state()["hovered"], part, "still wall {part}");
+        lit.push((part, img.changed_pixels(before, 24)));
+    }
+    page.eval("document.activeElement.blur()");
+    assert!(
+        lit.iter().all(|&(_, n)| n > LIT_WALL),
+        "pixels lit per wall (more than {LIT_WALL} each): {lit:?}"
+    );
+}
+
+/// Changed pixels a hovered wall of the box lights up at least, seen or hidden: 21 000 and
+/// more with the highlight drawn on top, under 3 000 for a hidden wall without (its finger
+/// tips), in the 488 × 430 canvas.
+const LIT_WALL: usize = 10_000;
+
+/// A re-cut of the box on 200 × 150 mm sheets has several: a part hovered in 3D (stepped to
+/// with the keyboard until one on the last sheet) scrolls the sheet list to that sheet, is
+/// marked there, and the label names its sheet.
+fn multi_sheet_hover_scrolls_to_the_sheet(rig: &Rig, page: &Page, id: &str) {
+    let body = serde_json::json!({ "sheet": "200x150", "method": "plate" }).to_string();
+    let r = rig.server.request(
+        "POST",
+        &format!("/api/conversions/{id}/recut"),
+        &[("Content-Type", "application/json")],
+        body.as_bytes(),
+    );
+    assert_eq!(r.status, 202, "{}", r.text());
+    let small = r.json()["id"].as_str().expect("id").to_string();
+    page.eval(&format!("location.hash = '#/c/{small}'"));
+    page.wait_until(
+        &format!("window.platener.state.id === '{small}' && window.platener.state.loadedView === 'final'"),
+        "the re-cut on small sheets",
+    );
+    let plan = plan_json(&rig.server.get(&format!("/api/conversions/{small}/plan.zip")).body);
+    let sheet_of = |n: u64| {
+        plan["parts"]
+            .as_array()
+            .expect("parts")
+            .iter()
+            .find(|p| p["id"] == n)
+            .expect("part")["sheet"]["index"]
+            .as_u64()
+            .expect("index")
+            + 1
+    };
+    let last = plan["sheets"].as_array().expect("sheets").len() as u64;
+    assert!(last >= 2, "200 × 150 mm sheets hold the box in one: {}", plan["sheets"]);
+    page.wait_until(
+        &format!("document.querySelectorAll('[data-testid=sheets] figure').length === {last}"),
+        "every sheet shown",
+    );
+    // The mouse rests away from the sheets, which scroll under it otherwise.
+    page.mouse_move(5.0, 5.0);
+    page.eval("document.querySelector('[data-testid=viewer]').focus()");
+    let mut part = 0;
+    for _ in 0..plan["parts"].as_array().expect("parts").len() {
+        page.key("n", "KeyN", 78, false);
+        part = page.state()["hovered"].as_u64().expect("a part stepped to");
+        if sheet_of(part) == last {
+            break;
+        }
+    }
+    assert_eq!(sheet_of(part), last, "no part of the last sheet reached");
+    let label = page.eval("document.querySelector('[data-testid=part-label]').textContent");
+    assert_eq!(label, format!("Part {part}, sheet {last}"));
+    let shown = page.wait_until(
+        &format!(
+            "(() => {{ const box = document.querySelector('[data-testid=sheets]').getBoundingClientRect(); \
+             const figure = document.querySelectorAll('[data-testid=sheets] figure')[{last} - 1]; \
+             const g = figure.querySelector('[data-testid=sheet-part][data-part=\"{part}\"]'); \
+             const r = g.getBoundingClientRect(); \
+             return g.classList.contains('hot') && r.top >= box.top - 1 && r.bottom <= box.bottom + 1; }})()"
+        ),
+        "the hovered part's sheet scrolled into view",
+    );
+    assert_eq!(shown, Value::Bool(true));
+    page.screenshot("16-multi-sheet-hover", None);
+    page.eval(&format!("location.hash = '#/c/{id}'"));
+    page.wait_until(
+        &format!("window.platener.state.id === '{id}' && window.platener.state.loadedView === 'final'"),
+        "the box on one sheet again",
+    );
+}
+
+/// The clean box's warnings say so in words, the other methods' notes grouped by method; the
+/// laser-time note names the plan's material and thickness; the score and the engraved
+/// numbers are explained.
+fn says_it_in_plain_words(page: &Page) {
+    let text = |id: &str| {
+        page.eval(&format!("document.getElementById('{id}').textContent"))
+            .as_str()
+            .unwrap_or_default()
+            .to_string()
+    };
+    let title = text("warnings-title");
+    assert!(
+        title.starts_with("No warnings about this plan (") && title.contains("notes from the methods not shown"),
+        "{title}"
+    );
+    let groups = page.eval(
+        "[...document.querySelectorAll('[data-testid=warnings] > li')].map(li => [li.dataset.method, li.className])",
+    );
+    let groups = groups.as_array().expect("groups");
+    assert!(
+        !groups.is_empty()
+            && groups
+                .iter()
+                .all(|g| g[0] != "plate" && g[0].is_string() && g[1] == "group other-method"),
+        "the notes grouped by the methods not shown: {groups:?}"
+    );
+    page.wait_until(
+        "document.getElementById('speed-note').textContent.startsWith('Laser time for 3 mm plywood or MDF:')",
+        "the laser-time note of a 3 mm wood plan",
+    );
+    let help =
+        page.eval("['score-help', 'labels-help'].map(t => document.querySelector(`[data-testid=${t}]`).textContent)");
+    assert!(
+        help[0].as_str().is_some_and(|t| t.contains("from 0 to 1"))
+            && help[1].as_str().is_some_and(|t| t.contains("#7")),
+        "{help}"
+    );
 }
 
 /// Choosing the classifier method re-cuts, and its primitives view is enabled and drawn in
@@ -323,6 +470,10 @@ fn recut_keeps_view(rig: &Rig, page: &Page, id: &str) {
         "the plates view of the re-cut",
     );
     assert_eq!(page.state()["view"], "plates", "the view is kept across a re-cut");
+    page.wait_until(
+        "document.getElementById('speed-note').textContent.startsWith('Laser time for 3 mm acrylic:')",
+        "the laser-time note of the acrylic re-cut",
+    );
     settle(page);
     assert_view_rendered("plates", &canvas_pixels(page, "08-recut-acrylic"));
 }
@@ -383,6 +534,17 @@ fn check_explode_and_player(rig: &Rig, page: &Page, id: &str) {
         "exploding changes nothing on screen"
     );
     let apart = part_centres(page);
+    let state = page.state();
+    assert_eq!(
+        state["offscreenParts"],
+        serde_json::json!([]),
+        "exploded parts leave the picture"
+    );
+    assert!(
+        state["gridBelowModelMm"].as_f64().is_some_and(|d| d > 0.0),
+        "the grid is not under the exploded parts: {}",
+        state["gridBelowModelMm"]
+    );
     let centroid = |m: &std::collections::BTreeMap<u64, [f64; 3]>| {
         let mut c = [0.0; 3];
         for p in m.values() {
@@ -449,30 +611,59 @@ fn check_player(page: &Page, plan: &Value, assembled: &Image) {
     );
 }
 
-/// Publishes the user's conversion: it appears in the gallery (the API's and the page's), its
-/// thumbnail loaded.
+/// Publishing asks first (Cancel publishes nothing); once confirmed the conversion appears in
+/// the gallery (the API's and the page's) with its thumbnail, a picture of the assembled box
+/// (non-background pixels cover at least a fifth of it); Unpublish takes it out again.
 fn publish_and_see_in_gallery(rig: &Rig, page: &Page, id: &str) {
-    page.click(&tid("publish"));
-    page.wait_until(
-        "document.querySelector('[data-testid=publish]').textContent === 'Published'",
-        "the Publish button answers",
-    );
-    let items = rig.server.get("/api/gallery?page=1").json();
-    assert!(
+    let in_gallery = || {
+        let items = rig.server.get("/api/gallery?page=1").json();
         items["items"]
             .as_array()
-            .is_some_and(|a| a.iter().any(|i| i["id"] == id)),
-        "{items}"
+            .is_some_and(|a| a.iter().any(|i| i["id"] == id))
+    };
+    let dialog_open = "document.querySelector('[data-testid=publish-dialog]').open";
+    page.click(&tid("publish"));
+    page.wait_until(dialog_open, "the question before publishing");
+    page.screenshot("17-publish-asks", None);
+    page.click(&tid("publish-cancel"));
+    page.wait_until(&format!("!{dialog_open}"), "the question closed");
+    assert!(!in_gallery(), "Cancel published the conversion");
+    page.click(&tid("publish"));
+    page.wait_until(dialog_open, "the question again");
+    page.click(&tid("publish-confirm"));
+    page.wait_until(
+        "!document.querySelector('[data-testid=unpublish]').hidden && document.querySelector('[data-testid=publish]').hidden",
+        "Unpublish offered once published",
     );
+    assert!(in_gallery(), "not in the gallery once published");
     let img = format!("[data-testid=gallery-item][data-id=\"{id}\"] img");
     page.rect(&img);
-    page.wait_until(
-        &format!(
-            "(() => {{ const i = document.querySelector('{img}'); return !!i && i.complete && i.naturalWidth > 0; }})()"
-        ),
-        "the published conversion's thumbnail",
+    let cover = thumbnail_cover(page, &img);
+    assert!(
+        cover >= 0.2,
+        "the thumbnail shows the box on {:.0} % of it",
+        cover * 100.0
     );
     page.screenshot("17-published", None);
+    page.click(&tid("unpublish"));
+    page.wait_until(
+        &format!("!document.querySelector('[data-testid=publish]').hidden && !document.querySelector('{img}')"),
+        "the conversion out of the page's gallery",
+    );
+    assert!(!in_gallery(), "still in the gallery after Unpublish");
+}
+
+/// The share of a gallery thumbnail's pixels (its `img`, once loaded) that are not the white
+/// background, read back through a canvas.
+fn thumbnail_cover(page: &Page, img: &str) -> f64 {
+    let js = format!(
+        "(() => {{ const i = document.querySelector('{img}'); if (!i || !i.complete || !i.naturalWidth) return null; \
+         const c = document.createElement('canvas'); c.width = i.naturalWidth; c.height = i.naturalHeight; \
+         const x = c.getContext('2d'); x.drawImage(i, 0, 0); const d = x.getImageData(0, 0, c.width, c.height).data; \
+         let n = 0; for (let k = 0; k < d.length; k += 4) if (d[k] < 250 || d[k + 1] < 250 || d[k + 2] < 250) n += 1; \
+         return n / (c.width * c.height); }})()"
+    );
+    page.wait_until(&js, "a thumbnail loaded").as_f64().expect("a share")
 }
 
 /// Each step of the conversion appears in the progress list, finished, with its time.
@@ -682,6 +873,7 @@ fn pick_kerf_and_download(rig: &Rig, page: &Page, id: &str, model: &Path) {
         &format!("document.querySelector('[data-testid=kerf]').textContent.includes('{kerf}')"),
         "the dialog shows the new kerf",
     );
+    assert_strip_stars(rig, page, kerf);
     page.screenshot("12-kerf-picked", None);
 
     let (_downloads, zip) = download(page, &tid("download-zip"));
@@ -692,6 +884,28 @@ fn pick_kerf_and_download(rig: &Rig, page: &Page, id: &str, model: &Path) {
         "the ZIP is the re-cut plan"
     );
     assert_verifies(&zip, model);
+}
+
+/// After a kerf change the dialog's strip (its SVG link and the strip drawn) is asked for
+/// with the new kerf, whose hole the engraved table stars.
+fn assert_strip_stars(rig: &Rig, page: &Page, kerf: f64) {
+    let href = page.wait_until(
+        &format!(
+            "(() => {{ const h = document.querySelector('[data-testid=test-strip-svg]').getAttribute('href'); \
+             return h && new URL(h, location.href).searchParams.get('kerf') === String({kerf}) ? h : null; }})()"
+        ),
+        "the test strip link with the plan's kerf",
+    );
+    let json = href
+        .as_str()
+        .expect("href")
+        .replace("test-strip.svg", "test-strip.json");
+    let strip = rig.server.get(&json).json();
+    let hole = page.eval(&format!(
+        "Number(document.querySelector('[data-testid=strip-hole][data-kerf=\"{kerf:.3}\"]').dataset.number)"
+    ));
+    assert_eq!(strip["marked_hole"], hole, "the table stars the kerf in use: {strip}");
+    assert_ne!(strip["marked_hole"], strip["default_hole"], "{strip}");
 }
 
 #[test]
@@ -706,6 +920,20 @@ fn gallery_hover_view_and_download() {
         "document.querySelectorAll('[data-testid=gallery-item] img').length >= 3",
         "three cards",
     );
+    // Every card shows its assembled model: at least a fifth of each thumbnail is drawn.
+    for item in &items {
+        let img = format!(
+            "[data-testid=gallery-item][data-id=\"{}\"] img",
+            item["id"].as_str().expect("id")
+        );
+        let cover = thumbnail_cover(&page, &img);
+        assert!(
+            cover >= 0.2,
+            "{}: the thumbnail covers {:.0} %",
+            item["name"],
+            cover * 100.0
+        );
+    }
     let id = items[0]["id"].as_str().expect("id").to_string();
     let card = format!("[data-testid=gallery-item][data-id=\"{id}\"]");
     let view = format!("{card} [data-testid=gallery-view]");
@@ -734,6 +962,7 @@ fn gallery_hover_view_and_download() {
     assert_view_rendered(&shown, &canvas_pixels(&page, "21-gallery-view"));
     assert_method_steps(&rig, &page, &id);
     page.screenshot("22-gallery-view-page", None);
+    side_column_fits_from_1920_to_1024(&page);
 
     page.goto(&rig.url("/#/"));
     page.wait_until(
@@ -809,14 +1038,69 @@ fn assert_fits_width(page: &Page, selector: &str, what: &str) {
     );
 }
 
+/// Whether every element of the settings column (`aside.side`) lies within it: the list of
+/// those that stick out, with their boxes (empty when all fit).
+const SIDE_OVERFLOW: &str = "(() => { const side = document.querySelector('aside.side'); const r = side.getBoundingClientRect(); \
+    const out = []; if (side.scrollWidth > side.clientWidth + 1) out.push('aside scrolls sideways: ' + side.scrollWidth + ' > ' + side.clientWidth); \
+    for (const e of side.querySelectorAll('*')) { const b = e.getBoundingClientRect(); if (!b.width && !b.height) continue; \
+      if (b.left < r.left - 0.5 || b.right > r.right + 0.5) out.push(`${e.tagName.toLowerCase()}${e.id ? '#' + e.id : ''}: ${Math.round(b.left)}..${Math.round(b.right)} outside ${Math.round(r.left)}..${Math.round(r.right)}`); } \
+    return out; })()";
+
+/// No element of the settings column extends past it, and the column stays left of the 3D
+/// pane and inside the page, at the `width` set.
+fn assert_side_column_fits(page: &Page, width: u32) {
+    let out = page.eval(SIDE_OVERFLOW);
+    assert_eq!(
+        out,
+        serde_json::json!([]),
+        "at {width} px, the settings column overflows"
+    );
+    assert_fits_width(page, "aside.side", &format!("the settings column at {width} px"));
+    if width > 720 {
+        let (side, pane) = (page.rect("aside.side"), page.rect(".viewer-pane"));
+        assert!(
+            side.x + side.width <= pane.x,
+            "at {width} px the 3D pane covers the settings column"
+        );
+    }
+}
+
+/// Sets the viewport's size and waits for the page to take it.
+fn set_width(page: &Page, width: u32, height: u32) {
+    page.call(
+        "Emulation.setDeviceMetricsOverride",
+        serde_json::json!({ "width": width, "height": height, "deviceScaleFactor": 1, "mobile": false }),
+    );
+    page.wait_until(&format!("innerWidth === {width}"), &format!("the width {width}"));
+}
+
+/// A model exported in metres with a long file name fails (every method says why, naming
+/// the file): at 1920, 1280 and 1024 px nothing of the settings column, neither its controls
+/// nor the long name and error, sticks out of it.
+fn side_column_fits_from_1920_to_1024(page: &Page) {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let tiny = dir
+        .path()
+        .join(format!("bunny-exported-in-metres-{}.stl", "z".repeat(80)));
+    metre_scale_box(&tiny);
+    page.drop_file("body", &tiny);
+    page.wait_until(
+        "window.platener.state.status === 'failed' && !document.querySelector('[data-testid=error]').hidden",
+        "the metre-scale model's failure, in words",
+    );
+    for width in [1920, 1280, 1024] {
+        set_width(page, width, 900);
+        settle(page);
+        page.screenshot(&format!("22-side-column-{width}"), None);
+        assert_side_column_fits(page, width);
+    }
+    set_width(page, 1280, 720);
+}
+
 /// At a phone's 375×740 the gallery cards and the download dialog show and work: no
 /// horizontal overflow, the ZIP link inside the screen, the dialog's controls clickable.
 fn check_phone_layout(page: &Page, card: &str) {
-    page.call(
-        "Emulation.setDeviceMetricsOverride",
-        serde_json::json!({ "width": 375, "height": 740, "deviceScaleFactor": 1, "mobile": false }),
-    );
-    page.wait_until("innerWidth === 375", "the phone width");
+    set_width(page, 375, 740);
     assert_fits_width(page, card, "the gallery");
     assert_fits_width(page, &format!("{card} img"), "a card's thumbnail");
     page.screenshot("23-phone-gallery", None);
@@ -825,6 +1109,7 @@ fn check_phone_layout(page: &Page, card: &str) {
     page.click(&format!("{card} [data-testid=gallery-view]"));
     page.wait_until("window.platener.state.loadedView", "the conversion at phone width");
     assert_fits_width(page, &tid("viewer"), "the conversion");
+    assert_side_column_fits(page, 375);
     page.click(&tid("download"));
     page.wait_until(
         "document.querySelector('[data-testid=download-dialog]').open",

@@ -191,8 +191,8 @@ pub fn model_files(state: &State) -> Vec<ResultFile> {
     )
 }
 
-/// A method's files: the ZIP, plan.json, report.json, sheets (SVG, PNG) and the scenes it
-/// reached but the model's (one for all methods, [`model_files`]).
+/// A method's files: the ZIP, plan.json, report.json, the gallery's thumbnail, sheets (SVG,
+/// PNG) and the scenes it reached but the model's (one for all methods, [`model_files`]).
 pub fn method_files(m: &MethodResult) -> Vec<ResultFile> {
     let method = m.method.name();
     let file = |file: String, content_type: &str, data: Vec<u8>| ResultFile {
@@ -208,6 +208,9 @@ pub fn method_files(m: &MethodResult) -> Vec<ResultFile> {
             if let Some(data) = bundle.files.get(name) {
                 files.push(file(name.into(), JSON, data.clone()));
             }
+        }
+        if let Some(png) = bundle.files.get(platener::export::thumbnail::FILE) {
+            files.push(file(platener::export::thumbnail::FILE.into(), PNG, png.clone()));
         }
         for (i, sheet) in bundle.plan.sheets.iter().enumerate() {
             let n = i + 1;

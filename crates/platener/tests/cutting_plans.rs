@@ -246,7 +246,8 @@ fn a_zip_written_twice_is_byte_identical() {
             "report.json",
             "test-box-3mm-1.dxf",
             "test-box-3mm-1.png",
-            "test-box-3mm-1.svg"
+            "test-box-3mm-1.svg",
+            "thumbnail.png"
         ]
     );
 }

@@ -204,9 +204,21 @@ fn assert_sheet_legends(name: &str, c: &State) {
             .collect();
         on_sheet.sort_unstable();
         let lines = legend::legend_lines(report.as_ref(), &on_sheet);
+        let planned = sheet.legend.as_ref();
+        assert_eq!(
+            planned.map(|l| &l.lines),
+            (!lines.is_empty()).then_some(&lines),
+            "{name}: plan.json's legend of {}",
+            sheet.file
+        );
         let svg = String::from_utf8(bundle.files[&sheet.file].clone()).expect("utf-8");
         let Some((red, blue)) = svg_group(&svg, legend::LEGEND_ID) else {
-            assert!(lines.is_empty(), "{name}: {} has no legend for {lines:?}", sheet.file);
+            // No room beside the parts: the lines are in plan.json only.
+            assert!(
+                planned.is_none_or(|l| !l.engraved),
+                "{name}: {} lost its legend",
+                sheet.file
+            );
             continue;
         };
         assert!(red.is_empty(), "{name}: the legend is not cut");
@@ -221,6 +233,7 @@ fn assert_sheet_legends(name: &str, c: &State) {
             |(a, b), p| (a.min(*p), b.max(*p)),
         );
         assert!(lo.x >= 0.0 && lo.y >= 0.0 && hi.x <= sheet.width && hi.y <= sheet.height);
+        assert_beside_the_parts(name, &svg, bundle, sheet.index, (lo, hi));
         let text_box = Polygon::new(vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)]);
         for p in bundle.plan.parts.iter().filter(|p| p.sheet.index == sheet.index) {
             let (cut, _) = svg_group(&svg, &format!("part-{}", p.id)).expect("part group");
@@ -234,6 +247,24 @@ fn assert_sheet_legends(name: &str, c: &State) {
             );
         }
     }
+}
+
+/// The legend's text box `text` lies inside the bounding box of the sheet's parts grown by the
+/// legend's own extent and twice the legend's gap: beside the parts it explains, never across
+/// the sheet (the laser's travel, a smaller real sheet).
+fn assert_beside_the_parts(name: &str, svg: &str, bundle: &platener::export::Bundle, sheet: u32, text: (DVec2, DVec2)) {
+    let (mut a, mut b) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for p in bundle.plan.parts.iter().filter(|p| p.sheet.index == sheet) {
+        let (cut, _) = svg_group(svg, &format!("part-{}", p.id)).expect("part group");
+        for q in cut.iter().flatten() {
+            (a, b) = (a.min(*q), b.max(*q));
+        }
+    }
+    let margin = DVec2::splat((text.1 - text.0).max_element() + 2.0 * legend::GAP + 1e-6);
+    assert!(
+        text.0.cmpge(a - margin).all() && text.1.cmple(b + margin).all(),
+        "{name}: the legend {text:?} is not beside the parts ({a}, {b})"
+    );
 }
 
 fn touches(a: &Polygon, b: &Polygon) -> bool {

@@ -52,8 +52,8 @@ pub fn every_error_has_its_status_and_code(backend: Backend) {
     not_found_and_bad_requests(&server);
     refused_uploads(&server);
 
-    // Accepted, but no worker runs it: its plan is not ready; its files do not exist; publish
-    // and delete need its token.
+    // Accepted, but no worker runs it: its plan is not ready; its files do not exist; publish,
+    // unpublish and delete need its token.
     let r = server.upload("box.stl", &example_box(), &[]);
     assert_eq!(r.status, 202, "{}", r.text());
     let id = r.json()["id"].as_str().expect("id").to_string();
@@ -85,7 +85,11 @@ pub fn every_error_has_its_status_and_code(backend: Backend) {
             .as_str()
             .is_some_and(|m| m.starts_with("Kerf: "))
     );
-    for (method, path) in [("POST", format!("{base}/publish")), ("DELETE", base.clone())] {
+    for (method, path) in [
+        ("POST", format!("{base}/publish")),
+        ("DELETE", format!("{base}/publish")),
+        ("DELETE", base.clone()),
+    ] {
         server
             .request(method, &path, &[], b"")
             .assert_error(401, "unauthorized");

@@ -213,7 +213,45 @@ pub fn upload_convert_and_every_link_works(backend: Backend) {
     publish_recut_delete(&server, &id, &token);
 }
 
-/// Publish (401 without the token), gallery, recut, delete.
+/// The gallery's thumbnail is the assembly's picture (320 × 240 PNG), not a sheet preview.
+fn assert_thumbnail(server: &Server, link: &str) {
+    assert!(link.ends_with("/thumbnail.png"), "{link}");
+    let r = server.get(link);
+    assert_eq!(r.status, 200);
+    assert_eq!(&r.body[1..4], b"PNG", "{link}");
+    // IHDR: width and height, big-endian, at bytes 16..24.
+    let size = |i: usize| u32::from_be_bytes([r.body[i], r.body[i + 1], r.body[i + 2], r.body[i + 3]]);
+    assert_eq!((size(16), size(20)), (320, 240), "{link}");
+}
+
+/// Unpublishing (an extension of api.md: `DELETE …/publish` with the delete token) takes the
+/// conversion out of the gallery, keeps it reachable by its id, and publishing again works.
+fn unpublish(server: &Server, id: &str, bearer: &str) {
+    let publish = format!("/api/conversions/{id}/publish");
+    server
+        .request("DELETE", &publish, &[], b"")
+        .assert_error(401, "unauthorized");
+    server
+        .request("DELETE", &publish, &[("Authorization", "Bearer 00")], b"")
+        .assert_error(401, "unauthorized");
+    let in_gallery = || {
+        let g = server.get("/api/gallery?page=1").json();
+        g["items"].as_array().expect("items").iter().any(|i| i["id"] == id)
+    };
+    assert!(in_gallery(), "refused requests changed nothing");
+    for _ in 0..2 {
+        let r = server.request("DELETE", &publish, &[("Authorization", bearer)], b"");
+        assert_eq!(r.status, 200, "{}", r.text());
+        assert_eq!(r.json()["published"], false, "unpublishing twice is harmless");
+        assert!(!in_gallery(), "still in the gallery");
+    }
+    assert_eq!(server.get(&format!("/api/conversions/{id}")).status, 200);
+    let r = server.request("POST", &publish, &[("Authorization", bearer)], b"");
+    assert_eq!(r.json()["published"], true, "{}", r.text());
+    assert!(in_gallery(), "published again");
+}
+
+/// Publish (401 without the token), gallery, unpublish, recut, delete.
 fn publish_recut_delete(server: &Server, id: &str, token: &str) {
     let publish = format!("/api/conversions/{id}/publish");
     server
@@ -233,7 +271,8 @@ fn publish_recut_delete(server: &Server, id: &str, token: &str) {
     assert_eq!(item["id"], id);
     assert_eq!(item["name"], REDUCED);
     assert_eq!(item["parts"], 6);
-    assert_eq!(server.get(item["thumbnail"].as_str().expect("thumbnail")).status, 200);
+    assert_thumbnail(server, item["thumbnail"].as_str().expect("thumbnail"));
+    unpublish(server, id, &bearer);
 
     // The classifier alone: it runs on the box's exact faces (beside the plate method it skips).
     let body = json!({"kerf": 0.15, "method": "classifier"}).to_string();

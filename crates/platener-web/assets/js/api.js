@@ -94,20 +94,32 @@ export async function publish(id, token) {
   return r.status;
 }
 
+/** DELETE …/publish: takes the conversion out of the gallery again (same token). */
+export async function unpublish(id, token) {
+  const r = await request(`/api/conversions/${encodeURIComponent(id)}/publish`, {
+    method: 'DELETE',
+    headers: { authorization: `Bearer ${token}` },
+  });
+  return r.status;
+}
+
 export function gallery(page) {
   return getJson(`/api/gallery?page=${page}`);
 }
 
-export function stripJson(thickness, material) {
-  return getJson(`/api/test-strip.json?${stripQuery(thickness, material)}`);
+/** The test strip's holes; `kerf` (the plan's, when known) is starred in its table. */
+export function stripJson(thickness, material, kerf) {
+  return getJson(`/api/test-strip.json?${stripQuery(thickness, material, kerf)}`);
 }
 
-export function stripSvgUrl(thickness, material) {
-  return `/api/test-strip.svg?${stripQuery(thickness, material)}`;
+export function stripSvgUrl(thickness, material, kerf) {
+  return `/api/test-strip.svg?${stripQuery(thickness, material, kerf)}`;
 }
 
-function stripQuery(thickness, material) {
-  return new URLSearchParams({ thickness: String(thickness), material }).toString();
+function stripQuery(thickness, material, kerf) {
+  const q = { thickness: String(thickness), material };
+  if (kerf != null) q.kerf = String(kerf);
+  return new URLSearchParams(q).toString();
 }
 
 /**

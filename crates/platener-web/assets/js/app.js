@@ -6,6 +6,7 @@ import * as api from './api.js';
 import { createConversionArea, uploadModel, recutModel } from './conversion.js';
 import { createGallery } from './gallery.js';
 import { drawStrip } from './strip.js';
+import { bindPublishing } from './publish.js';
 import { showError, status } from './progress.js';
 import { buildForm, onSettled } from './settings-form.js';
 
@@ -112,19 +113,11 @@ onSettled($('settings'), (settings, changed) => {
 });
 $('settings').addEventListener('submit', (e) => e.preventDefault());
 
-// Publishing the user's own conversion (its delete token is in localStorage).
-$('publish').addEventListener('click', async () => {
-  const c = area.conversion;
-  const token = c && api.tokens.get(c.id);
-  if (!token) return;
-  try {
-    await api.publish(c.id, token);
-    $('publish').textContent = 'Published';
-    $('publish').disabled = true;
-    gallery.load(1);
-  } catch (e) {
-    showError(`Publishing failed: ${e.message}`);
-  }
+// Publishing the user's own conversion (it asks first) and unpublishing it.
+bindPublishing({
+  conversion: () => area.conversion,
+  onChange: () => gallery.load(1),
+  onError: (message) => showError(message),
 });
 
 /** Fills the download dialog for the open conversion: ZIP, kerf, the interactive strip. */
@@ -137,9 +130,10 @@ async function fillDownload() {
   const material = (plan && plan.settings.material) || c.settings.material;
   state.kerf = plan && plan.settings ? plan.settings.kerf : c.settings.kerf;
   $('kerf').textContent = state.kerf == null ? 'the material’s default' : `${Number(state.kerf).toFixed(3)} mm`;
-  $('test-strip-svg').href = api.stripSvgUrl(thickness, material);
+  // The strip's table stars the kerf this plan was cut with.
+  $('test-strip-svg').href = api.stripSvgUrl(thickness, material, state.kerf);
   try {
-    const strip = await api.stripJson(thickness, material);
+    const strip = await api.stripJson(thickness, material, state.kerf);
     drawStrip($('test-strip'), strip, state.kerf, (kerf) => {
       $('kerf').textContent = `${kerf.toFixed(3)} mm: cutting again…`;
       recut({ kerf });

@@ -12,6 +12,9 @@ import * as progress from './progress.js';
 import { adviceFor, readSettings, showModelSize, writeSettings } from './settings-form.js';
 import { follow } from './live.js';
 import { initBars, barMethod, clearBars, endBars, markShown } from './bars.js';
+import { showPublishing } from './publish.js';
+import { showWarnings } from './warnings.js';
+import { laserNote, partsShown } from './wording.js';
 
 const $ = (id) => document.getElementById(id);
 export const VIEWS = ['model', 'wireframe', 'coplanar', 'primitives', 'plates', 'bent', 'final'];
@@ -36,11 +39,13 @@ export function createConversionArea({ state, onGalleryChange }) {
     $('viewer-note').textContent = 'This browser cannot show 3D (WebGL is off); the sheets and downloads still work.';
   }
 
-  /** Hover from either side: label, and the same part on the other side. */
+  /** Hover from either side: label (with its sheet when there are several), and the same
+   * part on the other side (the sheet list scrolled to it). */
   function hover(n, kind, from) {
     state.hovered = n;
-    $('part-label').textContent = n == null ? '' : `${kind === 'plate' ? 'Plate' : 'Part'} ${n}`;
-    if (from === 'viewer') sheets.highlight(kind === 'part' ? n : null);
+    const sheet = kind === 'part' && sheets.count > 1 ? sheets.sheetOf(n) : null;
+    $('part-label').textContent = n == null ? '' : `${kind === 'plate' ? 'Plate' : 'Part'} ${n}${sheet ? `, sheet ${sheet}` : ''}`;
+    if (from === 'viewer') sheets.highlight(kind === 'part' ? n : null, { reveal: true });
     if (from === 'sheet' && viewer && state.view === 'final') viewer.highlight(n);
   }
 
@@ -130,7 +135,7 @@ export function createConversionArea({ state, onGalleryChange }) {
     $('player').value = String(k);
     const total = state.assembly.length;
     const last = state.assembly[k - 1];
-    $('player-out').textContent = k >= total ? `All ${total} parts` : `${k} of ${total} parts${last ? `: part ${last} joined` : ''}`;
+    $('player-out').textContent = partsShown(k, total, last);
   }
 
   function stopPlaying() {
@@ -222,7 +227,7 @@ export function createConversionArea({ state, onGalleryChange }) {
     showStats(null, null, null);
     setViewButtons();
     syncControls();
-    $('publish').hidden = true;
+    showPublishing(null);
     $('share').hidden = true;
     $('warnings-box').hidden = true;
   }
@@ -341,6 +346,7 @@ export function createConversionArea({ state, onGalleryChange }) {
       plan = null;
       const view = sceneUrl(wanted) ? wanted : 'final';
       await Promise.all([loadPlanAndSheets(current, method), showView(view)]);
+      showWarnings(current, method);
     });
     return displaying;
   }
@@ -359,7 +365,7 @@ export function createConversionArea({ state, onGalleryChange }) {
     endBars(c.status);
     const err = progress.errorOf(c);
     progress.showError(err);
-    showWarnings(progress.warningsOf(c));
+    showWarnings(c, state.method || c.best);
     progress.status(endText(c));
     setViewButtons();
     if (!c.best) {
@@ -370,10 +376,7 @@ export function createConversionArea({ state, onGalleryChange }) {
       }
     }
     if (c.best) {
-      const token = api.tokens.get(c.id);
-      $('publish').hidden = !token || c.published;
-      $('publish').disabled = false;
-      $('publish').textContent = 'Publish to gallery';
+      showPublishing(c);
       $('share').hidden = false;
       $('share').href = `#/c/${encodeURIComponent(c.id)}`;
     }
@@ -402,19 +405,6 @@ export function createConversionArea({ state, onGalleryChange }) {
     });
   }
 
-  function showWarnings(list) {
-    $('warnings').replaceChildren(
-      ...list.map((w) => Object.assign(document.createElement('li'), { textContent: w.line, className: w.shown ? '' : 'other-method' })),
-    );
-    const shown = list.filter((w) => w.shown).length;
-    const others = list.length - shown;
-    const plural = (n) => `${n} warning${n === 1 ? '' : 's'}`;
-    $('warnings-title').textContent = others
-      ? `${plural(shown)} for this plan, ${others} more from other methods`
-      : plural(shown);
-    $('warnings-box').hidden = list.length === 0;
-  }
-
   async function loadPlanAndSheets(c, method) {
     const links = c.links.methods[method] || {};
     try {
@@ -439,10 +429,7 @@ export function createConversionArea({ state, onGalleryChange }) {
     const r = report || {};
     set('cut', r.cut_length != null ? `${(r.cut_length / 1000).toFixed(2)} m` : '–');
     set('minutes', r.estimated_cutting_seconds != null ? `≈ ${(r.estimated_cutting_seconds / 60).toFixed(1)} min` : '–');
-    const s = r.settings || {};
-    $('speed-note').textContent = s.cut_speed
-      ? `Laser time: cutting at ${s.cut_speed} mm/s (3 mm plywood on a 40 W CO₂ laser) and engraving at ${s.engrave_speed} mm/s, without travel moves.`
-      : '';
+    $('speed-note').textContent = laserNote(r.settings);
   }
 }
 

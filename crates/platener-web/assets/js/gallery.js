@@ -1,6 +1,6 @@
-// The gallery: published conversions as cards (thumbnail; on hover or keyboard focus the name,
-// a View button that opens it in the conversion area, and a Download link), paged as the API
-// pages it (newest first).
+// The gallery: published conversions as cards (a picture of the assembled object, drawn by the
+// server; on hover or keyboard focus the name, a View button that opens it in the conversion
+// area, and a Download link), paged as the API pages it (newest first).
 
 import { gallery as fetchGallery } from './api.js';
 
@@ -14,7 +14,7 @@ function card(item) {
   if (item.thumbnail) {
     const img = document.createElement('img');
     img.src = item.thumbnail;
-    img.alt = `Cut sheet of ${item.name}`;
+    img.alt = `${item.name}, assembled`;
     img.loading = 'lazy';
     img.decoding = 'async';
     figure.append(img);

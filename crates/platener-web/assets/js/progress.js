@@ -94,26 +94,6 @@ export function showError(message, details = []) {
   box.hidden = false;
 }
 
-/** Every warning of a conversion as a sentence naming its step (and part), those of the plan
- * shown (shared steps and the best method) first: `{line, shown}`. Other methods' warnings stay
- * listed but apart, so a clean plan of the best method does not look troubled by a method the
- * page does not show. */
-export function warningsOf(c) {
-  const out = [];
-  const seen = new Set();
-  const add = (w, method) => {
-    const text = typeof w === 'string' ? w : `${w.step}${w.part ? `, part ${w.part}` : ''}: ${w.message}`;
-    const line = method ? `${method} · ${text}` : text;
-    if (!seen.has(line)) {
-      seen.add(line);
-      out.push({ line, shown: !method || !c.best || method === c.best });
-    }
-  };
-  for (const s of c.steps || []) for (const w of s.warnings || []) add(w);
-  for (const m of c.methods || []) for (const w of m.warnings || []) add(w, m.method);
-  return [...out.filter((w) => w.shown), ...out.filter((w) => !w.shown)];
-}
-
 /** What went wrong with a conversion, in words; null when it has a plan and no error. */
 export function errorOf(c) {
   if (c.error) return c.error.message || String(c.error);

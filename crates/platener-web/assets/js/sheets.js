@@ -41,8 +41,10 @@ export function parseSvg(text) {
 }
 
 /**
- * The sheets panel: `show(urls)` replaces its content, `highlight(n)` marks part n on every
- * sheet, `zoom(factor | 'fit')`; `onHover(n|null)` is called as parts are hovered or focused.
+ * The sheets panel: `show(urls)` replaces its content, `highlight(n, { reveal })` marks part n
+ * on every sheet (and scrolls to it), `sheetOf(n)` and `count` say where it is and how many
+ * sheets there are, `zoom(factor | 'fit')`; `onHover(n|null)` is called as parts are hovered or
+ * focused.
  */
 export function createSheets(container, { onHover = () => {} } = {}) {
   let zoom = 1;
@@ -101,11 +103,32 @@ export function createSheets(container, { onHover = () => {} } = {}) {
     }
   }
 
-  function highlight(n) {
+  /** Marks part n on every sheet; with `reveal`, scrolls the sheet list (only it, never the
+   * page: the pointer stays where it is) so the part is in view. */
+  function highlight(n, { reveal = false } = {}) {
     current = n;
     for (const g of container.querySelectorAll('[data-part].hot')) g.classList.remove('hot');
     if (n === null || n === undefined) return;
-    for (const g of container.querySelectorAll(`[data-part="${Number(n)}"]`)) g.classList.add('hot');
+    const parts = [...container.querySelectorAll(`[data-part="${Number(n)}"]`)];
+    for (const g of parts) g.classList.add('hot');
+    if (reveal && parts.length) scrollTo(parts[0]);
+  }
+
+  /** Scrolls the container by as much as brings `el` into its view, centred when it moves. */
+  function scrollTo(el) {
+    const box = container.getBoundingClientRect();
+    const r = el.getBoundingClientRect();
+    const inside = r.top >= box.top && r.bottom <= box.bottom && r.left >= box.left && r.right <= box.right;
+    if (inside) return;
+    container.scrollTop += r.top - box.top - (box.height - r.height) / 2;
+    container.scrollLeft += r.left - box.left - (box.width - r.width) / 2;
+  }
+
+  /** The number (from 1) of the sheet part n is cut from; null if it is on none shown. */
+  function sheetOf(n) {
+    const g = container.querySelector(`[data-part="${Number(n)}"]`);
+    const figure = g && g.closest('figure');
+    return figure ? [...container.children].indexOf(figure) + 1 : null;
   }
 
   const partOf = (target) => (target instanceof Element ? target.closest('[data-part]') : null);
@@ -133,6 +156,8 @@ export function createSheets(container, { onHover = () => {} } = {}) {
   return {
     show,
     highlight,
+    sheetOf,
+    get count() { return container.querySelectorAll('figure').length; },
     clear() {
       container.replaceChildren();
       current = null;

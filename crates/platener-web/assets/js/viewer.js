@@ -13,6 +13,9 @@ import { getBuffer } from './api.js';
 const NODE = /^(part|plate)-(\d+)$/;
 const HIGHLIGHT = new THREE.Color(0xff7a00);
 const MM = 0.001;
+/** The grid lies this far below the model (a share of its size, at least 0.2 mm), so the
+ * bottom plate's underside never fights with it for the same pixels. */
+const GRID_DROP = 0.004;
 
 /** The numbered node an object belongs to, with its kind and number; null if none. */
 function numbered(object) {
@@ -107,13 +110,15 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     const cells = Math.max(2, Math.ceil((extentMm * 1.4) / cell / 2) * 2);
     const grid = new THREE.GridHelper(cells * cell * MM, cells, 0x9aa3af, 0xd5d9df);
     const centre = box.getCenter(new THREE.Vector3());
-    grid.position.set(centre.x, box.min.y, centre.z);
+    const floor = box.min.y - Math.max(size.length() * GRID_DROP, 0.2 * MM);
+    grid.position.set(centre.x, floor, centre.z);
     // The axes start at the grid's corner, beside the model rather than hidden inside it.
     const half = (cells * cell * MM) / 2;
     const axes = new THREE.AxesHelper(Math.max(size.x, size.y, size.z) * 0.5);
-    axes.position.set(centre.x - half, box.min.y, centre.z + half);
+    axes.position.set(centre.x - half, floor, centre.z + half);
     helpers.add(grid, axes);
     helpers.userData.cellMm = cell;
+    stats.gridBelowModelMm = Math.round(((box.min.y - floor) / MM) * 1000) / 1000;
   }
 
   /** Numbered nodes get their own materials (so one can light up) and explode directions. */
@@ -143,6 +148,21 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     stats.partCentres = centres;
     stats.exploded = state.exploded;
     stats.shownParts = state.order.filter((n) => state.nodes.get(n).node.visible);
+    stats.offscreenParts = offscreen();
+  }
+
+  /** The numbered nodes not wholly in the camera's view (a corner of their box outside it). */
+  function offscreen() {
+    camera.updateMatrixWorld();
+    const out = [];
+    for (const [n, { node }] of state.nodes) {
+      const b = new THREE.Box3().setFromObject(node);
+      if (b.isEmpty()) continue;
+      const corners = [0, 1, 2, 3, 4, 5, 6, 7].map((i) => new THREE.Vector3(
+        i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z).project(camera));
+      if (corners.some((c) => Math.abs(c.x) > 1 || Math.abs(c.y) > 1)) out.push(n);
+    }
+    return out;
   }
 
   /** Loads a GLB; `keepCamera` keeps the camera where it is (a re-cut of the same model).
@@ -179,11 +199,11 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     state.highlighted = null;
     state.exploded = 0;
     state.shown = Infinity;
-    report();
     setRender(state.render);
     if (keepCamera && state.framed) requestRender();
     else frame();
     state.framed = true;
+    report();
     return { parts: state.nodes.size, triangles: triangleCount(state.model) };
   }
 
@@ -202,13 +222,31 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     return Array.isArray(o.material) ? o.material : o.material ? [o.material] : [];
   }
 
+  /** The highlighted part glows, and a translucent copy of it is drawn over everything (no
+   * depth test): a part hidden behind others still shows where it is. */
+  const overlayMaterial = new THREE.MeshBasicMaterial({
+    color: HIGHLIGHT, transparent: true, opacity: 0.35, depthTest: false, depthWrite: false,
+  });
+
   function highlight(number) {
     const paint = (n, on) => {
       const entry = state.nodes.get(n);
       if (!entry) return;
+      const meshes = [];
       entry.node.traverse((o) => {
+        if (o.userData.overlay) return;
         for (const m of materials(o)) if (m.emissive) m.emissive.copy(on ? HIGHLIGHT : new THREE.Color(0));
+        if (o.isMesh && !o.isPoints && !o.userData.vertexCloud) meshes.push(o);
       });
+      for (const o of meshes) {
+        for (const child of o.children.filter((c) => c.userData.overlay)) o.remove(child);
+        if (!on) continue;
+        const ghost = new THREE.Mesh(o.geometry, overlayMaterial);
+        ghost.userData.overlay = true;
+        ghost.renderOrder = 10;
+        ghost.raycast = () => {};
+        o.add(ghost);
+      }
     };
     if (state.highlighted !== null) paint(state.highlighted, false);
     state.highlighted = state.nodes.has(number) ? number : null;
@@ -226,7 +264,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
         o.visible = mode === 'vertices';
         return;
       }
-      if (!o.isMesh) return;
+      if (!o.isMesh || o.userData.overlay) return;
       for (const m of materials(o)) m.wireframe = mode === 'wireframe';
       o.material.visible = mode !== 'vertices';
       if (mode === 'vertices' && !o.userData.points) {
@@ -247,8 +285,11 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
       const world = parent.localToWorld(home.clone()).addScaledVector(dir, state.exploded * state.size * 0.3);
       node.position.copy(parent.worldToLocal(world));
     }
+    // The exploded parts stay in the picture and above the grid.
+    const box = new THREE.Box3().setFromObject(state.model);
+    placeHelpers(box);
+    fit(box, camera.position.clone().sub(controls.target));
     report();
-    requestRender();
   }
 
   /** The assembly order for showUpTo (numbers); unknown numbers are ignored. */
@@ -271,12 +312,20 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
 
   function frame() {
     if (!state.model) return;
-    const box = new THREE.Box3().setFromObject(state.model);
+    fit(new THREE.Box3().setFromObject(state.model), new THREE.Vector3(1, 0.8, 1.2));
+  }
+
+  /** Points the camera at `box` from direction `from` (kept: the user's orbit), just far
+   * enough that the box's bounding sphere fills the view. */
+  function fit(box, from) {
     if (box.isEmpty()) return;
     const centre = box.getCenter(new THREE.Vector3());
     const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 0.005);
-    const distance = radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.05;
-    const dir = new THREE.Vector3(1, 0.8, 1.2).normalize();
+    // The narrower of the two half-angles, so a tall canvas (a phone) keeps the sides too.
+    const vHalf = THREE.MathUtils.degToRad(camera.fov / 2);
+    const half = Math.min(vHalf, Math.atan(Math.tan(vHalf) * camera.aspect));
+    const distance = radius / Math.sin(half) * 1.05;
+    const dir = from.lengthSq() > 0 ? from.clone().normalize() : new THREE.Vector3(1, 0.8, 1.2).normalize();
     camera.near = distance / 100;
     camera.far = distance * 100;
     camera.position.copy(centre).addScaledVector(dir, distance);
@@ -358,6 +407,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
 
   function dispose() {
     state.disposed = true;
+    overlayMaterial.dispose();
     observer.disconnect();
     controls.dispose();
     if (state.model) disposeTree(state.model);

@@ -294,6 +294,16 @@ impl Db {
         Ok(())
     }
 
+    /// Takes a job out of the gallery again (it stays reachable by its id, as before it was
+    /// published); nothing changes for a job that was not published.
+    pub async fn unpublish(&self, id: &str) -> Result<()> {
+        sqlx::query("UPDATE jobs SET published = NULL WHERE id = $1")
+            .bind(id)
+            .execute(&self.pool)
+            .await?;
+        Ok(())
+    }
+
     /// Published jobs, newest first, `per_page` from page `page` (from 1).
     pub async fn gallery(&self, page: i64, per_page: i64) -> Result<Vec<GalleryRow>> {
         let rows = sqlx::query(

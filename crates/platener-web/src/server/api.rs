@@ -1,4 +1,5 @@
-//! The conversion endpoints: upload, show, recut, publish, delete (events are in `events`).
+//! The conversion endpoints: upload, show, recut, delete (events are in `events`, publishing
+//! in `publish`).
 
 use std::net::SocketAddr;
 use std::sync::Arc;
@@ -258,19 +259,6 @@ pub async fn delete(State(app): State<Arc<App>>, Path(id): Path<String>, headers
     authorize(&headers, &row)?;
     app.db.delete(&row.id).await?;
     Ok(StatusCode::NO_CONTENT)
-}
-
-/// `POST /api/conversions/{id}/publish`.
-pub async fn publish(
-    State(app): State<Arc<App>>,
-    Path(id): Path<String>,
-    headers: HeaderMap,
-) -> ApiResult<Json<Value>> {
-    let row = load(&app, &id).await?;
-    authorize(&headers, &row)?;
-    app.db.publish(&row.id).await?;
-    let row = load(&app, &id).await?;
-    Ok(Json(shown(&app, &row).await?))
 }
 
 /// `POST /api/conversions/{id}/recut`: the same model with changed settings, a new conversion.

@@ -89,17 +89,30 @@ pub(super) fn known_method(method: &str) -> ApiResult<()> {
     }
 }
 
-/// `GET /api/conversions/{id}/methods/{method}/{plan.zip|plan.json|report.json}`.
+/// `GET /api/conversions/{id}/methods/{method}/{plan.zip|plan.json|report.json|thumbnail.png}`.
 pub async fn method_file(
     State(app): State<Arc<App>>,
     Path((id, method, file)): Path<(String, String, String)>,
 ) -> ApiResult<Response> {
     known_method(&method)?;
-    if !matches!(file.as_str(), "plan.zip" | "plan.json" | "report.json") {
-        return Err(ApiError::not_found("file"));
-    }
     let row = load(&app, &id).await?;
-    serve_file(&app, &row, &method, &file).await
+    match file.as_str() {
+        "plan.zip" | "plan.json" | "report.json" => serve_file(&app, &row, &method, &file).await,
+        THUMBNAIL => thumbnail(&app, &row, &method).await,
+        _ => Err(ApiError::not_found("file")),
+    }
+}
+
+/// The gallery's picture of a method's assembly (an extension of api.md).
+const THUMBNAIL: &str = platener::export::thumbnail::FILE;
+
+/// The method's thumbnail, or for a conversion stored before thumbnails were made, its first
+/// sheet's preview (what the gallery showed then), so old gallery cards keep a picture.
+async fn thumbnail(app: &App, row: &JobRow, method: &str) -> ApiResult<Response> {
+    match serve_file(app, row, method, THUMBNAIL).await {
+        Err(e) if e.status == axum::http::StatusCode::NOT_FOUND => serve_file(app, row, method, "sheets/1.png").await,
+        answer => answer,
+    }
 }
 
 /// `GET /api/conversions/{id}/methods/{method}/sheets/{n}.svg|png`.

@@ -9,7 +9,7 @@ use axum::extract::{Query, Request, State};
 use axum::http::{StatusCode, header};
 use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
-use platener::kerf::strip::test_strip;
+use platener::kerf::strip::test_strip_marking;
 use platener::plan::Material;
 use serde::Deserialize;
 use serde_json::{Value, json};
@@ -90,7 +90,7 @@ pub async fn gallery_page(app: &App, page: i64) -> ApiResult<Value> {
                 "best": best,
                 "parts": method.map(|m| m["parts"].clone()),
                 "score": method.map(|m| m["score"].clone()),
-                "thumbnail": best.map(|b| format!("{base}/methods/{b}/sheets/1.png")),
+                "thumbnail": best.map(|b| format!("{base}/methods/{b}/thumbnail.png")),
                 "published": super::view::iso_time(r.published),
                 "links": {"self": base},
             })
@@ -103,17 +103,19 @@ pub async fn gallery_page(app: &App, page: i64) -> ApiResult<Value> {
     }))
 }
 
-/// `?thickness=&material=` of the test strip.
+/// `?thickness=&material=&kerf=` of the test strip; `kerf` (an extension of api.md) is the
+/// kerf in use, starred in the strip's table (default: the material's).
 #[derive(Debug, Deserialize)]
 pub struct StripQuery {
     thickness: Option<f64>,
     material: Option<String>,
+    kerf: Option<f64>,
 }
 
 fn strip(
     query: Result<Query<StripQuery>, axum::extract::rejection::QueryRejection>,
 ) -> ApiResult<(platener::kerf::strip::TestStrip, Material, f64)> {
-    let Query(q) = query.map_err(|_| ApiError::bad_request("thickness must be a number of mm"))?;
+    let Query(q) = query.map_err(|_| ApiError::bad_request("thickness and kerf must be numbers of mm"))?;
     let thickness = q.thickness.unwrap_or(3.0);
     let material = match q.material.as_deref().unwrap_or("wood") {
         "wood" => Material::Wood,
@@ -131,7 +133,8 @@ fn strip(
             "thickness must be a number of mm above 0 and at most 50",
         ));
     }
-    let s = test_strip(thickness, material).map_err(|e| ApiError::bad_request(e.to_string()))?;
+    let kerf = q.kerf.unwrap_or_else(|| material.default_kerf());
+    let s = test_strip_marking(thickness, material, kerf).map_err(|e| ApiError::bad_request(e.to_string()))?;
     Ok((s, material, thickness))
 }
 
@@ -172,6 +175,7 @@ pub async fn test_strip_json(
         "width": s.width,
         "height": s.height,
         "default_hole": s.default_hole,
+        "marked_hole": s.marked_hole,
         "holes": holes,
         "strip": points(&s.strip.outer),
         "spike": points(&s.spike.outer),

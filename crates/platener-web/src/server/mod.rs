@@ -19,6 +19,7 @@ mod inspect;
 mod limits;
 mod misc;
 mod page;
+mod publish;
 mod settings;
 mod view;
 mod workers;
@@ -216,7 +217,10 @@ fn router(app: Arc<App>) -> Router {
         .route("/api/conversions", post(api::create))
         .route("/api/conversions/{id}", get(api::show).delete(api::delete))
         .route("/api/conversions/{id}/recut", post(api::recut))
-        .route("/api/conversions/{id}/publish", post(api::publish))
+        .route(
+            "/api/conversions/{id}/publish",
+            post(publish::publish).delete(publish::unpublish),
+        )
         .route("/api/conversions/{id}/cancel", post(cancel::cancel))
         .route("/api/conversions/{id}/plan.zip", get(files::best_plan))
         .route("/api/conversions/{id}/methods/{method}/{file}", get(files::method_file))

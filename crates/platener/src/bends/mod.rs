@@ -24,7 +24,7 @@ mod remove;
 #[cfg(test)]
 mod remove_tests;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 mod unfold;
 pub mod zone;
 

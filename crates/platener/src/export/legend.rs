@@ -8,16 +8,19 @@
 //! parts on that sheet are listed. The text is drawn with the labels' stroke font, so the
 //! laser engraves it like any label; the font has capitals and no comma, hence the wording.
 //!
-//! The legend goes where its box, grown by [`GAP`], meets no part's bounding box and stays on
-//! the sheet: the sheet's corners first, then beside and below each part. Bounding boxes are
-//! conservative (the text never meets a part); a sheet with no such room gets no legend, and
-//! report.json still says where every number is.
+//! The legend goes beside the parts it explains: where its box, grown by [`GAP`], meets no
+//! part's bounding box, stays on the sheet, and grows the parts' bounding box (the used area)
+//! the least: inside it when there is room, else just outside it. Bounding boxes are
+//! conservative (the text never meets a part). A sheet with no such room gets no legend
+//! engraved; plan.json's `sheets[].legend` still holds its lines (and report.json says where
+//! every number is).
 
 use glam::DVec2;
 use serde::Deserialize;
 
 use super::svg::SvgGroup;
 use crate::labels::font;
+use crate::plan::SheetLegend;
 
 /// Cap height of the legend's text, mm.
 pub const LEGEND_SIZE: f64 = 3.0;
@@ -65,64 +68,129 @@ pub fn legend_lines(method_report: Option<&serde_json::Value>, on_sheet: &[u32])
     lines
 }
 
-/// The legend of `lines` on a `width` × `height` sheet holding `parts`, as an engrave-only
-/// group; `None` without lines or without room.
-pub fn legend_group(lines: &[String], width: f64, height: f64, parts: &[SvgGroup]) -> Option<SvgGroup> {
-    if lines.is_empty() {
-        return None;
-    }
-    let size = DVec2::new(
-        lines
-            .iter()
-            .map(|l| font::text_width(l, LEGEND_SIZE))
-            .fold(0.0, f64::max),
-        LEGEND_SIZE * (1.0 + LINE_PITCH * (lines.len() - 1) as f64),
-    );
-    let boxes: Vec<(DVec2, DVec2)> = parts.iter().filter_map(|g| bounds(&g.cut)).collect();
-    let top_left = free_spot(size, width, height, &boxes)?;
-    let engrave = lines
-        .iter()
-        .enumerate()
-        .flat_map(|(i, line)| {
-            let baseline = top_left + DVec2::new(0.0, LEGEND_SIZE * (1.0 + LINE_PITCH * i as f64));
-            font::place_text(line, LEGEND_SIZE, baseline, DVec2::X)
-        })
-        .collect();
-    Some(SvgGroup {
-        id: LEGEND_ID.into(),
-        cut: Vec::new(),
-        slits: Vec::new(),
-        engrave,
-    })
+/// A sheet's legend: its lines and where they are engraved, if anywhere.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Legend {
+    /// The lines ([`legend_lines`]).
+    pub lines: Vec<String>,
+    /// The text's top-left corner on the sheet; `None` when there is no room beside the parts.
+    pub top_left: Option<DVec2>,
+    /// The text's width and height, mm.
+    pub size: DVec2,
 }
 
-/// The top-left corner of a free box of `size` on the sheet: clear of every box in `boxes` and
-/// of the sheet's edges by [`GAP`].
-fn free_spot(size: DVec2, width: f64, height: f64, boxes: &[(DVec2, DVec2)]) -> Option<DVec2> {
-    let (lo, hi) = (DVec2::splat(GAP), DVec2::new(width, height) - size - DVec2::splat(GAP));
-    let corners = [lo, DVec2::new(hi.x, lo.y), DVec2::new(lo.x, hi.y), hi];
+impl Legend {
+    /// The legend of `lines` on a `width` × `height` sheet holding `parts`: placed beside the
+    /// parts ([`free_spot`]) or, without room there, kept off the sheet. `None` without lines.
+    pub fn place(lines: Vec<String>, width: f64, height: f64, parts: &[SvgGroup]) -> Option<Legend> {
+        if lines.is_empty() {
+            return None;
+        }
+        let size = DVec2::new(
+            lines
+                .iter()
+                .map(|l| font::text_width(l, LEGEND_SIZE))
+                .fold(0.0, f64::max),
+            LEGEND_SIZE * (1.0 + LINE_PITCH * (lines.len() - 1) as f64),
+        );
+        let boxes: Vec<Bounds> = parts.iter().filter_map(|g| bounds(&g.cut)).collect();
+        let top_left = free_spot(size, DVec2::new(width, height), &boxes);
+        Some(Legend { lines, top_left, size })
+    }
+
+    /// The engrave-only group of the legend, when it is on the sheet.
+    pub fn group(&self) -> Option<SvgGroup> {
+        let top_left = self.top_left?;
+        let engrave = self
+            .lines
+            .iter()
+            .enumerate()
+            .flat_map(|(i, line)| {
+                let baseline = top_left + DVec2::new(0.0, LEGEND_SIZE * (1.0 + LINE_PITCH * i as f64));
+                font::place_text(line, LEGEND_SIZE, baseline, DVec2::X)
+            })
+            .collect();
+        Some(SvgGroup {
+            id: LEGEND_ID.into(),
+            cut: Vec::new(),
+            slits: Vec::new(),
+            engrave,
+        })
+    }
+
+    /// The legend as plan.json's `sheets[].legend`.
+    pub fn plan(&self) -> SheetLegend {
+        SheetLegend {
+            lines: self.lines.clone(),
+            engraved: self.top_left.is_some(),
+            min: self.top_left.map(|p| p.to_array()),
+            max: self.top_left.map(|p| (p + self.size).to_array()),
+        }
+    }
+}
+
+/// A box: smallest and largest corner.
+type Bounds = (DVec2, DVec2);
+
+/// The top-left corner of a free box of `size` on a `sheet`-sized sheet, beside the parts:
+/// clear of every box in `boxes` and of the sheet's edges by [`GAP`], and growing the parts'
+/// bounding box (the used area) the least. Spots inside the used area (its corners, beside and
+/// below each part) grow it not at all; spots just outside it (right of, below, left of, above
+/// it) grow it by the legend alone. The sheet's far corners are never tried: the laser would
+/// travel there and a smaller real sheet would lose the legend. Ties keep the first spot, so
+/// the choice is deterministic.
+fn free_spot(size: DVec2, sheet: DVec2, boxes: &[Bounds]) -> Option<DVec2> {
+    let used = boxes.iter().copied().reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))?;
+    let (lo, hi) = (DVec2::splat(GAP), sheet - size - DVec2::splat(GAP));
+    let step = 2.0 * GAP;
+    let (u0, u1) = used;
+    let inside = [
+        u0,
+        DVec2::new(u1.x - size.x, u0.y),
+        DVec2::new(u0.x, u1.y - size.y),
+        u1 - size,
+    ];
     let beside = boxes.iter().flat_map(|(a, b)| {
         [
-            DVec2::new(b.x + 2.0 * GAP, a.y),
-            DVec2::new(a.x, b.y + 2.0 * GAP),
-            DVec2::new(b.x + 2.0 * GAP, lo.y),
-            DVec2::new(lo.x, b.y + 2.0 * GAP),
+            DVec2::new(b.x + step, a.y),
+            DVec2::new(a.x, b.y + step),
+            DVec2::new(b.x + step, u0.y),
+            DVec2::new(u0.x, b.y + step),
         ]
     });
-    corners.into_iter().chain(beside).find(|&p| {
-        p.x >= lo.x - 1e-9
-            && p.y >= lo.y - 1e-9
-            && p.x <= hi.x + 1e-9
-            && p.y <= hi.y + 1e-9
-            && boxes.iter().all(|&(a, b)| {
-                let (q0, q1) = (p - DVec2::splat(GAP), p + size + DVec2::splat(GAP));
-                q1.x <= a.x || b.x <= q0.x || q1.y <= a.y || b.y <= q0.y
-            })
-    })
+    let outside = [
+        DVec2::new(u1.x + step, u0.y),
+        DVec2::new(u0.x, u1.y + step),
+        DVec2::new(u0.x - step - size.x, u0.y),
+        DVec2::new(u0.x, u0.y - step - size.y),
+    ];
+    if hi.x < lo.x || hi.y < lo.y {
+        return None;
+    }
+    let free = |p: &DVec2| {
+        boxes.iter().all(|&(a, b)| {
+            let (q0, q1) = (*p - DVec2::splat(GAP), *p + size + DVec2::splat(GAP));
+            q1.x <= a.x || b.x <= q0.x || q1.y <= a.y || b.y <= q0.y
+        })
+    };
+    let growth = |p: DVec2| {
+        let (g0, g1) = (u0.min(p), u1.max(p + size));
+        (g1 - g0).x * (g1 - g0).y
+    };
+    inside
+        .into_iter()
+        .chain(beside)
+        .chain(outside)
+        // A spot past the sheet's edge slides back onto it (a part on the margin's edge).
+        .map(|p| p.clamp(lo, hi))
+        .filter(free)
+        .map(|p| (growth(p), p))
+        .reduce(|best, next| if next.0.total_cmp(&best.0).is_lt() { next } else { best })
+        .map(|(_, p)| p)
 }
 
 /// The bounds of `rings`, if they have points.
-fn bounds(rings: &[Vec<DVec2>]) -> Option<(DVec2, DVec2)> {
+fn bounds(rings: &[Vec<DVec2>]) -> Option<Bounds> {
     let mut points = rings.iter().flatten();
     let first = *points.next()?;
     Some(points.fold((first, first), |(a, b), p| (a.min(*p), b.max(*p))))
@@ -130,6 +198,8 @@ fn bounds(rings: &[Vec<DVec2>]) -> Option<(DVec2, DVec2)> {
 
 #[cfg(test)]
 mod tests {
+    use platener_geom::{Polygon, boolean};
+
     use super::*;
 
     fn square(x: f64, y: f64, s: f64) -> SvgGroup {
@@ -156,17 +226,111 @@ mod tests {
         assert!(legend_lines(None, &[3]).is_empty());
     }
 
+    /// The legend's text box (from its strokes), the parts' bounding box, and whether the text
+    /// box lies within the parts' box grown by `margin`.
+    fn text_box(g: &SvgGroup) -> Bounds {
+        assert!(g.cut.is_empty() && g.slits.is_empty(), "the legend is engraved only");
+        bounds(&g.engrave).expect("text")
+    }
+
+    fn near(a: Bounds, b: Bounds, margin: f64) -> bool {
+        let m = DVec2::splat(margin);
+        a.0.cmpge(b.0 - m).all() && a.1.cmple(b.1 + m).all()
+    }
+
+    /// A regular `n`-gon of radius `r` about `c`, counter-clockwise in the y-down frame.
+    fn disc(id: u32, c: DVec2, r: f64, n: usize) -> SvgGroup {
+        let ring = (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                c + r * DVec2::new(a.cos(), a.sin())
+            })
+            .collect();
+        SvgGroup {
+            id: format!("part-{id}"),
+            cut: vec![ring],
+            slits: Vec::new(),
+            engrave: Vec::new(),
+        }
+    }
+
     #[test]
-    fn the_legend_avoids_the_parts_and_stays_on_the_sheet() {
-        // A part in the top-left corner: the legend goes to the top-right one.
+    fn the_legend_sits_beside_a_corner_part_not_in_the_far_corner() {
         let parts = [square(0.0, 0.0, 100.0)];
         let lines = vec!["7/8: NUMBER 7 ON PART 8".to_string()];
-        let g = legend_group(&lines, 300.0, 200.0, &parts).expect("room");
-        assert!(g.cut.is_empty());
-        let (lo, hi) = bounds(&g.engrave).expect("text");
-        assert!(lo.x >= 100.0 + GAP && hi.x <= 300.0 - GAP + 1e-9, "{lo} {hi}");
-        assert!(lo.y >= GAP - 1e-9 && hi.y <= 200.0 - GAP, "{lo} {hi}");
-        // No room at all: no legend.
-        assert!(legend_group(&lines, 100.0, 100.0, &[square(0.0, 0.0, 100.0)]).is_none());
+        let legend = Legend::place(lines, 300.0, 200.0, &parts).expect("lines");
+        let (lo, hi) = text_box(&legend.group().expect("room"));
+        let used = (DVec2::ZERO, DVec2::splat(100.0));
+        // Beside the part: inside its box grown by the legend and twice the gap, never past.
+        assert!(
+            near((lo, hi), used, legend.size.x.max(legend.size.y) + 2.0 * GAP + 1e-9),
+            "{lo} {hi}"
+        );
+        assert!(
+            lo.x >= 100.0 + GAP || lo.y >= 100.0 + GAP,
+            "clear of the part: {lo} {hi}"
+        );
+        assert!(lo.cmpge(DVec2::splat(GAP - 1e-9)).all() && hi.x <= 300.0 - GAP && hi.y <= 200.0 - GAP);
+    }
+
+    /// Teapot-like: twelve stacked layers of different widths in a column at the sheet's left
+    /// edge (x < 60 on a 600 mm sheet), two of them numbered on tabs. The legend goes into the
+    /// column's room or right beside it, never across the sheet, and meets no layer.
+    #[test]
+    fn a_stacked_columns_legend_stays_beside_the_column_and_off_every_layer() {
+        let radii = [14.0, 20.0, 25.0, 27.0, 28.0, 27.0, 25.0, 22.0, 18.0, 12.0, 6.0, 4.0];
+        let mut y = 5.0;
+        let parts: Vec<SvgGroup> = (1..)
+            .zip(radii)
+            .map(|(id, r)| {
+                let g = disc(id, DVec2::new(5.0 + r, y + r), r, 40);
+                y += 2.0 * r + 2.0;
+                g
+            })
+            .collect();
+        let report = serde_json::json!({ "numbers": { "on_tab": [10, 11], "on_neighbour": [[12, 9]] } });
+        let ids: Vec<u32> = (1..=12).collect();
+        let lines = legend_lines(Some(&report), &ids);
+        let legend = Legend::place(lines.clone(), 600.0, 600.0, &parts).expect("lines");
+        let g = legend.group().expect("room beside the column");
+        let (lo, hi) = text_box(&g);
+        let used = parts
+            .iter()
+            .filter_map(|p| bounds(&p.cut))
+            .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
+            .expect("parts");
+        assert!(used.1.x < 62.0, "the column is narrow: {used:?}");
+        let margin = legend.size.x.max(legend.size.y) + 2.0 * GAP + 1e-9;
+        assert!(
+            near((lo, hi), used, margin),
+            "legend {lo} {hi} far from the parts {used:?}"
+        );
+        let text = Polygon::new(vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)]);
+        for p in &parts {
+            let outline = Polygon::new(p.cut[0].clone());
+            let meet = boolean::intersection(std::slice::from_ref(&text), &[outline]).expect("grid");
+            assert!(meet.is_empty(), "the legend meets {}", p.id);
+        }
+        // plan.json says the same box.
+        let plan = legend.plan();
+        assert!(plan.engraved && plan.lines == lines);
+        let (min, max) = (DVec2::from(plan.min.expect("min")), DVec2::from(plan.max.expect("max")));
+        assert!(near((lo, hi), (min, max), 1e-6), "{lo} {hi} vs {min} {max}");
+    }
+
+    #[test]
+    fn without_room_beside_the_parts_the_legend_is_kept_off_the_sheet() {
+        let lines = vec!["7/8: NUMBER 7 ON PART 8".to_string()];
+        let legend = Legend::place(lines.clone(), 100.0, 100.0, &[square(0.0, 0.0, 100.0)]).expect("lines");
+        assert!(legend.group().is_none());
+        let plan = legend.plan();
+        assert_eq!(
+            (plan.lines, plan.engraved, plan.min, plan.max),
+            (lines, false, None, None)
+        );
+        assert!(
+            Legend::place(Vec::new(), 100.0, 100.0, &[]).is_none(),
+            "no lines, no legend"
+        );
     }
 }

@@ -2,7 +2,8 @@
 //!
 //! Everything the user takes to the laser and everything third-party programs read comes out
 //! of here as one ZIP: plan.json (the contract in `shared/spec/plan-format.md`), report.json,
-//! assembly.glb (the assembled parts in 3D, [`crate::scene::assembly`]), and per sheet an SVG ([`svg`]), a DXF ([`dxf`]) and a PNG preview ([`png`]). Entries are
+//! assembly.glb (the assembled parts in 3D, [`crate::scene::assembly`]), thumbnail.png (the
+//! assembly drawn small, [`thumbnail`]), and per sheet an SVG ([`svg`]), a DXF ([`dxf`]) and a PNG preview ([`png`]). Entries are
 //! sorted by name and stamped 1980-01-01 with mode 0644, and report.json carries no timings
 //! unless asked, so the same input and settings give a byte-identical ZIP.
 
@@ -12,6 +13,7 @@ pub mod plan_json;
 pub mod png;
 pub mod report;
 pub mod svg;
+pub mod thumbnail;
 
 use std::collections::BTreeMap;
 use std::io::{Cursor, Write};
@@ -44,8 +46,8 @@ pub struct Bundle {
     pub plan: Plan,
     /// report.json as data.
     pub report: Report,
-    /// Every file of the ZIP by name (plan.json, report.json, assembly.glb, the sheets'
-    /// .svg/.dxf/.png).
+    /// Every file of the ZIP by name (plan.json, report.json, assembly.glb, thumbnail.png,
+    /// the sheets' .svg/.dxf/.png).
     #[serde(skip)]
     pub files: BTreeMap<String, Vec<u8>>,
     /// The ZIP.
@@ -64,9 +66,12 @@ pub fn run(
 ) -> Result<Bundle, PlanError> {
     let stem = plan_json::file_stem(&input.source.name);
     let stems = plan_json::sheet_stems(&stem, nesting);
-    let plan = plan_json::build_plan(input, cut, labels, nesting, &stems);
     let mut groups = plan_json::sheet_groups(input, cut, labels, nesting);
-    add_legends(input, nesting, &mut groups);
+    let legends = sheet_legends(input, nesting, &groups);
+    for (g, legend) in groups.iter_mut().zip(&legends) {
+        g.extend(legend.as_ref().and_then(legend::Legend::group));
+    }
+    let plan = plan_json::build_plan(input, cut, labels, nesting, &stems, &legends);
     let mut files = BTreeMap::new();
     for ((sheet, stem), g) in nesting.sheets.iter().zip(&stems).zip(&groups) {
         let svg = sheet_svg(sheet.width, sheet.height, g, &SvgStyle::CUT);
@@ -82,8 +87,10 @@ pub fn run(
     let report_json = serde_json::to_string_pretty(&report).map_err(|e| PlanError::write("report.json", e))?;
     files.insert("report.json".into(), report_json.into_bytes());
     // The parts were validated by now, so a scene that cannot be written is our bug.
-    let scene = crate::scene::assembly(&input.parts).map_err(|e| PlanError::write("assembly.glb", e))?;
+    let assembly = crate::scene::Assembly::new(&input.parts).map_err(|e| PlanError::write("assembly.glb", e))?;
+    let scene = assembly.scene().map_err(|e| PlanError::write("assembly.glb", e))?;
     files.insert("assembly.glb".into(), scene.glb);
+    files.insert(thumbnail::FILE.into(), thumbnail::thumbnail(&assembly)?);
     let zip = zip_files(&files)?;
     Ok(Bundle {
         plan,
@@ -93,10 +100,12 @@ pub fn run(
     })
 }
 
-/// Adds to each sheet's groups the legend saying where the numbers of its parts too thin for
-/// them went ([`legend`]), when there are such parts and room for it.
-fn add_legends(input: &PlanInput, nesting: &Nesting, groups: &mut [Vec<svg::SvgGroup>]) {
-    for (index, (sheet, g)) in nesting.sheets.iter().zip(groups.iter_mut()).enumerate() {
+/// Each sheet's legend saying where the numbers of its parts too thin for them went
+/// ([`legend`]), placed beside its parts when there is room; `None` for a sheet whose every
+/// number is on its own part.
+fn sheet_legends(input: &PlanInput, nesting: &Nesting, groups: &[Vec<svg::SvgGroup>]) -> Vec<Option<legend::Legend>> {
+    let report = input.method_report.as_ref();
+    let lines_of = |index: usize| {
         let mut on_sheet: Vec<u32> = input
             .parts
             .iter()
@@ -105,11 +114,15 @@ fn add_legends(input: &PlanInput, nesting: &Nesting, groups: &mut [Vec<svg::SvgG
             .map(|(part, _)| part.id)
             .collect();
         on_sheet.sort_unstable();
-        let lines = legend::legend_lines(input.method_report.as_ref(), &on_sheet);
-        if let Some(l) = legend::legend_group(&lines, sheet.width, sheet.height, g) {
-            g.push(l);
-        }
-    }
+        legend::legend_lines(report, &on_sheet)
+    };
+    nesting
+        .sheets
+        .iter()
+        .zip(groups)
+        .enumerate()
+        .map(|(index, (sheet, g))| legend::Legend::place(lines_of(index), sheet.width, sheet.height, g))
+        .collect()
 }
 
 fn build_report(

@@ -4,6 +4,7 @@ use std::collections::BTreeMap;
 
 use glam::DVec2;
 
+use super::legend::Legend;
 use super::svg::{SvgGroup, num};
 use platener_geom::Polygon;
 
@@ -67,7 +68,15 @@ pub fn plan_settings(input: &PlanInput) -> PlanSettings {
 }
 
 /// plan.json for the given snapshots (parts in ascending id order).
-pub fn build_plan(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting: &Nesting, stems: &[String]) -> Plan {
+/// `legends` are the sheets' legends, in the sheets' order.
+pub fn build_plan(
+    input: &PlanInput,
+    cut: &CutPaths,
+    labels: &Labels,
+    nesting: &Nesting,
+    stems: &[String],
+    legends: &[Option<Legend>],
+) -> Plan {
     let mut order: Vec<usize> = (0..input.parts.len()).collect();
     order.sort_by_key(|&i| input.parts[i].id);
     let parts = order
@@ -106,12 +115,14 @@ pub fn build_plan(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting: &
         .sheets
         .iter()
         .zip(stems)
-        .map(|(s, stem)| PlanSheet {
+        .enumerate()
+        .map(|(i, (s, stem))| PlanSheet {
             index: s.index,
             thickness: s.thickness,
             width: s.width,
             height: s.height,
             file: format!("{stem}.svg"),
+            legend: legends.get(i).and_then(Option::as_ref).map(Legend::plan),
         })
         .collect();
     let src = &input.source;

@@ -17,7 +17,7 @@ use platener_geom::Polygon;
 
 use crate::export::svg::{SvgGroup, SvgStyle, num, sheet_svg};
 use crate::labels::font::{place_text, text_width};
-use crate::plan::{Material, PlanError};
+use crate::plan::{MAX_KERF, Material, PlanError};
 
 /// Width of the spike's tip, mm (the "known width").
 pub const SPIKE_WIDTH: f64 = 6.0;
@@ -77,8 +77,13 @@ pub struct TestStrip {
     pub spike_engrave: Vec<Vec<DVec2>>,
     /// The holes, left to right.
     pub holes: Vec<StripHole>,
-    /// The hole of the material's default kerf (marked `*` in the table).
+    /// The hole of the material's default kerf.
     pub default_hole: u32,
+    /// The hole marked `*` in the table: the kerf in use (the material's default unless a
+    /// plan was cut with another, see [`test_strip_marking`]).
+    pub marked_hole: u32,
+    /// The engraved table as text, header first (`9=0.200*`, …).
+    pub table: Vec<String>,
 }
 
 use platener_geom::polygon::rect;
@@ -88,18 +93,20 @@ fn table_entry(n: u32, marked: bool) -> String {
     format!("{n}={:.3}{}", hole_kerf(n), if marked { "*" } else { "" })
 }
 
-/// Lays out the test strip for sheets `thickness` mm thick of `material`.
+/// Lays out the test strip for sheets `thickness` mm thick of `material`, the material's
+/// default kerf starred.
+pub fn test_strip(thickness: f64, material: Material) -> Result<TestStrip, PlanError> {
+    test_strip_marking(thickness, material, material.default_kerf())
+}
+
+/// [`test_strip`] with the hole nearest `kerf` starred in the table: the kerf a plan was cut
+/// with, so a strip printed after a kerf change marks the kerf in use, not the default.
 ///
 /// Holes are `thickness + 1` mm long across the strip, so the spike (as thick as the sheet)
 /// enters them whatever the real thickness, and only the width decides the fit.
-pub fn test_strip(thickness: f64, material: Material) -> Result<TestStrip, PlanError> {
-    if !(thickness.is_finite() && thickness > 0.0 && thickness <= MAX_THICKNESS) {
-        return Err(PlanError::Setting {
-            name: "thickness",
-            message: format!("{thickness} mm must be in (0, {MAX_THICKNESS}]"),
-        });
-    }
-    let default_hole = hole_for_kerf(material.default_kerf());
+pub fn test_strip_marking(thickness: f64, material: Material, kerf: f64) -> Result<TestStrip, PlanError> {
+    check(thickness, kerf)?;
+    let (default_hole, marked_hole) = (hole_for_kerf(material.default_kerf()), hole_for_kerf(kerf));
     let hole_len = thickness + 1.0;
     let (x0, y0) = (MARGIN, MARGIN);
     let holes_top = y0 + 4.0;
@@ -130,13 +137,16 @@ pub fn test_strip(thickness: f64, material: Material) -> Result<TestStrip, PlanE
     let header_base = numbers_base + 3.0 + TEXT;
     let header = format!("HOLE=KERF MM  *{} {}MM", material.name(), num(thickness));
     engrave.extend(place_text(&header, TEXT, DVec2::new(x0 + 4.0, header_base), DVec2::X));
+    let mut table = vec![header.clone()];
     for n in 1..=HOLE_COUNT {
         let (col, row) = ((n - 1) / rows, (n - 1) % rows);
         let origin = DVec2::new(
             x0 + 4.0 + f64::from(col) * col_w,
             header_base + f64::from(row + 1) * line,
         );
-        engrave.extend(place_text(&table_entry(n, n == default_hole), TEXT, origin, DVec2::X));
+        let entry = table_entry(n, n == marked_hole);
+        engrave.extend(place_text(&entry, TEXT, origin, DVec2::X));
+        table.push(entry);
     }
     let table_w = f64::from(HOLE_COUNT.div_ceil(rows)) * col_w;
     let holes_w = 8.0 + SPIKE_WIDTH + f64::from(HOLE_COUNT - 1) * PITCH;
@@ -172,7 +182,26 @@ pub fn test_strip(thickness: f64, material: Material) -> Result<TestStrip, PlanE
         spike_engrave,
         holes,
         default_hole,
+        marked_hole,
+        table,
     })
+}
+
+/// Refuses a thickness or a kerf the strip cannot be drawn for.
+fn check(thickness: f64, kerf: f64) -> Result<(), PlanError> {
+    if !(thickness.is_finite() && thickness > 0.0 && thickness <= MAX_THICKNESS) {
+        return Err(PlanError::Setting {
+            name: "thickness",
+            message: format!("{thickness} mm must be in (0, {MAX_THICKNESS}]"),
+        });
+    }
+    if !(kerf.is_finite() && (0.0..MAX_KERF).contains(&kerf)) {
+        return Err(PlanError::Setting {
+            name: "kerf",
+            message: format!("{kerf} mm must be at least 0 and under {MAX_KERF} mm"),
+        });
+    }
+    Ok(())
 }
 
 impl TestStrip {
@@ -230,5 +259,22 @@ mod tests {
         let (klo, khi) = s.spike.bounds();
         assert!(klo.x > hi.x && khi.x < s.width && khi.y < s.height && lo.x > 0.0);
         assert!(test_strip(-1.0, Material::Wood).is_err());
+    }
+
+    #[test]
+    fn the_table_stars_the_kerf_in_use() {
+        let default = test_strip(3.0, Material::Wood).expect("strip");
+        assert_eq!((default.default_hole, default.marked_hole), (9, 9));
+        assert!(default.table.contains(&"9=0.200*".to_string()), "{:?}", default.table);
+        let recut = test_strip_marking(3.0, Material::Wood, 0.3).expect("strip");
+        assert_eq!((recut.default_hole, recut.marked_hole), (9, 13));
+        let starred: Vec<&String> = recut.table.iter().filter(|e| e.ends_with('*')).collect();
+        assert_eq!(starred, ["13=0.300*"], "only the kerf in use is starred");
+        // The engraving is the table's: one more star's strokes move from hole 9 to hole 13.
+        assert_eq!(recut.strip_engrave.len(), default.strip_engrave.len());
+        assert_ne!(recut.strip_engrave, default.strip_engrave);
+        for kerf in [-0.1, f64::NAN, MAX_KERF] {
+            assert!(test_strip_marking(3.0, Material::Wood, kerf).is_err(), "{kerf}");
+        }
     }
 }

@@ -235,6 +235,7 @@ fn plan_of(mut part: Part, extra: &[PlanJoint]) -> Plan {
             width: 600.0,
             height: 400.0,
             file: "bent.svg".into(),
+            legend: None,
         }],
         glued: Vec::new(),
     }

@@ -208,6 +208,29 @@ pub struct PlanSheet {
     pub height: f64,
     /// The sheet's SVG file in the ZIP.
     pub file: String,
+    /// Where the numbers of this sheet's parts too thin for them went (an extension of the
+    /// spec, docs/cutting-plans.md); omitted when every number is on its own part.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub legend: Option<SheetLegend>,
+}
+
+/// `sheets[].legend`: the legend's lines and, when it is engraved on the sheet, its box.
+///
+/// The legend is engraved beside the parts it explains or not at all (no room there): a
+/// legend in the sheet's far corner sends the laser across the sheet and falls off a smaller
+/// real sheet. Either way the lines are here, so a reader can print them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SheetLegend {
+    /// The lines, as engraved (`7/8: NUMBER 7 ON PART 8`, `NUMBER ON A TAB: 3 5`).
+    pub lines: Vec<String>,
+    /// Whether the lines are engraved on the sheet (in its SVG's `<g id="legend">`).
+    pub engraved: bool,
+    /// The engraved text's box on the sheet, smallest corner, mm; absent when not engraved.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min: Option<[f64; 2]>,
+    /// The engraved text's box on the sheet, largest corner, mm; absent when not engraved.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max: Option<[f64; 2]>,
 }
 
 impl Plan {

@@ -19,7 +19,8 @@ use serde::Serialize;
 pub use bent::BentError;
 pub use error::PlanError;
 pub use format::{
-    Glue, Method, Plan, PlanBend, PlanJoint, PlanPart, PlanSegment, PlanSettings, PlanSheet, PlanSource, SheetPlacement,
+    Glue, Method, Plan, PlanBend, PlanJoint, PlanPart, PlanSegment, PlanSettings, PlanSheet, PlanSource, SheetLegend,
+    SheetPlacement,
 };
 pub use part::{Bend, BendStyle, EdgeLabel, Joint, JointKind, Mark, MarkKind, MarkSide, Part, PartKind, Segment};
 pub use settings::{CutSettings, LabelMode, MAX_KERF, Material, SettingValue, SheetSize};

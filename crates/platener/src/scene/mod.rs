@@ -31,7 +31,7 @@ use std::str::FromStr;
 
 pub use decimate::TRIANGLE_LIMIT;
 pub use primitives::{POINT_LIMIT, primitives};
-pub use solid::{assembly, bent, plates};
+pub use solid::{Assembly, assembly, bent, plates};
 pub use surface::{GROUP_NODE_LIMIT, coplanar, model, wireframe};
 
 /// A 3D view a viewer can show.

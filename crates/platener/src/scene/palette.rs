@@ -43,6 +43,11 @@ impl Colour {
         self.entry().0
     }
 
+    /// sRGB bytes, as an image shows them.
+    pub(crate) fn srgb(self) -> [u8; 3] {
+        self.entry().1
+    }
+
     /// Linear RGB in 0..1, as glTF's `baseColorFactor` wants (sRGB decoded).
     pub(crate) fn linear(self) -> [f64; 3] {
         self.entry().1.map(|c| {

@@ -2,6 +2,7 @@
 //! extruded over its thickness in its own frame, and its node's transform (rotation and
 //! translation of the frame, exactly plan.json's `transform`) places it in the model.
 
+use glam::DVec3;
 use platener_geom::{Frame, Polygon};
 
 use super::extrude::{extrude, slab_mesh};
@@ -59,21 +60,73 @@ pub fn bent(plates_snapshot: &Plates, bends: Option<&Bends>) -> Result<Scene, Sc
 /// ([`Part::pieces`]: the segments flat, the bend zones' slices forming the curved strip),
 /// each a closed solid, in the part's frame.
 pub fn assembly(parts: &[Part]) -> Result<Scene, SceneError> {
-    let mut order: Vec<&Part> = parts.iter().collect();
-    order.sort_by_key(|p| p.id);
-    let mut glb = GlbBuilder::default();
-    for p in order {
-        let colour = Colour::nth(p.id.saturating_sub(1) as usize);
-        let name = format!("part-{}", p.id);
-        if p.segments.is_empty() {
-            solid(&mut glb, &name, &p.polygon, p.thickness, &p.frame, colour)?;
-            continue;
-        }
-        let data = bent_mesh(p).map_err(|e| e.about(&name))?;
-        let mesh = glb.mesh(&name, &data, Mode::Triangles, colour, false)?;
-        glb.node(&name, mesh, Some(&p.frame));
+    Assembly::new(parts)?.scene()
+}
+
+/// The assembled parts as solids: what the `final` view and `assembly.glb` are written from,
+/// and what the gallery's thumbnail draws ([`crate::export::thumbnail`]), so the two never
+/// show different things.
+#[derive(Debug, Clone)]
+pub struct Assembly {
+    solids: Vec<PartSolid>,
+}
+
+/// One part's solid in its own frame.
+#[derive(Debug, Clone)]
+struct PartSolid {
+    name: String,
+    data: MeshData,
+    frame: Frame,
+    colour: Colour,
+}
+
+impl Assembly {
+    /// Every part extruded (a bent part bent), in ascending id order.
+    pub fn new(parts: &[Part]) -> Result<Self, SceneError> {
+        let mut order: Vec<&Part> = parts.iter().collect();
+        order.sort_by_key(|p| p.id);
+        let solids = order
+            .into_iter()
+            .map(|p| {
+                let name = format!("part-{}", p.id);
+                let data = if p.segments.is_empty() {
+                    slab_mesh(&p.polygon, p.thickness)
+                } else {
+                    bent_mesh(p)
+                }
+                .map_err(|e| e.about(&name))?;
+                let colour = Colour::nth(p.id.saturating_sub(1) as usize);
+                Ok(PartSolid {
+                    name,
+                    data,
+                    frame: p.frame,
+                    colour,
+                })
+            })
+            .collect::<Result<_, SceneError>>()?;
+        Ok(Assembly { solids })
     }
-    Scene::finish(glb, "assembly", Vec::new())
+
+    /// The `final` scene ([`assembly`]).
+    pub fn scene(&self) -> Result<Scene, SceneError> {
+        let mut glb = GlbBuilder::default();
+        for s in &self.solids {
+            let mesh = glb.mesh(&s.name, &s.data, Mode::Triangles, s.colour, false)?;
+            glb.node(&s.name, mesh, Some(&s.frame));
+        }
+        Scene::finish(glb, "assembly", Vec::new())
+    }
+
+    /// Every triangle in the model's coordinates (mm, Z up), counter-clockwise seen from
+    /// outside, with its part's colour (sRGB): parts in ascending id order.
+    pub fn triangles(&self) -> impl Iterator<Item = ([DVec3; 3], [u8; 3])> + '_ {
+        self.solids.iter().flat_map(|s| {
+            s.data.indices.chunks_exact(3).map(move |t| {
+                let corner = |i: u32| s.frame.to_model(s.data.positions[i as usize]);
+                ([corner(t[0]), corner(t[1]), corner(t[2])], s.colour.srgb())
+            })
+        })
+    }
 }
 
 /// A bent part's pieces extruded and carried into the part's own frame (the node's transform
