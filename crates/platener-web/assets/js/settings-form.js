@@ -16,6 +16,16 @@ export const SETTLE_MS = 450;
 
 let schema = null;
 
+/**
+ * The choices of setting `name` as [value, label] pairs, from the schema the form was built
+ * from (empty before it is): other parts of the page (the debug view, the methods' names) list
+ * values from here instead of by hand.
+ */
+export function choicesOf(name) {
+  const def = schema && schema.settings.find((d) => d.name === name);
+  return def && def.kind.choices ? def.kind.choices.map((c) => [c.value, c.label]) : [];
+}
+
 /** Fetches nothing: builds the form in `form` from the schema `s` (GET /api/settings). */
 export function buildForm(form, s) {
   schema = s;

@@ -2,7 +2,7 @@
 // every method shares), the method whose plan is shown, then each other method. A clean plan
 // says so in words, even when methods the page does not show left notes.
 
-import { count, methodName } from './wording.js';
+import { count, jargonIn, methodName } from './wording.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -30,6 +30,23 @@ export function warningGroups(c, shownMethod = c.best) {
   return groups.filter((g) => g.lines.length).sort((a, b) => order(a) - order(b));
 }
 
+/** One warning; one that uses jargon gets a folded "why?" that says what the words mean. */
+function warningItem(line) {
+  const li = Object.assign(document.createElement('li'), { textContent: line });
+  const words = jargonIn(line);
+  if (!words.length) return li;
+  const why = Object.assign(document.createElement('details'), { className: 'why' });
+  why.dataset.testid = 'why';
+  const dl = document.createElement('dl');
+  for (const [word, meaning] of words) {
+    dl.append(Object.assign(document.createElement('dt'), { textContent: word }));
+    dl.append(Object.assign(document.createElement('dd'), { textContent: meaning }));
+  }
+  why.append(Object.assign(document.createElement('summary'), { textContent: 'why?' }), dl);
+  li.append(' ', why);
+  return li;
+}
+
 /** The summary line over the groups, in words. */
 export function warningsTitle(groups) {
   const shown = groups.filter((g) => g.shown).reduce((n, g) => n + g.lines.length, 0);
@@ -50,7 +67,7 @@ export function showWarnings(c, shownMethod = c.best) {
     const head = document.createElement('strong');
     head.textContent = `${g.title}: ${count(g.lines.length, g.shown ? 'warning' : 'note')}`;
     const ul = document.createElement('ul');
-    ul.append(...g.lines.map((l) => Object.assign(document.createElement('li'), { textContent: l })));
+    ul.append(...g.lines.map(warningItem));
     li.append(head, ul);
     return li;
   }));

@@ -1,6 +1,8 @@
 // Plain words for what the page counts and estimates: singular and plural, the assembly
 // player's count, the laser-time note of a plan, the methods' names.
 
+import { choicesOf } from './settings-form.js';
+
 /** "1 part", "2 parts": `noun` is the singular, `plural` its plural when not noun + s. */
 export function count(n, noun, plural = `${noun}s`) {
   return `${n} ${n === 1 ? noun : plural}`;
@@ -12,12 +14,11 @@ export function partsShown(k, total, last) {
   return `${k} of ${count(total, 'part')}${last ? `: part ${last} joined` : ''}`;
 }
 
-/** The methods as the page's method select names them. */
-const METHOD_NAMES = { plate: 'Plates', stacked: 'Stacked layers', classifier: 'Primitives' };
-
-/** A method's name for people ("Stacked layers"), the API's word when it is a new one. */
+/** A method's name for people ("Stacked layers") as the settings name it, the API's word
+ * when the settings do not (not loaded, or a new method). */
 export function methodName(method) {
-  return METHOD_NAMES[method] || method;
+  const found = choicesOf('method').find(([value]) => value === method);
+  return found ? found[1] : method;
 }
 
 /** Materials as a maker calls them. */
@@ -37,4 +38,30 @@ export function laserNote(settings) {
   if (!s.cut_speed) return '';
   const what = `${thicknesses(s.thicknesses)} ${MATERIAL_NAMES[s.material] || s.material || 'sheet'}`;
   return `Laser time for ${what}: cutting at ${s.cut_speed} mm/s and engraving at ${s.engrave_speed} mm/s, without travel moves.`;
+}
+
+/**
+ * Words of the warnings a maker may not know, each with what it means and why it matters. A
+ * warning that uses one gets a "why?" that explains it (js/warnings.js).
+ */
+export const GLOSSARY = [
+  ['inherent plate', 'A plate the model already has: two of its faces a sheet’s thickness apart, cut as one part.'],
+  ['extruded', 'A single face of the model made into a plate by growing it inwards by a sheet’s thickness; a solid block becomes a hollow shell this way.'],
+  ['kerf', 'The width of material the laser burns away. Outlines are offset by half of it so parts come out at their true size and joints fit.'],
+  ['weld', 'Merging the model’s vertices that lie closer than a small distance, so faces meant to be one flat face are one; it removes bevels but can close thin gaps.'],
+  ['coplanar', 'Faces in one plane; each group of them may become a plate.'],
+  ['jimjoint', 'Fingers that widen towards their tip and snap behind the other part: they hold in card and paper, which give way.'],
+  ['halved', 'Two plates crossing, each slotted half way so they slide into each other.'],
+  ['shaft', 'A strip cut from a sheet that goes through slots in stacked layers and holds them in line.'],
+  ['island', 'A separate piece of one layer or plate; one too small or thin to cut is left out.'],
+  ['neck', 'A narrow part of an outline that would break when cut; it is widened or the part is split.'],
+  ['living hinge', 'Rows of slits that let a wood sheet bend; the part is cut flat and bent by hand.'],
+  ['glue', 'These parts touch but no joint holds them: glue them, or change the thickness or method so joints fit.'],
+  ['score', 'A line engraved, not cut through: a fold line in paper, or a feature drawn on a face.'],
+];
+
+/** The glossary entries whose words `line` uses. */
+export function jargonIn(line) {
+  const lower = line.toLowerCase();
+  return GLOSSARY.filter(([word]) => lower.includes(word));
 }

@@ -21,6 +21,7 @@
 
 import { createViewer } from '../viewer.js';
 import { el, field, select } from './dom.js';
+import { choicesOf } from '../settings-form.js';
 import { debugIndex, finished, stepJson, submit, testModel, testSet } from './jobs.js';
 import { partLines, plateLines, showLines, showSnapshot } from './inspect.js';
 
@@ -61,14 +62,14 @@ function build() {
   ui.mode = select('debug-mode', [['isolated', 'isolated step'], ['converting', 'converting']], st.mode);
   ui.model = el('select', { 'data-testid': 'debug-model' });
   ui.upload = el('input', { type: 'file', accept: '.stl,.obj,.3mf', 'data-testid': 'debug-upload' });
-  ui.method = select('debug-method', [['plate', 'plate'], ['stacked', 'stacked'], ['classifier', 'classifier']], st.method);
+  ui.method = select('debug-method', choicesOf('method').filter(([v]) => v !== 'all'), st.method);
   ui.step = el('select', { 'data-testid': 'debug-step' });
   ui.weld = el('input', { type: 'range', min: 0, max: 2, step: 0.01, value: 0.1, disabled: true, 'data-testid': 'debug-weld' });
   ui.weldAuto = el('input', { type: 'checkbox', checked: true, 'data-testid': 'debug-weld-auto' });
   ui.weldValue = el('output', { 'data-testid': 'debug-weld-value' }, 'auto');
   ui.inherent = el('input', { type: 'checkbox', 'data-testid': 'debug-inherent' });
-  ui.joint = select('debug-joint', [['auto', 'auto (by material)'], ['finger', 'finger'], ['jim', 'jim'], ['dovetail', 'dovetail']], 'auto');
-  ui.features = select('debug-features', [['engrave', 'engrave'], ['cut', 'cut'], ['ignore', 'ignore']], 'engrave');
+  ui.joint = select('debug-joint', choicesOf('joint'), 'auto');
+  ui.features = select('debug-features', choicesOf('features'), 'engrave');
   ui.render = select('debug-render', [['solid', 'solid'], ['wireframe', 'wireframe'], ['vertices', 'vertices'], ['hidden', 'hidden']], 'solid');
   ui.run = el('button', { type: 'button', 'data-testid': 'debug-run' }, 'Convert');
   ui.status = el('p', { role: 'status', 'data-testid': 'debug-status' });
