@@ -66,17 +66,23 @@ function labelFor(def, input) {
   return label;
 }
 
-function choiceControl(def) {
+/** The select of setting `def` with `options` (choices or presets), its default selected. */
+function selectOf(def, options) {
   const select = document.createElement('select');
   select.id = def.name;
   select.name = def.name;
   select.dataset.testid = def.name;
   select.dataset.setting = def.name;
-  for (const c of def.kind.choices) {
+  for (const c of options) {
     const option = new Option(c.label, c.value, false, c.value === def.default);
     option.title = c.help;
     select.append(option);
   }
+  return select;
+}
+
+function choiceControl(def) {
+  const select = selectOf(def, def.kind.choices);
   return [labelFor(def, select), select];
 }
 
@@ -157,16 +163,7 @@ function numbersControl(def) {
 }
 
 function sheetControl(def) {
-  const select = document.createElement('select');
-  select.id = def.name;
-  select.name = def.name;
-  select.dataset.testid = def.name;
-  select.dataset.setting = def.name;
-  for (const p of def.kind.presets) {
-    const option = new Option(p.label, p.value, false, p.value === def.default);
-    option.title = p.help;
-    select.append(option);
-  }
+  const select = selectOf(def, def.kind.presets);
   select.append(new Option('Custom…', 'custom'));
   const custom = document.createElement('div');
   custom.className = 'sheet-custom';
