@@ -229,7 +229,10 @@ fn fitted_sheets_and_oversized_parts_keep_the_rules() {
     let err = pipeline::cutting_plan(input(parts, CutSettings::default()), &Cancel::default())
         .expect_err("part 10 does not fit");
     let text = err.to_string();
-    assert!(text.contains("part 10 is 65") && text.contains("--sheet fit"), "{text}");
+    assert!(
+        text.contains("part 10 is 65") && text.contains("`sheet` to fit"),
+        "{text}"
+    );
 }
 
 #[test]

@@ -72,25 +72,15 @@ pub fn run(
         g.extend(legend.as_ref().and_then(legend::Legend::group));
     }
     let plan = plan_json::build_plan(input, cut, labels, nesting, &stems, &legends);
-    let mut files = BTreeMap::new();
-    for ((sheet, stem), g) in nesting.sheets.iter().zip(&stems).zip(&groups) {
-        let svg = sheet_svg(sheet.width, sheet.height, g, &SvgStyle::CUT);
-        files.insert(format!("{stem}.svg"), svg.into_bytes());
-        let name = format!("{stem}.dxf");
-        files.insert(name.clone(), dxf::sheet_dxf(sheet.height, g, &name)?);
-        let name = format!("{stem}.png");
-        let preview = sheet_svg(sheet.width, sheet.height, g, &PREVIEW_STYLE);
-        files.insert(name.clone(), png::render_png(&preview, &name)?);
-    }
-    let report = build_report(input, nesting, steps, &groups, &stems);
-    files.insert("plan.json".into(), plan.to_json()?.into_bytes());
-    let report_json = serde_json::to_string_pretty(&report).map_err(|e| PlanError::write("report.json", e))?;
-    files.insert("report.json".into(), report_json.into_bytes());
-    // The parts were validated by now, so a scene that cannot be written is our bug.
-    let assembly = crate::scene::Assembly::new(&input.parts).map_err(|e| PlanError::write("assembly.glb", e))?;
-    let scene = assembly.scene().map_err(|e| PlanError::write("assembly.glb", e))?;
-    files.insert("assembly.glb".into(), scene.glb);
-    files.insert(thumbnail::FILE.into(), thumbnail::thumbnail(&assembly)?);
+    // The sheets' files (the PNG previews above all) and the rest (report, 3D assembly,
+    // thumbnail) do not depend on each other: made side by side, the plan is ready sooner. The
+    // files are keyed by name, so the ZIP is the same whichever finishes first.
+    let (sheets, rest) = rayon::join(
+        || sheet_files(nesting, &stems, &groups),
+        || plan_files(input, nesting, steps, &groups, &stems, &plan),
+    );
+    let (report, rest) = rest?;
+    let files: BTreeMap<String, Vec<u8>> = sheets?.into_iter().chain(rest).collect();
     let zip = zip_files(&files)?;
     Ok(Bundle {
         plan,
@@ -98,6 +88,58 @@ pub fn run(
         files,
         zip,
     })
+}
+
+/// Every sheet's SVG, DXF and PNG preview, the sheets side by side.
+fn sheet_files(
+    nesting: &Nesting,
+    stems: &[String],
+    groups: &[Vec<svg::SvgGroup>],
+) -> Result<Vec<(String, Vec<u8>)>, PlanError> {
+    use rayon::prelude::*;
+    let per_sheet: Vec<Vec<(String, Vec<u8>)>> = nesting
+        .sheets
+        .par_iter()
+        .zip(stems)
+        .zip(groups)
+        .map(|((sheet, stem), g)| {
+            let svg = sheet_svg(sheet.width, sheet.height, g, &SvgStyle::CUT);
+            let dxf_name = format!("{stem}.dxf");
+            let dxf = dxf::sheet_dxf(sheet.height, g, &dxf_name)?;
+            let png_name = format!("{stem}.png");
+            let preview = sheet_svg(sheet.width, sheet.height, g, &PREVIEW_STYLE);
+            let png = png::render_png(&preview, &png_name)?;
+            Ok(vec![
+                (format!("{stem}.svg"), svg.into_bytes()),
+                (dxf_name, dxf),
+                (png_name, png),
+            ])
+        })
+        .collect::<Result<_, PlanError>>()?;
+    Ok(per_sheet.into_iter().flatten().collect())
+}
+
+/// report.json (returned too), plan.json, the 3D assembly and its thumbnail.
+fn plan_files(
+    input: &PlanInput,
+    nesting: &Nesting,
+    steps: &[StepRecord],
+    groups: &[Vec<svg::SvgGroup>],
+    stems: &[String],
+    plan: &Plan,
+) -> Result<(Report, Vec<(String, Vec<u8>)>), PlanError> {
+    let report = build_report(input, nesting, steps, groups, stems);
+    let report_json = serde_json::to_string_pretty(&report).map_err(|e| PlanError::write("report.json", e))?;
+    // The parts were validated by now, so a scene that cannot be written is our bug.
+    let assembly = crate::scene::Assembly::new(&input.parts).map_err(|e| PlanError::write("assembly.glb", e))?;
+    let scene = assembly.scene().map_err(|e| PlanError::write("assembly.glb", e))?;
+    let files = vec![
+        ("plan.json".to_string(), plan.to_json()?.into_bytes()),
+        ("report.json".to_string(), report_json.into_bytes()),
+        ("assembly.glb".to_string(), scene.glb),
+        (thumbnail::FILE.to_string(), thumbnail::thumbnail(&assembly)?),
+    ];
+    Ok((report, files))
 }
 
 /// Each sheet's legend saying where the numbers of its parts too thin for them went
