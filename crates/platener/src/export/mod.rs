@@ -90,14 +90,13 @@ pub fn run(
     })
 }
 
+/// Files of the bundle by name, in no particular order (the ZIP sorts them).
+type Files = Vec<(String, Vec<u8>)>;
+
 /// Every sheet's SVG, DXF and PNG preview, the sheets side by side.
-fn sheet_files(
-    nesting: &Nesting,
-    stems: &[String],
-    groups: &[Vec<svg::SvgGroup>],
-) -> Result<Vec<(String, Vec<u8>)>, PlanError> {
+fn sheet_files(nesting: &Nesting, stems: &[String], groups: &[Vec<svg::SvgGroup>]) -> Result<Files, PlanError> {
     use rayon::prelude::*;
-    let per_sheet: Vec<Vec<(String, Vec<u8>)>> = nesting
+    let per_sheet: Vec<Files> = nesting
         .sheets
         .par_iter()
         .zip(stems)
@@ -127,7 +126,7 @@ fn plan_files(
     groups: &[Vec<svg::SvgGroup>],
     stems: &[String],
     plan: &Plan,
-) -> Result<(Report, Vec<(String, Vec<u8>)>), PlanError> {
+) -> Result<(Report, Files), PlanError> {
     let report = build_report(input, nesting, steps, groups, stems);
     let report_json = serde_json::to_string_pretty(&report).map_err(|e| PlanError::write("report.json", e))?;
     // The parts were validated by now, so a scene that cannot be written is our bug.
