@@ -5,7 +5,7 @@ use serde_json::{Value, json};
 use super::{Choice, Chosen, Def, Group, Kind};
 use crate::joints::JointStyle;
 use crate::method::MethodKind;
-use crate::plan::{BendStyle, LabelMode, MAX_KERF, Material, SheetSize};
+use crate::plan::{LabelMode, MAX_KERF, Material, SheetSize};
 use crate::settings::{
     Bending, Features, MAX_SHEET_SIDE, MAX_THICKNESS, MAX_THICKNESSES, MAX_WELD, MIN_THICKNESS, PlateMode, SCALE_RANGE,
     StackAxis, Units, Weld,
@@ -629,12 +629,8 @@ fn bending_name(bending: Bending) -> &'static str {
     match bending {
         Bending::Auto => "auto",
         Bending::None => "none",
-        Bending::Style(style) => bend_style_name(style),
+        Bending::Style(style) => style.name(),
     }
-}
-
-fn bend_style_name(style: BendStyle) -> &'static str {
-    style.name()
 }
 
 fn features_name(features: Features) -> &'static str {
