@@ -222,8 +222,11 @@ pub fn zip_files(files: &BTreeMap<String, Vec<u8>>) -> Result<Vec<u8>, PlanError
         .compression_method(CompressionMethod::Deflated)
         .last_modified_time(DateTime::default())
         .unix_permissions(0o644);
+    // A PNG is deflated already; deflating it again costs time and saves nothing.
+    let stored = options.compression_method(CompressionMethod::Stored);
     let mut zip = ZipWriter::new(Cursor::new(Vec::new()));
     for (name, bytes) in files {
+        let options = if name.ends_with(".png") { stored } else { options };
         zip.start_file(name.as_str(), options)
             .map_err(|e| PlanError::write(name, e))?;
         zip.write_all(bytes).map_err(|e| PlanError::write(name, e))?;

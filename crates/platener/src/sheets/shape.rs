@@ -9,6 +9,8 @@
 use std::f64::consts::FRAC_PI_2;
 
 use glam::DVec2;
+use jagua_rs::geometry::Transformation;
+use jagua_rs::geometry::geo_traits::Transformable;
 use jagua_rs::geometry::primitives::{Point, SPolygon};
 use platener_geom::polygon::{bounds_of, remove_straight_vertices};
 use platener_geom::{Polygon, Ring, offset, validate};
@@ -184,18 +186,30 @@ pub(crate) fn nest_shape(cut: &Polygon, area: f64, spacing: f64, fine: bool) -> 
             angles.extend((0..4).map(|k| a + f64::from(k) * FRAC_PI_2));
         }
     }
+    // jagua-rs computes a polygon's pole of inaccessibility when it is made, the costliest
+    // part of nesting a few parts; rotating one polygon keeps its pole, so it is made once.
+    let base = to_spolygon(&ring);
     let templates = angles
         .into_iter()
         .filter_map(|angle| {
             let rotated: Vec<DVec2> = ring.iter().map(|p| rotate(*p, angle)).collect();
             let (lo, hi) = bounds_of(rotated.iter().copied());
             let shifted: Vec<DVec2> = rotated.iter().map(|p| *p - lo).collect();
+            let shape = match &base {
+                Some(base) if (hi - lo).min_element() >= MIN_NEST_WIDTH => {
+                    let moved = Transformation::from_rotation(angle as f32).translate((-lo.x as f32, -lo.y as f32));
+                    let mut shape = base.clone();
+                    shape.transform(&moved);
+                    shape
+                }
+                _ => to_spolygon(&shifted)?,
+            };
             Some(Template {
                 angle,
                 shift: -lo,
                 size: hi - lo,
                 pockets: pockets(&shifted),
-                shape: to_spolygon(&shifted)?,
+                shape,
             })
         })
         .collect::<Vec<_>>();
