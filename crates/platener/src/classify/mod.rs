@@ -212,7 +212,13 @@ pub fn run(mesh: &Mesh, settings: &ClassifySettings) -> Result<Classification, C
         .fold((DVec3::MAX, DVec3::MIN), |(lo, hi), v| (lo.min(*v), hi.max(*v)));
     let th = Thresholds::derive(area, (hi - lo).length(), settings);
     let points = sample::sample_surface(mesh, settings.samples, settings.seed);
-    let samples = sample::with_normals(mesh, &points, th.normal_radius, th.eps / 2.0, th.cos_alpha);
+    let fit = sample::NormalFit {
+        spacing: th.spacing,
+        radius: th.normal_radius,
+        flat: th.eps / 2.0,
+        cos_alpha: th.cos_alpha,
+    };
+    let samples = sample::with_normals(mesh, &points, fit);
     let mut primitives = ransac::detect(&samples, &th, settings.seed ^ 0xA5A5_5A5A);
     let labels = label::label_triangles(mesh, &samples, &primitives, &th);
     label::attach(&mut primitives, &labels, mesh);

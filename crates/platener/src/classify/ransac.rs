@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use super::bitmap::largest_component;
 use super::fit::{refit, simplest};
 use super::sample::Sample;
-use super::shape::{Oriented, Shape, cone_from, cylinder_from, plane_from, sphere_from};
+use super::shape::{Oriented, Prepared, Shape, cone_from, cylinder_from, plane_from, sphere_from};
 use super::{Primitive, Thresholds};
 
 /// The probability (the paper's p_t) that no shape larger than the extracted one, nor any
@@ -313,21 +313,23 @@ impl Search<'_> {
 
     /// Inliers on the subset, scaled to all live samples.
     fn estimate(&self, shape: &Shape) -> f64 {
-        let hits = self.subset.iter().filter(|&&i| self.accepts(shape, i)).count();
+        let shape = shape.prepared();
+        let hits = self.subset.iter().filter(|&&i| self.accepts(&shape, i)).count();
         hits as f64 * self.live.len() as f64 / self.subset.len().max(1) as f64
     }
 
-    fn accepts(&self, shape: &Shape, i: u32) -> bool {
+    fn accepts(&self, shape: &Prepared, i: u32) -> bool {
         shape.accepts(&self.samples[i as usize].at, self.th.eps, self.th.cos_alpha)
     }
 
     /// The live inliers of `shape` in their largest connected piece (ascending).
     fn inliers(&self, shape: &Shape) -> Vec<u32> {
+        let prepared = shape.prepared();
         let all: Vec<u32> = self
             .live
             .par_iter()
             .copied()
-            .filter(|&i| self.accepts(shape, i))
+            .filter(|&i| self.accepts(&prepared, i))
             .collect();
         let r = shape.reference_radius(all.iter().map(|&i| self.samples[i as usize].at.p));
         let params: Vec<_> = all

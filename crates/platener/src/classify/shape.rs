@@ -143,22 +143,7 @@ impl Shape {
     /// Signed distance of `p` from the surface (positive on the side the plane normal, or
     /// the radial direction, points to); least squares minimises its square.
     pub fn signed_distance(&self, p: DVec3) -> f64 {
-        match *self {
-            Shape::Plane { normal, offset } => normal.dot(p) - offset,
-            Shape::Cylinder { axis, point, radius } => (p - point).reject_from_normalized(axis).length() - radius,
-            Shape::Sphere { center, radius } => (p - center).length() - radius,
-            Shape::Cone { apex, axis, half_angle } => {
-                let v = p - apex;
-                let h = v.dot(axis);
-                let rho = v.reject_from_normalized(axis).length();
-                let (s, c) = half_angle.sin_cos();
-                if h * c + rho * s >= 0.0 {
-                    rho * c - h * s
-                } else {
-                    v.length()
-                }
-            }
-        }
+        self.prepared().signed_distance(p)
     }
 
     /// Unsigned distance of `p` from the surface.
@@ -169,15 +154,7 @@ impl Shape {
     /// Unit normal of the surface nearest `p`: the plane's normal, or pointing away from the
     /// axis / centre (the side a solid cylinder's outside is on).
     pub fn normal_at(&self, p: DVec3) -> DVec3 {
-        match *self {
-            Shape::Plane { normal, .. } => normal,
-            Shape::Cylinder { axis, point, .. } => radial(p - point, axis),
-            Shape::Sphere { center, .. } => (p - center).normalize_or(DVec3::Z),
-            Shape::Cone { apex, axis, half_angle } => {
-                let (s, c) = half_angle.sin_cos();
-                radial(p - apex, axis) * c - axis * s
-            }
-        }
+        self.prepared().normal_at(p)
     }
 
     /// Whether `q` (with its normal) lies on the surface: within `eps` and with a normal
@@ -185,14 +162,17 @@ impl Shape {
     /// a thin wall are different planes); curved surfaces accept either direction (a bore's
     /// normals point to its axis).
     pub fn accepts(&self, q: &Oriented, eps: f64, cos_alpha: f64) -> bool {
-        if self.distance(q.p) > eps {
-            return false;
-        }
-        let d = self.normal_at(q.p).dot(q.n);
-        match self {
-            Shape::Plane { .. } => d >= cos_alpha,
-            _ => d.abs() >= cos_alpha,
-        }
+        self.prepared().accepts(q, eps, cos_alpha)
+    }
+
+    /// The shape with its cone's sine and cosine computed once: RANSAC tests each candidate
+    /// on thousands of samples, and the two were a sixth of its time on a model of cones.
+    pub fn prepared(&self) -> Prepared {
+        let sin_cos = match *self {
+            Shape::Cone { half_angle, .. } => half_angle.sin_cos(),
+            _ => (0.0, 1.0),
+        };
+        Prepared { shape: *self, sin_cos }
     }
 
     /// Coordinates of `p` in the primitive's parameter space, in mm along the surface, and
@@ -232,6 +212,61 @@ impl Shape {
             (s + (p - apex).reject_from_normalized(axis).length(), n + 1)
         });
         if n == 0 { 0.0 } else { sum / n as f64 }
+    }
+}
+
+/// A [`Shape`] ready to test many points ([`Shape::prepared`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Prepared {
+    shape: Shape,
+    /// A cone's half angle's sine and cosine.
+    sin_cos: (f64, f64),
+}
+
+impl Prepared {
+    /// See [`Shape::signed_distance`].
+    pub fn signed_distance(&self, p: DVec3) -> f64 {
+        match self.shape {
+            Shape::Plane { normal, offset } => normal.dot(p) - offset,
+            Shape::Cylinder { axis, point, radius } => (p - point).reject_from_normalized(axis).length() - radius,
+            Shape::Sphere { center, radius } => (p - center).length() - radius,
+            Shape::Cone { apex, axis, .. } => {
+                let v = p - apex;
+                let h = v.dot(axis);
+                let rho = v.reject_from_normalized(axis).length();
+                let (s, c) = self.sin_cos;
+                if h * c + rho * s >= 0.0 {
+                    rho * c - h * s
+                } else {
+                    v.length()
+                }
+            }
+        }
+    }
+
+    /// See [`Shape::normal_at`].
+    pub fn normal_at(&self, p: DVec3) -> DVec3 {
+        match self.shape {
+            Shape::Plane { normal, .. } => normal,
+            Shape::Cylinder { axis, point, .. } => radial(p - point, axis),
+            Shape::Sphere { center, .. } => (p - center).normalize_or(DVec3::Z),
+            Shape::Cone { apex, axis, .. } => {
+                let (s, c) = self.sin_cos;
+                radial(p - apex, axis) * c - axis * s
+            }
+        }
+    }
+
+    /// See [`Shape::accepts`].
+    pub fn accepts(&self, q: &Oriented, eps: f64, cos_alpha: f64) -> bool {
+        if self.signed_distance(q.p).abs() > eps {
+            return false;
+        }
+        let d = self.normal_at(q.p).dot(q.n);
+        match self.shape {
+            Shape::Plane { .. } => d >= cos_alpha,
+            _ => d.abs() >= cos_alpha,
+        }
     }
 }
 
