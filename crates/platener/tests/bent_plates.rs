@@ -84,6 +84,24 @@ fn a_hexagonal_tube_keeps_its_joints_unless_bending_is_asked_for() {
     assert!(plan.parts.iter().all(|p| p.kind == PartKind::Plate));
 }
 
+/// Issue 32: a hexagonal tube of 2 mm walls cut from 2 mm sheet was one living hinge whose
+/// arcs cut 1.5 mm into the hollow at each corner. A ring of at most 8 facets per turn is a
+/// drawn shape: its corners stay jointed plates, and the plan keeps its volume inside the
+/// model; a 12-sided ring is a tessellated curve and bends.
+#[test]
+fn drawn_polygonal_tubes_keep_sharp_corners_and_finer_rings_bend() {
+    for n in [6, 8] {
+        let state = convert_sample(samples::tube(n, 50.0, 60.0, 2.0), Material::Wood, 2.0);
+        let (plan, v) = rebuilt_within(&state, 0.97);
+        assert_eq!(plan.parts.len(), n, "{n} sides");
+        assert!(plan.parts.iter().all(|p| p.kind == PartKind::Plate), "{n} sides");
+        assert_eq!(v.groups, 1, "{n} sides: the ring holds together");
+    }
+    let state = convert_sample(samples::tube(12, 50.0, 60.0, 2.0), Material::Wood, 2.0);
+    let plan = &state.export.as_ref().expect("exported").plan;
+    assert!(plan.parts.iter().any(|p| p.kind == PartKind::Bent));
+}
+
 #[test]
 fn a_cup_is_its_wall_and_its_bottom() {
     let state = convert_sample(samples::cup(16, 40.0, 50.0, 3.0), Material::Wood, 3.0);

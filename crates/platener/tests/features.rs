@@ -178,6 +178,34 @@ fn a_standoff_is_scored_and_reported_with_its_size_and_height() {
     );
 }
 
+/// Issue 32: a table's legs stand on its top as a boss would, but they are plates of the
+/// plan; "left out" is said only of what no plate builds.
+#[test]
+fn legs_built_as_plates_are_not_reported_as_bosses_left_out() {
+    // A 200 × 100 × 3 mm top at 75 mm on four solid 15 × 15 mm legs.
+    let triangles = voxels(
+        &[0.0, 10.0, 25.0, 175.0, 190.0, 200.0],
+        &[0.0, 10.0, 25.0, 75.0, 90.0, 100.0],
+        &[0.0, 72.0, 75.0],
+        |i, j, k| k == 1 || ([1, 3].contains(&i) && [1, 3].contains(&j)),
+    );
+    let state = plate_method("table", triangles, Features::Engrave);
+    let tall = parts(&state)
+        .iter()
+        .filter(|p| {
+            let (lo, hi) = p.polygon.bounds();
+            (hi - lo).max_element() > 60.0 && (hi - lo).min_element() < 20.0
+        })
+        .count();
+    assert!(tall >= 4, "each leg is built by plates: {tall} leg plates");
+    let bosses: Vec<String> = state
+        .warnings()
+        .filter(|w| w.message.contains("left out"))
+        .map(|w| w.message.clone())
+        .collect();
+    assert!(bosses.is_empty(), "{bosses:?}");
+}
+
 #[test]
 fn plan_json_has_the_marks_as_score() {
     let state = plate_method("pocket", plate_with_cell(|k| k == 0), Features::Engrave);

@@ -49,9 +49,13 @@ pub fn fold_sharp(a: &Member, b: &Member, c: &Candidate, thickness: f64) -> Memb
     unfold::develop(a, b, c, thickness, 0.0)
 }
 
-/// The largest turn bends are made at when the style is chosen by material (`--bend auto`):
-/// up to it finger joints get long and fragile, beyond it they hold better than a bend.
-pub const AUTO_MAX_TURN_DEG: f64 = 60.5;
+/// The largest turn bends are made at when the style is chosen by material (`bend` auto):
+/// a ring of at most 8 facets per full turn (45° and more each) is a shape someone drew, a
+/// hexagonal tube or an octagonal lamp, not a tessellated curve, and keeps its sharp,
+/// jointed corners (a hinge there rounds them into the hollow: 1.5 mm at each corner of a
+/// 2 mm hexagonal tube, 6 % of its volume outside the model). Finer rings bend; a style the
+/// user asks for bends any turn it can make.
+pub const AUTO_MAX_TURN_DEG: f64 = 44.5;
 
 /// The snapshot of step `bends`.
 #[derive(Debug, Clone, Serialize, Default)]

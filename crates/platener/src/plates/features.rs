@@ -23,6 +23,7 @@
 use glam::{DVec2, DVec3};
 use platener_geom::boolean::{difference, intersection, union};
 use platener_geom::offset::offset;
+use platener_geom::slab::Slab;
 use platener_geom::{Frame, GridError, Polygon, polygon};
 use serde::Serialize;
 
@@ -359,21 +360,63 @@ pub(super) fn assign(found: &[Feature], plates: &[Plate]) -> Result<Vec<Feature>
 }
 
 /// The report's lines on features, plate by plate (plates in order): how many were engraved,
-/// their area and sides; and the raised ones (bosses, standoffs) that are left out of the plan.
-pub(super) fn warnings(features: &[Feature]) -> Vec<String> {
+/// their area and sides; and the raised ones (bosses, standoffs) that are left out of the plan,
+/// that is not built by other `plates` (a table's legs stand on its top as bosses do, but
+/// are plates of their own).
+pub(super) fn warnings(features: &[Feature], plates: &[Plate]) -> Vec<String> {
+    let slabs: Vec<Slab> = plates.iter().map(Plate::slab).collect();
     let mut out = Vec::new();
     let mut start = 0;
     while start < features.len() {
         let plate = features[start].plate;
         let end = start + features[start..].iter().take_while(|f| f.plate == plate).count();
-        out.extend(plate_warnings(plate, &features[start..end]));
+        out.extend(plate_warnings(plate, &features[start..end], &slabs));
         start = end;
     }
     out
 }
 
+/// Probes per raised feature when asking whether other plates build it.
+const PROBES: f64 = 64.0;
+
+/// Whether other plates than its own build at least half of raised feature `f`: probed on a
+/// grid over its footprint, just off the face (half its height, at most half a thickness).
+fn built_by_plates(f: &Feature, slabs: &[Slab]) -> bool {
+    let Some(own) = slabs.get(f.plate as usize) else {
+        return false;
+    };
+    let z_face = own.frame.to_local(f.center).z;
+    let rise = f.height.unwrap_or(f.thickness).min(f.thickness) / 2.0;
+    let z = match f.side {
+        Side::Up => z_face - rise,
+        Side::Down => z_face + rise,
+    };
+    let (lo, hi) = f.region.bounds();
+    let step = (f.area.max(f64::MIN_POSITIVE) / PROBES).sqrt();
+    let (mut inside, mut built) = (0usize, 0usize);
+    let mut y = lo.y + step / 2.0;
+    while y < hi.y {
+        let mut x = lo.x + step / 2.0;
+        while x < hi.x {
+            let p = DVec2::new(x, y);
+            if f.region.contains(p) {
+                inside += 1;
+                let at = own.frame.to_model(p.extend(z));
+                let other = slabs
+                    .iter()
+                    .enumerate()
+                    .any(|(k, s)| k != f.plate as usize && s.contains(at));
+                built += usize::from(other);
+            }
+            x += step;
+        }
+        y += step;
+    }
+    inside > 0 && 2 * built >= inside
+}
+
 /// The lines for one plate's features.
-fn plate_warnings(plate: u32, fs: &[Feature]) -> Vec<String> {
+fn plate_warnings(plate: u32, fs: &[Feature], slabs: &[Slab]) -> Vec<String> {
     let count = |side| fs.iter().filter(|f| f.side == side).count();
     let (up, down) = (count(Side::Up), count(Side::Down));
     let area: f64 = fs.iter().map(|f| f.area).sum();
@@ -390,7 +433,7 @@ fn plate_warnings(plate: u32, fs: &[Feature]) -> Vec<String> {
     )];
     let bosses: Vec<String> = fs
         .iter()
-        .filter(|f| f.relief == Relief::Raised)
+        .filter(|f| f.relief == Relief::Raised && !built_by_plates(f, slabs))
         .map(|f| {
             let tall = f
                 .height

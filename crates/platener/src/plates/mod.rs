@@ -243,7 +243,7 @@ pub fn run(
     if let Some(why) = coverage::why_no_plates(&plates.coverage, settings.plates.min_area, &offered) {
         cx.warn(WarningKind::Plates, why);
     }
-    for why in features::warnings(&plates.features) {
+    for why in features::warnings(&plates.features, &plates.plates) {
         cx.warn(WarningKind::Features, why);
     }
     Ok(plates)
