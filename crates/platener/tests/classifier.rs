@@ -506,3 +506,35 @@ fn layers_nothing_holds_are_left_out() {
     let layers = state.layers.as_ref().expect("the layers step ran");
     assert!(layers.stack.is_none() && layers.left_out > 0, "{layers:?}");
 }
+
+/// The corpus's XYZ calibration cube has engraved letters: fragments enough for the classifier
+/// to run, but its primitives replace none of the exact faces and leave no surface for layers.
+/// Beside the plate method it says so once plates are made (it used to make the same plan
+/// through joints, parts and nesting); alone, it converts.
+#[test]
+fn beside_the_plate_method_the_classifier_stops_when_it_would_repeat_its_plan() {
+    let Some(dir) = samples::shared_corpus().map_err(|m| eprintln!("{m}")).ok() else {
+        return;
+    };
+    let path = dir.join("solids/xyz_calibration_cube_20mm.stl");
+    let request = Request {
+        methods: vec![MethodKind::Plate, MethodKind::Classifier],
+        ..Request::new(Source::File(path.clone()), Settings::default())
+    };
+    let both = convert_all(request, &Cancel::default(), platener::convert::no_progress());
+    let classifier = &both.methods[1];
+    assert_eq!(classifier.status, platener::convert::Status::Skipped);
+    let reason = classifier.error.as_ref().map(ToString::to_string).unwrap_or_default();
+    assert!(reason.contains("would be the plate method's"), "{reason}");
+    let state = classifier.state.as_ref().expect("the steps before stay");
+    assert!(state.classify.as_ref().is_some_and(|c| c.replaced.is_empty()));
+    assert!(state.plates.is_some() && state.bends.is_none());
+    let alone = convert(
+        MethodKind::Classifier,
+        Source::File(path),
+        Settings::default(),
+        &Cancel::default(),
+    )
+    .expect("converts alone");
+    assert!(alone.export.is_some());
+}

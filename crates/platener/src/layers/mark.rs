@@ -16,6 +16,21 @@ use crate::plates::Plates;
 use crate::settings::Settings;
 use crate::shapes::Shapes;
 
+/// What decides which triangles are marked: the classified mesh and the plates made of it.
+#[derive(Clone, Copy)]
+pub struct Surface<'a> {
+    /// Step `mesh`.
+    pub mesh: &'a Mesh,
+    /// Step `classify`.
+    pub found: &'a crate::classify::Classification,
+    /// The planar groups `classify` made.
+    pub groups: &'a PlanarGroups,
+    /// Step `shapes`.
+    pub shapes: &'a Shapes,
+    /// Step `plates`.
+    pub plates: &'a Plates,
+}
+
 /// The marked triangles and their area.
 #[derive(Debug, Clone)]
 pub(crate) struct Marked {
@@ -27,9 +42,9 @@ pub(crate) struct Marked {
 
 /// The triangles of `mesh` no plate builds that a sphere, a small solid cylinder or nothing
 /// explains.
-pub(crate) fn marked(inputs: &super::Inputs<'_>, settings: &Settings) -> Marked {
-    let (mesh, found, groups) = (inputs.mesh, inputs.found, inputs.groups);
-    let built = built_groups(groups, inputs.shapes, inputs.plates);
+pub(crate) fn marked(on: &Surface<'_>, settings: &Settings) -> Marked {
+    let (mesh, found, groups) = (on.mesh, on.found, on.groups);
+    let built = built_groups(groups, on.shapes, on.plates);
     let stacked: Vec<bool> = found
         .primitives
         .iter()

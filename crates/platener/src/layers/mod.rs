@@ -19,6 +19,8 @@
 mod aligned;
 mod mark;
 
+pub use mark::Surface;
+
 use glam::DVec3;
 use platener_geom::slab::Slab;
 use platener_geom::{Frame, GridError, Polygon, boolean, offset};
@@ -123,22 +125,47 @@ pub struct Inputs<'a> {
     pub parts: &'a PlanInput,
 }
 
+/// Why no layers are made when `share` of the surface is marked, if too little is.
+fn too_little(share: f64) -> Option<String> {
+    (share < MIN_MARKED_SHARE).then(|| {
+        format!(
+            "{:.1} % of the surface is neither plate nor plane, cylinder or cone (layers start at {:.0} %)",
+            100.0 * share,
+            100.0 * MIN_MARKED_SHARE
+        )
+    })
+}
+
+/// The share of `mesh`'s surface that `area` is.
+fn marked_share(mesh: &Mesh, area: f64) -> f64 {
+    if mesh.surface_area > 0.0 {
+        area / mesh.surface_area
+    } else {
+        0.0
+    }
+}
+
+/// Why this step will make no layers, known once plates are made (a cheap refusal the
+/// classifier method uses: with no primitive replacing exact faces either, its plan would be
+/// the plate method's).
+pub fn none_to_make(surface: &Surface<'_>, settings: &Settings) -> Option<String> {
+    too_little(marked_share(surface.mesh, mark::marked(surface, settings).area))
+}
+
 /// Step `layers`: the marked surface as stacked layers among the plates. Returns the snapshot
 /// and, when layers were made, the parts with them added (plates with their slots).
 pub fn run(inputs: &Inputs<'_>, settings: &Settings, cx: &mut StepContext<'_>) -> Result<(Layers, Option<PlanInput>)> {
     let mesh = inputs.mesh;
-    let marked = mark::marked(inputs, settings);
-    let share = if mesh.surface_area > 0.0 {
-        marked.area / mesh.surface_area
-    } else {
-        0.0
+    let surface = Surface {
+        mesh,
+        found: inputs.found,
+        groups: inputs.groups,
+        shapes: inputs.shapes,
+        plates: inputs.plates,
     };
-    if share < MIN_MARKED_SHARE {
-        let why = format!(
-            "{:.1} % of the surface is neither plate nor plane, cylinder or cone (layers start at {:.0} %)",
-            100.0 * share,
-            100.0 * MIN_MARKED_SHARE
-        );
+    let marked = mark::marked(&surface, settings);
+    let share = marked_share(mesh, marked.area);
+    if let Some(why) = too_little(share) {
         return Ok((Layers::none(marked.area, share, why), None));
     }
     let built = mark::built_groups(inputs.groups, inputs.shapes, inputs.plates);
