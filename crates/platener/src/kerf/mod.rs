@@ -111,21 +111,32 @@ pub fn slits(part: &Part) -> Vec<Vec<DVec2>> {
         .collect()
 }
 
-/// Cut paths of all `parts` for `kerf` mm, with a warning for each part whose holes close
-/// (narrower than the kerf).
+/// Cut paths of all `parts` for `kerf` mm, with a warning for each part whose holes are too
+/// narrow to cut ([`min_hole_width`]: left out of the nominal shape too, so plan.json, the
+/// sheets and the score agree) or close when offset.
 pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<(CutPaths, Vec<Warning>), PlanError> {
     let results: Vec<Result<(CutPart, Option<Warning>), PlanError>> = parts
         .par_iter()
         .map(|part| {
-            let mut nominal = Polygon {
-                outer: open_ring(&part.polygon.outer),
-                holes: part.polygon.holes.iter().map(|h| open_ring(h)).collect(),
-            };
-            nominal.normalize_orientation();
             let grid_error = |e: platener_geom::GridError| PlanError::Part {
                 part: part.id,
                 message: e.to_string(),
             };
+            let width = min_hole_width(kerf);
+            let mut holes = Vec::with_capacity(part.polygon.holes.len());
+            let mut dropped = 0;
+            for hole in &part.polygon.holes {
+                if too_narrow(hole, width).map_err(grid_error)? {
+                    dropped += 1;
+                } else {
+                    holes.push(open_ring(hole));
+                }
+            }
+            let mut nominal = Polygon {
+                outer: open_ring(&part.polygon.outer),
+                holes,
+            };
+            nominal.normalize_orientation();
             let (cut, touches) =
                 separate_touches(&cut_polygon(&nominal, kerf).map_err(grid_error)?).map_err(grid_error)?;
             if cut.outer.len() < 3 {
@@ -134,7 +145,7 @@ pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<(CutPaths, Vec<Warning>), 
                     message: "the outline vanished when offset by half the kerf".into(),
                 });
             }
-            let warning = kerf_warning(part.id, nominal.holes.len(), &cut, touches, kerf);
+            let warning = kerf_warning(part.id, (dropped, nominal.holes.len()), &cut, touches, kerf);
             Ok((
                 CutPart {
                     id: part.id,
@@ -159,14 +170,43 @@ pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<(CutPaths, Vec<Warning>), 
     Ok((out, warnings))
 }
 
-/// The warning for one part's cut path, if any: holes that closed (narrower than the kerf)
-/// and places where the cut path touched itself and was separated ([`separate_touches`]).
-fn kerf_warning(part: u32, nominal_holes: usize, cut: &Polygon, touches: usize, kerf: f64) -> Option<Warning> {
-    let closed = nominal_holes.saturating_sub(cut.holes.len());
+/// Holes narrower than this many kerfs are not cut: what the laser leaves of them is a slit
+/// at most a kerf wide, or nothing (issue 32: an OpenSCAD box kept triangular holes of
+/// 0.0003–0.09 mm² in plan.json, which an outside checker crashed on).
+pub const MIN_HOLE_KERFS: f64 = 2.0;
+
+/// Holes narrower than this (mm) are not cut whatever the kerf (0 included): no laser's beam
+/// is finer.
+pub const MIN_HOLE_WIDTH: f64 = 0.1;
+
+/// The narrowest hole cut with `kerf`, mm.
+pub fn min_hole_width(kerf: f64) -> f64 {
+    (MIN_HOLE_KERFS * kerf).max(MIN_HOLE_WIDTH)
+}
+
+/// Whether `hole` is narrower than `width` everywhere: shrunk by half of it, nothing is left.
+fn too_narrow(hole: &[DVec2], width: f64) -> Result<bool, platener_geom::GridError> {
+    let mut p = Polygon::new(open_ring(hole));
+    p.normalize_orientation();
+    Ok(offset::offset(&[p], -width / 2.0)?.iter().all(|q| q.area() <= 0.0))
+}
+
+/// The warning for one part's cut path, if any: holes left out as too narrow (`dropped`, of
+/// `(dropped, kept)`) or that closed when offset, and places where the cut path touched itself
+/// and was separated ([`separate_touches`]).
+fn kerf_warning(
+    part: u32,
+    (dropped, kept): (usize, usize),
+    cut: &Polygon,
+    touches: usize,
+    kerf: f64,
+) -> Option<Warning> {
+    let closed = dropped + kept.saturating_sub(cut.holes.len());
     let mut said = Vec::new();
     if closed > 0 {
         said.push(format!(
-            "{closed} hole(s) of part {part} are narrower than the kerf ({kerf} mm) and are not cut"
+            "{closed} hole(s) of part {part} are narrower than {:.2} mm (twice the kerf, {kerf} mm) and are not cut",
+            min_hole_width(kerf)
         ));
     }
     if touches > 0 {

@@ -72,8 +72,50 @@ fn cut_paths_keep_the_part_order_and_warn_about_closed_holes() {
     let (cut, warnings) = cut_paths(&parts, 0.2).expect("valid");
     assert_eq!(cut.parts.iter().map(|p| p.id).collect::<Vec<_>>(), [7, 3]);
     assert!(cut.parts[1].cut.holes.is_empty());
+    assert!(
+        cut.parts[1].nominal.holes.is_empty(),
+        "plan.json has no hole the laser cannot cut"
+    );
     assert_eq!(warnings.len(), 1);
     assert_eq!(warnings[0].part, Some(3));
+}
+
+/// Issue 32: holes narrower than twice the kerf are left out of the nominal shape and the cut
+/// path, with a warning; one just wider stays; slivers of a triangulation's gaps go whatever
+/// the kerf.
+#[test]
+fn holes_narrower_than_twice_the_kerf_are_not_cut() {
+    let sliver = vec![DVec2::new(20.0, 20.0), DVec2::new(23.0, 20.0), DVec2::new(20.0, 20.03)];
+    let plate = Polygon {
+        outer: rect(0.0, 0.0, 40.0, 40.0),
+        // 0.35 mm wide (< 0.4 mm), 0.45 mm wide (kept), a 0.045 mm² triangle.
+        holes: vec![rect(5.0, 5.0, 5.35, 15.0), rect(10.0, 5.0, 10.45, 15.0), sliver.clone()],
+    };
+    let (cut, warnings) = cut_paths(&[part(1, plate.clone())], 0.2).expect("valid");
+    let nominal = &cut.parts[0].nominal;
+    assert_eq!(nominal.holes.len(), 1);
+    let kept = nominal.holes[0].iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
+    assert!((kept - 10.0).abs() < 1e-9);
+    assert_eq!(cut.parts[0].cut.holes.len(), 1);
+    assert!(
+        (cut.parts[0].cut.holes[0]
+            .iter()
+            .map(|p| p.x)
+            .fold(f64::INFINITY, f64::min)
+            - 10.1)
+            .abs()
+            < 1e-6
+    );
+    assert!(
+        warnings[0]
+            .message
+            .contains("2 hole(s) of part 1 are narrower than 0.40 mm"),
+        "{}",
+        warnings[0].message
+    );
+    // With no kerf, the triangle still goes: no beam is finer than 0.1 mm.
+    let (cut, _) = cut_paths(&[part(1, plate)], 0.0).expect("valid");
+    assert_eq!(cut.parts[0].nominal.holes.len(), 2);
 }
 
 #[test]
