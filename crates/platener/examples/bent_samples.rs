@@ -1,5 +1,6 @@
-//! Writes the bent-plate samples of issue 19 (`platener::samples::bent_samples`) as binary
-//! STL into a folder, for converting them by hand: the before/after figures of bent plates.
+//! Writes the bent-plate samples of issue 19 (`platener::samples::bent_samples`) and the CAD
+//! detail samples of issue 32 (`cad_detail_samples`) as binary STL into a folder, for
+//! converting them by hand: the before/after figures.
 //!
 //! `cargo run -p platener --example bent_samples -- /tmp/bentsamples`
 
@@ -12,7 +13,7 @@ fn main() -> std::io::Result<()> {
         .nth(1)
         .map_or_else(|| PathBuf::from("bentsamples"), PathBuf::from);
     std::fs::create_dir_all(&dir)?;
-    for (name, triangles) in samples::bent_samples() {
+    for (name, triangles) in samples::bent_samples().into_iter().chain(samples::cad_detail_samples()) {
         let header = format!("platener bent-plate sample {name}");
         std::fs::write(dir.join(name), samples::to_binary_stl(&triangles, &header))?;
         println!("wrote {} ({} triangles)", dir.join(name).display(), triangles.len());

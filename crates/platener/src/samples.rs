@@ -524,6 +524,27 @@ pub fn table(top_w: f64, top_d: f64, height: f64, leg_inset: f64, t: f64) -> Vec
     })
 }
 
+/// A 200 × 100 × 3 mm table top at 75 mm on four solid 15 × 15 mm legs 10 mm in from its
+/// edges: the legs stand on the top's underside as bosses would, but become plates (issue 32).
+pub fn table_square_legs() -> Vec<Triangle> {
+    voxels(
+        &[0.0, 10.0, 25.0, 175.0, 190.0, 200.0],
+        &[0.0, 10.0, 25.0, 75.0, 90.0, 100.0],
+        &[0.0, 72.0, 75.0],
+        |i, j, k| k == 1 || ([1, 3].contains(&i) && [1, 3].contains(&j)),
+    )
+}
+
+/// The samples of issue 32's CAD details (file name, triangles): a hexagonal and an octagonal
+/// tube with 2 mm walls (to cut from 2 mm sheet), and a table on square legs.
+pub fn cad_detail_samples() -> Vec<(&'static str, Vec<Triangle>)> {
+    vec![
+        ("hex_tube_2mm.stl", tube(6, 50.0, 60.0, 2.0)),
+        ("octagon_tube_2mm.stl", tube(8, 50.0, 60.0, 2.0)),
+        ("table_square_legs.stl", table_square_legs()),
+    ]
+}
+
 /// The profile of [`star`]: `arms` (at least 3) strips `t` wide radiating from the origin at
 /// equal angles, the first along +x, each `arm_len` long from the origin; counter-clockwise,
 /// `3·arms` corners (between two arms, the corner where their sides meet).

@@ -182,14 +182,7 @@ fn a_standoff_is_scored_and_reported_with_its_size_and_height() {
 /// plan; "left out" is said only of what no plate builds.
 #[test]
 fn legs_built_as_plates_are_not_reported_as_bosses_left_out() {
-    // A 200 × 100 × 3 mm top at 75 mm on four solid 15 × 15 mm legs.
-    let triangles = voxels(
-        &[0.0, 10.0, 25.0, 175.0, 190.0, 200.0],
-        &[0.0, 10.0, 25.0, 75.0, 90.0, 100.0],
-        &[0.0, 72.0, 75.0],
-        |i, j, k| k == 1 || ([1, 3].contains(&i) && [1, 3].contains(&j)),
-    );
-    let state = plate_method("table", triangles, Features::Engrave);
+    let state = plate_method("table", platener::samples::table_square_legs(), Features::Engrave);
     let tall = parts(&state)
         .iter()
         .filter(|p| {
