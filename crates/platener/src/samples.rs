@@ -535,13 +535,52 @@ pub fn table_square_legs() -> Vec<Triangle> {
     )
 }
 
+/// The letter strokes of [`keychain_tag`]: (x0, y0, x1, y1) rectangles, mm, 1.2 mm wide and
+/// 8 mm tall, spelling "ITLEH" in block capitals.
+pub const KEYCHAIN_STROKES: [(f64, f64, f64, f64); 12] = [
+    (8.0, 2.5, 9.2, 10.5),
+    (14.0, 9.3, 21.0, 10.5),
+    (16.9, 2.5, 18.1, 9.3),
+    (25.0, 2.5, 26.2, 10.5),
+    (26.2, 2.5, 31.0, 3.7),
+    (35.0, 2.5, 36.2, 10.5),
+    (36.2, 2.5, 41.0, 3.7),
+    (36.2, 5.9, 40.0, 7.1),
+    (36.2, 9.3, 41.0, 10.5),
+    (45.0, 2.5, 46.2, 10.5),
+    (50.0, 2.5, 51.2, 10.5),
+    (46.2, 5.9, 50.0, 7.1),
+];
+
+/// A keychain tag as issue 32 saw it: a 60 × 13 × 2.5 mm base with block letters
+/// ([`KEYCHAIN_STROKES`]) standing 1.25 mm on its top.
+pub fn keychain_tag() -> Vec<Triangle> {
+    let mut xs = vec![0.0, 60.0];
+    let mut ys = vec![0.0, 13.0];
+    for (x0, y0, x1, y1) in KEYCHAIN_STROKES {
+        xs.extend([x0, x1]);
+        ys.extend([y0, y1]);
+    }
+    for v in [&mut xs, &mut ys] {
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+    }
+    let (cx, cy) = (xs.clone(), ys.clone());
+    voxels(&xs, &ys, &[0.0, 2.5, 3.75], move |i, j, k| {
+        let (x, y) = ((cx[i] + cx[i + 1]) / 2.0, (cy[j] + cy[j + 1]) / 2.0);
+        k == 0 || KEYCHAIN_STROKES.iter().any(|&(x0, y0, x1, y1)| x > x0 && x < x1 && y > y0 && y < y1)
+    })
+}
+
 /// The samples of issue 32's CAD details (file name, triangles): a hexagonal and an octagonal
-/// tube with 2 mm walls (to cut from 2 mm sheet), and a table on square legs.
+/// tube with 2 mm walls (to cut from 2 mm sheet), a table on square legs and a keychain tag
+/// with raised letters.
 pub fn cad_detail_samples() -> Vec<(&'static str, Vec<Triangle>)> {
     vec![
         ("hex_tube_2mm.stl", tube(6, 50.0, 60.0, 2.0)),
         ("octagon_tube_2mm.stl", tube(8, 50.0, 60.0, 2.0)),
         ("table_square_legs.stl", table_square_legs()),
+        ("keychain_tag.stl", keychain_tag()),
     ]
 }
 

@@ -79,6 +79,7 @@ pub(crate) fn assemble(
         unjoined: placed.unjoined,
         shafts_removed: placed.removed,
         loops,
+        raised: Vec::new(),
     })
 }
 

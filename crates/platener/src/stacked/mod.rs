@@ -20,6 +20,7 @@
 //! | `notch` | slots cut into a layer, notches opened where they would pinch it |
 //! | `assemble` | slots cut into the layers, shaft outlines, frames |
 //! | `glued` | groups of parts no shaft holds together, only glue |
+//! | `raised` | lettering and relief standing on a layer's exposed face, engraved there |
 //! | `marks` | layer and shaft numbers with alignment arrows |
 //! | `tabs` | a tab for the number of a layer too thin for its digits |
 //! | `parts` | the [`Stack`] as parts and joints for the cutting plan |
@@ -38,6 +39,7 @@ mod notch;
 mod orient;
 mod parts;
 mod peg;
+mod raised;
 mod select;
 mod shafts;
 mod slice;
@@ -65,6 +67,7 @@ pub use loops::LoopStats;
 pub use orient::{AxisChoice, SlicePlan, choose_up};
 pub use parts::{Numbers, plan_input};
 pub use peg::PEG_MIN_WALL;
+pub use raised::Raised;
 pub use slice::{SliceLoop, Sliced, slice};
 pub(crate) use slice::{section, slice_marked};
 pub use support::KeptIsland;
@@ -162,6 +165,8 @@ pub struct Stack {
     pub shafts_removed: usize,
     /// How the slice loops closed.
     pub loops: LoopStats,
+    /// Lettering and relief standing on the layers' exposed faces, engraved there.
+    pub raised: Vec<Raised>,
 }
 
 impl Stack {
@@ -212,7 +217,9 @@ pub fn run(
     }
     fit_sheets(&layers, settings)?;
     cx.check_cancel()?;
-    let stack = build(&model.name, plan, layers, sliced.stats, settings, cx)?;
+    let mut stack = build(&model.name, plan, layers, sliced.stats, settings, cx)?;
+    cx.check_cancel()?;
+    stack.raised = raised::details(mesh, &stack, tolerance).map_err(geometry)?;
     let input = parts_of(&stack, model, settings, cx)?;
     Ok((stack, input))
 }
@@ -314,6 +321,18 @@ pub fn warnings(stack: &Stack) -> Vec<String> {
         ));
     }
     out.extend(glued::glued(stack).1);
+    for r in &stack.raised {
+        let (face, turn) = match r.side {
+            crate::plan::MarkSide::Bottom => ("upper", "; turn the part over to engrave it, the marks read mirrored"),
+            crate::plan::MarkSide::Top => ("lower", ""),
+        };
+        out.push(format!(
+            "part {}: lettering or relief of {:.1} mm² standing on its {face} face (layer {}) is engraved there{turn}",
+            stack.layers[r.layer].islands[r.island].part,
+            r.area,
+            r.layer + 1
+        ));
+    }
     let l = &stack.loops;
     if l.bridged > 0 {
         out.push(format!(

@@ -60,9 +60,14 @@ fn layer_parts(
     for (k, layer) in stack.layers.iter().enumerate() {
         for (i, island) in layer.islands.iter().enumerate() {
             let text = format!("L{}", layer.number);
-            let marks = tag(&island.polygon, &text, &[DVec2::X], DVec2::X, DVec2::ZERO)
+            let mut marks = tag(&island.polygon, &text, &[DVec2::X], DVec2::X, DVec2::ZERO)
                 .map_err(geometry)?
                 .unwrap_or_default();
+            for r in stack.raised.iter().filter(|r| (r.layer, r.island) == (k, i)) {
+                // Slots cut after the detail was found: the marks stay on the material.
+                let on = boolean::intersection(&r.regions, std::slice::from_ref(&island.polygon)).map_err(geometry)?;
+                marks.extend(crate::parts::score_rings(&on, r.side));
+            }
             let mut part = Part {
                 id: island.part,
                 kind: PartKind::Layer,
