@@ -20,6 +20,7 @@ mod inherent;
 mod overlap;
 mod pairs;
 mod rejoin;
+pub mod stock;
 #[cfg(test)]
 mod tests;
 
@@ -245,6 +246,9 @@ pub fn run(
     }
     for why in features::warnings(&plates.features, &plates.plates) {
         cx.warn(WarningKind::Features, why);
+    }
+    if let Some(thick) = stock::thick_stock(&plates.plates, &inside) {
+        cx.warn(WarningKind::Plates, thick.message());
     }
     Ok(plates)
 }
