@@ -568,7 +568,10 @@ pub fn keychain_tag() -> Vec<Triangle> {
     let (cx, cy) = (xs.clone(), ys.clone());
     voxels(&xs, &ys, &[0.0, 2.5, 3.75], move |i, j, k| {
         let (x, y) = ((cx[i] + cx[i + 1]) / 2.0, (cy[j] + cy[j + 1]) / 2.0);
-        k == 0 || KEYCHAIN_STROKES.iter().any(|&(x0, y0, x1, y1)| x > x0 && x < x1 && y > y0 && y < y1)
+        k == 0
+            || KEYCHAIN_STROKES
+                .iter()
+                .any(|&(x0, y0, x1, y1)| x > x0 && x < x1 && y > y0 && y < y1)
     })
 }
 

@@ -9,8 +9,13 @@ use platener::plan::{MarkKind, MarkSide, Part};
 use platener::{Cancel, Settings, Source, State, convert, samples};
 
 fn stacked(name: &str, model: Vec<platener::read::Triangle>) -> State {
-    convert(MethodKind::Stacked, Source::triangles(name, model), Settings::default(), &Cancel::default())
-        .unwrap_or_else(|e| panic!("{name}: {e}"))
+    convert(
+        MethodKind::Stacked,
+        Source::triangles(name, model),
+        Settings::default(),
+        &Cancel::default(),
+    )
+    .unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 fn parts(state: &State) -> &[Part] {
@@ -20,11 +25,7 @@ fn parts(state: &State) -> &[Part] {
 /// The area a closed ring encloses (shoelace, unsigned).
 fn ring_area(ring: &[DVec2]) -> f64 {
     let n = ring.len();
-    (0..n)
-        .map(|i| ring[i].perp_dot(ring[(i + 1) % n]))
-        .sum::<f64>()
-        .abs()
-        / 2.0
+    (0..n).map(|i| ring[i].perp_dot(ring[(i + 1) % n])).sum::<f64>().abs() / 2.0
 }
 
 /// The keychain tag's letters come back as score marks on its one layer's upper face (the
@@ -36,7 +37,10 @@ fn a_keychain_keeps_its_raised_letters_as_engraving() {
     let stack = state.stacked.as_ref().expect("stacked");
     assert_eq!(stack.raised.len(), 1, "{:?}", stack.raised);
     let ps = parts(&state);
-    let layers: Vec<&Part> = ps.iter().filter(|p| p.kind == platener::plan::PartKind::Layer).collect();
+    let layers: Vec<&Part> = ps
+        .iter()
+        .filter(|p| p.kind == platener::plan::PartKind::Layer)
+        .collect();
     assert_eq!(layers.len(), 1);
     let tag = layers[0];
     let letters: Vec<&Vec<DVec2>> = tag
@@ -50,7 +54,10 @@ fn a_keychain_keeps_its_raised_letters_as_engraving() {
         .map(|(x0, y0, x1, y1)| (x1 - x0) * (y1 - y0))
         .sum();
     let got: f64 = letters.iter().map(|r| ring_area(r)).sum();
-    assert!(got >= 0.8 * want && got <= 1.05 * want, "engraved {got:.1} mm² of {want:.1} mm²");
+    assert!(
+        got >= 0.8 * want && got <= 1.05 * want,
+        "engraved {got:.1} mm² of {want:.1} mm²"
+    );
     // Every engraved point lies on a letter's edge in the model, on the base's top.
     for p in letters.iter().flat_map(|r| r.iter()) {
         let m = tag.frame.to_model(p.extend(0.0));

@@ -7,8 +7,13 @@ use platener::{Cancel, Settings, Source, State, WarningKind, convert, samples};
 
 fn plate_method(wall: f64) -> State {
     let model = samples::open_box(120.0, 80.0, 40.0, wall);
-    convert(MethodKind::Plate, Source::triangles("case", model), Settings::default(), &Cancel::default())
-        .expect("converts")
+    convert(
+        MethodKind::Plate,
+        Source::triangles("case", model),
+        Settings::default(),
+        &Cancel::default(),
+    )
+    .expect("converts")
 }
 
 /// The wall in the message, mm.
@@ -32,7 +37,10 @@ fn a_case_with_thin_walls_is_told_its_wall_and_what_to_do() {
         .find(|w| w.message.contains("thicker than the model's walls"))
         .map(|w| w.message.clone())
         .unwrap_or_default();
-    assert!(message.contains("`thickness`") && message.contains("`scale`"), "{message}");
+    assert!(
+        message.contains("`thickness`") && message.contains("`scale`"),
+        "{message}"
+    );
 }
 
 #[test]

@@ -2,9 +2,9 @@
 //! a sheet deep whatever lies behind the face; where the model's wall is thinner, the part
 //! stands out of the model (a case with 1–2 mm walls cut from 3 mm sheet kept 59 % of its
 //! parts' volume inside the model, and nothing said so). The wall behind each extruded plate
-//! is measured as the share of its slab inside the model, sampled on a grid of columns at
-//! levels through the thickness; when the wall, weighted by the plates' areas, is thinner than
-//! the sheet by more than [`THICKER`], the step says so and what to do.
+//! is measured on a grid of columns through its thickness (`inside_share`); when the wall,
+//! weighted by the plates' areas, is thinner than the sheet by more than [`THICKER`], the step
+//! says so and what to do.
 
 use glam::{DVec2, DVec3};
 
@@ -69,24 +69,34 @@ pub(crate) fn thick_stock(plates: &[Plate], inside: &Inside<'_>) -> Option<Thick
     (found.sheet > THICKER * found.wall).then_some(found)
 }
 
-/// The share of plate `p`'s sampled slab inside the model; `None` when no column falls in its
-/// outline.
+/// The wall behind plate `p` as a share of its thickness, averaged over its columns: each
+/// column is probed at levels through the thickness; the run of inside levels from the end
+/// that is inside is the wall there (a column inside at both ends has the whole thickness; one
+/// outside at both ends lies over a gap, a slot or beyond the model's edge, and says nothing).
+/// `None` when no column says anything.
 fn inside_share(p: &Plate, inside: &Inside<'_>) -> Option<f64> {
     let (lo, hi) = p.polygon.bounds();
     let step = (hi - lo) / COLUMNS as f64;
-    let (mut hits, mut probes) = (0usize, 0usize);
+    let (mut sum, mut columns) = (0.0, 0usize);
     for i in 0..COLUMNS {
         for j in 0..COLUMNS {
             let q = lo + DVec2::new((i as f64 + 0.5) * step.x, (j as f64 + 0.5) * step.y);
             if !p.polygon.contains(q) {
                 continue;
             }
-            for k in 0..LEVELS {
+            let level = |k: usize| {
                 let z = (k as f64 + 0.5) / LEVELS as f64 * p.thickness;
-                probes += 1;
-                hits += usize::from(inside.contains(p.frame.to_model(DVec3::new(q.x, q.y, z))));
-            }
+                inside.contains(p.frame.to_model(DVec3::new(q.x, q.y, z)))
+            };
+            let run = match (level(0), level(LEVELS - 1)) {
+                (true, true) => LEVELS,
+                (true, false) => (0..LEVELS).take_while(|&k| level(k)).count(),
+                (false, true) => (0..LEVELS).rev().take_while(|&k| level(k)).count(),
+                (false, false) => continue,
+            };
+            sum += run as f64 / LEVELS as f64;
+            columns += 1;
         }
     }
-    (probes > 0).then(|| hits as f64 / probes as f64)
+    (columns > 0).then(|| sum / columns as f64)
 }
