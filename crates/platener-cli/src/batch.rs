@@ -149,6 +149,7 @@ fn finish(result: &MethodResult, model: &ModelFile, config: &BatchConfig) -> Met
         }),
         parts: bundle.map(|b| b.plan.parts.len()),
         sheets: bundle.map(|b| b.plan.sheets.len()),
+        glue: bundle.map(|b| b.plan.glue_note()),
         warnings: result
             .warnings()
             .map(|w| format!("[{}] {}", w.step, flags(&w.message)))

@@ -36,6 +36,9 @@ pub struct MethodReport {
     /// Number of sheets, when converted.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sheets: Option<usize>,
+    /// "glue-free" or "needs glue for N parts", when converted (`Plan::glue_note`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub glue: Option<String>,
     /// Warnings of the steps, as `[step] message`.
     pub warnings: Vec<String>,
     /// Why it failed.
@@ -326,6 +329,9 @@ pub fn render_model(m: &ModelReport, verbose: bool) -> String {
                     r.sheets.unwrap_or(0),
                     plural(r.sheets)
                 );
+                if let Some(glue) = &r.glue {
+                    let _ = write!(line, ", {glue}");
+                }
                 if let Some(v) = r.verify.as_ref().filter(|v| !v.passed) {
                     let n = v.problems.len();
                     let _ = write!(line, "  verify FAILED ({n} problem{})", if n == 1 { "" } else { "s" });

@@ -191,6 +191,7 @@ fn the_json_report_has_scores_and_a_summary() {
     let method = &m["methods"][0];
     assert_eq!(method["status"], "converted");
     assert_eq!(method["parts"], 6);
+    assert_eq!(method["glue"], "glue-free", "a jointed box needs no glue");
     assert!(method["zip"].as_str().expect("zip").ends_with("box-3mm-plate.zip"));
     let score = &method["score"];
     let total = score["total"].as_f64().expect("total");

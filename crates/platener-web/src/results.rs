@@ -146,6 +146,7 @@ pub fn method_json(m: &MethodResult) -> Value {
         "score": m.score.as_ref().map(|s| s.total),
         "parts": plan.map(|p| p.parts.len()),
         "sheets": plan.map(|p| p.sheets.len()),
+        "glue": plan.map(platener::plan::Plan::glue_note),
         "verified": m.verification.as_ref().map(|v| v.passed()),
         "seconds": m.seconds,
         "warnings": warnings,

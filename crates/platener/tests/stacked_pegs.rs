@@ -56,6 +56,9 @@ fn the_teapots_knob_neck_gets_a_peg_and_verify_passes() {
     let glued: Vec<[u32; 2]> = plan.glued.iter().map(|g| g.parts).collect();
     assert_eq!(glued, vec![[4, 6]]);
     assert_eq!(glued_groups(plan).len(), 2);
+    // What the CLI and the page say of it (issue 31).
+    assert_eq!(plan.glued_parts(), vec![4, 6]);
+    assert_eq!(plan.glue_note(), "needs glue for 2 parts");
     // The shaft through the lid (layer 8) is extended with a peg's wall through the neck
     // (layer 9, bottom at 24.61 mm) into the knob (layer 10): its top ends there.
     let peg = st

@@ -89,7 +89,7 @@ export function barMethod(m) {
   let text;
   if (m.status === 'done') {
     const parts = m.parts != null ? `${m.parts} part${m.parts === 1 ? '' : 's'}` : 'plan made';
-    text = `${parts}${m.score != null ? `, score ${Number(m.score).toFixed(2)}` : ''}`;
+    text = `${parts}${m.glue ? `, ${m.glue}` : ''}${m.score != null ? `, score ${Number(m.score).toFixed(2)}` : ''}`;
   } else if (m.status === 'skipped') {
     // The reason is long and for the curious: a tooltip.
     text = 'not needed for this model';

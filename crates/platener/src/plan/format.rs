@@ -238,4 +238,23 @@ impl Plan {
     pub fn to_json(&self) -> Result<String, PlanError> {
         serde_json::to_string_pretty(self).map_err(|e| PlanError::write("plan.json", e))
     }
+
+    /// The parts glue must hold (in `glued`), by ascending id, each once.
+    pub fn glued_parts(&self) -> Vec<u32> {
+        let mut ids: Vec<u32> = self.glued.iter().flat_map(|g| g.parts).collect();
+        ids.sort_unstable();
+        ids.dedup();
+        ids
+    }
+
+    /// What the maker needs to know about glue, in the words the CLI and the page show:
+    /// "glue-free" or "needs glue for 3 parts" (issue 31). Whether the parts hold together
+    /// at all is `verify`'s to say.
+    pub fn glue_note(&self) -> String {
+        match self.glued_parts().len() {
+            0 => "glue-free".to_string(),
+            1 => "needs glue for 1 part".to_string(),
+            n => format!("needs glue for {n} parts"),
+        }
+    }
 }
