@@ -59,6 +59,12 @@ fn the_teapots_knob_neck_gets_a_peg_and_verify_passes() {
     // What the CLI and the page say of it (issue 31).
     assert_eq!(plan.glued_parts(), vec![4, 6]);
     assert_eq!(plan.glue_note(), "needs glue for 2 parts");
+    // The score's assembly term keeps 10 of the 12 parts' worth (docs/score.md).
+    let bundle = c.export.as_deref().expect("exported");
+    let score = platener::score::score(c.mesh.as_deref().expect("mesh"), bundle, None);
+    assert_eq!(score.assembly.glued_parts, 2);
+    let expect = score.assembly.connectivity * (1.0 - score.assembly.interference / 0.05).max(0.0) * (10.0 / 12.0);
+    assert!((score.assembly.value - expect).abs() < 1e-12, "{:?}", score.assembly);
     // The shaft through the lid (layer 8) is extended with a peg's wall through the neck
     // (layer 9, bottom at 24.61 mm) into the knob (layer 10): its top ends there.
     let peg = st

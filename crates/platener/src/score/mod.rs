@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! total    = surface × (0.4 + 0.3·assembly + 0.2·quality + 0.1·effort)
-//! assembly = connectivity × max(0, 1 − interference / 0.05)
+//! assembly = connectivity × max(0, 1 − interference / 0.05) × (1 − glued parts / parts)
 //! quality  = fidelity × slender
 //! effort   = 1 / (1 + work_minutes / 60)
 //! ```
@@ -77,7 +77,7 @@ pub struct SurfaceScore {
 /// Whether the assembly holds together.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct AssemblyScore {
-    /// `connectivity × max(0, 1 − interference / 0.05)`.
+    /// `connectivity × max(0, 1 − interference / 0.05) × (1 − glued parts / parts)`.
     pub value: f64,
     /// (parts − groups) / (parts − solids); 1 when every part is joined into one group per
     /// solid of the model, 0 without joints.
@@ -92,6 +92,8 @@ pub struct AssemblyScore {
     pub groups: usize,
     /// Separate solids of the model: the fewest groups its parts can form.
     pub solids: usize,
+    /// Parts only glue holds (plan.json's `glued`): the assembly keeps `1 − glued / parts`.
+    pub glued_parts: usize,
 }
 
 /// How much work the plan is.
@@ -146,7 +148,8 @@ fn evaluate(mesh: &Mesh, plan: &Plan, report: &Report, analysis: &Analysis) -> S
     let surface = analysis.surface_covered.unwrap_or(0.0);
     let connectivity = analysis.connectivity();
     let interference = analysis.interference_share;
-    let assembly = connectivity * (1.0 - interference / INTERFERENCE_LIMIT).max(0.0);
+    let glued_parts = plan.glued_parts().len();
+    let assembly = connectivity * (1.0 - interference / INTERFERENCE_LIMIT).max(0.0) * glue_free(glued_parts, plan);
     let quality = quality::measure(mesh, plan, analysis.cover_distance);
     let effort = effort(plan, report);
     let total = surface
@@ -166,10 +169,20 @@ fn evaluate(mesh: &Mesh, plan: &Plan, report: &Report, analysis: &Analysis) -> S
             joints_not_meeting: analysis.joints_not_meeting.clone(),
             groups: analysis.group_count(),
             solids: analysis.allowed_groups(),
+            glued_parts,
         },
         quality,
         effort,
     }
+}
+
+/// The share of `plan`'s parts that need no glue: a plan that glue must hold together ranks
+/// below a glue-free one of the same surface, in proportion to the parts glue holds (issue 31).
+/// Groups alone do not say it: glued parts of a separate solid of the model (the teapot's
+/// spout foot) make no more groups than the model has solids.
+fn glue_free(glued_parts: usize, plan: &Plan) -> f64 {
+    let parts = plan.parts.len();
+    if parts == 0 { 1.0 } else { 1.0 - glued_parts.min(parts) as f64 / parts as f64 }
 }
 
 /// The effort of cutting and assembling the plan.
