@@ -174,6 +174,7 @@ pub fn upload_convert_and_every_link_works(backend: Backend) {
         .expect("plate")
         .clone();
     assert_eq!(plate["parts"], 6, "{plate}");
+    assert_eq!(plate["glue"], "glue-free", "{plate}");
     assert_eq!(plate["status"], "done");
     assert!(plate["score"].as_f64().is_some_and(|s| s > 0.5 && s <= 1.0), "{plate}");
     let zip = server.get(&format!("/api/conversions/{id}/plan.zip")).body;
