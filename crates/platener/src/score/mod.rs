@@ -182,7 +182,11 @@ fn evaluate(mesh: &Mesh, plan: &Plan, report: &Report, analysis: &Analysis) -> S
 /// spout foot) make no more groups than the model has solids.
 fn glue_free(glued_parts: usize, plan: &Plan) -> f64 {
     let parts = plan.parts.len();
-    if parts == 0 { 1.0 } else { 1.0 - glued_parts.min(parts) as f64 / parts as f64 }
+    if parts == 0 {
+        1.0
+    } else {
+        1.0 - glued_parts.min(parts) as f64 / parts as f64
+    }
 }
 
 /// The effort of cutting and assembling the plan.
