@@ -156,6 +156,8 @@ fn finish(result: &MethodResult, model: &ModelFile, config: &BatchConfig) -> Met
             .collect(),
         error: result.error.as_ref().map(|e| match e {
             platener::Error::TimedOut { .. } => format!("{e} (--timeout)"),
+            // The status already says "skipped"; the line reads "skipped: why".
+            platener::Error::Skipped { reason } => flags(reason),
             e => flags(&e.to_string()),
         }),
         seconds: result.seconds,

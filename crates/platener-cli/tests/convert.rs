@@ -260,6 +260,10 @@ fn a_failing_method_leaves_the_other_written_and_the_model_counts_as_converted()
     assert_eq!(m["methods"][1]["status"], "failed");
     assert!(m["methods"][1]["error"].as_str().expect("reason").contains("fail"));
     assert_eq!(v["summary"]["methods"]["stacked"]["failed"], 1);
+    // The classifier has nothing to add to a box: its reason, without a second "skipped".
+    assert_eq!(m["methods"][2]["status"], "skipped");
+    let why = m["methods"][2]["error"].as_str().expect("reason");
+    assert!(why.starts_with("the model's faces are exact"), "{why}");
 }
 
 #[test]
