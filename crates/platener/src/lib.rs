@@ -11,11 +11,17 @@
 //! | `weld` | [`weld`] | nearby vertices merged, an indexed triangle list |
 //! | `mesh` | [`mesh`] | topology, consistent winding, health report |
 //! | `coplanar` | [`coplanar`] | groups of connected faces in one plane |
+//! | `classify` | [`classify`] | primitives of a noisy or textured surface and the planar groups they stand for (classifier method) |
 //! | `shapes` | [`shapes`] | each group's outline with holes in its own 2D frame |
 //! | `plates` | [`plates`] | the plates and the coverage report |
+//! | `bends` | [`bends`] | plates meeting at shallow turns made one bent part |
 //! | `joints` | [`joints`] | the plate graph and its joints |
 //! | `parts` / `stacked` | [`parts`] / [`stacked`] | the parts to cut (plate / stacked method) |
+//! | `relief` | [`relief`] | textures the classifier flattened, engraved on their plates |
+//! | `layers` | [`layers`] | what no plate builds among the classifier's plates, as stacked layers |
 //! | `kerf`, `labels`, `sheets`, `export` | [`kerf`] … [`export`] | the cutting plan and its ZIP |
+//!
+//! Each method runs the steps it needs in this order ([`method`]).
 //!
 //! [`inspect`] runs these and summarises them (`platener inspect`); [`scene`] draws any
 //! snapshot as a 3D scene (glTF binary) for viewers; [`debug`] gives every snapshot of a run as
