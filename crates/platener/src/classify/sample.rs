@@ -62,15 +62,13 @@ pub fn sample_surface(mesh: &Mesh, count: usize, seed: u64) -> Vec<(DVec3, u32)>
         .collect()
 }
 
-/// Samples binned into cubes of one size: the samples near a point are in the 27 cubes round
-/// it, looked up once per occupied cube for all its points (a lookup per sample cost more
-/// than the fits). Bins are a sorted list (no hashing), so every walk is in a fixed order.
+/// Samples binned into cubes of one size: finding the samples near a point looks at the 27
+/// cubes round it. Bins are a sorted list (no hashing), so every walk is in a fixed order.
 #[derive(Debug, Clone)]
 struct PointGrid {
+    cell: f64,
     /// (cell key, sample index), sorted.
     keys: Vec<(u64, u32)>,
-    /// Each occupied cube once: its key and where its run in `keys` starts, sorted.
-    cubes: Vec<(u64, usize)>,
 }
 
 impl PointGrid {
@@ -81,53 +79,24 @@ impl PointGrid {
             .map(|(i, p)| (key(cell_of(p, cell)), i as u32))
             .collect();
         keys.par_sort_unstable();
-        let mut cubes: Vec<(u64, usize)> = Vec::new();
-        for (at, &(k, _)) in keys.iter().enumerate() {
-            if cubes.last().is_none_or(|c| c.0 != k) {
-                cubes.push((k, at));
-            }
-        }
-        Self { keys, cubes }
+        Self { cell, keys }
     }
 
-    /// The runs of `keys` in the 27 cubes round cube `c`, in a fixed order (z, y, x).
-    fn runs_round(&self, c: [i64; 3]) -> Vec<&[(u64, u32)]> {
-        let mut runs = Vec::with_capacity(27);
+    /// Calls `f` with the index of every point in the 27 cubes round `p` (a superset of the
+    /// points within `cell` of `p`).
+    fn near(&self, p: DVec3, mut f: impl FnMut(u32)) {
+        let c = cell_of(p, self.cell);
         for dz in -1..=1 {
             for dy in -1..=1 {
                 for dx in -1..=1 {
                     let k = key([c[0] + dx, c[1] + dy, c[2] + dz]);
-                    if let Some(run) = self.run(k) {
-                        runs.push(run);
+                    let start = self.keys.partition_point(|e| e.0 < k);
+                    for e in self.keys[start..].iter().take_while(|e| e.0 == k) {
+                        f(e.1);
                     }
                 }
             }
         }
-        runs
-    }
-
-    /// The run of `keys` in the cube with key `k`, if occupied.
-    fn run(&self, k: u64) -> Option<&[(u64, u32)]> {
-        let i = self.cubes.binary_search_by_key(&k, |c| c.0).ok()?;
-        let end = self.cubes.get(i + 1).map_or(self.keys.len(), |c| c.1);
-        Some(&self.keys[self.cubes[i].1..end])
-    }
-
-    /// For every occupied cube, in key order: its points and the runs of `from`'s points in
-    /// the 27 cubes round it (`from` has cubes of the same side), so that points sharing a
-    /// cube share one neighbour lookup.
-    #[allow(clippy::type_complexity)]
-    fn by_cube<'a>(
-        &'a self,
-        from: &'a PointGrid,
-    ) -> impl IndexedParallelIterator<Item = (&'a [(u64, u32)], Vec<&'a [(u64, u32)]>)> {
-        (0..self.cubes.len()).into_par_iter().map(move |i| {
-            let end = self.cubes.get(i + 1).map_or(self.keys.len(), |c| c.1);
-            (
-                &self.keys[self.cubes[i].1..end],
-                from.runs_round(unkey(self.cubes[i].0)),
-            )
-        })
     }
 }
 
@@ -142,13 +111,6 @@ pub(super) fn cell_of(p: DVec3, cell: f64) -> [i64; 3] {
 pub(super) fn key(c: [i64; 3]) -> u64 {
     let m = (1u64 << 21) - 1;
     ((c[0] as u64 & m) << 42) | ((c[1] as u64 & m) << 21) | (c[2] as u64 & m)
-}
-
-/// The cube of key `k`, modulo 2²¹ per axis: its neighbours' keys come out as
-/// [`key`] makes them, wrapping included.
-fn unkey(k: u64) -> [i64; 3] {
-    let m = (1u64 << 21) - 1;
-    [((k >> 42) & m) as i64, ((k >> 21) & m) as i64, (k & m) as i64]
 }
 
 /// About this many samples are fitted for a sample's normal: a plane's normal and its RMS
@@ -173,28 +135,12 @@ pub fn with_normals(mesh: &Mesh, points: &[(DVec3, u32)], fit: NormalFit) -> Vec
     let within = std::f64::consts::PI * radius * radius / (spacing * spacing).max(f64::MIN_POSITIVE);
     let stride = (within / FIT_SAMPLES).floor().clamp(1.0, points.len().max(1) as f64) as usize;
     let fitted_to: Vec<DVec3> = points.iter().step_by(stride).map(|p| p.0).collect();
-    let grid = PointGrid::new(points.iter().map(|p| p.0), radius);
-    let thin = PointGrid::new(fitted_to.iter().copied(), radius);
-    let mut fitted: Vec<Option<DVec3>> = vec![None; points.len()];
-    let per_cube: Vec<(u32, Option<DVec3>)> = grid
-        .by_cube(&thin)
-        .flat_map_iter(|(own, runs)| {
-            let fitted_to = &fitted_to;
-            own.iter().map(move |&(_, i)| {
-                let near = runs.iter().flat_map(|r| r.iter().map(|e| e.1));
-                (i, local_normal(near, fitted_to, points[i as usize].0, radius, flat))
-            })
-        })
-        .collect();
-    for (i, n) in per_cube {
-        fitted[i as usize] = n;
-    }
+    let grid = PointGrid::new(fitted_to.iter().copied(), radius);
     points
         .par_iter()
-        .zip(fitted)
-        .map(|(&(p, t), n)| {
+        .map(|&(p, t)| {
             let tn = mesh.normals[t as usize];
-            let n = n.map(|n| if n.dot(tn) < 0.0 { -n } else { n });
+            let n = local_normal(&grid, &fitted_to, p, radius, flat).map(|n| if n.dot(tn) < 0.0 { -n } else { n });
             // A triangle smaller than the neighbourhood says less about the surface than the
             // neighbourhood does (a fine textured mesh); a larger one is trusted at creases.
             let [a, b, c] = mesh.corners(t as usize);
@@ -208,19 +154,19 @@ pub fn with_normals(mesh: &Mesh, points: &[(DVec3, u32)], fit: NormalFit) -> Vec
         .collect()
 }
 
-/// The normal of the plane fitted to the points within `radius` of `p`, if they lie flat.
-/// `near` lists candidates (a superset of the points within `radius`).
-fn local_normal(near: impl Iterator<Item = u32>, points: &[DVec3], p: DVec3, radius: f64, flat: f64) -> Option<DVec3> {
+/// The normal of the plane fitted to the points of `grid` within `radius` of `p`, if they lie
+/// flat.
+fn local_normal(grid: &PointGrid, points: &[DVec3], p: DVec3, radius: f64, flat: f64) -> Option<DVec3> {
     let (mut sum, mut n) = (DVec3::ZERO, 0usize);
     let mut m = DMat3::ZERO;
-    for i in near {
+    grid.near(p, |i| {
         let q = points[i as usize] - p;
         if q.length_squared() <= radius * radius {
             sum += q;
             n += 1;
             m += DMat3::from_cols(q * q.x, q * q.y, q * q.z);
         }
-    }
+    });
     if n < 6 {
         return None;
     }
