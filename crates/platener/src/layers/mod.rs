@@ -145,25 +145,37 @@ fn marked_share(mesh: &Mesh, area: f64) -> f64 {
     }
 }
 
-/// Why this step will make no layers, known once plates are made (a cheap refusal the
-/// classifier method uses: with no primitive replacing exact faces either, its plan would be
-/// the plate method's).
-pub fn none_to_make(surface: &Surface<'_>, settings: &Settings) -> Option<String> {
-    too_little(marked_share(surface.mesh, mark::marked(surface, settings).area))
+/// Why the classifier's plan would be the plate method's, known once plates are made: no
+/// primitive replaced an exact face and this step will make no layers. The classifier beside
+/// the plate method stops there rather than after joints, parts and nesting.
+pub fn repeats_plate_plan(surface: &Surface<'_>, settings: &Settings) -> Option<String> {
+    if !surface.found.replaced.is_empty() {
+        return None;
+    }
+    let why = too_little(marked_share(surface.mesh, mark::marked(surface, settings).area))?;
+    Some(format!(
+        "no primitive replaces the model's exact faces and {why}: the classifier's plan would be the plate method's"
+    ))
+}
+
+impl Inputs<'_> {
+    /// The inputs that decide which triangles are marked.
+    fn surface(&self) -> Surface<'_> {
+        Surface {
+            mesh: self.mesh,
+            found: self.found,
+            groups: self.groups,
+            shapes: self.shapes,
+            plates: self.plates,
+        }
+    }
 }
 
 /// Step `layers`: the marked surface as stacked layers among the plates. Returns the snapshot
 /// and, when layers were made, the parts with them added (plates with their slots).
 pub fn run(inputs: &Inputs<'_>, settings: &Settings, cx: &mut StepContext<'_>) -> Result<(Layers, Option<PlanInput>)> {
     let mesh = inputs.mesh;
-    let surface = Surface {
-        mesh,
-        found: inputs.found,
-        groups: inputs.groups,
-        shapes: inputs.shapes,
-        plates: inputs.plates,
-    };
-    let marked = mark::marked(&surface, settings);
+    let marked = mark::marked(&inputs.surface(), settings);
     let share = marked_share(mesh, marked.area);
     if let Some(why) = too_little(share) {
         return Ok((Layers::none(marked.area, share, why), None));

@@ -275,11 +275,10 @@ fn plates_step(state: &mut State, s: &crate::settings::Settings, cx: &mut StepCo
     let plates = Arc::new(plates::run(shapes, mesh, model, s, cx)?);
     state.plates = Some(plates.clone());
     plates.fit_sheets(&s.cut)?;
-    // The classifier beside the plate method: exact faces kept and no layers to add make
-    // the plate method's plan again; said now rather than after joints, parts and nesting.
+    // The classifier beside the plate method: said now rather than after joints, parts and
+    // nesting.
     if let (Some(found), Some(groups)) = (state.classify.as_deref(), state.coplanar.as_deref())
         && !s.classify_exact_faces
-        && found.replaced.is_empty()
     {
         let surface = layers::Surface {
             mesh,
@@ -288,11 +287,7 @@ fn plates_step(state: &mut State, s: &crate::settings::Settings, cx: &mut StepCo
             shapes,
             plates: &plates,
         };
-        if let Some(why) = layers::none_to_make(&surface, s) {
-            let reason = format!(
-                "no primitive replaces the model's exact faces and {why}: the classifier's plan would be the plate \
-                 method's"
-            );
+        if let Some(reason) = layers::repeats_plate_plan(&surface, s) {
             return Err(crate::error::Error::Skipped { reason });
         }
     }

@@ -2,7 +2,7 @@
 //! a sheet deep whatever lies behind the face; where the model's wall is thinner, the part
 //! stands out of the model (a case with 1–2 mm walls cut from 3 mm sheet kept 59 % of its
 //! parts' volume inside the model, and nothing said so). The wall behind each extruded plate
-//! is measured on a grid of columns through its thickness (`inside_share`); when the wall,
+//! is measured on a grid of columns through its thickness (`wall_share`); when the wall,
 //! weighted by the plates' areas, is thinner than the sheet by more than [`THICKER`], the step
 //! says so and what to do.
 
@@ -52,7 +52,7 @@ pub(crate) fn thick_stock(plates: &[Plate], inside: &Inside<'_>) -> Option<Thick
     let total: f64 = plates.iter().map(|p| p.area).sum();
     let (mut area, mut wall, mut sheet) = (0.0, 0.0, 0.0);
     for p in plates.iter().filter(|p| p.kind == PlateKind::Extruded) {
-        if let Some(share) = inside_share(p, inside) {
+        if let Some(share) = wall_share(p, inside) {
             area += p.area;
             wall += p.area * share * p.thickness;
             sheet += p.area * p.thickness;
@@ -74,7 +74,7 @@ pub(crate) fn thick_stock(plates: &[Plate], inside: &Inside<'_>) -> Option<Thick
 /// that is inside is the wall there (a column inside at both ends has the whole thickness; one
 /// outside at both ends lies over a gap, a slot or beyond the model's edge, and says nothing).
 /// `None` when no column says anything.
-fn inside_share(p: &Plate, inside: &Inside<'_>) -> Option<f64> {
+fn wall_share(p: &Plate, inside: &Inside<'_>) -> Option<f64> {
     let (lo, hi) = p.polygon.bounds();
     let step = (hi - lo) / COLUMNS as f64;
     let (mut sum, mut columns) = (0.0, 0usize);
