@@ -12,7 +12,7 @@ use platener::mesh::Mesh;
 use platener::pipeline::{self, Cancel, Source, State};
 use platener::pipeline::{FOUNDATION, StepId};
 use platener::settings::{StackAxis, StackedSettings};
-use platener::stacked::{AxisChoice, SlicePlan, islands_of, slice};
+use platener::stacked::{AxisChoice, SlicePlan, island_rule, islands_of, slice};
 use platener::weld::weld_soup;
 use platener::{Settings, samples};
 
@@ -44,7 +44,7 @@ fn slicing(c: &mut Criterion) {
             group.bench_with_input(id, &plan, |b, plan| {
                 b.iter(|| {
                     let sliced = slice(&m, plan, 1e-3);
-                    islands_of(&sliced, &keep).expect("on the grid")
+                    islands_of(&sliced, &island_rule(t, &keep)).expect("on the grid")
                 });
             });
         }

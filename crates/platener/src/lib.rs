@@ -53,6 +53,7 @@ pub mod cleanup;
 pub mod context;
 pub mod convert;
 pub mod coplanar;
+pub mod cuttable;
 pub mod debug;
 pub mod error;
 pub mod export;

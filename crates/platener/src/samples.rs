@@ -575,15 +575,55 @@ pub fn keychain_tag() -> Vec<Triangle> {
     })
 }
 
+/// A teacup as issue 32 saw it: `segments` facets round and `steps` bands high, 60 mm tall,
+/// its curved wall `wall` thick flaring from a 50 mm foot to an 80 mm rim, on a floor `wall`
+/// thick, open at the top. With 48 × 12 its facets are about 5 × 5 mm: the plate method cuts
+/// each into a plate and its joints leave chips.
+pub fn teacup(segments: usize, steps: usize, wall: f64) -> Vec<Triangle> {
+    let (rim, height) = (40.0, 60.0);
+    let radius = |z: f64| 25.0 + 15.0 * (z / height * std::f64::consts::FRAC_PI_2).sin();
+    let outer = (0..=steps).map(|k| {
+        let z = height * k as f64 / steps as f64;
+        DVec2::new(radius(z) - rim, z)
+    });
+    let inner = (0..=steps).rev().map(|k| {
+        let z = wall + (height - wall) * k as f64 / steps as f64;
+        DVec2::new(radius(z) - rim - wall, z)
+    });
+    let profile: Vec<DVec2> = outer.chain(inner).collect();
+    let outline = regular_outline(segments, rim);
+    let mut out = sweep_outline(&outline, &profile, false);
+    out.extend(outline_cap(&outline, profile[0], false));
+    out.extend(outline_cap(&outline, profile[profile.len() - 1], true));
+    out
+}
+
+/// A small chair as issue 32 saw it, for 2 mm sheet: a 40 × 40 × 2 mm seat 40 mm up on four
+/// 4 × 4 mm legs at its corners, and a 40 × 2 × 40 mm back standing on the seat's rear edge.
+pub fn small_chair() -> Vec<Triangle> {
+    voxels(
+        &[0.0, 4.0, 36.0, 40.0],
+        &[0.0, 4.0, 36.0, 38.0, 40.0],
+        &[0.0, 40.0, 42.0, 82.0],
+        |i, j, k| match k {
+            0 => i != 1 && j != 1,
+            1 => true,
+            _ => j == 3,
+        },
+    )
+}
+
 /// The samples of issue 32's CAD details (file name, triangles): a hexagonal and an octagonal
 /// tube with 2 mm walls (to cut from 2 mm sheet), a table on square legs and a keychain tag
-/// with raised letters.
+/// with raised letters, a teacup with 1.5 mm curved walls and a small chair on 4 × 4 mm legs.
 pub fn cad_detail_samples() -> Vec<(&'static str, Vec<Triangle>)> {
     vec![
         ("hex_tube_2mm.stl", tube(6, 50.0, 60.0, 2.0)),
         ("octagon_tube_2mm.stl", tube(8, 50.0, 60.0, 2.0)),
         ("table_square_legs.stl", table_square_legs()),
         ("keychain_tag.stl", keychain_tag()),
+        ("teacup_1.5mm.stl", teacup(48, 12, 1.5)),
+        ("small_chair_2mm.stl", small_chair()),
     ]
 }
 

@@ -67,7 +67,8 @@ pub struct PlateSettings {
     pub parallel_angle_deg: f64,
     /// Thickness of extruded plates; `None` takes the thinnest offered sheet.
     pub extrusion_thickness: Option<f64>,
-    /// Plates (and leftover faces) under this area in mm² are too small to cut.
+    /// Plates (and leftover faces) under this area in mm² are too small to cut: the smallest
+    /// part's area ([`crate::cuttable::Rule`]), or 2t × 2t when that is more.
     pub min_area: f64,
 }
 
@@ -79,7 +80,7 @@ impl Default for PlateSettings {
             max_factor: 1.35,
             parallel_angle_deg: 2.0,
             extrusion_thickness: None,
-            min_area: 25.0,
+            min_area: crate::cuttable::MIN_AREA,
         }
     }
 }
@@ -225,9 +226,12 @@ pub struct StackedSettings {
     /// A shaft is at most this wide, mm: wider slots weaken the layers for no gain in register.
     pub shaft_max_width: f64,
     /// Islands of a layer with less area than this (mm²) are too small to cut; they are dropped
-    /// and reported.
+    /// and reported: the smallest part's area ([`crate::cuttable::Rule`]), or 2t × 2t when
+    /// that is more.
     pub min_area: f64,
     /// Islands nowhere wider than this (mm) are too thin to cut; they are dropped and reported.
+    /// The smallest-part rule (t) applies whatever this says. Also the narrowest band a
+    /// shaft extended into a neck may keep.
     pub min_width: f64,
 }
 
@@ -240,7 +244,7 @@ impl Default for StackedSettings {
             margin: 3.0,
             shaft_min_width: 10.0,
             shaft_max_width: 60.0,
-            min_area: 25.0,
+            min_area: crate::cuttable::MIN_AREA,
             min_width: 1.5,
         }
     }

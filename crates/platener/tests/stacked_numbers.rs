@@ -40,6 +40,15 @@ fn stacked(path: PathBuf) -> Result<State, platener::Error> {
     convert(MethodKind::Stacked, Source::File(path), quick(), &Cancel::default())
 }
 
+/// [`stacked`] from sheets `thickness` mm thick.
+fn stacked_at(path: PathBuf, thickness: f64) -> Result<State, platener::Error> {
+    let settings = Settings {
+        thicknesses: vec![thickness],
+        ..quick()
+    };
+    convert(MethodKind::Stacked, Source::File(path), settings, &Cancel::default())
+}
+
 fn plan(c: &State) -> &Plan {
     &c.export.as_ref().expect("exported").plan
 }
@@ -313,20 +322,28 @@ fn every_part_of_every_stacked_corpus_plan_carries_its_number() {
         tabs += t;
     }
     eprintln!("{converted} stacked plans, {parts} parts, {tabs} numbers on tabs");
-    // 32 of the 53 files make a stacked plan with default settings (the others are broken or a
-    // few mm across: they fail with their message); fewer means models stopped converting.
-    assert!(converted >= 32, "only {converted} corpus models converted");
+    // 30 of the 53 files make a stacked plan with default settings (the others are broken, a
+    // few mm across, or, since issue 32's smallest part, thinner than the sheet everywhere: the
+    // push rods on edge, the geo lamp's 0.8 mm shell; they fail with their message); fewer
+    // means models stopped converting.
+    assert!(converted >= 30, "only {converted} corpus models converted");
 }
+
+/// The bird feeder's rings numbered on tabs at 2 mm.
+const TABS_AT_2MM: usize = 47;
 
 #[test]
 fn the_bird_feeder_cups_thin_rings_carry_their_numbers_on_tabs() {
     let Some(dir) = corpus() else { return };
-    let c = stacked(dir.join("other/bird_water_feeder_cup.stl")).expect("converts");
+    // Its rings are about 2 mm wide: from 3 mm sheet they are under the smallest part (issue
+    // 32) and left out; from 2 mm sheet they are made.
+    let c = stacked_at(dir.join("other/bird_water_feeder_cup.stl"), 2.0).expect("converts");
     let (tabs, _) = assert_every_part_numbered("bird_water_feeder_cup", &c);
-    assert_eq!(plan(&c).parts.len(), 32);
-    // Before: 31 of the 32 rings had no number; each now has it on a tab of the size the step
+    let parts = plan(&c).parts.len();
+    assert_eq!(parts, 48);
+    // Before tabs, the rings had no number; each now has it on a tab of the size the step
     // makes (its length out of the outline, plus under ATTACH into it, times its width).
-    assert_eq!(tabs, 31);
+    assert_eq!(tabs, TABS_AT_2MM, "{parts} parts");
     // The sheets say so: every sheet's legend lists its parts numbered on a tab.
     let sheets = &plan(&c).sheets;
     let with_legend = sheets

@@ -241,7 +241,8 @@ fn held_stack(
     let sliced = stacked::slice_marked(inputs.mesh, &plan, tolerance, marked);
     cx.check_cancel()?;
     let filled = layer_material(&sliced.loops, &plan, inputs.parts)?;
-    let islands = stacked::islands_from(filled, &settings.stacked).map_err(geometry)?;
+    let rule = stacked::island_rule(plan.thickness, &settings.stacked);
+    let islands = stacked::islands_from(filled, &rule).map_err(geometry)?;
     if islands.islands.iter().all(Vec::is_empty) {
         let why = "the surface no plate builds leaves no layer large enough to cut beside the plates";
         return Ok(Err((why.to_string(), 0)));

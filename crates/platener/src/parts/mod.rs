@@ -3,13 +3,15 @@
 //! Each plate is one part, numbered from 1 in plate order, with the outline the `joints` step
 //! gave it (fingers, tabs, slots) and its connections as plan.json joints; dovetail keys follow
 //! as parts of their own. Plates no joint holds are named in warnings, and small ones left out
-//! ([`loose`]). Outlines that joints left invalid are repaired ([`clean`]); necks the joints
-//! left narrower than twice the thickness are reported ([`necks`]).
+//! ([`loose`]). Outlines that joints left invalid are repaired ([`clean`]); parts the joints
+//! left smaller than the smallest part are left out ([`small`]); necks the joints left
+//! narrower than twice the thickness are reported ([`necks`]).
 
 pub(crate) mod bent;
 pub mod clean;
 mod loose;
 pub mod necks;
+mod small;
 
 use std::collections::BTreeMap;
 
@@ -77,6 +79,7 @@ pub fn run(
     }))
     .ok();
     clean::clean_input(&mut input, cx);
+    small::leave_out_small(&mut input, settings.plates.min_area, cx);
     let plate_of: BTreeMap<u32, usize> = ids.iter().enumerate().filter_map(|(i, id)| Some(((*id)?, i))).collect();
     necks::warn_necks(&input.parts, plates, &plate_of, cx);
     Ok(input)

@@ -92,7 +92,7 @@ pub fn why_no_plates(coverage: &Coverage, min_area: f64, offered: &[f64]) -> Opt
         .collect();
     Some(format!(
         "no plate found for sheets of {list} mm among {} planar faces: {}; plates need two opposite faces a \
-         sheet's thickness apart (or a face of at least {min_area} mm² to extrude): try other -t values, \
+         sheet's thickness apart (or a face of at least {min_area} mm² to extrude): try other sheet thicknesses (`thickness`), \
          check the units, or the stacked method",
         coverage.shapes.len(),
         parts.join(", ")

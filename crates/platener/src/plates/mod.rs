@@ -153,12 +153,14 @@ pub struct Overlap {
     pub claimed: Vec<Polygon>,
 }
 
-/// Whether a laser can sensibly cut this outline at this thickness: big enough, and on
-/// average at least as wide as the sheet is thick (2·area / perimeter), so thin curved walls
-/// do not turn into hundreds of slivers.
+/// Whether a laser can sensibly cut this outline at this thickness: at least the area of the
+/// smallest part ([`crate::cuttable::Rule`], or `min_area` when that is more), and on average
+/// at least as wide as the sheet is thick (2·area / perimeter), so thin curved walls do not
+/// turn into hundreds of slivers. A cheap first sieve: the part's width is checked against the
+/// rule once its joints are cut (`parts`).
 pub(crate) fn cuttable(p: &Polygon, thickness: f64, min_area: f64) -> std::result::Result<(), Rejection> {
     let area = p.area();
-    if area < min_area {
+    if area < crate::cuttable::Rule::for_sheet(thickness, 0.0, min_area).min_area {
         return Err(Rejection::TooSmall { area });
     }
     let perimeter = polygon::perimeter(&p.outer) + p.holes.iter().map(|h| polygon::perimeter(h)).sum::<f64>();

@@ -4,14 +4,14 @@
 //! ```text
 //! total    = surface × (0.4 + 0.3·assembly + 0.2·quality + 0.1·effort)
 //! assembly = connectivity × max(0, 1 − interference / 0.05) × (1 − glued parts / parts)
-//! quality  = fidelity × slender
+//! quality  = fidelity × slender × fit
 //! effort   = 1 / (1 + work_minutes / 60)
 //! ```
 //!
 //! - **surface**: share of the model's surface within half a sheet plus 0.5 mm of a part
 //!   (the [`Analysis`]'s `surface_covered`): what the plan reproduces. Not the parts' volume
 //!   inside the model, which a wall cut from a sheet thicker than the model's wall always
-//!   loses.
+//!   loses: that is the quality's `fit`, a fifth of the total at most.
 //! - **connectivity**: (parts − groups) / (parts − solids), groups counted through the joints
 //!   whose parts really meet (the [`Analysis`]); 1 when there are no more parts than solids.
 //! - **interference**: shared volume over the parts' volume (JimJoints' barbs left out); 5 %
@@ -21,6 +21,8 @@
 //!   parts and the angle of the model faces they stand for; the mean over the joints.
 //! - **slender**: how far the parts are from slivers: per part min(1, w / 2t) with w = 2·area /
 //!   perimeter (the width of a strip), weighted by area; shafts left out.
+//! - **fit**: 1 − ½·(1 − min(1, inside / 0.9)), inside the share of the parts' volume inside
+//!   the model (issue 32): stock thicker than the model's walls stands out of it.
 //! - **work_minutes**: laser time (report.json's estimate) + 1 minute per part to assemble
 //!   + 2 minutes per sheet to handle.
 //!
@@ -150,7 +152,7 @@ fn evaluate(mesh: &Mesh, plan: &Plan, report: &Report, analysis: &Analysis) -> S
     let interference = analysis.interference_share;
     let glued_parts = plan.glued_parts().len();
     let assembly = connectivity * (1.0 - interference / INTERFERENCE_LIMIT).max(0.0) * glue_free(glued_parts, plan);
-    let quality = quality::measure(mesh, plan, analysis.cover_distance);
+    let quality = quality::measure(mesh, plan, analysis.cover_distance, analysis.volume_inside);
     let effort = effort(plan, report);
     let total = surface
         * (SURFACE_WEIGHT + ASSEMBLY_WEIGHT * assembly + QUALITY_WEIGHT * quality.value + EFFORT_WEIGHT * effort.value);

@@ -10,7 +10,12 @@
 //!   a part with no such surface has none, and its joints are not judged;
 //! - a joint between plates (not a shaft) is off by Δ = |θ(part normals) − θ(model normals)|,
 //!   θ the angle between two lines (0°–90°), and scores 1 / (1 + (Δ / [`ANGLE_SCALE`])²);
-//! - a part's width w = 2·area / perimeter (exact for a long strip) scores min(1, w / 2t).
+//! - a part's width w = 2·area / perimeter (exact for a long strip) scores min(1, w / 2t);
+//! - the parts' volume inside the model, v, scores 1 − [`FIT_WEIGHT`]·(1 − min(1, v /
+//!   [`INSIDE_FULL`])) (issue 32): a 3 mm sheet for a 1.5 mm wall puts half of every wall
+//!   outside the model, which the surface, reproduced either way, does not see. Half weight:
+//!   a tray whose walls came out thicker still assembles and holds, a frame whose joints are
+//!   5° off does not close.
 
 use glam::DVec3;
 use serde::Serialize;
@@ -25,6 +30,11 @@ pub const FACING: f64 = 30.0;
 /// The angle error (degrees) that halves a joint's fidelity: 2° is about where a finger joint
 /// in 3 mm plywood no longer closes without force.
 pub const ANGLE_SCALE: f64 = 2.0;
+/// The share of the parts' volume inside the model that counts as all of it: a true plan
+/// loses a little to kerf-free nominal outlines, layers' steps and fingers at rounded corners.
+pub const INSIDE_FULL: f64 = 0.9;
+/// How much of the quality the volume outside the model can take at most.
+pub const FIT_WEIGHT: f64 = 0.5;
 
 /// A joint's angle in the plan against the model's.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -42,7 +52,7 @@ pub struct JointAngle {
 /// Whether the joints are true to the model and the parts are no slivers.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct QualityScore {
-    /// `fidelity × slender`.
+    /// `fidelity × slender × fit`.
     pub value: f64,
     /// Mean over the judged joints of 1 / (1 + (Δ/2°)²); 1 when none is judged.
     pub fidelity: f64,
@@ -51,14 +61,22 @@ pub struct QualityScore {
     /// The joint furthest from the model's angle, when one was judged.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub worst_joint: Option<JointAngle>,
+    /// Share of the parts' volume inside the model, when it was measured.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub inside: Option<f64>,
+    /// 1 − [`FIT_WEIGHT`]·(1 − min(1, inside / [`INSIDE_FULL`])); 1 when `inside` was not
+    /// measured.
+    pub fit: f64,
     /// Area-weighted mean of min(1, w / 2t) over the parts (shafts left out); 1 without parts.
     pub slender: f64,
     /// Parts narrower than their thickness (w < t), ascending.
     pub slivers: Vec<u32>,
 }
 
-/// Measures the plan's joint quality against `mesh`; `reach` is the cover distance.
-pub fn measure(mesh: &Mesh, plan: &Plan, reach: f64) -> QualityScore {
+/// Measures the plan's joint quality against `mesh`; `reach` is the cover distance and
+/// `inside` the share of the parts' volume inside the model (the assembly analysis'), when
+/// known.
+pub fn measure(mesh: &Mesh, plan: &Plan, reach: f64, inside: Option<f64>) -> QualityScore {
     let solids: Vec<Solid> = plan.parts.iter().map(Solid::from_part).collect();
     let normals = model_normals(mesh, &solids, reach);
     let index = |id: u32| solids.iter().position(|s| s.id == id);
@@ -88,9 +106,12 @@ pub fn measure(mesh: &Mesh, plan: &Plan, reach: f64) -> QualityScore {
     };
     let worst_joint = angles.iter().max_by(|a, b| off(a).total_cmp(&off(b))).cloned();
     let (slender, slivers) = slenderness(plan);
+    let fit = inside.map_or(1.0, |v| 1.0 - FIT_WEIGHT * (1.0 - (v / INSIDE_FULL).clamp(0.0, 1.0)));
     QualityScore {
-        value: fidelity * slender,
+        value: fidelity * slender * fit,
         fidelity,
+        inside,
+        fit,
         joints_judged: angles.len(),
         worst_joint,
         slender,

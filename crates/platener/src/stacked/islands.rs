@@ -6,18 +6,20 @@
 //! body outwards and every cavity inwards): bodies whose loops run counter-clockwise in total
 //! are united, so two shells that overlap (common in printable models made of several parts)
 //! give their union instead of a hole where they cross; a clockwise body lying inside the others
-//! is a cavity and is cut out. Islands below the minimum area, or nowhere as wide as the minimum
-//! width, are too small to cut: they are dropped and reported, unless they hold other layers
-//! together (`support.rs`: then they are kept, enlarged until cuttable).
+//! is a cavity and is cut out. Islands smaller than the smallest part ([`Rule`]: somewhere t
+//! wide, 2t × 2t of material, or the stacked settings' floors when larger) are too small to
+//! cut: they are dropped and reported, unless they hold other layers together (`support.rs`:
+//! then they are kept, enlarged until cuttable).
 
 use platener_geom::polygon::{signed_area, total_area};
 use platener_geom::tolerance::CRUMB_AREA;
-use platener_geom::{GridError, Polygon, Ring, boolean, offset};
+use platener_geom::{GridError, Polygon, Ring, boolean};
 use rayon::prelude::*;
 use serde::Serialize;
 
 use super::slice::{SliceLoop, Sliced};
 use super::support::{KeptIsland, Small, keep_supporting};
+use crate::cuttable::Rule;
 use crate::settings::StackedSettings;
 
 /// An island too small to cut.
@@ -42,22 +44,28 @@ pub struct LayerIslands {
     pub kept_small: Vec<KeptIsland>,
 }
 
-/// The islands of every layer of `sliced`.
-pub fn islands_of(sliced: &Sliced, settings: &StackedSettings) -> Result<LayerIslands, GridError> {
+/// The smallest island the stacked method keeps in layers `thickness` mm thick: the
+/// smallest-part rule, or the settings' floors when they ask for more.
+pub fn island_rule(thickness: f64, settings: &StackedSettings) -> Rule {
+    Rule::for_sheet(thickness, settings.min_width, settings.min_area)
+}
+
+/// The islands of every layer of `sliced`, those `rule` keeps.
+pub fn islands_of(sliced: &Sliced, rule: &Rule) -> Result<LayerIslands, GridError> {
     let filled: Vec<Vec<Polygon>> = sliced
         .loops
         .par_iter()
         .map(|loops| fill(loops))
         .collect::<Result<_, _>>()?;
-    islands_from(filled, settings)
+    islands_from(filled, rule)
 }
 
 /// The islands of layers whose material is `filled` (per layer, bottom first): the pieces
 /// large enough to cut, and the small ones that hold other layers together.
-pub(crate) fn islands_from(filled: Vec<Vec<Polygon>>, settings: &StackedSettings) -> Result<LayerIslands, GridError> {
+pub(crate) fn islands_from(filled: Vec<Vec<Polygon>>, rule: &Rule) -> Result<LayerIslands, GridError> {
     let per_layer: Vec<(Vec<Polygon>, Vec<Polygon>)> = filled
         .into_par_iter()
-        .map(|filled| keep_cuttable(filled, settings))
+        .map(|filled| keep_cuttable(filled, rule))
         .collect::<Result<_, GridError>>()?;
     let mut islands = Vec::with_capacity(per_layer.len());
     let mut small = Vec::new();
@@ -65,7 +73,7 @@ pub(crate) fn islands_from(filled: Vec<Vec<Polygon>>, settings: &StackedSettings
         islands.push(kept);
         small.extend(dropped.into_iter().map(|polygon| Small { layer, polygon }));
     }
-    let (kept_small, chosen) = keep_supporting(&mut islands, &small, settings)?;
+    let (kept_small, chosen) = keep_supporting(&mut islands, &small, rule)?;
     let dropped = small
         .iter()
         .zip(chosen)
@@ -132,15 +140,13 @@ pub(crate) fn fill(loops: &[SliceLoop]) -> Result<Vec<Polygon>, GridError> {
 
 /// Splits polygons into those large enough to cut and those that are not (both normalised,
 /// the first ordered); grid crumbs are neither.
-fn keep_cuttable(polygons: Vec<Polygon>, s: &StackedSettings) -> Result<(Vec<Polygon>, Vec<Polygon>), GridError> {
+fn keep_cuttable(polygons: Vec<Polygon>, rule: &Rule) -> Result<(Vec<Polygon>, Vec<Polygon>), GridError> {
     let mut kept = Vec::new();
     let mut dropped = Vec::new();
     for mut p in polygons {
         p.normalize_orientation();
         let area = p.area();
-        let wide_enough =
-            s.min_width <= 0.0 || !offset::offset(std::slice::from_ref(&p), -s.min_width / 2.0)?.is_empty();
-        if area >= s.min_area && area > 0.0 && wide_enough {
+        if rule.check(&p)?.is_ok() {
             kept.push(p);
         } else if area >= CRUMB_AREA {
             dropped.push(p);

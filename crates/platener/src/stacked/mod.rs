@@ -61,7 +61,7 @@ use crate::settings::Settings;
 
 pub use glued::glued_groups;
 pub(crate) use glued::shaft_groups;
-pub use islands::{DroppedIsland, LayerIslands, islands_of};
+pub use islands::{DroppedIsland, LayerIslands, island_rule, islands_of};
 pub(crate) use islands::{fill, islands_from};
 pub use loops::LoopStats;
 pub use orient::{AxisChoice, SlicePlan, choose_up};
@@ -203,14 +203,15 @@ pub fn run(
     let sliced = slice(mesh, &plan, tolerance);
     cx.check_cancel()?;
     let geometry = |e: platener_geom::GridError| Error::model(&model.name, ModelProblem::OffGrid(e));
-    let layers = islands_of(&sliced, &settings.stacked).map_err(geometry)?;
+    let rule = island_rule(plan.thickness, &settings.stacked);
+    let layers = islands_of(&sliced, &rule).map_err(geometry)?;
     if layers.islands.iter().all(Vec::is_empty) {
         return Err(Error::model(
             &model.name,
             ModelProblem::NoLayer {
                 islands: layers.dropped.len(),
-                min_area: settings.stacked.min_area,
-                min_width: settings.stacked.min_width,
+                min_area: rule.min_area,
+                min_width: rule.min_width,
                 height: plan.thickness * plan.count as f64,
             },
         ));

@@ -111,7 +111,7 @@ mod tests {
         let plan = SlicePlan::new(&mesh, DVec3::Z, AxisChoice::Given, 3.0).expect("triangles");
         let sliced = slice(&mesh, &plan, 1e-6);
         let settings = StackedSettings::default();
-        let islands = islands_of(&sliced, &settings).expect("on the grid");
+        let islands = islands_of(&sliced, &super::super::island_rule(3.0, &settings)).expect("on the grid");
         let placed = place(&islands.islands, &settings, 3.0).expect("on the grid");
         assemble(plan, 3.0, islands, placed, sliced.stats).expect("on the grid")
     }

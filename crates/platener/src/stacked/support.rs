@@ -21,7 +21,7 @@ use platener_geom::{GridError, Polygon, boolean, offset};
 
 use super::shafts::{MIN_OVERLAP, boxes_meet};
 use crate::assembly::UnionFind;
-use crate::settings::StackedSettings;
+use crate::cuttable::{Rule, TooSmall};
 
 /// An island too small to cut that was kept because it holds other layers together.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -47,7 +47,7 @@ pub(crate) struct Small {
 pub(crate) fn keep_supporting(
     layers: &mut [Vec<Polygon>],
     small: &[Small],
-    s: &StackedSettings,
+    rule: &Rule,
 ) -> Result<(Vec<KeptIsland>, Vec<bool>), GridError> {
     let nodes = Nodes::new(layers, small);
     let edges = touching_pairs(&nodes, layers.len())?;
@@ -89,7 +89,7 @@ pub(crate) fn keep_supporting(
         .collect();
     let mut kept = Vec::new();
     for (sm, _) in small.iter().zip(&chosen).filter(|(_, c)| **c) {
-        let grown = enlarge(&sm.polygon, s)?;
+        let grown = enlarge(&sm.polygon, rule)?;
         kept.push(KeptIsland {
             layer: sm.layer,
             area: sm.polygon.area(),
@@ -159,20 +159,20 @@ fn touch(a: &Polygon, b: &Polygon) -> Result<bool, GridError> {
     Ok(total_area(&overlap) > MIN_OVERLAP)
 }
 
-/// `p` grown outwards until it is at least the minimum width and area (see the module docs).
-fn enlarge(p: &Polygon, s: &StackedSettings) -> Result<Vec<Polygon>, GridError> {
-    let wide = s.min_width <= 0.0 || !offset::offset(std::slice::from_ref(p), -s.min_width / 2.0)?.is_empty();
-    let mut r = if wide { 0.0 } else { s.min_width / 2.0 };
+/// `p` grown outwards until it is at least the rule's width and area (see the module docs).
+fn enlarge(p: &Polygon, rule: &Rule) -> Result<Vec<Polygon>, GridError> {
+    let wide = !matches!(rule.check(p)?, Err(TooSmall::Narrow { .. }));
+    let mut r = if wide { 0.0 } else { rule.min_width / 2.0 };
     let mut grown = grow(p, r)?;
     // The area bound is exact for convex shapes and conservative otherwise; a few rounds cover
     // the concave ones whose grown corners merge.
     for _ in 0..4 {
         let area = total_area(&grown);
-        if area >= s.min_area {
+        if area >= rule.min_area {
             break;
         }
         let length: f64 = grown.iter().map(|g| perimeter(&g.outer)).sum();
-        let need = s.min_area - area;
+        let need = rule.min_area - area;
         let pi = std::f64::consts::PI;
         r += (-length + (length * length + 4.0 * pi * need).sqrt()) / (2.0 * pi) + 1e-3;
         grown = grow(p, r)?;
@@ -225,7 +225,8 @@ mod tests {
 
     #[test]
     fn a_neck_between_two_layers_is_kept_and_grown_to_the_minimum_area() {
-        let s = StackedSettings::default();
+        // The rule at 0.75 mm sheets: 1.5 mm wide, 25 mm² as floors.
+        let s = Rule::for_sheet(0.75, 1.5, 25.0);
         let mut layers = vec![vec![square(0.0, 20.0)], Vec::new(), vec![square(0.0, 20.0)]];
         let neck = square(0.0, 1.5); // 9 mm², under the 25 mm² minimum
         let (kept, chosen) = keep_supporting(&mut layers, &[small(1, neck.clone())], &s).expect("grid");
@@ -244,7 +245,8 @@ mod tests {
 
     #[test]
     fn a_crumb_on_top_holds_nothing_and_stays_dropped() {
-        let s = StackedSettings::default();
+        // The rule at 0.75 mm sheets: 1.5 mm wide, 25 mm² as floors.
+        let s = Rule::for_sheet(0.75, 1.5, 25.0);
         let mut layers = vec![vec![square(0.0, 20.0)], Vec::new()];
         let (kept, chosen) = keep_supporting(&mut layers, &[small(1, square(0.0, 1.5))], &s).expect("grid");
         assert_eq!(chosen, vec![false]);
@@ -254,7 +256,8 @@ mod tests {
 
     #[test]
     fn a_neck_two_layers_tall_and_too_thin_is_kept_whole() {
-        let s = StackedSettings::default();
+        // The rule at 0.75 mm sheets: 1.5 mm wide, 25 mm² as floors.
+        let s = Rule::for_sheet(0.75, 1.5, 25.0);
         let mut layers = vec![vec![square(0.0, 20.0)], Vec::new(), Vec::new(), vec![square(0.0, 20.0)]];
         // 1 mm wide and 40 mm² in area: too thin for the 1.5 mm minimum width.
         let mut thin = Polygon::new(rect(-20.0, -0.5, 20.0, 0.5));
@@ -275,7 +278,8 @@ mod tests {
 
     #[test]
     fn two_necks_between_the_same_layers_keep_only_the_first() {
-        let s = StackedSettings::default();
+        // The rule at 0.75 mm sheets: 1.5 mm wide, 25 mm² as floors.
+        let s = Rule::for_sheet(0.75, 1.5, 25.0);
         let mut layers = vec![vec![square(0.0, 20.0)], Vec::new(), vec![square(0.0, 20.0)]];
         let smalls = [small(1, square(-10.0, 1.5)), small(1, square(10.0, 1.5))];
         let (kept, chosen) = keep_supporting(&mut layers, &smalls, &s).expect("grid");

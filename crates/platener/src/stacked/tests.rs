@@ -27,10 +27,9 @@ fn layer_areas(tris: &[Triangle], up: DVec3, t: f64) -> (Sliced, Vec<f64>) {
     let plan = SlicePlan::new(&m, up, AxisChoice::Given, t).expect("triangles");
     let sliced = slice(&m, &plan, 1e-6);
     // Keep every island, however small.
-    let keep_all = StackedSettings {
+    let keep_all = crate::cuttable::Rule {
         min_area: 0.0,
         min_width: 0.0,
-        ..StackedSettings::default()
     };
     let islands = islands_of(&sliced, &keep_all).expect("on the grid");
     let areas = islands.islands.iter().map(|l| total_area(l)).collect();
@@ -306,7 +305,7 @@ proptest! {
         let plan = SlicePlan::new(&m, DVec3::Z, AxisChoice::Given, t).expect("triangles");
         let sliced = slice(&m, &plan, 1e-6);
         let s = StackedSettings::default();
-        let layers = islands_of(&sliced, &s).expect("grid");
+        let layers = islands_of(&sliced, &super::island_rule(t, &s)).expect("grid");
         let placed = place(&layers.islands, &s, t).expect("grid");
         prop_assert!(placed.unjoined.is_empty(), "{:?}", placed.unjoined);
         let bridge = placed.bridge;
