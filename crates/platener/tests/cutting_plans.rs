@@ -67,10 +67,20 @@ fn run(parts: Vec<Part>, settings: CutSettings) -> (PlanInput, CuttingPlan) {
     (input, plan)
 }
 
+/// A part's polygon from its red rings: the largest is the outline (cut last, issue 34), the
+/// others its holes.
 fn polygon(rings: &[Vec<DVec2>]) -> Polygon {
+    let outer = (0..rings.len())
+        .max_by(|&a, &b| signed_area(&rings[a]).abs().total_cmp(&signed_area(&rings[b]).abs()))
+        .expect("a ring");
     let mut p = Polygon {
-        outer: rings[0].clone(),
-        holes: rings[1..].to_vec(),
+        outer: rings[outer].clone(),
+        holes: rings
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| *k != outer)
+            .map(|(_, r)| r.clone())
+            .collect(),
     };
     p.normalize_orientation();
     p

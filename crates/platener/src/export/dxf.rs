@@ -69,15 +69,17 @@ pub fn sheet_dxf(height: f64, groups: &[SvgGroup], file: &str) -> Result<Vec<u8>
             ..Default::default()
         });
     }
+    // In cut order (`export::order`): each part's engraving, slits, then rings (holes before
+    // the outline, as they are ordered).
     for g in groups {
-        for ring in &g.cut {
-            drawing.add_entity(polyline(ring, true, CUT_LAYER, height));
+        for line in &g.engrave {
+            drawing.add_entity(polyline(line, false, ENGRAVE_LAYER, height));
         }
         for slit in &g.slits {
             drawing.add_entity(polyline(slit, false, CUT_LAYER, height));
         }
-        for line in &g.engrave {
-            drawing.add_entity(polyline(line, false, ENGRAVE_LAYER, height));
+        for ring in &g.cut {
+            drawing.add_entity(polyline(ring, true, CUT_LAYER, height));
         }
     }
     let mut out = Vec::new();
@@ -133,11 +135,11 @@ mod tests {
         assert!(text.contains("AC1015"), "R2000");
         let back = read_polylines(&a, 400.0).expect("reads");
         assert_eq!(back.len(), 3);
-        assert_eq!((back[0].layer.as_str(), back[0].closed), (CUT_LAYER, true));
-        assert_eq!(back[0].points, g.cut[0]);
-        // A slit is cut, open, as drawn.
+        // In cut order: engraving, the slit (cut, open, as drawn), then the ring.
+        assert_eq!((back[0].layer.as_str(), back[0].closed), (ENGRAVE_LAYER, false));
         assert_eq!((back[1].layer.as_str(), back[1].closed), (CUT_LAYER, false));
         assert_eq!(back[1].points, g.slits[0]);
-        assert_eq!((back[2].layer.as_str(), back[2].closed), (ENGRAVE_LAYER, false));
+        assert_eq!((back[2].layer.as_str(), back[2].closed), (CUT_LAYER, true));
+        assert_eq!(back[2].points, g.cut[0]);
     }
 }

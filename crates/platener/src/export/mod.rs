@@ -9,6 +9,7 @@
 
 pub mod dxf;
 pub mod legend;
+pub mod order;
 pub mod plan_json;
 pub mod png;
 pub mod report;
@@ -71,13 +72,15 @@ pub fn run(
     for (g, legend) in groups.iter_mut().zip(&legends) {
         g.extend(legend.as_ref().and_then(legend::Legend::group));
     }
+    let (groups, paths): (Vec<Vec<svg::SvgGroup>>, Vec<order::CutPath>) =
+        groups.into_iter().map(order::order_sheet).unzip();
     let plan = plan_json::build_plan(input, cut, labels, nesting, &stems, &legends);
     // The sheets' files (the PNG previews above all) and the rest (report, 3D assembly,
     // thumbnail) do not depend on each other: made side by side, the plan is ready sooner. The
     // files are keyed by name, so the ZIP is the same whichever finishes first.
     let (sheets, rest) = rayon::join(
         || sheet_files(nesting, &stems, &groups),
-        || plan_files(input, nesting, steps, &groups, &stems, &plan),
+        || plan_files(input, nesting, steps, (&groups, &paths), &stems, &plan),
     );
     let (report, rest) = rest?;
     let files: BTreeMap<String, Vec<u8>> = sheets?.into_iter().chain(rest).collect();
@@ -123,11 +126,11 @@ fn plan_files(
     input: &PlanInput,
     nesting: &Nesting,
     steps: &[StepRecord],
-    groups: &[Vec<svg::SvgGroup>],
+    drawn: (&[Vec<svg::SvgGroup>], &[order::CutPath]),
     stems: &[String],
     plan: &Plan,
 ) -> Result<(Report, Files), PlanError> {
-    let report = build_report(input, nesting, steps, groups, stems);
+    let report = build_report(input, nesting, steps, drawn, stems);
     let report_json = serde_json::to_string_pretty(&report).map_err(|e| PlanError::write("report.json", e))?;
     // The parts were validated by now, so a scene that cannot be written is our bug.
     let assembly = crate::scene::Assembly::new(&input.parts).map_err(|e| PlanError::write("assembly.glb", e))?;
@@ -170,7 +173,7 @@ fn build_report(
     input: &PlanInput,
     nesting: &Nesting,
     records: &[StepRecord],
-    groups: &[Vec<svg::SvgGroup>],
+    (groups, paths): (&[Vec<svg::SvgGroup>], &[order::CutPath]),
     stems: &[String],
 ) -> Report {
     let timed = input.settings.report_timings;
@@ -188,7 +191,7 @@ fn build_report(
         warnings: Vec::new(),
     });
     let files: Vec<String> = stems.iter().map(|s| format!("{s}.svg")).collect();
-    let t = report::totals(nesting, &files);
+    let t = report::totals(nesting, &files, paths);
     let (cut_length, engrave_length) = report::lengths(groups);
     let s = &input.settings;
     Report {

@@ -6,6 +6,7 @@
 
 use serde::Serialize;
 
+use super::order::CutPath;
 use super::svg::SvgGroup;
 use crate::context::Warning;
 use crate::plan::{Method, PlanSettings};
@@ -42,6 +43,10 @@ pub struct ReportSheet {
     pub density: f64,
     /// Used area (height × used length), mm².
     pub used_area: f64,
+    /// The laser's path through the sheet's file, in its cut order (`export::order`): cut,
+    /// engrave and travel lengths, mm, and the pierces.
+    #[serde(flatten)]
+    pub path: CutPath,
 }
 
 /// report.json.
@@ -120,12 +125,13 @@ pub struct Totals {
 }
 
 /// Per-sheet and overall areas and densities.
-pub fn totals(nesting: &Nesting, files: &[String]) -> Totals {
+pub fn totals(nesting: &Nesting, files: &[String], paths: &[CutPath]) -> Totals {
     let sheets: Vec<ReportSheet> = nesting
         .sheets
         .iter()
         .zip(files)
-        .map(|(s, f)| ReportSheet {
+        .zip(paths)
+        .map(|((s, f), path)| ReportSheet {
             index: s.index,
             file: f.clone(),
             thickness: s.thickness,
@@ -134,6 +140,7 @@ pub fn totals(nesting: &Nesting, files: &[String]) -> Totals {
             parts: s.parts.len(),
             density: s.density,
             used_area: s.used_area,
+            path: *path,
         })
         .collect();
     let parts_area: f64 = nesting.sheets.iter().map(|s| s.parts_area).sum();

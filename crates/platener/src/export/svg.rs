@@ -101,21 +101,23 @@ pub fn sheet_svg(width: f64, height: f64, groups: &[SvgGroup], style: &SvgStyle)
                 d.join(" ")
             );
         }
-        let rings = g.cut.iter().map(|r| (r, true));
-        for (path, closed) in rings.chain(g.slits.iter().map(|l| (l, false))) {
-            let _ = writeln!(
-                s,
-                "<path d=\"{}\" fill=\"none\" stroke=\"{CUT_COLOR}\" stroke-width=\"{}\"/>",
-                path_data(path, closed),
-                num(style.cut_width)
-            );
-        }
+        // Cut order (`export::order`): engraving, then slits, then rings (holes before the
+        // outline, as the rings are ordered).
         for line in &g.engrave {
             let _ = writeln!(
                 s,
                 "<path d=\"{}\" fill=\"none\" stroke=\"{ENGRAVE_COLOR}\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>",
                 path_data(line, false),
                 num(style.engrave_width)
+            );
+        }
+        let slits = g.slits.iter().map(|l| (l, false));
+        for (path, closed) in slits.chain(g.cut.iter().map(|r| (r, true))) {
+            let _ = writeln!(
+                s,
+                "<path d=\"{}\" fill=\"none\" stroke=\"{CUT_COLOR}\" stroke-width=\"{}\"/>",
+                path_data(path, closed),
+                num(style.cut_width)
             );
         }
         s.push_str("</g>\n");

@@ -76,10 +76,26 @@ fn ezdxf_reads_our_dxf_with_the_same_areas() {
 import sys, ezdxf
 doc = ezdxf.readfile(sys.argv[1])
 print(doc.dxfversion, doc.header.get("$INSUNITS"))
+rings = []
+def inside(p, ring):
+    x, y, c = p[0], p[1], False
+    for i in range(len(ring)):
+        (x1, y1), (x2, y2) = ring[i], ring[(i + 1) % len(ring)]
+        if (y1 > y) != (y2 > y) and x < x1 + (y - y1) * (x2 - x1) / (y2 - y1):
+            c = not c
+    return c
 for e in doc.modelspace().query("LWPOLYLINE"):
     pts = [(p[0], p[1]) for p in e.get_points("xy")]
     a = sum(pts[i][0] * pts[(i + 1) % len(pts)][1] - pts[(i + 1) % len(pts)][0] * pts[i][1] for i in range(len(pts))) / 2
     print(e.dxf.layer, int(e.closed), abs(a))
+    if e.dxf.layer == "CUT" and e.closed:
+        rings.append(pts)
+# Cut order (issue 34): a ring inside another (a hole in its outline, a part in its hole) is
+# cut before it.
+for i, outer in enumerate(rings):
+    for later in rings[i + 1:]:
+        if inside(later[0], outer):
+            print("ORDER a ring inside another is cut after it")
 "#;
     let out = Command::new(&python)
         .args(["-c", script])
@@ -88,6 +104,7 @@ for e in doc.modelspace().query("LWPOLYLINE"):
         .expect("python runs");
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8(out.stdout).expect("utf-8");
+    assert!(!text.contains("ORDER"), "{text}");
     let mut lines = text.lines();
     assert_eq!(lines.next(), Some("AC1015 4"), "R2000, millimetres");
     let mut cut: Vec<f64> = lines
@@ -173,4 +190,73 @@ fn timings_reach_report_json_only_when_asked() {
         ..CutSettings::default()
     };
     assert_eq!(millis(timed), 3, "kerf, labels and sheets are timed");
+}
+
+/// Issue 34: every sheet lists each part's engraving before its cuts, its slits and holes
+/// before its outline (the ring of largest area, last), and the path through the sheet that
+/// report.json gives is the one the file draws.
+#[test]
+fn every_sheet_is_in_cut_order() {
+    let (_, plan) = run(mixed_parts(), CutSettings::default());
+    let report = &plan.bundle.report;
+    for (sheet, measured) in plan.bundle.plan.sheets.iter().zip(&report.sheets) {
+        let svg = std::str::from_utf8(&plan.bundle.files[&sheet.file]).expect("utf-8");
+        let paths = svg_read::paths_in_order(svg);
+        assert!(!paths.is_empty());
+        let mut groups: Vec<&str> = paths.iter().map(|p| p.group.as_str()).collect();
+        groups.dedup();
+        let mut seen = groups.clone();
+        seen.sort_unstable();
+        seen.dedup();
+        assert_eq!(seen.len(), groups.len(), "each part's paths are together: {groups:?}");
+        let (mut pierces, mut cut, mut travel) = (0, 0.0, 0.0);
+        let mut head = DVec2::ZERO;
+        for g in groups {
+            let mine: Vec<&svg_read::OrderedPath> = paths.iter().filter(|p| p.group == g).collect();
+            let first_red = mine.iter().position(|p| p.red).unwrap_or(mine.len());
+            assert!(mine[first_red..].iter().all(|p| p.red), "{g}: engraving before cutting");
+            let rings: Vec<f64> = mine
+                .iter()
+                .filter(|p| p.red && p.closed)
+                .map(|p| platener_geom::polygon::signed_area(&p.points).abs())
+                .collect();
+            if let Some((last, before)) = rings.split_last() {
+                assert!(
+                    before.iter().all(|a| a < last),
+                    "{g}: holes before the outline {rings:?}"
+                );
+                let last_path = mine.last().expect("a path");
+                assert!(last_path.red && last_path.closed, "{g}: the outline is cut last");
+            }
+            for p in &mine {
+                travel += head.distance(p.points[0]);
+                let open: f64 = p.points.windows(2).map(|w| w[0].distance(w[1])).sum();
+                let length = if p.closed {
+                    open + p.points[0].distance(*p.points.last().expect("points"))
+                } else {
+                    open
+                };
+                head = if p.closed {
+                    p.points[0]
+                } else {
+                    *p.points.last().expect("points")
+                };
+                if p.red {
+                    pierces += 1;
+                    cut += length;
+                }
+            }
+        }
+        assert_eq!(measured.path.pierces, pierces);
+        assert!(
+            (measured.path.cut_length - cut).abs() < 1e-2,
+            "{} vs {cut}",
+            measured.path.cut_length
+        );
+        assert!(
+            (measured.path.travel_length - travel).abs() < 1e-2,
+            "{} vs {travel}",
+            measured.path.travel_length
+        );
+    }
 }

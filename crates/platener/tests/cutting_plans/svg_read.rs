@@ -102,3 +102,38 @@ pub fn parse(svg: &str) -> Sheet {
         red: svg.matches("#ff0000").count(),
     }
 }
+
+/// One path of a sheet in document order: its group, whether it is red (cut), whether it is
+/// closed, and its points.
+#[derive(Debug)]
+pub struct OrderedPath {
+    pub group: String,
+    pub red: bool,
+    pub closed: bool,
+    pub points: Vec<DVec2>,
+}
+
+/// Every `<path>` of the sheet in the order the file lists them (previews' fills left out).
+pub fn paths_in_order(svg: &str) -> Vec<OrderedPath> {
+    let mut out = Vec::new();
+    let mut group = String::new();
+    let mut rest = svg;
+    while let Some(start) = rest.find('<') {
+        let end = rest[start..].find('>').expect("end of tag") + start;
+        let tag = &rest[start..=end];
+        if tag.starts_with("<g ") {
+            group = attr(tag, "id").unwrap_or_default().to_string();
+        } else if tag.starts_with("<path ") && attr(tag, "fill") == Some("none") {
+            let (points, closed) = path_points(attr(tag, "d").expect("path data"));
+            let red = attr(tag, "stroke") == Some("#ff0000");
+            out.push(OrderedPath {
+                group: group.clone(),
+                red,
+                closed,
+                points,
+            });
+        }
+        rest = &rest[end + 1..];
+    }
+    out
+}
