@@ -11,7 +11,7 @@
 //! - **surface**: share of the model's surface within half a sheet plus 0.5 mm of a part
 //!   (the [`Analysis`]'s `surface_covered`): what the plan reproduces. Not the parts' volume
 //!   inside the model, which a wall cut from a sheet thicker than the model's wall always
-//!   loses: that is the quality's `fit`, a fifth of the total at most.
+//!   loses: that is the quality's `fit`, a tenth of the total at most.
 //! - **connectivity**: (parts − groups) / (parts − solids), groups counted through the joints
 //!   whose parts really meet (the [`Analysis`]); 1 when there are no more parts than solids.
 //! - **interference**: shared volume over the parts' volume (JimJoints' barbs left out); 5 %
