@@ -23,12 +23,13 @@ impl Subset for Every {
     }
 }
 
-/// `scene`: every setting but those of the cutting plan alone (kerf, sheet, labels).
+/// `scene`: every setting but those of the cutting plan alone (kerf, sheet, margin, spacing,
+/// labels).
 #[derive(Debug, Clone, Copy)]
 pub struct ForScene;
 impl Subset for ForScene {
     fn includes(def: &Def) -> bool {
-        !matches!(def.name, "kerf" | "sheet" | "labels")
+        !matches!(def.name, "kerf" | "sheet" | "margin" | "spacing" | "labels")
     }
 }
 

@@ -218,8 +218,51 @@ fn many_parts_fill_several_sheets_of_two_thicknesses() {
     check(&input, &plan);
     let sheets = &plan.bundle.plan.sheets;
     assert!(sheets.len() >= 3, "{}", sheets.len());
+    // Ten 170.3 × 130.3 mm cut paths fit the 590 × 390 mm inside one sheet's margins by area,
+    // and the 6 mm parts another: at least 2 sheets (issue 34's lower bound).
+    let report = &plan.bundle.report;
+    assert_eq!(report.sheet_count_lower_bound, 2);
+    assert!(report.sheet_count >= report.sheet_count_lower_bound);
     assert!(sheets.iter().any(|s| s.file == "test-box-6mm-1.svg"));
     assert!(sheets.windows(2).all(|w| w[0].thickness <= w[1].thickness));
+}
+
+/// Issue 34: the margin and the spacing asked for hold on the written sheets: no cut path
+/// nearer the edge than the margin, none nearer another part's than the spacing.
+#[test]
+fn margins_and_spacing_are_kept_as_set() {
+    let settings = CutSettings {
+        margin: 20.0,
+        spacing: 6.0,
+        ..CutSettings::default()
+    };
+    let (input, plan) = run(mixed_parts(), settings);
+    check(&input, &plan);
+    for sheet in &plan.bundle.plan.sheets {
+        let s = svg_read::parse(std::str::from_utf8(&plan.bundle.files[&sheet.file]).expect("utf-8"));
+        let polys: Vec<Polygon> = s
+            .groups
+            .values()
+            .filter(|g| !g.cut.is_empty())
+            .map(|g| polygon(&g.cut))
+            .collect();
+        for p in polys.iter().flat_map(|p| p.outer.iter()) {
+            let edge = p.x.min(p.y).min(sheet.width - p.x).min(sheet.height - p.y);
+            assert!(edge >= 20.0 - 1e-3, "{p} is {edge} mm from the edge");
+        }
+        for (i, a) in polys.iter().enumerate() {
+            for b in &polys[i + 1..] {
+                let near = |from: &Polygon, to: &Polygon| {
+                    from.outer
+                        .iter()
+                        .map(|p| to.distance_to(*p))
+                        .fold(f64::INFINITY, f64::min)
+                };
+                let gap = near(a, b).min(near(b, a));
+                assert!(gap >= 6.0 - 0.05, "two parts {gap} mm apart");
+            }
+        }
+    }
 }
 
 #[test]
@@ -258,6 +301,7 @@ fn a_zip_written_twice_is_byte_identical() {
             "plan.json",
             "report.json",
             "test-box-3mm-1.dxf",
+            "test-box-3mm-1.lbrn2",
             "test-box-3mm-1.png",
             "test-box-3mm-1.svg",
             "thumbnail.png"

@@ -3,12 +3,14 @@
 //! Everything the user takes to the laser and everything third-party programs read comes out
 //! of here as one ZIP: plan.json (the contract in `shared/spec/plan-format.md`), report.json,
 //! assembly.glb (the assembled parts in 3D, [`crate::scene::assembly`]), thumbnail.png (the
-//! assembly drawn small, [`thumbnail`]), and per sheet an SVG ([`svg`]), a DXF ([`dxf`]) and a PNG preview ([`png`]). Entries are
+//! assembly drawn small, [`thumbnail`]), and per sheet an SVG ([`svg`]), a DXF ([`dxf`]), a
+//! LightBurn project ([`lightburn`]) and a PNG preview ([`png`]), all in cut order ([`order`]). Entries are
 //! sorted by name and stamped 1980-01-01 with mode 0644, and report.json carries no timings
 //! unless asked, so the same input and settings give a byte-identical ZIP.
 
 pub mod dxf;
 pub mod legend;
+pub mod lightburn;
 pub mod order;
 pub mod plan_json;
 pub mod png;
@@ -79,7 +81,7 @@ pub fn run(
     // thumbnail) do not depend on each other: made side by side, the plan is ready sooner. The
     // files are keyed by name, so the ZIP is the same whichever finishes first.
     let (sheets, rest) = rayon::join(
-        || sheet_files(nesting, &stems, &groups),
+        || sheet_files(nesting, &stems, &groups, &input.settings),
         || plan_files(input, nesting, steps, (&groups, &paths), &stems, &plan),
     );
     let (report, rest) = rest?;
@@ -97,7 +99,12 @@ pub fn run(
 type Files = Vec<(String, Vec<u8>)>;
 
 /// Every sheet's SVG, DXF and PNG preview, the sheets side by side.
-fn sheet_files(nesting: &Nesting, stems: &[String], groups: &[Vec<svg::SvgGroup>]) -> Result<Files, PlanError> {
+fn sheet_files(
+    nesting: &Nesting,
+    stems: &[String],
+    groups: &[Vec<svg::SvgGroup>],
+    settings: &crate::plan::CutSettings,
+) -> Result<Files, PlanError> {
     use rayon::prelude::*;
     let per_sheet: Vec<Files> = nesting
         .sheets
@@ -108,12 +115,14 @@ fn sheet_files(nesting: &Nesting, stems: &[String], groups: &[Vec<svg::SvgGroup>
             let svg = sheet_svg(sheet.width, sheet.height, g, &SvgStyle::CUT);
             let dxf_name = format!("{stem}.dxf");
             let dxf = dxf::sheet_dxf(sheet.height, g, &dxf_name)?;
+            let lightburn = lightburn::sheet_lbrn2(sheet.width, sheet.height, g, settings);
             let png_name = format!("{stem}.png");
             let preview = sheet_svg(sheet.width, sheet.height, g, &PREVIEW_STYLE);
             let png = png::render_png(&preview, &png_name)?;
             Ok(vec![
                 (format!("{stem}.svg"), svg.into_bytes()),
                 (dxf_name, dxf),
+                (format!("{stem}.lbrn2"), lightburn.into_bytes()),
                 (png_name, png),
             ])
         })
@@ -207,6 +216,7 @@ fn build_report(
             .collect(),
         part_count: input.parts.len(),
         sheet_count: nesting.sheets.len(),
+        sheet_count_lower_bound: report::sheet_lower_bound(nesting, &input.settings),
         sheets: t.sheets,
         density: t.density,
         parts_area: t.parts_area,

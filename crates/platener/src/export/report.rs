@@ -69,6 +69,9 @@ pub struct Report {
     pub part_count: usize,
     /// Number of sheets.
     pub sheet_count: usize,
+    /// The fewest sheets that could hold the parts: per thickness, the parts' area over the
+    /// area inside a sheet's margins, rounded up (an extension; makers judge nesting by it).
+    pub sheet_count_lower_bound: usize,
     /// Per sheet.
     pub sheets: Vec<ReportSheet>,
     /// All parts' area over all used area.
@@ -122,6 +125,25 @@ pub struct Totals {
     pub used_area: f64,
     /// Full sheet area, mm².
     pub sheet_area: f64,
+}
+
+/// The fewest sheets the parts could need (see [`Report::sheet_count_lower_bound`]); with
+/// sheets sized to fit, one per thickness.
+pub fn sheet_lower_bound(nesting: &Nesting, settings: &crate::plan::CutSettings) -> usize {
+    let mut by_thickness: std::collections::BTreeMap<u64, f64> = std::collections::BTreeMap::new();
+    for s in &nesting.sheets {
+        *by_thickness.entry(s.thickness.to_bits()).or_default() += s.parts_area;
+    }
+    match settings.sheet {
+        crate::plan::SheetSize::Fit => by_thickness.len(),
+        crate::plan::SheetSize::Fixed { width, height } => {
+            let usable = (width - 2.0 * settings.margin) * (height - 2.0 * settings.margin);
+            by_thickness
+                .values()
+                .map(|area| (area / usable).ceil().max(1.0) as usize)
+                .sum()
+        }
+    }
 }
 
 /// Per-sheet and overall areas and densities.

@@ -5,7 +5,7 @@ use serde_json::{Value, json};
 use super::{Choice, Chosen, Def, Group, Kind};
 use crate::joints::JointStyle;
 use crate::method::MethodKind;
-use crate::plan::{LabelMode, MAX_KERF, Material, SheetSize};
+use crate::plan::{LabelMode, MAX_KERF, MAX_MARGIN, Material, SPACING_RANGE, SheetSize};
 use crate::settings::{
     Bending, Features, MAX_SHEET_SIDE, MAX_THICKNESS, MAX_THICKNESSES, MAX_WELD, MIN_THICKNESS, PlateMode, SCALE_RANGE,
     StackAxis, Units, Weld,
@@ -122,6 +122,48 @@ pub static DEFS: &[Def] = &[
             Ok(())
         },
         get: |c| json!(sheet_name(c.settings.cut.sheet)),
+    },
+    Def {
+        name: "margin",
+        key: "margin",
+        short: None,
+        label: "Margin",
+        group: Group::Sheets,
+        kind: Kind::Number {
+            unit: "mm",
+            min: 0.0,
+            max: MAX_MARGIN,
+            auto: None,
+        },
+        help: "Free border between the sheet's edge and any part, mm (clamps, a rough or burnt edge).",
+        doc: "No cut path comes nearer the sheet's edge than this; a part larger than the sheet within its \
+              margins is refused.",
+        set: |c, v| {
+            c.settings.cut.margin = number(one(v)?)?;
+            Ok(())
+        },
+        get: |c| json!(c.settings.cut.margin),
+    },
+    Def {
+        name: "spacing",
+        key: "spacing",
+        short: None,
+        label: "Spacing",
+        group: Group::Sheets,
+        kind: Kind::Number {
+            unit: "mm",
+            min: SPACING_RANGE.0,
+            max: SPACING_RANGE.1,
+            auto: None,
+        },
+        help: "Least distance between the cut paths of two parts, mm; more than the kerf.",
+        doc: "Closer parts save material; a little more keeps a thin web between them from burning through \
+              or warping in brittle acrylic.",
+        set: |c, v| {
+            c.settings.cut.spacing = number(one(v)?)?;
+            Ok(())
+        },
+        get: |c| json!(c.settings.cut.spacing),
     },
     Def {
         name: "joint",

@@ -23,7 +23,7 @@ pub use format::{
     SheetPlacement,
 };
 pub use part::{Bend, BendStyle, EdgeLabel, Joint, JointKind, Mark, MarkKind, MarkSide, Part, PartKind, Segment};
-pub use settings::{CutSettings, LabelMode, MAX_KERF, Material, SettingValue, SheetSize};
+pub use settings::{CutSettings, LabelMode, MAX_KERF, MAX_MARGIN, Material, SPACING_RANGE, SettingValue, SheetSize};
 
 /// The model the parts were made from, for plan.json's `source`.
 #[derive(Debug, Clone, PartialEq, Serialize)]

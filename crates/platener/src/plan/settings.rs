@@ -165,6 +165,12 @@ impl Default for CutSettings {
 /// spacing between parts (2 mm) must exceed the kerf.
 pub const MAX_KERF: f64 = 1.0;
 
+/// The widest margin to the sheet's edge accepted, mm.
+pub const MAX_MARGIN: f64 = 100.0;
+/// The spacing between parts accepted, mm: at least half a millimetre (and more than the
+/// kerf), at most 50 mm.
+pub const SPACING_RANGE: (f64, f64) = (0.5, 50.0);
+
 impl CutSettings {
     /// Why an outline with the points `outline`, grown by `grow` mm on every side (less when
     /// negative), fits no sheet in any orientation (`what` names it in the message); `None`
@@ -219,7 +225,14 @@ impl CutSettings {
         if !(kerf.is_finite() && (0.0..=MAX_KERF).contains(&kerf)) {
             return bad("kerf", format!("{kerf} mm must be from 0 to {MAX_KERF} mm"));
         }
-        if !(self.spacing.is_finite() && self.spacing > kerf) {
+        let (low, high) = SPACING_RANGE;
+        if !(self.spacing.is_finite() && (low..=high).contains(&self.spacing)) {
+            return bad(
+                "spacing",
+                format!("{} mm must be from {low} to {high} mm", self.spacing),
+            );
+        }
+        if self.spacing <= kerf {
             return bad(
                 "spacing",
                 format!(
@@ -228,8 +241,11 @@ impl CutSettings {
                 ),
             );
         }
-        if !(self.margin.is_finite() && self.margin >= 0.0) {
-            return bad("margin", format!("{} is not a distance ≥ 0 mm", self.margin));
+        if !(self.margin.is_finite() && (0.0..=MAX_MARGIN).contains(&self.margin)) {
+            return bad(
+                "margin",
+                format!("{} mm must be from 0 to {MAX_MARGIN} mm", self.margin),
+            );
         }
         if let SheetSize::Fixed { width, height } = self.sheet
             && !(width.is_finite() && height.is_finite() && width > 2.0 * self.margin && height > 2.0 * self.margin)

@@ -260,3 +260,87 @@ fn every_sheet_is_in_cut_order() {
         );
     }
 }
+
+/// Issue 34: each sheet's LightBurn project, parsed back as XML, has the SVG's paths shape by
+/// shape in the same order (within 0.01 mm, y flipped), on the layer of their operation: engrave
+/// (1), cut inner (3: slits and holes), cut outer (2: the outline, its part's last ring).
+#[test]
+fn the_lightburn_project_has_the_svgs_shapes_on_their_layers() {
+    let (_, plan) = run(mixed_parts(), CutSettings::default());
+    for sheet in &plan.bundle.plan.sheets {
+        let svg = std::str::from_utf8(&plan.bundle.files[&sheet.file]).expect("utf-8");
+        let paths = svg_read::paths_in_order(svg);
+        let stem = sheet.file.trim_end_matches(".svg");
+        let text = std::str::from_utf8(&plan.bundle.files[&format!("{stem}.lbrn2")]).expect("utf-8");
+        let doc = roxmltree::Document::parse(text).expect("well-formed XML");
+        let root = doc.root_element();
+        assert_eq!(root.tag_name().name(), "LightBurnProject");
+        let layers: Vec<(u32, u32)> = root
+            .children()
+            .filter(|n| n.has_tag_name("CutSetting"))
+            .map(|n| {
+                let value = |tag: &str| -> u32 {
+                    let node = n.children().find(|c| c.has_tag_name(tag)).expect("field");
+                    node.attribute("Value").expect("value").parse().expect("number")
+                };
+                (value("index"), value("priority"))
+            })
+            .collect();
+        assert_eq!(
+            layers,
+            [(1, 0), (3, 1), (2, 2), (0, 3)],
+            "engrave, then inner, then outer; the sheet"
+        );
+        let shapes: Vec<(u32, Vec<DVec2>, usize)> = root
+            .children()
+            .filter(|n| n.has_tag_name("Shape"))
+            .map(|n| {
+                let index = n.attribute("CutIndex").expect("layer").parse().expect("number");
+                let child = |tag: &str| {
+                    n.children()
+                        .find(|c| c.has_tag_name(tag))
+                        .and_then(|c| c.text())
+                        .expect(tag)
+                };
+                let verts: Vec<DVec2> = child("VertList")
+                    .split('V')
+                    .filter(|v| !v.is_empty())
+                    .map(|v| {
+                        let xy: Vec<f64> = v.split_whitespace().map(|x| x.parse().expect("number")).collect();
+                        DVec2::new(xy[0], sheet.height - xy[1])
+                    })
+                    .collect();
+                let lines = child("PrimList").matches('L').count();
+                (index, verts, lines)
+            })
+            .collect();
+        // The sheet's outline first, on its layer that is not cut.
+        let (sheet_layer, frame, _) = &shapes[0];
+        assert_eq!(*sheet_layer, 0);
+        let corners = [
+            DVec2::ZERO,
+            DVec2::new(sheet.width, 0.0),
+            DVec2::new(sheet.width, sheet.height),
+            DVec2::new(0.0, sheet.height),
+        ];
+        assert!(
+            frame.iter().zip(corners).all(|(a, b)| a.distance(b) < 0.01),
+            "{frame:?}"
+        );
+        let shapes = &shapes[1..];
+        assert_eq!(shapes.len(), paths.len());
+        for (k, (p, (index, verts, lines))) in paths.iter().zip(shapes).enumerate() {
+            let last_ring =
+                p.red && p.closed && !paths[k + 1..].iter().any(|q| q.group == p.group && q.red && q.closed);
+            let want = match (p.red, p.closed) {
+                (false, _) => 1,
+                (true, true) if last_ring => 2,
+                _ => 3,
+            };
+            assert_eq!(*index, want, "shape {k} of {}", p.group);
+            assert_eq!(verts.len(), p.points.len());
+            assert!(verts.iter().zip(&p.points).all(|(a, b)| a.distance(*b) < 0.01));
+            assert_eq!(*lines, if p.closed { verts.len() } else { verts.len() - 1 });
+        }
+    }
+}
