@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 
-use crate::setting_args::{Every, ForMaterial, ForModel, ForScene, SettingArgs};
+use crate::setting_args::{Every, ForMaterial, ForModel, ForScene, ForVerify, SettingArgs};
 
 /// Examples shown under `platener --help`.
 const MAIN_EXAMPLES: &str = "Examples:
@@ -115,7 +115,7 @@ pub struct VerifyArgs {
     pub min_coverage: f64,
     /// How the model is read.
     #[command(flatten)]
-    pub settings: SettingArgs<ForModel>,
+    pub settings: SettingArgs<ForVerify>,
 }
 
 /// `platener completions`.

@@ -4,7 +4,6 @@
 //! something failed, 2 a usage error.
 
 mod args;
-#[allow(clippy::too_many_lines, reason = "rewritten in issue 16")]
 mod batch;
 mod completions;
 mod convert;

@@ -33,13 +33,23 @@ impl Subset for ForScene {
     }
 }
 
-/// `inspect` and `verify`: how the model is read and welded, and the sheets its plates are
-/// measured against.
+/// `inspect`: how the model is read and welded, and the sheets its plates are measured against.
 #[derive(Debug, Clone, Copy)]
 pub struct ForModel;
 impl Subset for ForModel {
     fn includes(def: &Def) -> bool {
         matches!(def.name, "thickness" | "units" | "scale" | "weld" | "features")
+    }
+}
+
+/// `verify`: how the model is read (its unit and scale). The weld is the plan's own
+/// (`verify::model_weld`), and the sheets and features are the plan's: flags for them would be
+/// ignored, so the command does not take them.
+#[derive(Debug, Clone, Copy)]
+pub struct ForVerify;
+impl Subset for ForVerify {
+    fn includes(def: &Def) -> bool {
+        matches!(def.name, "units" | "scale")
     }
 }
 

@@ -61,6 +61,23 @@ fn a_file_that_is_not_a_plan_is_refused_with_its_name() {
     assert!(err.contains("notes.zip") && err.contains("not a ZIP"), "{err}");
 }
 
+/// Issue 33: verify takes the plan's weld, sheets and features; flags for them would be
+/// ignored, so they are refused as unknown, while the model's unit and scale are taken.
+#[test]
+fn verify_refuses_the_flags_it_would_ignore() {
+    for flag in [["--weld", "0.5"], ["-t", "3"], ["--features", "cut"]] {
+        let o = platener().arg("verify").arg("plan.zip").args(flag).output().expect("runs");
+        assert_eq!(o.status.code(), Some(2), "{flag:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(flag[0]), "{flag:?}: {err}");
+    }
+    let o = platener()
+        .args(["verify", "missing.zip", "--units", "cm", "--scale", "2"])
+        .output()
+        .expect("runs");
+    assert_eq!(o.status.code(), Some(1), "the flags are taken; the missing plan fails");
+}
+
 #[test]
 fn the_joint_option_chooses_the_joints() {
     let out = tempfile::tempdir().expect("tempdir");
