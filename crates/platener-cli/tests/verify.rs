@@ -66,7 +66,12 @@ fn a_file_that_is_not_a_plan_is_refused_with_its_name() {
 #[test]
 fn verify_refuses_the_flags_it_would_ignore() {
     for flag in [["--weld", "0.5"], ["-t", "3"], ["--features", "cut"]] {
-        let o = platener().arg("verify").arg("plan.zip").args(flag).output().expect("runs");
+        let o = platener()
+            .arg("verify")
+            .arg("plan.zip")
+            .args(flag)
+            .output()
+            .expect("runs");
         assert_eq!(o.status.code(), Some(2), "{flag:?}");
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains(flag[0]), "{flag:?}: {err}");

@@ -1,11 +1,32 @@
 //! Axis-aligned boxes in the model: which pairs of things come near each other, found by a
 //! sweep along x instead of comparing every pair (joints, claims and rejoining all ask it of
-//! hundreds of plates).
+//! hundreds of plates). Also the one fold that bounds points, in 2D and 3D, which every
+//! module asks for rather than writing its own.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 /// A box by its lowest and highest corner.
 pub type Box3 = (DVec3, DVec3);
+
+/// A rectangle by its lowest and highest corner.
+pub type Box2 = (DVec2, DVec2);
+
+/// The bounds of `points`; with no points, the empty box (lowest corner at +∞, highest at
+/// −∞), which contains nothing and leaves any box it is united with as it was.
+pub fn bounds2(points: impl IntoIterator<Item = DVec2>) -> Box2 {
+    points.into_iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p), hi.max(p)),
+    )
+}
+
+/// [`bounds2`] in 3D.
+pub fn bounds3(points: impl IntoIterator<Item = DVec3>) -> Box3 {
+    points.into_iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p), hi.max(p)),
+    )
+}
 
 /// Whether boxes `a` and `b` come within `gap` of each other on every axis.
 pub fn near(a: Box3, b: Box3, gap: f64) -> bool {
@@ -34,6 +55,14 @@ pub fn near_pairs(boxes: &[Box3], gap: f64) -> Vec<(usize, usize)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bounds_hold_every_point_and_no_points_give_the_empty_box() {
+        let (lo, hi) = bounds2([DVec2::new(1.0, 5.0), DVec2::new(-2.0, 3.0)]);
+        assert_eq!((lo, hi), (DVec2::new(-2.0, 3.0), DVec2::new(1.0, 5.0)));
+        let (lo, hi) = bounds3(std::iter::empty());
+        assert!(lo.x > hi.x, "empty");
+    }
 
     fn cube(x: f64) -> Box3 {
         (DVec3::new(x, 0.0, 0.0), DVec3::new(x + 1.0, 1.0, 1.0))

@@ -76,10 +76,7 @@ pub fn ring_contains(ring: &[DVec2], p: DVec2) -> bool {
 /// Axis-aligned bounds `(min, max)` of some points (a ring's, say); `(+∞, −∞)` when there
 /// are none.
 pub fn bounds_of(points: impl IntoIterator<Item = DVec2>) -> (DVec2, DVec2) {
-    points.into_iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(p), hi.max(p)),
-    )
+    crate::boxes::bounds2(points)
 }
 
 /// Squared distance from `p` to the segment `ab` (a point when `a == b`).

@@ -83,18 +83,14 @@ fn piece_cells(piece: &Slab, step: f64, layers: usize, near: Option<(DVec3, DVec
 
 /// The 2D box, in `piece`'s frame, of the model box `(lo, hi)`'s eight corners.
 fn local_box(piece: &Slab, (lo, hi): (DVec3, DVec3)) -> (DVec2, DVec2) {
-    (0..8).fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(a, b), k| {
-            let corner = DVec3::new(
-                if k & 1 == 0 { lo.x } else { hi.x },
-                if k & 2 == 0 { lo.y } else { hi.y },
-                if k & 4 == 0 { lo.z } else { hi.z },
-            );
-            let l = piece.frame.to_local(corner).truncate();
-            (a.min(l), b.max(l))
-        },
-    )
+    platener_geom::boxes::bounds2((0..8).map(|k| {
+        let corner = DVec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        );
+        piece.frame.to_local(corner).truncate()
+    }))
 }
 
 /// Every pair of parts that shares volume, with the volume; `cells[i]` are part i's cell

@@ -152,10 +152,7 @@ pub fn nothing_to_replace(mesh: &Mesh, exact: &PlanarGroups, thickness: f64) -> 
     let smooth = smooth_neighbours(mesh, exact);
     let (mut count, mut area) = (0usize, 0.0);
     for (k, g) in exact.groups.iter().enumerate() {
-        let (lo, hi) = g.faces.iter().flat_map(|&f| mesh.corners(f as usize)).fold(
-            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-            |(lo, hi), p| (lo.min(p), hi.max(p)),
-        );
+        let (lo, hi) = platener_geom::boxes::bounds3(g.faces.iter().flat_map(|&f| mesh.corners(f as usize)));
         let width = g.area / (hi - lo).length().max(f64::MIN_POSITIVE);
         if g.area < thickness * thickness || (width < thickness && smooth[k]) {
             count += 1;

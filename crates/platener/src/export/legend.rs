@@ -191,9 +191,8 @@ fn free_spot(size: DVec2, sheet: DVec2, boxes: &[Bounds]) -> Option<DVec2> {
 
 /// The bounds of `rings`, if they have points.
 fn bounds(rings: &[Vec<DVec2>]) -> Option<Bounds> {
-    let mut points = rings.iter().flatten();
-    let first = *points.next()?;
-    Some(points.fold((first, first), |(a, b), p| (a.min(*p), b.max(*p))))
+    let (lo, hi) = platener_geom::boxes::bounds2(rings.iter().flatten().copied());
+    (lo.x <= hi.x).then_some((lo, hi))
 }
 
 #[cfg(test)]

@@ -67,12 +67,8 @@ fn part_sequence(groups: &[SvgGroup]) -> Vec<usize> {
 
 /// Where a part is, for ordering the parts: the middle of its paths' bounds.
 fn anchor(g: &SvgGroup) -> DVec2 {
-    let mut lo = DVec2::splat(f64::INFINITY);
-    let mut hi = DVec2::splat(f64::NEG_INFINITY);
-    for p in g.cut.iter().chain(&g.slits).chain(&g.engrave).flatten() {
-        lo = lo.min(*p);
-        hi = hi.max(*p);
-    }
+    let paths = g.cut.iter().chain(&g.slits).chain(&g.engrave);
+    let (lo, hi) = platener_geom::boxes::bounds2(paths.flatten().copied());
     if lo.x.is_finite() { (lo + hi) / 2.0 } else { DVec2::ZERO }
 }
 

@@ -139,9 +139,11 @@ fn nesting_depth(vertices: &[DVec3], triangles: &[[u32; 3]], bodies: &[Vec<u32>]
     let boxes: Vec<(DVec3, DVec3)> = bodies
         .iter()
         .map(|faces| {
-            faces.iter().flat_map(|&f| triangles[f as usize]).fold(
-                (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-                |(lo, hi), v| (lo.min(vertices[v as usize]), hi.max(vertices[v as usize])),
+            platener_geom::boxes::bounds3(
+                faces
+                    .iter()
+                    .flat_map(|&f| triangles[f as usize])
+                    .map(|v| vertices[v as usize]),
             )
         })
         .collect();

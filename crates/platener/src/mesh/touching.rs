@@ -20,10 +20,7 @@ const MAX_TESTS: usize = 20_000_000;
 type Bounds = (DVec3, DVec3);
 
 fn bounds_of(points: impl Iterator<Item = DVec3>) -> Bounds {
-    points.fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(p), hi.max(p)),
-    )
+    platener_geom::boxes::bounds3(points)
 }
 
 fn overlap(a: &Bounds, b: &Bounds, pad: f64) -> Option<Bounds> {

@@ -88,15 +88,7 @@ pub(super) fn find(
 /// The model-space box of each shape's outline.
 fn model_boxes(list: &[Shape]) -> Vec<(DVec3, DVec3)> {
     list.iter()
-        .map(|s| {
-            s.polygon.outer.iter().fold(
-                (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-                |(lo, hi), p| {
-                    let q = s.frame.to_model_2d(*p);
-                    (lo.min(q), hi.max(q))
-                },
-            )
-        })
+        .map(|s| platener_geom::boxes::bounds3(s.polygon.outer.iter().map(|p| s.frame.to_model_2d(*p))))
         .collect()
 }
 

@@ -39,10 +39,7 @@ pub(crate) fn under_limit(mesh: Indexed, limit: usize) -> (Indexed, Option<Strin
 }
 
 fn bounds(points: &[DVec3]) -> (DVec3, DVec3) {
-    points.iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-    )
+    platener_geom::boxes::bounds3(points.iter().copied())
 }
 
 /// Merges the vertices of each cell of size `cell` (from `lo`) into their mean.

@@ -104,10 +104,7 @@ fn planes(triangles: &[[DVec3; 3]]) -> Vec<Plane> {
 }
 
 fn bounds<'a>(points: impl Iterator<Item = &'a DVec2>) -> (DVec2, DVec2) {
-    points.fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-    )
+    platener_geom::boxes::bounds2(points.copied())
 }
 
 fn boxes_overlap(a: (DVec2, DVec2), b: (DVec2, DVec2)) -> bool {
