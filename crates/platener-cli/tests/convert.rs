@@ -344,6 +344,76 @@ fn sub_reports_and_zips_are_the_same_every_run() {
     assert_eq!(sub["report"]["part_count"], 5);
 }
 
+/// Issue 33: the README's synopsis names every flag each command's `--help` lists (long or
+/// short form), so the two cannot drift apart.
+#[test]
+fn the_readme_synopsis_has_every_flag_of_every_command() {
+    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md"))
+        .expect("README readable");
+    let start = readme.find("## Using the command line").expect("the synopsis section");
+    let block = &readme[start..];
+    let block = &block[block.find("```").expect("its code block") + 3..];
+    let block = &block[..block.find("```").expect("its end")];
+    // Each command's synopsis: its line and the indented lines after it.
+    let mut synopsis: Vec<(String, String)> = Vec::new();
+    for line in block.lines() {
+        if let Some(rest) = line.strip_prefix("platener ") {
+            let command = rest.split_whitespace().next().unwrap_or_default().to_string();
+            synopsis.push((command, line.to_string()));
+        } else if line.starts_with(' ')
+            && let Some(last) = synopsis.last_mut()
+        {
+            last.1.push(' ');
+            last.1.push_str(line);
+        }
+    }
+    let names = |text: &str| -> Vec<String> {
+        text.split(|c: char| !(c.is_ascii_alphanumeric() || c == '-'))
+            .filter(|w| {
+                w.starts_with('-')
+                    && w.trim_start_matches('-')
+                        .chars()
+                        .next()
+                        .is_some_and(|c| c.is_ascii_alphabetic())
+            })
+            .map(str::to_string)
+            .collect()
+    };
+    let commands = [
+        "convert",
+        "inspect",
+        "verify",
+        "scene",
+        "test-strip",
+        "hinge-test",
+        "serve",
+        "worker",
+        "completions",
+    ];
+    for command in commands {
+        let (_, text) = synopsis
+            .iter()
+            .find(|(c, _)| c == command)
+            .unwrap_or_else(|| panic!("the README has no synopsis of {command}"));
+        let written = names(text);
+        let help = run(platener().args([command, "--help"])).stdout;
+        for line in help.lines().map(str::trim_start).filter(|l| l.starts_with('-')) {
+            let flags = names(line.split("  ").next().unwrap_or_default());
+            let flags: Vec<&String> = flags
+                .iter()
+                .filter(|f| f.as_str() != "--help" && f.as_str() != "-h")
+                .collect();
+            if flags.is_empty() {
+                continue;
+            }
+            assert!(
+                flags.iter().any(|f| written.contains(f)),
+                "the README's synopsis of {command} lacks {flags:?}"
+            );
+        }
+    }
+}
+
 #[test]
 fn help_completions_and_version() {
     for sub in ["convert", "inspect", "test-strip", "verify", "scene", "completions"] {
