@@ -113,12 +113,7 @@ mod tests {
     use glam::DVec2;
 
     fn rect(w: f64, h: f64) -> Polygon {
-        let mut p = Polygon::new(vec![
-            DVec2::new(0.0, 0.0),
-            DVec2::new(w, 0.0),
-            DVec2::new(w, h),
-            DVec2::new(0.0, h),
-        ]);
+        let mut p = Polygon::new(platener_geom::polygon::rect(0.0, 0.0, w, h));
         p.normalize_orientation();
         p
     }

@@ -5,7 +5,8 @@
 //! with fingers on both sides is left a chip under a millimetre wide. After the joints are cut
 //! and the outlines cleaned, every plate and bent part is held to [`Rule`]; one that fails is
 //! left out with its joints, and a warning names it with its size. Dovetail keys are joint
-//! pieces, sized by their joint, and are not held to it.
+//! pieces, sized by their joint, and are not held to it; a key whose every joint went with a
+//! part left out goes too (it would be a loose piece).
 
 use std::collections::BTreeSet;
 
@@ -42,6 +43,11 @@ pub(super) fn leave_out_small(input: &mut PlanInput, min_area: f64, cx: &mut Ste
     let gone: BTreeSet<u32> = small.iter().map(|(_, id, _)| *id).collect();
     input.parts.retain(|p| !gone.contains(&p.id));
     input.joints.retain(|j| !j.parts.iter().any(|id| gone.contains(id)));
+    let loose_keys: Vec<u32> = keys
+        .into_iter()
+        .filter(|k| !input.joints.iter().any(|j| j.parts.contains(k)))
+        .collect();
+    input.parts.retain(|p| !loose_keys.contains(&p.id));
     for group in small.chunk_by(|a, b| a.0 == b.0) {
         let thickness = f64::from_bits(group[0].0);
         let rule = Rule::for_sheet(thickness, 0.0, min_area);
@@ -58,11 +64,21 @@ pub(super) fn leave_out_small(input: &mut PlanInput, min_area: f64, cx: &mut Ste
             ),
         );
     }
+    if !loose_keys.is_empty() {
+        let ids: Vec<String> = loose_keys.iter().map(u32::to_string).collect();
+        cx.warn(
+            WarningKind::CuttingPlan,
+            format!(
+                "the dovetail key(s) {} held only parts left out as too small, and are left out with them",
+                ids.join(", ")
+            ),
+        );
+    }
 }
 
 #[cfg(test)]
 mod tests {
-    use glam::{DVec2, DVec3};
+    use glam::DVec3;
     use platener_geom::{Frame, Polygon};
 
     use super::*;
@@ -70,12 +86,7 @@ mod tests {
     use crate::plan::{Joint, Method, Part, SourceInfo};
 
     fn rect(w: f64, h: f64) -> Polygon {
-        let mut p = Polygon::new(vec![
-            DVec2::new(0.0, 0.0),
-            DVec2::new(w, 0.0),
-            DVec2::new(w, h),
-            DVec2::new(0.0, h),
-        ]);
+        let mut p = Polygon::new(platener_geom::polygon::rect(0.0, 0.0, w, h));
         p.normalize_orientation();
         p
     }
@@ -100,11 +111,14 @@ mod tests {
             Part::plate(3, 3.0, rect(4.0, 4.0), frame),
             // A dovetail key as small: a joint piece.
             Part::plate(4, 3.0, rect(4.0, 4.0), frame),
+            // A key that holds only the chip: loose once the chip goes.
+            Part::plate(5, 3.0, rect(4.0, 4.0), frame),
         ];
         let joints = vec![
             joint([1, 2], JointKind::Finger, 1),
             joint([1, 3], JointKind::Finger, 2),
             joint([1, 4], JointKind::Dovetail, 3),
+            joint([2, 5], JointKind::Dovetail, 4),
         ];
         let source = SourceInfo {
             name: "chips".into(),
@@ -123,7 +137,16 @@ mod tests {
         let labels: Vec<u32> = input.joints.iter().map(|j| j.label).collect();
         assert_eq!(labels, vec![3]);
         let warnings = cx.into_warnings();
-        assert_eq!(warnings.len(), 1, "one warning for the 3 mm parts");
+        assert_eq!(
+            warnings.len(),
+            2,
+            "one warning for the 3 mm parts, one for the loose key"
+        );
+        assert!(
+            warnings[1].message.contains("key(s) 5 held only"),
+            "{}",
+            warnings[1].message
+        );
         let message = &warnings[0].message;
         assert!(message.starts_with("2 part(s) of 3 mm"), "{message}");
         assert!(message.contains("2 (56.0 mm², nowhere 3.0 mm wide)"), "{message}");
