@@ -134,6 +134,18 @@ fn check(input: &PlanInput, plan: &CuttingPlan) {
     let mut seen: BTreeMap<String, usize> = BTreeMap::new();
     for sheet in &parsed.sheets {
         let svg = String::from_utf8(bundle.files[&sheet.file].clone()).expect("utf-8");
+        // Each sheet names its stock (issue 34), as its LightBurn project's notes do.
+        let stem = sheet.file.trim_end_matches(".svg");
+        let stock = format!(
+            "{stem}: {} mm {} sheet, {} × {} mm",
+            sheet.thickness,
+            input.settings.material.name(),
+            sheet.width,
+            sheet.height
+        );
+        assert!(svg.contains(&format!("<title>{stock}</title>")), "{stock}");
+        let project = std::str::from_utf8(&bundle.files[&format!("{stem}.lbrn2")]).expect("utf-8");
+        assert!(project.contains(&format!("Notes=\"{stock}\"")), "{stock}");
         let s = svg_read::parse(&svg);
         assert_eq!((s.width, s.height), (sheet.width, sheet.height), "true size in mm");
         assert_eq!(s.view_box, [0.0, 0.0, sheet.width, sheet.height]);

@@ -71,8 +71,8 @@ pub fn power(material: Material) -> (f64, f64) {
 }
 
 /// The LightBurn project of one sheet `width` × `height` mm holding `groups` (in cut order,
-/// sheet coordinates with y down).
-pub fn sheet_lbrn2(width: f64, height: f64, groups: &[SvgGroup], settings: &CutSettings) -> String {
+/// sheet coordinates with y down); `stock` says which sheet it is, in the project's notes.
+pub fn sheet_lbrn2(width: f64, height: f64, groups: &[SvgGroup], settings: &CutSettings, stock: &str) -> String {
     let (cut_power, engrave_power) = power(settings.material);
     let mut s = String::new();
     s.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
@@ -107,7 +107,12 @@ pub fn sheet_lbrn2(width: f64, height: f64, groups: &[SvgGroup], settings: &CutS
             shape(&mut s, layer, &flip(ring), true);
         }
     }
-    s.push_str("    <Notes ShowOnLoad=\"0\" Notes=\"\"/>\n</LightBurnProject>\n");
+    let _ = writeln!(
+        s,
+        "    <Notes ShowOnLoad=\"0\" Notes=\"{}\"/>",
+        super::svg::xml_escape(stock)
+    );
+    s.push_str("</LightBurnProject>\n");
     s
 }
 
@@ -176,7 +181,13 @@ mod tests {
             slits: vec![vec![DVec2::new(8.0, 2.0), DVec2::new(8.0, 5.0)]],
             engrave: vec![vec![DVec2::new(2.0, 2.0), DVec2::new(3.0, 3.0)]],
         };
-        let text = sheet_lbrn2(200.0, 100.0, std::slice::from_ref(&g), &CutSettings::default());
+        let text = sheet_lbrn2(
+            200.0,
+            100.0,
+            std::slice::from_ref(&g),
+            &CutSettings::default(),
+            "a <b> & c",
+        );
         let cut_indices: Vec<&str> = text
             .match_indices("CutIndex=\"")
             .map(|(at, m)| &text[at + m.len()..at + m.len() + 1])
@@ -202,5 +213,6 @@ mod tests {
         assert!(text.contains("<PrimList>L0 1L1 2L2 3L3 0</PrimList>"), "closed");
         assert!(text.contains("<PrimList>L0 1</PrimList>"), "open");
         assert_eq!(text.matches("<CutSetting").count(), 4);
+        assert!(text.contains("Notes=\"a &lt;b&gt; &amp; c\""), "the stock, escaped");
     }
 }

@@ -112,10 +112,17 @@ fn sheet_files(
         .zip(stems)
         .zip(groups)
         .map(|((sheet, stem), g)| {
-            let svg = sheet_svg(sheet.width, sheet.height, g, &SvgStyle::CUT);
+            let stock = format!(
+                "{stem}: {} mm {} sheet, {} × {} mm",
+                svg::num(sheet.thickness),
+                settings.material.name(),
+                svg::num(sheet.width),
+                svg::num(sheet.height)
+            );
+            let svg = svg::titled(&sheet_svg(sheet.width, sheet.height, g, &SvgStyle::CUT), &stock);
             let dxf_name = format!("{stem}.dxf");
             let dxf = dxf::sheet_dxf(sheet.height, g, &dxf_name)?;
-            let lightburn = lightburn::sheet_lbrn2(sheet.width, sheet.height, g, settings);
+            let lightburn = lightburn::sheet_lbrn2(sheet.width, sheet.height, g, settings, &stock);
             let png_name = format!("{stem}.png");
             let preview = sheet_svg(sheet.width, sheet.height, g, &PREVIEW_STYLE);
             let png = png::render_png(&preview, &png_name)?;

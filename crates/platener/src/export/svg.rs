@@ -64,6 +64,35 @@ pub fn num(v: f64) -> String {
     if s == "-0" { "0".into() } else { s }
 }
 
+/// `text` with XML's five special characters escaped, for attributes and text nodes.
+pub fn xml_escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+/// `svg` (a sheet from [`sheet_svg`]) with a `<title>` naming it, first inside the root: which
+/// stock the sheet is, for the maker and any program that lists it (issue 34). Laser software
+/// draws no title.
+pub fn titled(svg: &str, title: &str) -> String {
+    match svg
+        .find("<svg ")
+        .and_then(|at| svg[at..].find(">\n").map(|end| at + end + 2))
+    {
+        Some(cut) => format!("{}<title>{}</title>\n{}", &svg[..cut], xml_escape(title), &svg[cut..]),
+        None => svg.to_string(),
+    }
+}
+
 fn path_data(points: &[DVec2], closed: bool) -> String {
     let mut d = String::with_capacity(points.len() * 18);
     for (i, p) in points.iter().enumerate() {
