@@ -23,7 +23,11 @@
 //! the classifier's layers) each layer's islands before shafts are placed. Joint pieces
 //! (dovetail keys, shafts) are sized by their joints and exempt.
 
+use std::collections::BTreeSet;
+
 use platener_geom::{GridError, Polygon, offset};
+
+use crate::plan::JointKind;
 
 /// The least area of a part at any thickness, mm² (the plate and stacked settings' default).
 pub const MIN_AREA: f64 = 25.0;
@@ -105,6 +109,16 @@ impl Rule {
     pub fn keeps(&self, p: &Polygon) -> bool {
         matches!(self.check(p), Ok(Ok(())))
     }
+}
+
+/// The dovetail keys among the parts `joints` join (`(kind, [notched part, key])`): joint
+/// pieces, sized by their joints, which the rule exempts like shafts.
+pub fn dovetail_keys(joints: impl IntoIterator<Item = (JointKind, [u32; 2])>) -> BTreeSet<u32> {
+    joints
+        .into_iter()
+        .filter(|(kind, _)| *kind == JointKind::Dovetail)
+        .map(|(_, parts)| parts[1])
+        .collect()
 }
 
 #[cfg(test)]

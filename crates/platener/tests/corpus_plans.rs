@@ -11,9 +11,9 @@
 use std::collections::BTreeSet;
 
 use platener::convert::{Request, Status, convert_all, no_progress};
-use platener::cuttable::{MIN_AREA, Rule};
+use platener::cuttable::{MIN_AREA, Rule, dovetail_keys};
 use platener::method::MethodKind;
-use platener::plan::{JointKind, PartKind};
+use platener::plan::PartKind;
 use platener::verify::Check;
 use platener::{Cancel, Settings, Source, State, samples};
 use platener_geom::{Polygon, validate};
@@ -122,12 +122,7 @@ fn faults(name: &str, state: &State, verification: &platener::verify::Verificati
 /// The plates, bent parts and layers of `plan` smaller than the smallest part at their
 /// thickness; dovetail keys and shafts are joint pieces, sized by their joints.
 fn too_small(name: &str, plan: &platener::plan::Plan) -> Vec<String> {
-    let keys: BTreeSet<u32> = plan
-        .joints
-        .iter()
-        .filter(|j| j.kind == JointKind::Dovetail)
-        .map(|j| j.parts[1])
-        .collect();
+    let keys = dovetail_keys(plan.joints.iter().map(|j| (j.kind, j.parts)));
     plan.parts
         .iter()
         .filter(|p| p.kind != PartKind::Shaft && !keys.contains(&p.id))

@@ -4,9 +4,9 @@
 //! release build and is measured in docs/performance.md; `parts/small.rs` tests what it does
 //! with such chips, and `corpus_plans` holds every corpus plan to the rule.)
 
-use platener::cuttable::{MIN_AREA, Rule};
+use platener::cuttable::{MIN_AREA, Rule, dovetail_keys};
 use platener::method::MethodKind;
-use platener::plan::{JointKind, Part, PartKind};
+use platener::plan::{Part, PartKind};
 use platener::{Cancel, Settings, Source, State, convert, samples};
 
 fn converted(method: MethodKind, name: &str, triangles: Vec<platener::read::Triangle>, t: f64) -> State {
@@ -25,12 +25,7 @@ fn parts(state: &State) -> &[Part] {
 /// Every plate, bent part and layer of `state` (joint pieces left out) keeps to the rule.
 fn assert_none_too_small(what: &str, state: &State) {
     let input = state.parts.as_ref().expect("parts");
-    let keys: Vec<u32> = input
-        .joints
-        .iter()
-        .filter(|j| j.kind == JointKind::Dovetail)
-        .map(|j| j.parts[1])
-        .collect();
+    let keys = dovetail_keys(input.joints.iter().map(|j| (j.kind, j.parts)));
     for part in input
         .parts
         .iter()

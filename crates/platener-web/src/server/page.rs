@@ -38,20 +38,9 @@ fn index_html() -> String {
         .unwrap_or_default()
 }
 
-/// `text` with `& < > " '` escaped for HTML.
+/// `text` with `& < > " '` escaped for HTML: the library's one escaping.
 pub fn escape_html(text: &str) -> String {
-    let mut s = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => s.push_str("&amp;"),
-            '<' => s.push_str("&lt;"),
-            '>' => s.push_str("&gt;"),
-            '"' => s.push_str("&quot;"),
-            '\'' => s.push_str("&#39;"),
-            c => s.push(c),
-        }
-    }
-    s
+    platener::export::svg::xml_escape(text)
 }
 
 /// `GET /`.

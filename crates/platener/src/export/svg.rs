@@ -64,7 +64,8 @@ pub fn num(v: f64) -> String {
     if s == "-0" { "0".into() } else { s }
 }
 
-/// `text` with XML's five special characters escaped, for attributes and text nodes.
+/// `text` with `& < > " '` escaped, for XML's attributes and text nodes and for HTML alike
+/// (`'` as `&#39;`, which both read; the web page escapes with it too).
 pub fn xml_escape(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
@@ -73,7 +74,7 @@ pub fn xml_escape(text: &str) -> String {
             '<' => out.push_str("&lt;"),
             '>' => out.push_str("&gt;"),
             '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
+            '\'' => out.push_str("&#39;"),
             _ => out.push(c),
         }
     }

@@ -13,18 +13,13 @@ use std::collections::BTreeSet;
 use rayon::prelude::*;
 
 use crate::context::{StepContext, WarningKind};
-use crate::cuttable::Rule;
-use crate::plan::{JointKind, PartKind, PlanInput};
+use crate::cuttable::{Rule, dovetail_keys};
+use crate::plan::{PartKind, PlanInput};
 
 /// Leaves out the plates and bent parts of `input` smaller than the smallest part (at least
 /// `min_area` mm² as well), with their joints, and says which in one warning per thickness.
 pub(super) fn leave_out_small(input: &mut PlanInput, min_area: f64, cx: &mut StepContext<'_>) {
-    let keys: BTreeSet<u32> = input
-        .joints
-        .iter()
-        .filter(|j| j.kind == JointKind::Dovetail)
-        .map(|j| j.parts[1])
-        .collect();
+    let keys = dovetail_keys(input.joints.iter().map(|j| (j.kind, j.parts)));
     // (thickness bits, part id, what is wrong): thickness first, so each sheet's parts group.
     let mut small: Vec<(u64, u32, String)> = input
         .parts
@@ -83,7 +78,7 @@ mod tests {
 
     use super::*;
     use crate::context::Cancel;
-    use crate::plan::{Joint, Method, Part, SourceInfo};
+    use crate::plan::{Joint, JointKind, Method, Part, SourceInfo};
 
     fn rect(w: f64, h: f64) -> Polygon {
         let mut p = Polygon::new(platener_geom::polygon::rect(0.0, 0.0, w, h));
