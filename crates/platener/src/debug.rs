@@ -115,6 +115,7 @@ fn snapshot(state: &State, step: StepId) -> Option<Value> {
         StepId::Bends => to(state.bends.as_ref()),
         StepId::Joints => to(state.joints.as_ref()),
         StepId::Stacked => to(state.stacked.as_ref()),
+        StepId::Interlocked => to(state.interlocked.as_ref()),
         StepId::Relief => to(state.relief.as_ref()),
         StepId::Layers => to(state.layers.as_ref()),
         // The parts snapshot has no serde form: its summary lists it.
@@ -232,7 +233,7 @@ fn summary(state: &State, step: StepId) -> Value {
         StepId::Plates => plates_summary(state),
         StepId::Bends => bends_summary(state),
         StepId::Joints => joints_summary(state),
-        StepId::Parts | StepId::Stacked | StepId::Relief | StepId::Layers => {
+        StepId::Parts | StepId::Stacked | StepId::Interlocked | StepId::Relief | StepId::Layers => {
             state.parts.as_deref().map_or(Value::Null, parts_summary)
         }
         StepId::Kerf | StepId::Labels | StepId::Sheets | StepId::Export => cutting_summary(state),

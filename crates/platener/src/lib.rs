@@ -17,6 +17,7 @@
 //! | `bends` | [`bends`] | plates meeting at shallow turns made one bent part |
 //! | `joints` | [`joints`] | the plate graph and its joints |
 //! | `parts` / `stacked` | [`parts`] / [`stacked`] | the parts to cut (plate / stacked method) |
+//! | `interlocked` | [`interlocked`] | upright slices crossing in halved slots as parts to cut (interlocked method) |
 //! | `relief` | [`relief`] | textures the classifier flattened, engraved on their plates |
 //! | `layers` | [`layers`] | what no plate builds among the classifier's plates, as stacked layers |
 //! | `kerf`, `labels`, `sheets`, `export` | [`kerf`] … [`export`] | the cutting plan and its ZIP |
@@ -59,6 +60,7 @@ pub mod error;
 pub mod export;
 pub mod hinge;
 pub mod inspect;
+pub mod interlocked;
 pub mod joints;
 pub mod kerf;
 pub mod labels;

@@ -467,6 +467,63 @@ pub fn sphere(center: DVec3, radius: f64, segments: usize, rings: usize) -> Vec<
     out
 }
 
+/// An ellipsoid around `center` with semi-axes `radii` along x, y and z: [`sphere`] stretched
+/// (`segments` meridians, `rings` bands), closed and wound outwards.
+pub fn ellipsoid(center: DVec3, radii: DVec3, segments: usize, rings: usize) -> Vec<Triangle> {
+    sphere(DVec3::ZERO, 1.0, segments, rings)
+        .into_iter()
+        .map(|t| t.map(|p| center + p * radii))
+        .collect()
+}
+
+/// An ellipsoid "animal" as issue 31 describes the figurines makers bring: a 90 × 44 × 40 mm
+/// body on four legs 10 mm thick reaching 64 mm up into it, a head, a tail and two ears, each its own
+/// closed shell overlapping the body (as figurines are often modelled), 128 mm from tail to
+/// snout and 94 mm tall, standing on z = 0.
+pub fn animal() -> Vec<Triangle> {
+    let e = |c: [f64; 3], r: [f64; 3]| ellipsoid(DVec3::from_array(c), DVec3::from_array(r), 32, 16);
+    let mut out = e([0.0, 0.0, 60.0], [45.0, 22.0, 20.0]);
+    for (x, y) in [(-28.0, -12.0), (-28.0, 12.0), (28.0, -12.0), (28.0, 12.0)] {
+        out.extend(e([x, y, 32.0], [5.0, 5.0, 32.0]));
+    }
+    out.extend(e([48.0, 0.0, 74.0], [14.0, 12.0, 12.0]));
+    out.extend(e([-52.0, 0.0, 66.0], [14.0, 3.0, 3.0]));
+    for y in [-7.0, 7.0] {
+        out.extend(e([52.0, y, 88.0], [3.0, 2.0, 6.0]));
+    }
+    out
+}
+
+/// A boat-like hull with a cabin: a 120 × 36 × 20 mm lens of a hull and a 30 × 20 mm cabin
+/// standing 10 mm above its deck, one shell each, overlapping.
+pub fn hull_with_cabin() -> Vec<Triangle> {
+    let mut out = ellipsoid(DVec3::new(0.0, 0.0, 10.0), DVec3::new(60.0, 18.0, 10.0), 48, 24);
+    out.extend(cuboid(DVec3::new(-20.0, -10.0, 12.0), DVec3::new(10.0, 10.0, 30.0)));
+    out
+}
+
+/// A vase with a handle: a 50 mm wide, 80 mm tall rounded body and a ring handle (12 mm
+/// across the middle of its 3 mm thick tube) standing on its side, overlapping the body.
+pub fn vase_with_handle() -> Vec<Triangle> {
+    let mut out = ellipsoid(DVec3::new(0.0, 0.0, 40.0), DVec3::new(25.0, 25.0, 40.0), 48, 24);
+    out.extend(torus(DVec3::new(28.0, 0.0, 45.0), DVec3::Y, 12.0, 3.0, 48, 12));
+    out
+}
+
+/// The organic samples of issue 31 (file name, triangles): the animal, the hull with its
+/// cabin, a torus standing on its rim and the vase with its handle.
+pub fn organic_samples() -> Vec<(&'static str, Vec<Triangle>)> {
+    vec![
+        ("animal.stl", animal()),
+        ("hull_with_cabin.stl", hull_with_cabin()),
+        (
+            "torus.stl",
+            torus(DVec3::new(0.0, 0.0, 55.0), DVec3::Y, 40.0, 15.0, 64, 24),
+        ),
+        ("vase_with_handle.stl", vase_with_handle()),
+    ]
+}
+
 /// A torus around `center` whose ring turns about the unit `axis`: tube centre `major` from
 /// the axis, tube radius `minor`, `segments` steps round the ring and `sides` round the tube
 /// (`2·segments·sides` triangles), closed and wound outwards. With `axis` = +y it stands on

@@ -250,6 +250,17 @@ impl Default for StackedSettings {
     }
 }
 
+/// The interlocked method (two families of upright slices in halved slots).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct InterlockedSettings {
+    /// Distance between neighbouring slices of a family, mm; `None` for about ten slices
+    /// along the longest horizontal extent, at least three sheet thicknesses apart.
+    pub spacing: Option<f64>,
+}
+
+/// The range of the slice spacing, mm.
+pub const SLICE_SPACING_RANGE: (f64, f64) = (2.0, 1000.0);
+
 /// All settings of a conversion.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Settings {
@@ -273,6 +284,8 @@ pub struct Settings {
     pub features: Features,
     /// The stacked method (layers and shafts).
     pub stacked: StackedSettings,
+    /// The interlocked method (slice spacing).
+    pub interlocked: InterlockedSettings,
     /// Joints of the plate method (finger width, style; the style defaults by material).
     pub joints: crate::joints::JointSettings,
     /// Bent parts of the plate method (`--bend`).
@@ -296,6 +309,7 @@ impl Default for Settings {
             plates: PlateSettings::default(),
             features: Features::Engrave,
             stacked: StackedSettings::default(),
+            interlocked: InterlockedSettings::default(),
             joints: crate::joints::JointSettings::default(),
             bending: Bending::Auto,
             classify_exact_faces: false,
@@ -400,6 +414,12 @@ impl Settings {
             return bad("straight tolerance", format!("{t} is not a distance ≥ 0 mm"));
         }
         self.cut.validate()?;
+        if let Some(s) = self.interlocked.spacing {
+            let (low, high) = SLICE_SPACING_RANGE;
+            if !(s.is_finite() && (low..=high).contains(&s)) {
+                return bad("slice-spacing", format!("{s} mm must be from {low} to {high} mm"));
+            }
+        }
         let p = &self.plates;
         if !(p.min_factor.is_finite() && p.min_factor > 0.0 && p.max_factor.is_finite() && p.max_factor > p.min_factor)
         {

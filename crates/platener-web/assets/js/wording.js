@@ -53,6 +53,7 @@ export const GLOSSARY = [
   ['jimjoint', 'Fingers that widen towards their tip and snap behind the other part: they hold in card and paper, which give way.'],
   ['halved', 'Two plates crossing, each slotted half way so they slide into each other.'],
   ['shaft', 'A strip cut from a sheet that goes through slots in stacked layers and holds them in line.'],
+  ['other family', 'The interlocked method stands two families of slices at right angles: A across the model’s longer side, B across the other. B slices stand first; each A slice is lowered onto them, crossing each in a slot.'],
   ['island', 'A separate piece of one layer or plate; one too small or thin to cut is left out.'],
   ['neck', 'A narrow part of an outline that would break when cut; it is widened or the part is split.'],
   ['living hinge', 'Rows of slits that let a wood sheet bend; the part is cut flat and bent by hand.'],

@@ -1,7 +1,10 @@
-//! Is a point inside the model? Ray parity, voted over three axes.
+//! Is a point inside the model? Ray parity and winding, voted over three axes.
 //!
 //! A ray from the point along +x, +y and +z each counts the triangles it crosses; an odd count
-//! says inside. On a closed surface the three rays agree; on an open or non-manifold one
+//! says inside. So does a winding of 2 or more (crossings counted +1 where the surface faces
+//! the ray's way, −1 otherwise): where two outward-wound shells overlap (a figurine's leg
+//! modelled into its body, a cabin on a hull, common in printable models) the parity is even
+//! but the point is inside both. On a closed surface the three rays agree; on an open or non-manifold one
 //! (many real files) they may not, and the majority decides, which is right far more often
 //! than one ray alone. Rays meeting an edge exactly are ignored: the points tested are random,
 //! so that happens with probability zero.
@@ -114,7 +117,8 @@ impl AxisGrid {
         (clamp(c.x), clamp(c.y))
     }
 
-    /// Whether the ray from `p` along +axis crosses the surface an odd number of times.
+    /// Whether the ray from `p` along +axis crosses the surface an odd number of times, or
+    /// winds round it twice or more.
     fn odd(&self, vertices: &[DVec3], triangles: &[[u32; 3]], p: DVec3) -> bool {
         let q = across(p, self.axis);
         let (lo, hi) = (self.min, self.min + self.cell * self.n as f64);
@@ -123,30 +127,34 @@ impl AxisGrid {
         }
         let (cx, cy) = self.cell_of(q);
         let k = cy * self.n + cx;
-        let mut odd = false;
+        let (mut odd, mut winding) = (false, 0i64);
         for &t in &self.items[self.starts[k] as usize..self.starts[k + 1] as usize] {
             let corners = triangles[t as usize].map(|i| vertices[i as usize]);
-            if crosses(corners, p, q, self.axis) {
+            if let Some(sign) = crosses(corners, p, q, self.axis) {
                 odd = !odd;
+                winding += sign;
             }
         }
-        odd
+        odd || winding >= 2
     }
 }
 
 /// Whether the ray from `p` (whose cross-axis coordinates are `q`) along +axis passes through
-/// the triangle's interior.
-fn crosses(corners: [DVec3; 3], p: DVec3, q: DVec2, axis: usize) -> bool {
+/// the triangle's interior: `Some(1)` when the triangle faces along the ray (the ray leaves
+/// the body there), `Some(-1)` when it faces against it.
+fn crosses(corners: [DVec3; 3], p: DVec3, q: DVec2, axis: usize) -> Option<i64> {
     let [a, b, c] = corners.map(|v| across(v, axis) - q);
     let (e0, e1, e2) = (a.perp_dot(b), b.perp_dot(c), c.perp_dot(a));
     let inside = (e0 > 0.0 && e1 > 0.0 && e2 > 0.0) || (e0 < 0.0 && e1 < 0.0 && e2 < 0.0);
     if !inside {
-        return false;
+        return None;
     }
     // Barycentric weights of q in the projected triangle give the crossing's height.
     let sum = e0 + e1 + e2;
     let h = (corners[2][axis] * e0 + corners[0][axis] * e1 + corners[1][axis] * e2) / sum;
-    h > p[axis]
+    // The projected winding is the sign of the normal's component along the axis ((y, z),
+    // (z, x), (x, y) are right-handed with x, y, z).
+    (h > p[axis]).then_some(if e0 > 0.0 { 1 } else { -1 })
 }
 
 impl<'a> Inside<'a> {
@@ -170,5 +178,37 @@ impl<'a> Inside<'a> {
             .filter(|g| g.odd(self.vertices, self.triangles, p))
             .count();
         votes >= 2
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::samples::cuboid;
+
+    fn indexed(tris: &[crate::read::Triangle]) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+        let vertices: Vec<DVec3> = tris.iter().flatten().copied().collect();
+        let triangles = (0..tris.len() as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+        (vertices, triangles)
+    }
+
+    #[test]
+    fn where_two_shells_overlap_is_inside_and_a_cavity_is_not() {
+        // Two overlapping cubes, each its own outward shell: x 0–20 and x 10–30.
+        let mut tris = cuboid(DVec3::ZERO, DVec3::splat(20.0));
+        tris.extend(cuboid(DVec3::new(10.0, 0.0, 0.0), DVec3::new(30.0, 20.0, 20.0)));
+        // A cavity: a small cube wound inwards inside the first one's own part.
+        let cavity: Vec<_> = cuboid(DVec3::new(2.0, 2.0, 2.0), DVec3::new(6.0, 6.0, 6.0))
+            .into_iter()
+            .map(|[a, b, c]| [a, c, b])
+            .collect();
+        tris.extend(cavity);
+        let (v, t) = indexed(&tris);
+        let inside = Inside::new(&v, &t);
+        let at = |x: f64, y: f64, z: f64| inside.contains(DVec3::new(x, y, z) + DVec3::new(0.013, 0.017, 0.019));
+        assert!(at(15.0, 10.0, 10.0), "in both");
+        assert!(at(8.0, 10.0, 10.0) && at(25.0, 10.0, 10.0), "in one");
+        assert!(!at(4.0, 4.0, 4.0), "in the cavity");
+        assert!(!at(35.0, 10.0, 10.0) && !at(15.0, 25.0, 10.0), "outside");
     }
 }

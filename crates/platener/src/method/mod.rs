@@ -9,6 +9,7 @@
 //! |---|---|
 //! | plate | foundation, `plates`, `joints`, `parts` (plates with joints → parts) |
 //! | stacked | foundation without welding, `stacked` (layers and shafts → parts) |
+//! | interlocked | foundation without welding, `interlocked` (two families of upright slices in halved slots → parts) |
 //! | classifier | read to mesh, `classify` (primitives → planar groups), then as plate, then `relief` (textures engraved) and `layers` (spheres and freeforms stacked among the plates) |
 
 use serde::Serialize;
@@ -27,11 +28,19 @@ pub enum MethodKind {
     /// Primitives found by RANSAC (planes, cylinders, cones) made into plates and bent
     /// parts: the plate method for textured and noisy models.
     Classifier,
+    /// Two families of upright slices crossing at right angles in halved slots: organic
+    /// models held together without glue.
+    Interlocked,
 }
 
 impl MethodKind {
     /// Every method, in the order `--method all` runs them.
-    pub const ALL: [MethodKind; 3] = [MethodKind::Plate, MethodKind::Stacked, MethodKind::Classifier];
+    pub const ALL: [MethodKind; 4] = [
+        MethodKind::Plate,
+        MethodKind::Stacked,
+        MethodKind::Classifier,
+        MethodKind::Interlocked,
+    ];
 
     /// The name used in file names and reports.
     pub fn name(self) -> &'static str {
@@ -39,6 +48,7 @@ impl MethodKind {
             MethodKind::Plate => "plate",
             MethodKind::Stacked => "stacked",
             MethodKind::Classifier => "classifier",
+            MethodKind::Interlocked => "interlocked",
         }
     }
 
@@ -47,7 +57,10 @@ impl MethodKind {
     /// fraction of a sheet merges vertices across it and bends the faces around it), so both
     /// merge exact duplicates only.
     pub fn adjust(self, mut settings: Settings) -> Settings {
-        if matches!(self, MethodKind::Stacked | MethodKind::Classifier) {
+        if matches!(
+            self,
+            MethodKind::Stacked | MethodKind::Classifier | MethodKind::Interlocked
+        ) {
             settings.weld = Weld::Off;
         }
         settings
@@ -57,14 +70,14 @@ impl MethodKind {
 impl std::str::FromStr for MethodKind {
     type Err = Error;
 
-    /// `plate`, `stacked` or `classifier`.
+    /// `plate`, `stacked`, `classifier` or `interlocked`.
     fn from_str(s: &str) -> Result<Self> {
         MethodKind::ALL
             .into_iter()
             .find(|m| m.name() == s.trim().to_ascii_lowercase())
             .ok_or_else(|| Error::Setting {
                 name: "method",
-                message: format!("{s:?} is none of plate, stacked, classifier"),
+                message: format!("{s:?} is none of plate, stacked, classifier, interlocked"),
             })
     }
 }

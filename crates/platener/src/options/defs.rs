@@ -8,7 +8,7 @@ use crate::method::MethodKind;
 use crate::plan::{LabelMode, MAX_KERF, MAX_MARGIN, Material, SPACING_RANGE, SheetSize};
 use crate::settings::{
     Bending, Features, MAX_SHEET_SIDE, MAX_THICKNESS, MAX_THICKNESSES, MAX_WELD, MIN_THICKNESS, PlateMode, SCALE_RANGE,
-    StackAxis, Units, Weld,
+    SLICE_SPACING_RANGE, StackAxis, Units, Weld,
 };
 
 type SetResult = Result<(), String>;
@@ -251,6 +251,27 @@ pub static DEFS: &[Def] = &[
         get: |c| json!(axis_name(c.settings.stacked.axis)),
     },
     Def {
+        name: "slice-spacing",
+        key: "slice_spacing",
+        short: None,
+        label: "Slice spacing",
+        group: Group::Method,
+        kind: Kind::Number {
+            unit: "mm",
+            min: SLICE_SPACING_RANGE.0,
+            max: SLICE_SPACING_RANGE.1,
+            auto: Some("about ten slices along the longest side, at least three sheet thicknesses apart"),
+        },
+        help: "The interlocked method's distance between neighbouring slices, mm.",
+        doc: "Closer slices follow the model's shape more closely and reach thin parts (legs, a tail), \
+              at the cost of more parts and slots.",
+        set: |c, v| {
+            c.settings.interlocked.spacing = auto_number(v)?;
+            Ok(())
+        },
+        get: |c| json!(c.settings.interlocked.spacing),
+    },
+    Def {
         name: "weld",
         key: "weld",
         short: None,
@@ -484,6 +505,11 @@ const METHODS: &[Choice] = &[
         value: "classifier",
         label: "Classifier",
         help: "Primitives found in textured or noisy models, made into plates and bent parts.",
+    },
+    Choice {
+        value: "interlocked",
+        label: "Interlocked slices",
+        help: "Upright slices crossing in halved slots, held without glue.",
     },
 ];
 

@@ -58,6 +58,8 @@ pub struct State {
     pub joints: Option<Arc<joints::Joints>>,
     /// Step `stacked`: layers and shafts of the stacked method.
     pub stacked: Option<Arc<stacked::Stack>>,
+    /// Step `interlocked`: the slices and crossings of the interlocked method.
+    pub interlocked: Option<Arc<crate::interlocked::Interlocked>>,
     /// Step `relief`: the classifier's flattened textures engraved on their plates.
     pub relief: Option<Arc<relief::Relief>>,
     /// Step `layers`: the classifier's spheres and freeforms as layers among its plates.
@@ -92,6 +94,7 @@ impl State {
             bends: None,
             joints: None,
             stacked: None,
+            interlocked: None,
             relief: None,
             layers: None,
             parts: None,
@@ -139,6 +142,7 @@ impl State {
             StepId::Joints => self.joints = None,
             StepId::Parts => self.parts = None,
             StepId::Stacked => self.stacked = None,
+            StepId::Interlocked => self.interlocked = None,
             StepId::Relief => self.relief = None,
             StepId::Layers => self.layers = None,
             StepId::Kerf => self.kerf = None,

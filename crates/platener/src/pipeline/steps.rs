@@ -6,6 +6,7 @@ use std::sync::Arc;
 use super::{State, need};
 use crate::context::StepContext;
 use crate::error::Result;
+use crate::interlocked;
 use crate::method::MethodKind;
 use crate::{
     bends, classify, cleanup, coplanar, export, joints, kerf, labels, layers, mesh, parts, plates, read, relief,
@@ -39,6 +40,9 @@ pub enum StepId {
     Parts,
     /// [`stacked`]: layers and shafts as parts to cut (stacked method).
     Stacked,
+    /// [`interlocked`]: upright slices crossing in halved slots as parts to cut
+    /// (interlocked method).
+    Interlocked,
     /// [`relief`]: flattened textures engraved on their plates (classifier method).
     Relief,
     /// [`layers`]: spheres and freeforms as stacked layers among the plates (classifier
@@ -85,7 +89,7 @@ pub const CUTTING_PLAN: [StepId; 4] = [StepId::Kerf, StepId::Labels, StepId::She
 
 impl StepId {
     /// Every step, in pipeline order.
-    pub const ALL: [StepId; 18] = {
+    pub const ALL: [StepId; 19] = {
         let (p, c) = (PLATE, CUTTING_PLAN);
         [
             p[0],
@@ -102,6 +106,7 @@ impl StepId {
             StepId::Relief,
             StepId::Layers,
             StepId::Stacked,
+            StepId::Interlocked,
             c[0],
             c[1],
             c[2],
@@ -124,6 +129,7 @@ impl StepId {
             StepId::Joints => "joints",
             StepId::Parts => "parts",
             StepId::Stacked => "stacked",
+            StepId::Interlocked => "interlocked",
             StepId::Relief => "relief",
             StepId::Layers => "layers",
             StepId::Kerf => "kerf",
@@ -155,6 +161,7 @@ impl StepId {
             StepId::Joints => "making joints",
             StepId::Parts => "shaping the parts",
             StepId::Stacked => "slicing into layers",
+            StepId::Interlocked => "slicing into crossing slices",
             StepId::Relief => "engraving the textures",
             StepId::Layers => "slicing the curved parts",
             StepId::Kerf => "allowing for the laser's cut",
@@ -169,6 +176,7 @@ impl StepId {
         let mut steps = match method {
             MethodKind::Plate => [&PLATE[..], &[StepId::Parts]].concat(),
             MethodKind::Stacked => [&FOUNDATION[..], &[StepId::Stacked]].concat(),
+            MethodKind::Interlocked => [&FOUNDATION[..4], &[StepId::Interlocked]].concat(),
             MethodKind::Classifier => {
                 let (f, p) = (&FOUNDATION, &PLATE);
                 [
@@ -229,13 +237,7 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
             let input = parts::run(model, plates, made, welded, &s, cx)?;
             state.parts = Some(Arc::new(input));
         }
-        StepId::Stacked => {
-            let (model, cleaned) = (need(&state.read, name, "read")?, need(&state.cleanup, name, "cleanup")?);
-            let mesh = need(&state.mesh, name, "mesh")?;
-            let (stack, input) = stacked::run(model, cleaned, mesh, state.coplanar.as_deref(), &s, cx)?;
-            state.stacked = Some(Arc::new(stack));
-            state.parts = Some(Arc::new(input));
-        }
+        StepId::Stacked | StepId::Interlocked => sliced_step(step, state, &s, cx)?,
         StepId::Relief => {
             let (mesh, found) = (
                 need(&state.mesh, name, "mesh")?,
@@ -312,5 +314,23 @@ fn layers_step(state: &mut State, s: &crate::settings::Settings, cx: &mut StepCo
     if let Some(input) = input {
         state.parts = Some(Arc::new(input));
     }
+    Ok(())
+}
+
+/// Steps `stacked` and `interlocked`: the model sliced, the slices as the parts to cut.
+fn sliced_step(step: StepId, state: &mut State, s: &crate::Settings, cx: &mut StepContext<'_>) -> Result<()> {
+    let name = step.name();
+    let (model, cleaned) = (need(&state.read, name, "read")?, need(&state.cleanup, name, "cleanup")?);
+    let mesh = need(&state.mesh, name, "mesh")?;
+    let input = if step == StepId::Stacked {
+        let (stack, input) = stacked::run(model, cleaned, mesh, state.coplanar.as_deref(), s, cx)?;
+        state.stacked = Some(Arc::new(stack));
+        input
+    } else {
+        let (slices, input) = interlocked::run(model, cleaned, mesh, s, cx)?;
+        state.interlocked = Some(Arc::new(slices));
+        input
+    };
+    state.parts = Some(Arc::new(input));
     Ok(())
 }

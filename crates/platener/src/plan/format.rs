@@ -25,6 +25,8 @@ pub enum Method {
     Plate,
     /// Stacked layers on shafts.
     Stacked,
+    /// Upright slices crossing in halved slots (an extension of the spec's two values).
+    Interlocked,
 }
 
 /// The whole plan.json.

@@ -140,7 +140,7 @@ pub(crate) fn fill(loops: &[SliceLoop]) -> Result<Vec<Polygon>, GridError> {
 
 /// Splits polygons into those large enough to cut and those that are not (both normalised,
 /// the first ordered); grid crumbs are neither.
-fn keep_cuttable(polygons: Vec<Polygon>, rule: &Rule) -> Result<(Vec<Polygon>, Vec<Polygon>), GridError> {
+pub(crate) fn keep_cuttable(polygons: Vec<Polygon>, rule: &Rule) -> Result<(Vec<Polygon>, Vec<Polygon>), GridError> {
     let mut kept = Vec::new();
     let mut dropped = Vec::new();
     for mut p in polygons {

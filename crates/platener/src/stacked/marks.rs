@@ -44,7 +44,7 @@ pub(crate) fn tag(
         }
         for &along in alongs {
             let Some(center) = place(
-                polygon,
+                std::slice::from_ref(polygon),
                 &room,
                 reference,
                 along,
@@ -60,10 +60,48 @@ pub(crate) fn tag(
     Ok(None)
 }
 
+/// Text alone (no arrow), reading along x, as large as fits inside `inside` with a
+/// clearance and as near `reference` as it can be: its marks and the box it takes (grown by
+/// the clearance), so later text keeps off it. `None` if nothing fits.
+pub(crate) fn text_near(
+    inside: &[Polygon],
+    text: &str,
+    reference: DVec2,
+) -> Result<Option<(Vec<Mark>, Polygon)>, GridError> {
+    for size in &SIZES[1..] {
+        let (w, h) = (text_width(text, *size) + 2.0 * CLEARANCE, size + 2.0 * CLEARANCE);
+        let room = offset::offset(inside, -(h / 2.0))?;
+        if room.is_empty() {
+            continue;
+        }
+        let Some(c) = place(inside, &room, reference, DVec2::X, w, h)? else {
+            continue;
+        };
+        let origin = c - DVec2::new(text_width(text, *size) / 2.0, -size / 2.0);
+        let marks = place_text(text, *size, origin, DVec2::X)
+            .into_iter()
+            .map(|path| Mark {
+                kind: MarkKind::Label,
+                path,
+                side: None,
+            })
+            .collect();
+        let half = DVec2::new(w, h) / 2.0;
+        let taken = Polygon::new(platener_geom::polygon::rect(
+            c.x - half.x,
+            c.y - half.y,
+            c.x + half.x,
+            c.y + half.y,
+        ));
+        return Ok(Some((marks, taken)));
+    }
+    Ok(None)
+}
+
 /// The centre nearest `reference` of a `w` × `h` box along `along` that lies inside
-/// `polygon`, among grid points of `room` (the centres where its height fits).
+/// `inside`, among grid points of `room` (the centres where its height fits).
 fn place(
-    polygon: &Polygon,
+    inside: &[Polygon],
     room: &[Polygon],
     reference: DVec2,
     along: DVec2,
@@ -88,13 +126,13 @@ fn place(
             .then(a.x.total_cmp(&b.x))
             .then(a.y.total_cmp(&b.y))
     });
-    let inside = candidates.into_iter().filter(|p| room.iter().any(|r| r.contains(*p)));
+    let candidates = candidates.into_iter().filter(|p| room.iter().any(|r| r.contains(*p)));
     let up = along.perp();
-    for c in inside.take(CANDIDATES) {
+    for c in candidates.take(CANDIDATES) {
         let (dx, dy) = (along * (w / 2.0), up * (h / 2.0));
         let mut rect = Polygon::new(vec![c - dx - dy, c + dx - dy, c + dx + dy, c - dx + dy]);
         rect.normalize_orientation();
-        let out = boolean::difference(&[rect], std::slice::from_ref(polygon))?;
+        let out = boolean::difference(&[rect], inside)?;
         if out.iter().map(Polygon::area).sum::<f64>() < OUTSIDE {
             return Ok(Some(c));
         }

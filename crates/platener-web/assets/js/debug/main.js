@@ -249,7 +249,7 @@ async function describe(ui, kind, n) {
       const joints = url('joints') ? (await stepJson(url('joints'))).summary : null;
       showLines(ui.plateInfo, plateLines(n, plates, joints));
     } else {
-      const made = url('parts') || url('stacked');
+      const made = url('parts') || url('stacked') || url('interlocked');
       showLines(ui.plateInfo, partLines(n, made ? (await stepJson(made)).summary : null));
     }
     ui.plateInfo.dataset.selected = `${kind}-${n}`;
