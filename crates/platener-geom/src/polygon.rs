@@ -55,6 +55,28 @@ pub fn perimeter(ring: &[DVec2]) -> f64 {
     (0..n).map(|i| ring[i].distance(ring[(i + 1) % n])).sum()
 }
 
+/// A point strictly inside `ring` (any orientation): the middle of the widest stretch inside
+/// it along the horizontal line through the middle of its height. `None` for a ring with no
+/// area.
+pub fn interior_point(ring: &[DVec2]) -> Option<DVec2> {
+    let (lo, hi) = bounds_of(ring.iter().copied());
+    // Off the middle by an odd fraction, so the line misses vertices of regular shapes.
+    let y = lo.y + (hi.y - lo.y) * 0.500_173;
+    let mut xs: Vec<f64> = Vec::new();
+    for i in 0..ring.len() {
+        let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
+        if (a.y <= y) != (b.y <= y) {
+            xs.push(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+        }
+    }
+    xs.sort_by(f64::total_cmp);
+    xs.chunks_exact(2)
+        .map(|pair| (pair[1] - pair[0], pair))
+        .filter(|(width, _)| *width > 0.0)
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, pair)| DVec2::new((pair[0] + pair[1]) / 2.0, y))
+}
+
 /// Even-odd point-in-ring test (the boundary counts as either side).
 pub fn ring_contains(ring: &[DVec2], p: DVec2) -> bool {
     let n = ring.len();
@@ -238,6 +260,28 @@ pub fn remove_straight_vertices(ring: &[DVec2], tolerance: f64) -> Ring {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn an_interior_point_lies_inside_a_u_and_a_clockwise_square() {
+        // A U open at the top: the middle line crosses both arms; the wider arm's middle wins.
+        let u = vec![
+            DVec2::new(0.0, 0.0),
+            DVec2::new(30.0, 0.0),
+            DVec2::new(30.0, 20.0),
+            DVec2::new(26.0, 20.0),
+            DVec2::new(26.0, 4.0),
+            DVec2::new(6.0, 4.0),
+            DVec2::new(6.0, 20.0),
+            DVec2::new(0.0, 20.0),
+        ];
+        let p = interior_point(&u).expect("a point");
+        assert!(ring_contains(&u, p) && (p.x - 3.0).abs() < 1e-9, "{p}");
+        let mut square = rect(0.0, 0.0, 10.0, 10.0);
+        square.reverse();
+        let q = interior_point(&square).expect("a point");
+        assert!((q.x - 5.0).abs() < 1e-9 && ring_contains(&square, q), "{q}");
+        assert_eq!(interior_point(&[DVec2::ZERO, DVec2::X]), None);
+    }
+
     #[test]
     fn straight_runs_go_spikes_stay() {
         let ring = vec![

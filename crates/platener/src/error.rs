@@ -102,6 +102,23 @@ pub enum ModelProblem {
         /// The stack's height, mm.
         height: f64,
     },
+    /// No slice of the interlocked method was large enough to cut and held.
+    #[error(
+        "no slice is large enough to cut and held by another ({pieces} piece(s) under {min_area} mm², thinner than \
+         {min_width} mm or crossing no slice; slices {spacing:.1} mm apart): the interlocked method suits solid \
+         shapes; for thin walls use the plate method, or try a smaller `slice-spacing`, thinner sheets (`thickness`) \
+         or a larger `scale`"
+    )]
+    NoSlice {
+        /// Pieces left out.
+        pieces: usize,
+        /// The smallest piece area kept, mm².
+        min_area: f64,
+        /// The narrowest piece kept, mm.
+        min_width: f64,
+        /// The slice spacing, mm.
+        spacing: f64,
+    },
     /// The classifier could not classify the model.
     #[error("{0}; use the plate or stacked method")]
     Classify(crate::classify::ClassifyError),

@@ -157,7 +157,39 @@ fn crosses(corners: [DVec3; 3], p: DVec3, q: DVec2, axis: usize) -> Option<i64> 
     (h > p[axis]).then_some(if e0 > 0.0 { 1 } else { -1 })
 }
 
+impl AxisGrid {
+    /// How many times the whole line through `p` along the axis crosses the surface below
+    /// `p` and above it.
+    fn crossings(&self, vertices: &[DVec3], triangles: &[[u32; 3]], p: DVec3) -> [usize; 2] {
+        let q = across(p, self.axis);
+        let (lo, hi) = (self.min, self.min + self.cell * self.n as f64);
+        if q.x < lo.x || q.y < lo.y || q.x > hi.x || q.y > hi.y {
+            return [0, 0];
+        }
+        let (cx, cy) = self.cell_of(q);
+        let k = cy * self.n + cx;
+        let mut counts = [0, 0];
+        let mut below = p;
+        below[self.axis] = f64::NEG_INFINITY;
+        for &t in &self.items[self.starts[k] as usize..self.starts[k + 1] as usize] {
+            let corners = triangles[t as usize].map(|i| vertices[i as usize]);
+            if crosses(corners, below, q, self.axis).is_some() {
+                let above = crosses(corners, p, q, self.axis).is_some();
+                counts[usize::from(above)] += 1;
+            }
+        }
+        counts
+    }
+}
+
 impl<'a> Inside<'a> {
+    /// How many times the line through `p` along model axis `axis` (0, 1, 2 for x, y, z)
+    /// crosses the surface before `p` and after it: whether a gap in a section at `p` is
+    /// enclosed by the model along that axis.
+    pub(crate) fn crossings(&self, p: DVec3, axis: usize) -> [usize; 2] {
+        self.grids[axis].crossings(self.vertices, self.triangles, p)
+    }
+
     /// The grids for this mesh.
     pub(crate) fn new(vertices: &'a [DVec3], triangles: &'a [[u32; 3]]) -> Self {
         Self {

@@ -122,11 +122,11 @@ pub fn run(
     if made.pieces.is_empty() {
         return Err(Error::model(
             &model.name,
-            ModelProblem::NoLayer {
-                islands: made.left_out.len(),
+            ModelProblem::NoSlice {
+                pieces: made.left_out.len(),
                 min_area: rule.min_area,
                 min_width: rule.min_width,
-                height: spacing,
+                spacing,
             },
         ));
     }

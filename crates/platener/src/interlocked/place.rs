@@ -10,10 +10,12 @@
 //! thicknesses apart, so that a slice's neighbouring slots leave material between them.
 
 use glam::DVec3;
+use platener_geom::polygon::interior_point;
 use platener_geom::{Frame, GridError, Polygon, boolean};
 use rayon::prelude::*;
 use serde::Serialize;
 
+use crate::assembly::Inside;
 use crate::cuttable::Rule;
 use crate::mesh::Mesh;
 use crate::stacked::{AxisChoice, SlicePlan, Sliced, fill, keep_cuttable, slice};
@@ -90,6 +92,25 @@ pub fn families(mesh: &Mesh, spacing: f64) -> Option<[Family; 2]> {
     Some([family('A', first), family('B', second)])
 }
 
+/// `material` of slice `k` of `family` with the holes that are the model's hollows filled:
+/// a hole whose middle has the model's surface on both sides along the family's normal is
+/// enclosed (a hull below its deck, a box's inside), and a slice of a hollow model would
+/// otherwise be a ring of walls too thin to cut. A hole open along the normal (a torus's
+/// middle, a handle's loop) is the model's shape and stays.
+fn fill_cavities(material: Vec<Polygon>, family: &Family, k: usize, inside: &Inside<'_>) -> Vec<Polygon> {
+    let plane = family.plan.frame.shifted(family.plan.plane(k));
+    let axis = if family.plan.frame.n.x.abs() > 0.5 { 0 } else { 1 };
+    material
+        .into_iter()
+        .map(|mut p| {
+            p.holes.retain(|hole| {
+                interior_point(hole).is_none_or(|q| inside.crossings(plane.to_model_2d(q), axis).contains(&0))
+            });
+            p
+        })
+        .collect()
+}
+
 /// The bounds of the vertices triangles use.
 fn extent(mesh: &Mesh) -> (DVec3, DVec3) {
     let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
@@ -125,6 +146,7 @@ pub fn sections(
 ) -> Result<Sections, GridError> {
     let mut out = Sections::default();
     let face = (thickness / 2.0 - FACE_INSET).max(0.0);
+    let inside = Inside::new(&mesh.vertices, &mesh.triangles);
     for (f, family) in families.iter().enumerate() {
         let planes: Vec<Sliced> = [0.0, -face, face]
             .into_iter()
@@ -143,7 +165,7 @@ pub fn sections(
                 for other in &planes[1..] {
                     material = boolean::intersection(&material, &fill(&other.loops[k])?)?;
                 }
-                keep_cuttable(material, rule)
+                keep_cuttable(fill_cavities(material, family, k, &inside), rule)
             })
             .collect::<Result<_, _>>()?;
         for (k, (kept, small)) in per.into_iter().enumerate() {

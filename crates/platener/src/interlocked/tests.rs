@@ -175,3 +175,37 @@ proptest! {
         prop_assert!(made.pieces.iter().all(|p| !p.name.contains('-')));
     }
 }
+
+#[test]
+fn a_hollow_box_is_sliced_solid_and_a_standing_torus_keeps_its_middle() {
+    // A closed 100 × 80 × 60 box with 3 mm walls: its slices' holes are the box's hollow,
+    // enclosed along the slices' normals, so each slice is the whole 80 × 60 (A) or
+    // 100 × 60 (B) rectangle less its slots, not a ring of walls.
+    let (_, boxed) = made(&crate::samples::closed_box(100.0, 80.0, 60.0, 3.0), 3.0, 10.0);
+    // Each slot is 3 mm wide and half the 60 mm height.
+    for p in &boxed.pieces {
+        let full = if p.family == 0 { 80.0 * 60.0 } else { 100.0 * 60.0 };
+        let slots = boxed.crossings.iter().filter(|c| c.parts.contains(&p.part)).count();
+        assert_eq!(slots, if p.family == 0 { 8 } else { 10 }, "{}", p.name);
+        assert!(p.polygon.holes.is_empty(), "{}", p.name);
+        let expected = full - slots as f64 * 3.0 * 30.0;
+        assert!(
+            (p.polygon.area() - expected).abs() < 0.01,
+            "{}: {} against {expected}",
+            p.name,
+            p.polygon.area()
+        );
+    }
+    // A torus standing on its rim (axis y): the B slices (across y) through its middle are
+    // rings, whose hole is open along y and stays (their slots then open it at the top).
+    let tris = torus(DVec3::new(0.0, 0.0, 55.0), DVec3::Y, 40.0, 15.0, 64, 24);
+    let w = weld_soup(&tris, 0.0);
+    let mesh = Mesh::build(w.vertices, &w.triangles, 1e-9);
+    let families = families(&mesh, 10.0).expect("triangles");
+    assert_eq!(families[1].plan.frame.n.abs(), DVec3::Y);
+    let cut = sections(&mesh, &families, 3.0, 1e-6, &Rule::for_sheet(3.0, 0.0, 0.0)).expect("grid");
+    for (k, islands) in cut.islands[1].iter().enumerate() {
+        assert_eq!(islands.len(), 1, "B{}", k + 1);
+        assert_eq!(islands[0].holes.len(), 1, "B{}", k + 1);
+    }
+}
