@@ -6,7 +6,8 @@
  * joined to nothing placed (a separate piece of the model) starts a new group, so every part
  * appears exactly once.
  */
-export function assemblyOrder(partIds, joints) {
+export function assemblyOrder(partIds, joints, method) {
+  if (method === 'interlocked') return interlockedOrder(partIds, joints);
   const neighbours = new Map(partIds.map((id) => [id, new Set()]));
   for (const j of joints || []) {
     const [a, b] = j.parts || [];
@@ -32,4 +33,15 @@ export function assemblyOrder(partIds, joints) {
     for (const n of neighbours.get(next)) if (left.has(n)) frontier.add(n);
   }
   return order;
+}
+
+/**
+ * The interlocked method's order: every B slice stood up first, then every A slice lowered onto
+ * them (each halved joint names its A slice first); parts in no joint last.
+ */
+function interlockedOrder(partIds, joints) {
+  const a = new Set((joints || []).map((j) => (j.parts || [])[0]));
+  const b = new Set((joints || []).map((j) => (j.parts || [])[1]));
+  const rank = (id) => (b.has(id) && !a.has(id) ? 0 : a.has(id) ? 1 : 2);
+  return [...partIds].sort((x, y) => rank(x) - rank(y) || x - y);
 }

@@ -118,11 +118,12 @@ export function createConversionArea({ state, onGalleryChange }) {
     $('simplified').hidden = !simplified;
   }
 
-  /** Exploded view and assembly player for the final view, from plan.json's joints. */
+  /** Exploded view and assembly player for the final view, from plan.json's joints (and its
+   * method: interlocked slices go B first, then A). */
   function setupFinal() {
     $('explode').value = '0';
     const parts = plan ? plan.parts.map((p) => p.id) : viewer.parts;
-    state.assembly = assemblyOrder(parts, plan ? plan.joints : []);
+    state.assembly = assemblyOrder(parts, plan ? plan.joints : [], plan ? plan.method : null);
     viewer.setOrder(state.assembly);
     const player = $('player');
     player.max = String(state.assembly.length);

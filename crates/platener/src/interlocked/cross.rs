@@ -16,7 +16,7 @@
 use glam::DVec2;
 use platener_geom::polygon::rect;
 use platener_geom::tolerance::CRUMB_AREA;
-use platener_geom::{GridError, Polygon, boolean};
+use platener_geom::{GridError, Polygon, boolean, offset};
 use serde::Serialize;
 
 use super::place::{Family, Sections};
@@ -108,9 +108,23 @@ pub struct Crossed {
     pub too_small: Vec<(usize, usize, f64)>,
 }
 
-/// Cuts the slots of every crossing of `sections` (slot width `thickness`).
-pub fn cut(families: &[Family; 2], sections: &Sections, thickness: f64, rule: &Rule) -> Result<Crossed, GridError> {
+/// Cuts the slots of every crossing of `sections` (slot width `thickness`), never leaving
+/// material narrower than `min_width` (the kerf: a slot wall on a section's edge leaves a
+/// sliver no laser cuts).
+pub fn cut(
+    families: &[Family; 2],
+    sections: &Sections,
+    thickness: f64,
+    min_width: f64,
+    rule: &Rule,
+) -> Result<Crossed, GridError> {
+    let trim = Trim { min_width, rule };
     let mut material = sections.islands.clone();
+    for slices in &mut material {
+        for m in slices.iter_mut() {
+            *m = trim.apply(m)?;
+        }
+    }
     let mut crossings = Vec::new();
     let half = thickness / 2.0;
     for i in 0..families[0].count() {
@@ -127,7 +141,7 @@ pub fn cut(families: &[Family; 2], sections: &Sections, thickness: f64, rule: &R
             }
             let both = shared(&za, &zb);
             let range = both.unwrap_or([a_lo, b_hi]);
-            let (new_a, new_b, split) = best_split(a, b, at, half, range, rule)?;
+            let (new_a, new_b, split) = best_split(a, b, at, half, range, &trim)?;
             material[0][i] = new_a;
             material[1][j] = new_b;
             crossings.push(Crossing {
@@ -163,14 +177,16 @@ fn best_split(
     at: [f64; 2],
     half: f64,
     range: [f64; 2],
-    rule: &Rule,
+    trim: &Trim<'_>,
 ) -> Result<(Vec<Polygon>, Vec<Polygon>, f64), GridError> {
+    let rule = trim.rule;
     let before = [pieces(a, rule), pieces(b, rule)];
     let [lo, hi] = range;
     let mut first = None;
     for share in [0.5, 0.25, 0.75, 0.0, 1.0] {
         let h = lo + share * (hi - lo);
-        let (new_a, new_b) = (slot(a, at[0], half, h, true)?, slot(b, at[1], half, h, false)?);
+        let new_a = trim.apply(&slot(a, at[0], half, h, true)?)?;
+        let new_b = trim.apply(&slot(b, at[1], half, h, false)?)?;
         if pieces(&new_a, rule) == before[0] && pieces(&new_b, rule) == before[1] {
             return Ok((new_a, new_b, h));
         }
@@ -192,6 +208,26 @@ fn slot(material: &[Polygon], x: f64, half: f64, h: f64, below: bool) -> Result<
     let mut cut = boolean::difference(material, &[Polygon::new(rect(x - half, y0, x + half, y1))])?;
     cut.retain(|p| p.area() >= CRUMB_AREA);
     Ok(cut)
+}
+
+/// What slotting keeps of a slice: nothing narrower than `min_width`, judged by `rule`.
+struct Trim<'a> {
+    min_width: f64,
+    rule: &'a Rule,
+}
+
+impl Trim<'_> {
+    /// `material` without its parts narrower than the kerf (an opening a grid step wider, kept
+    /// within `material`: mitred corners of the opening may reach past a slot's wall).
+    fn apply(&self, material: &[Polygon]) -> Result<Vec<Polygon>, GridError> {
+        if self.min_width <= 0.0 || material.is_empty() {
+            return Ok(material.to_vec());
+        }
+        let opened = offset::opening(material, self.min_width / 2.0 + WALL_SLACK)?;
+        let mut kept = boolean::intersection(&opened, material)?;
+        kept.retain(|p| p.area() >= CRUMB_AREA);
+        Ok(kept)
+    }
 }
 
 /// `(pieces worth cutting, all pieces)` of `material`.

@@ -116,7 +116,7 @@ pub fn run(
     let sections = place::sections(mesh, &families, thickness, tolerance, &rule).map_err(geometry)?;
     fit_sheets(&families, &sections, settings)?;
     cx.check_cancel()?;
-    let crossed = cross::cut(&families, &sections, thickness, &rule).map_err(geometry)?;
+    let crossed = cross::cut(&families, &sections, thickness, settings.cut.kerf(), &rule).map_err(geometry)?;
     cx.check_cancel()?;
     let made = held::pieces(&families, crossed, thickness / 2.0, &rule).map_err(geometry)?;
     if made.pieces.is_empty() {

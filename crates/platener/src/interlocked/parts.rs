@@ -3,7 +3,8 @@
 //! Every piece is a part of kind `plate` placed by its slice's slab frame (x across, y up, z
 //! through the sheet). It carries its name (A3) after an arrow pointing up, so it is stood
 //! the right way up, and beside each slot the name of the piece that slot takes, so the
-//! maker finds each crossing without the plan. Each crossing is one joint of kind `halved`
+//! maker finds each crossing without the plan. The part number comes first: marks give way to
+//! it, and a piece too thin for it gets a tab (as a stacked layer does). Each crossing is one joint of kind `halved`
 //! between its A piece and its B piece (in that order), at 90°.
 
 use std::collections::BTreeMap;
@@ -13,13 +14,16 @@ use platener_geom::{GridError, Polygon, boolean, offset};
 use serde_json::json;
 
 use super::{Interlocked, Piece};
-use crate::plan::{Joint, JointKind, Mark, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
+use crate::plan::{CutSettings, Joint, JointKind, Mark, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
 use crate::read::Model;
 use crate::settings::Settings;
-use crate::stacked::{tag, text_near};
+use crate::stacked::{number_fits, tag, text_near, with_tab};
 
 /// Room kept around a name or slot label, mm.
 const CLEARANCE: f64 = 1.0;
+/// A tab on a piece's free edge reaches this far into it, with its clearance (mm): the
+/// columns that keep tabs off stop this short of that edge.
+const TAB_CLEAR: f64 = 2.0;
 /// How far from the slot's end its label is wanted, mm.
 const LABEL_OFFSET: f64 = 6.0;
 
@@ -27,18 +31,21 @@ const LABEL_OFFSET: f64 = 6.0;
 pub fn plan_input(i: &Interlocked, model: &Model, settings: &Settings) -> Result<PlanInput, GridError> {
     let mut parts = Vec::with_capacity(i.pieces.len());
     for piece in &i.pieces {
-        parts.push(Part {
+        let (tag, labels) = marks(i, piece)?;
+        let mut part = Part {
             id: piece.part,
             kind: PartKind::Plate,
             thickness: i.thickness,
             polygon: piece.polygon.clone(),
             frame: i.families[piece.family].slab(piece.slice, i.thickness),
-            marks: marks(i, piece)?,
+            marks: Vec::new(),
             edge_labels: Vec::new(),
             merged: Vec::new(),
             segments: Vec::new(),
             bends: Vec::new(),
-        });
+        };
+        number(&mut part, tag, labels, &columns(i, piece), &settings.cut)?;
+        parts.push(part);
     }
     let joints = i
         .crossings
@@ -62,12 +69,69 @@ pub fn plan_input(i: &Interlocked, model: &Model, settings: &Settings) -> Result
     Ok(input)
 }
 
-/// The piece's name with an arrow pointing up, then beside each slot its partner's name.
-fn marks(i: &Interlocked, piece: &Piece) -> Result<Vec<Mark>, GridError> {
+/// Gives `part` its marks so that its number still fits (the `labels` step engraves it): the
+/// name `tag` and the slot `labels` when there is room for all, else the tag alone, else
+/// neither; a piece too thin for its number gets a tab on its outline for it, clear of every
+/// crossing `column` (a tab there would meet the other slice), as stacked layers do.
+fn number(
+    part: &mut Part,
+    tag: Vec<Mark>,
+    labels: Vec<Mark>,
+    columns: &[Polygon],
+    cut: &CutSettings,
+) -> Result<(), GridError> {
+    let all: Vec<Mark> = tag.iter().chain(&labels).cloned().collect();
+    for marks in [all.clone(), tag.clone(), Vec::new()] {
+        part.marks = marks;
+        if number_fits(part, cut) {
+            return Ok(());
+        }
+    }
+    let others: Vec<&Polygon> = columns.iter().collect();
+    if let Some(with) = with_tab(&part.polygon, &[], &others, part.id, cut.kerf())? {
+        let plain = std::mem::replace(&mut part.polygon, with);
+        for marks in [tag, Vec::new()] {
+            part.marks = marks;
+            if number_fits(part, cut) {
+                return Ok(());
+            }
+        }
+        part.polygon = plain;
+    }
+    part.marks = all;
+    Ok(())
+}
+
+/// Where a tab on `piece` would meet a slice of the other family: the crossing columns
+/// through its slice, as strips a sheet wide in its slice's 2D frame, except above an A
+/// piece's top and below a B piece's bottom. There the other slice has no material in the
+/// column (B keeps its column below the split, A above it), so a tab on an A piece's top edge
+/// or a B piece's bottom edge is clear of every crossing.
+fn columns(i: &Interlocked, piece: &Piece) -> Vec<Polygon> {
     let (lo, hi) = piece.polygon.bounds();
-    let mut marks = tag(&piece.polygon, &piece.name, &[DVec2::X], DVec2::Y, (lo + hi) / 2.0)?.unwrap_or_default();
+    let (f, other) = (piece.family, 1 - piece.family);
+    let half = i.thickness / 2.0;
+    let (bottom, top) = if f == 0 {
+        (lo.y - 10.0, hi.y - TAB_CLEAR)
+    } else {
+        (lo.y + TAB_CLEAR, hi.y + 10.0)
+    };
+    (0..i.families[other].count())
+        .map(|k| {
+            let slices = if f == 0 { [piece.slice, k] } else { [k, piece.slice] };
+            let x = super::cross::column(&i.families, slices[0], slices[1])[f];
+            Polygon::new(platener_geom::polygon::rect(x - half, bottom, x + half, top))
+        })
+        .collect()
+}
+
+/// The piece's name with an arrow pointing up, and beside each slot its partner's name.
+fn marks(i: &Interlocked, piece: &Piece) -> Result<(Vec<Mark>, Vec<Mark>), GridError> {
+    let (lo, hi) = piece.polygon.bounds();
+    let tag = tag(&piece.polygon, &piece.name, &[DVec2::X], DVec2::Y, (lo + hi) / 2.0)?.unwrap_or_default();
+    let mut marks = Vec::new();
     let mut free = vec![piece.polygon.clone()];
-    if let Some(taken) = box_of(&marks) {
+    if let Some(taken) = box_of(&tag) {
         free = boolean::difference(&free, &[taken])?;
     }
     let f = piece.family;
@@ -83,7 +147,7 @@ fn marks(i: &Interlocked, piece: &Piece) -> Result<Vec<Mark>, GridError> {
             free = boolean::difference(&free, &[taken])?;
         }
     }
-    Ok(marks)
+    Ok((tag, marks))
 }
 
 /// The box around `marks`, grown by [`CLEARANCE`]; `None` without marks.

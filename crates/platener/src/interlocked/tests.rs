@@ -24,7 +24,7 @@ fn made(tris: &[Triangle], t: f64, spacing: f64) -> ([Family; 2], Made) {
     let families = families(&mesh, spacing).expect("triangles");
     let rule = Rule::for_sheet(t, 0.0, 0.0);
     let sections = sections(&mesh, &families, t, 1e-6, &rule).expect("on the grid");
-    let crossed = cut(&families, &sections, t, &rule).expect("on the grid");
+    let crossed = cut(&families, &sections, t, 0.2, &rule).expect("on the grid");
     (
         families,
         pieces(&families, crossed, t / 2.0, &rule).expect("on the grid"),
