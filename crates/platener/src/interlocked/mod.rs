@@ -143,7 +143,16 @@ pub fn run(
     for w in warnings(&interlocked) {
         cx.warn(WarningKind::CuttingPlan, w);
     }
-    let mut input = parts::plan_input(&interlocked, model, settings).map_err(geometry)?;
+    let (mut input, unnumbered) = parts::plan_input(&interlocked, model, settings).map_err(geometry)?;
+    if !unnumbered.is_empty() {
+        cx.warn(
+            WarningKind::CuttingPlan,
+            format!(
+                "part(s) {} have room for their number nowhere (not on themselves, on a tab or on a piece they touch) and were left out",
+                crate::labels::id_ranges(&unnumbered)
+            ),
+        );
+    }
     crate::parts::clean::clean_input(&mut input, cx);
     Ok((interlocked, input))
 }

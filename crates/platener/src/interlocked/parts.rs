@@ -4,7 +4,8 @@
 //! through the sheet). It carries its name (A3) after an arrow pointing up, so it is stood
 //! the right way up, and beside each slot the name of the piece that slot takes, so the
 //! maker finds each crossing without the plan. The part number comes first: marks give way to
-//! it, and a piece too thin for it gets a tab (as a stacked layer does). Each crossing is one joint of kind `halved`
+//! it, a piece too thin for it gets a tab (as a stacked layer does), and one with room for
+//! neither has `#id` engraved beside its slot on a piece it crosses. Each crossing is one joint of kind `halved`
 //! between its A piece and its B piece (in that order), at 90°.
 
 use std::collections::BTreeMap;
@@ -13,23 +14,26 @@ use glam::DVec2;
 use platener_geom::{GridError, Polygon, boolean, offset};
 use serde_json::json;
 
+use super::column_extent;
+use super::cross::{column, shared};
+use super::held::GRIP;
 use super::{Interlocked, Piece};
 use crate::plan::{CutSettings, Joint, JointKind, Mark, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
 use crate::read::Model;
 use crate::settings::Settings;
-use crate::stacked::{number_fits, tag, text_near, with_tab};
+use crate::stacked::{Numbers, number_fits, tag, text_near, with_tab_where};
 
 /// Room kept around a name or slot label, mm.
 const CLEARANCE: f64 = 1.0;
-/// A tab on a piece's free edge reaches this far into it, with its clearance (mm): the
-/// columns that keep tabs off stop this short of that edge.
-const TAB_CLEAR: f64 = 2.0;
 /// How far from the slot's end its label is wanted, mm.
 const LABEL_OFFSET: f64 = 6.0;
 
-/// The parts, joints and settings of `interlocked`, converted from `model`.
-pub fn plan_input(i: &Interlocked, model: &Model, settings: &Settings) -> Result<PlanInput, GridError> {
+/// The parts, joints and settings of `interlocked`, converted from `model`, and the pieces left
+/// out because their number fits nowhere (not on them, on a tab or on a piece they touch: a
+/// part nobody can find is not cut).
+pub fn plan_input(i: &Interlocked, model: &Model, settings: &Settings) -> Result<(PlanInput, Vec<u32>), GridError> {
     let mut parts = Vec::with_capacity(i.pieces.len());
+    let mut unnumbered = Vec::new();
     for piece in &i.pieces {
         let (tag, labels) = marks(i, piece)?;
         let mut part = Part {
@@ -44,12 +48,24 @@ pub fn plan_input(i: &Interlocked, model: &Model, settings: &Settings) -> Result
             segments: Vec::new(),
             bends: Vec::new(),
         };
-        number(&mut part, tag, labels, &columns(i, piece), &settings.cut)?;
+        if !number(&mut part, tag, labels, i, piece, &settings.cut)? {
+            unnumbered.push(piece);
+        }
         parts.push(part);
     }
+    let mut numbers = Numbers::default();
+    for piece in unnumbered {
+        match on_partner(i, piece, &mut parts, &settings.cut)? {
+            Some(on) => numbers.on_neighbour.push([piece.part, on]),
+            None => numbers.none.push(piece.part),
+        }
+    }
+    let unnumbered = std::mem::take(&mut numbers.none);
+    parts.retain(|p| !unnumbered.contains(&p.id));
     let joints = i
         .crossings
         .iter()
+        .filter(|c| !c.parts.iter().any(|p| unnumbered.contains(p)))
         .enumerate()
         .map(|(n, c)| Joint {
             parts: c.parts,
@@ -65,64 +81,117 @@ pub fn plan_input(i: &Interlocked, model: &Model, settings: &Settings) -> Result
         "order": &i.order,
         "lower": [Interlocked::LOWER.x, Interlocked::LOWER.y, Interlocked::LOWER.z],
         "left_out": &i.left_out,
+        "numbers": &numbers,
+        "unnumbered_left_out": &unnumbered,
     }));
-    Ok(input)
+    Ok((input, unnumbered))
 }
 
-/// Gives `part` its marks so that its number still fits (the `labels` step engraves it): the
-/// name `tag` and the slot `labels` when there is room for all, else the tag alone, else
-/// neither; a piece too thin for its number gets a tab on its outline for it, clear of every
-/// crossing `column` (a tab there would meet the other slice), as stacked layers do.
+/// Gives `part` (of `piece`) its marks so that its number still fits (the `labels` step
+/// engraves it): the name `tag` and the slot `labels` when there is room for all, else the tag
+/// alone, else neither; a piece too thin for its number gets a tab on its outline for it, as
+/// stacked layers do, clear of its slice's other pieces and of every slice of the other family.
 fn number(
     part: &mut Part,
     tag: Vec<Mark>,
     labels: Vec<Mark>,
-    columns: &[Polygon],
+    i: &Interlocked,
+    piece: &Piece,
     cut: &CutSettings,
-) -> Result<(), GridError> {
+) -> Result<bool, GridError> {
     let all: Vec<Mark> = tag.iter().chain(&labels).cloned().collect();
     for marks in [all.clone(), tag.clone(), Vec::new()] {
         part.marks = marks;
         if number_fits(part, cut) {
-            return Ok(());
+            return Ok(true);
         }
     }
-    let others: Vec<&Polygon> = columns.iter().collect();
-    if let Some(with) = with_tab(&part.polygon, &[], &others, part.id, cut.kerf())? {
+    let siblings: Vec<&Polygon> = i
+        .pieces
+        .iter()
+        .filter(|p| (p.family, p.slice) == (piece.family, piece.slice) && p.part != piece.part)
+        .map(|p| &p.polygon)
+        .collect();
+    let clear = |tab: &[Polygon]| clear_of_crossings(i, piece, tab);
+    if let Some(with) = with_tab_where(&part.polygon, &[], &siblings, part.id, cut.kerf(), clear)? {
         let plain = std::mem::replace(&mut part.polygon, with);
         for marks in [tag, Vec::new()] {
             part.marks = marks;
             if number_fits(part, cut) {
-                return Ok(());
+                return Ok(true);
             }
         }
         part.polygon = plain;
     }
     part.marks = all;
-    Ok(())
+    Ok(false)
 }
 
-/// Where a tab on `piece` would meet a slice of the other family: the crossing columns
-/// through its slice, as strips a sheet wide in its slice's 2D frame, except above an A
-/// piece's top and below a B piece's bottom. There the other slice has no material in the
-/// column (B keeps its column below the split, A above it), so a tab on an A piece's top edge
-/// or a B piece's bottom edge is clear of every crossing.
-fn columns(i: &Interlocked, piece: &Piece) -> Vec<Polygon> {
-    let (lo, hi) = piece.polygon.bounds();
+/// The last resort for a piece with room neither for its number nor for a tab: `#id` engraved
+/// on a piece it crosses, beside the slot that takes it, or else on another piece of its own
+/// slice, where that piece's own number still fits; returns that piece's part id.
+fn on_partner(i: &Interlocked, piece: &Piece, parts: &mut [Part], cut: &CutSettings) -> Result<Option<u32>, GridError> {
+    let f = piece.family;
+    let beside = if f == 0 { -LABEL_OFFSET } else { LABEL_OFFSET };
+    let partners = i
+        .crossings
+        .iter()
+        .filter(|c| c.parts[f] == piece.part)
+        .map(|c| (c.parts[1 - f], Some(DVec2::new(c.at[1 - f], c.split + beside))));
+    let siblings = i
+        .pieces
+        .iter()
+        .filter(|p| (p.family, p.slice) == (f, piece.slice) && p.part != piece.part)
+        .map(|p| (p.part, None));
+    for (on, near) in partners.chain(siblings).collect::<Vec<_>>() {
+        let Some(at) = parts.iter().position(|p| p.id == on) else {
+            continue;
+        };
+        let taken: Vec<Polygon> = parts[at]
+            .marks
+            .iter()
+            .filter_map(|m| box_of(std::slice::from_ref(m)))
+            .collect();
+        let free = boolean::difference(std::slice::from_ref(&parts[at].polygon), &taken)?;
+        let (lo, hi) = parts[at].polygon.bounds();
+        let reference = near.unwrap_or((lo + hi) / 2.0);
+        let Some((label, _)) = text_near(&free, &format!("#{}", piece.part), reference)? else {
+            continue;
+        };
+        let before = parts[at].marks.len();
+        parts[at].marks.extend(label);
+        if number_fits(&parts[at], cut) {
+            return Ok(Some(on));
+        }
+        parts[at].marks.truncate(before);
+    }
+    Ok(None)
+}
+
+/// Whether material `added` to `piece` (a tab, in its slice's 2D frame) keeps clear of every
+/// slice of the other family: in each crossing column through it, the added material and the
+/// other slice's pieces share no height.
+fn clear_of_crossings(i: &Interlocked, piece: &Piece, added: &[Polygon]) -> Result<bool, GridError> {
     let (f, other) = (piece.family, 1 - piece.family);
     let half = i.thickness / 2.0;
-    let (bottom, top) = if f == 0 {
-        (lo.y - 10.0, hi.y - TAB_CLEAR)
-    } else {
-        (lo.y + TAB_CLEAR, hi.y + 10.0)
-    };
-    (0..i.families[other].count())
-        .map(|k| {
-            let slices = if f == 0 { [piece.slice, k] } else { [k, piece.slice] };
-            let x = super::cross::column(&i.families, slices[0], slices[1])[f];
-            Polygon::new(platener_geom::polygon::rect(x - half, bottom, x + half, top))
-        })
-        .collect()
+    for k in 0..i.families[other].count() {
+        let slices = if f == 0 { [piece.slice, k] } else { [k, piece.slice] };
+        let at = column(&i.families, slices[0], slices[1]);
+        let mine = column_extent(added, at[f], half + GRIP)?;
+        if mine.is_empty() {
+            continue;
+        }
+        let theirs: Vec<Polygon> = i
+            .pieces
+            .iter()
+            .filter(|p| p.family == other && p.slice == k)
+            .map(|p| p.polygon.clone())
+            .collect();
+        if shared(&mine, &column_extent(&theirs, at[other], half + GRIP)?).is_some() {
+            return Ok(false);
+        }
+    }
+    Ok(true)
 }
 
 /// The piece's name with an arrow pointing up, and beside each slot its partner's name.

@@ -50,6 +50,19 @@ pub(crate) fn with_tab(
     id: u32,
     kerf: f64,
 ) -> Result<Option<Polygon>, GridError> {
+    with_tab_where(polygon, slots, others, id, kerf, |_| Ok(true))
+}
+
+/// [`with_tab`], trying the next place while `accept` refuses the tab (the material it adds)
+/// at this one: the interlocked method's tabs must also keep clear of crossing slices.
+pub(crate) fn with_tab_where(
+    polygon: &Polygon,
+    slots: &[Polygon],
+    others: &[&Polygon],
+    id: u32,
+    kerf: f64,
+    accept: impl Fn(&[Polygon]) -> Result<bool, GridError>,
+) -> Result<Option<Polygon>, GridError> {
     let DVec2 { x: length, y: width } = tab_size(id, kerf);
     for (d, tip) in anchors(polygon) {
         let across = d.perp() * (width / 2.0);
@@ -61,6 +74,9 @@ pub(crate) fn with_tab(
             continue;
         }
         let tab = boolean::difference(&[tab], slots)?;
+        if !accept(&tab)? {
+            continue;
+        }
         let mut with: Vec<Polygon> = boolean::union(std::slice::from_ref(polygon), &tab)?;
         if with.len() == 1 {
             let mut p = with.remove(0);
