@@ -36,7 +36,7 @@ pub struct MethodReport {
     /// Number of sheets, when converted.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sheets: Option<usize>,
-    /// "glue-free" or "needs glue for N parts", when converted (`Plan::glue_note`).
+    /// "glue-free" or "needs glue: N parts in G groups", when converted (`Plan::glue_note`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub glue: Option<String>,
     /// Warnings of the steps, as `[step] message`.

@@ -1533,7 +1533,7 @@ fn results_as_they_come_method_switch_and_cancel() {
     );
     assert_eq!(conversion(&rig, &id)["status"], "running", "stacked is still held");
     page.screenshot("50-live-first-plan", None);
-    for method in ["stacked", "classifier"] {
+    for method in ["stacked", "classifier", "interlocked"] {
         open_gate(gates.path(), name, method);
     }
     assert_eq!(wait_converted(&page, None), id);

@@ -14,7 +14,7 @@ use platener::glam::DVec2;
 use platener::labels::font;
 use platener::method::MethodKind;
 use platener::plan::{MarkKind, PartKind, Plan};
-use platener::stacked::{Stack, glued_groups};
+use platener::stacked::Stack;
 use platener::{Cancel, Settings, Source, State, samples};
 use platener_geom::polygon::total_area;
 use platener_geom::{Polygon, boolean};
@@ -418,7 +418,7 @@ fn the_acrylic_brackets_unjoined_layers_are_named_as_three_glued_groups() {
     let pairs: Vec<[u32; 2]> = plan.glued.iter().map(|g| g.parts).collect();
     assert_eq!(pairs, vec![[1, 2], [2, 3]]);
     assert!(plan.glued.iter().all(|g| g.area > 1.0), "{:?}", plan.glued);
-    assert_eq!(glued_groups(plan), vec![vec![1], vec![2], vec![3, 4, 5]]);
+    assert_eq!(plan.glued_groups(), vec![vec![1], vec![2], vec![3, 4, 5]]);
     assert_eq!((groups(plan, false), groups(plan, true)), (3, 1));
     let warned =
         c.records.iter().flat_map(|r| &r.warnings).any(|w| {

@@ -8,7 +8,8 @@ use std::path::PathBuf;
 
 use platener::convert;
 use platener::method::MethodKind;
-use platener::stacked::{PEG_MIN_WALL, Stack, glued_groups};
+use platener::plan::{MarkKind, MarkSide};
+use platener::stacked::{PEG_MIN_WALL, Stack};
 use platener::verify::verify;
 use platener::{Cancel, Settings, Source, State, samples};
 use platener_geom::polygon::total_area;
@@ -55,10 +56,27 @@ fn the_teapots_knob_neck_gets_a_peg_and_verify_passes() {
     // Only the spout's foot (part 6 on part 4, a separate solid) is left to glue.
     let glued: Vec<[u32; 2]> = plan.glued.iter().map(|g| g.parts).collect();
     assert_eq!(glued, vec![[4, 6]]);
-    assert_eq!(glued_groups(plan).len(), 2);
+    assert_eq!(plan.glued_groups().len(), 2);
     // What the CLI and the page say of it (issue 31).
     assert_eq!(plan.glued_parts(), vec![4, 6]);
-    assert_eq!(plan.glue_note(), "needs glue for 2 parts");
+    assert_eq!(plan.glue_note(), "needs glue: 2 parts in 2 groups");
+    // Both faces glue joins carry the outline of the area they share: the body's layer on its
+    // upper face (down on the sheet), the spout's foot on its lower face.
+    for (id, side) in [(4, MarkSide::Bottom), (6, MarkSide::Top)] {
+        let part = plan.parts.iter().find(|p| p.id == id).expect("the part");
+        let rings: Vec<&Vec<platener::glam::DVec2>> = part
+            .marks
+            .iter()
+            .filter(|m| m.kind == MarkKind::Score && m.side == Some(side))
+            .map(|m| &m.path)
+            .collect();
+        let area: f64 = rings.iter().map(|r| platener_geom::polygon::signed_area(r).abs()).sum();
+        assert!(
+            (area - plan.glued[0].area).abs() < 0.05 * plan.glued[0].area,
+            "part {id}: {area} against {}",
+            plan.glued[0].area
+        );
+    }
     // The score's assembly term keeps 10 of the 12 parts' worth (docs/score.md).
     let bundle = c.export.as_deref().expect("exported");
     let score = platener::score::score(c.mesh.as_deref().expect("mesh"), bundle, None);
@@ -133,5 +151,5 @@ fn the_brackets_5_mm_strip_takes_a_3_mm_peg() {
         );
     }
     // Layers 3 and 4 are one group now; layers 1 and 2 (no peg fits their overlaps) are glued.
-    assert_eq!(glued_groups(plan), vec![vec![1], vec![2], vec![3, 4, 5]]);
+    assert_eq!(plan.glued_groups(), vec![vec![1], vec![2], vec![3, 4, 5]]);
 }

@@ -183,8 +183,9 @@ fn retry_starts_afresh(server: &Server, gates: &Path) {
     wait_until(server, &d, "plate landed on the second attempt", |c| {
         c["attempts"] == 2 && method_line(c, "plate").is_some()
     });
-    open_gate(gates, name, "stacked");
-    open_gate(gates, name, "classifier");
+    for method in ["stacked", "classifier", "interlocked"] {
+        open_gate(gates, name, method);
+    }
     let c = server.wait_ended(&d);
     assert_eq!(
         (c["status"].as_str(), c["attempts"].as_i64()),
@@ -197,7 +198,7 @@ fn retry_starts_afresh(server: &Server, gates: &Path) {
         .iter()
         .filter_map(|m| m["method"].as_str())
         .collect();
-    assert_eq!(methods, ["plate", "stacked", "classifier"], "{c}");
+    assert_eq!(methods, ["plate", "stacked", "classifier", "interlocked"], "{c}");
     let kinds: Vec<String> = events(&server.addr, &d).into_iter().map(|(k, _)| k).collect();
     let retry = kinds.iter().position(|k| k == "retry").expect("a retry event");
     for kind in ["model", "method"] {

@@ -249,14 +249,65 @@ impl Plan {
         ids
     }
 
+    /// The groups of parts the joints hold together that only glue (`glued`) holds to
+    /// another group: each group's ids ascending, groups by their lowest id. Empty when nothing
+    /// is glued. This is what a checker counts as separate groups of the assembly.
+    pub fn glued_groups(&self) -> Vec<Vec<u32>> {
+        let mut ids: Vec<u32> = self.parts.iter().map(|p| p.id).collect();
+        ids.sort_unstable();
+        let index = |part: u32| ids.binary_search(&part).ok();
+        // Each part's group: the lowest index it is joined to, by repeated relaxation over
+        // the joints (plans are small; no union-find in a data module).
+        let mut group: Vec<usize> = (0..ids.len()).collect();
+        let root = |group: &[usize], mut i: usize| {
+            while group[i] != i {
+                i = group[i];
+            }
+            i
+        };
+        for j in &self.joints {
+            if let (Some(a), Some(b)) = (index(j.parts[0]), index(j.parts[1])) {
+                let (ra, rb) = (root(&group, a), root(&group, b));
+                group[ra.max(rb)] = ra.min(rb);
+            }
+        }
+        let mut roots: Vec<usize> = self
+            .glued
+            .iter()
+            .flat_map(|g| g.parts)
+            .filter_map(index)
+            .map(|i| root(&group, i))
+            .collect();
+        roots.sort_unstable();
+        roots.dedup();
+        roots
+            .into_iter()
+            .map(|r| {
+                (0..ids.len())
+                    .filter(|&i| root(&group, i) == r)
+                    .map(|i| ids[i])
+                    .collect()
+            })
+            .collect()
+    }
+
     /// What the maker needs to know about glue, in the words the CLI and the page show:
-    /// "glue-free" or "needs glue for 3 parts" (issue 31). Whether the parts hold together
+    /// "glue-free" or "needs glue: 3 parts in 2 groups" (issue 31): the parts glue must hold,
+    /// and the groups the joints hold that glue puts together. Whether the parts hold together
     /// at all is `verify`'s to say.
     pub fn glue_note(&self) -> String {
-        match self.glued_parts().len() {
-            0 => "glue-free".to_string(),
-            1 => "needs glue for 1 part".to_string(),
-            n => format!("needs glue for {n} parts"),
+        let parts = self.glued_parts().len();
+        if parts == 0 {
+            return "glue-free".to_string();
         }
+        let groups = self.glued_groups().len();
+        let plural = |n: usize, word: &str| {
+            if n == 1 {
+                format!("1 {word}")
+            } else {
+                format!("{n} {word}s")
+            }
+        };
+        format!("needs glue: {} in {}", plural(parts, "part"), plural(groups, "group"))
     }
 }

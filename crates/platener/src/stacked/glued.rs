@@ -11,7 +11,7 @@
 
 use super::Stack;
 use crate::assembly::UnionFind;
-use crate::plan::{Glue, Plan};
+use crate::plan::Glue;
 
 /// The pairs of parts of different shaft groups that touch and must be glued, and the
 /// warning naming those groups (none when nothing needs glue).
@@ -58,40 +58,6 @@ pub(crate) fn glued(stack: &Stack) -> (Vec<Glue>, Option<String>) {
         pairs.join(", ")
     );
     (glue, Some(warning))
-}
-
-/// The groups of a plan's parts that its joints hold together and that only glue (`glued`)
-/// holds to another group: each group's ids ascending, groups by their lowest id. Empty when
-/// nothing is glued. This is what a checker counts as separate groups of the assembly.
-pub fn glued_groups(plan: &Plan) -> Vec<Vec<u32>> {
-    let mut ids: Vec<u32> = plan.parts.iter().map(|p| p.id).collect();
-    ids.sort_unstable();
-    let index = |part: u32| ids.binary_search(&part).ok();
-    let mut groups = UnionFind::new(ids.len());
-    for j in &plan.joints {
-        if let (Some(a), Some(b)) = (index(j.parts[0]), index(j.parts[1])) {
-            groups.join(a, b);
-        }
-    }
-    let mut roots: Vec<usize> = plan
-        .glued
-        .iter()
-        .flat_map(|g| g.parts)
-        .filter_map(index)
-        .map(|i| groups.root(i))
-        .collect();
-    roots.sort_unstable();
-    roots.dedup();
-    // Roots are each group's lowest index, so groups come out ordered by their lowest id.
-    roots
-        .into_iter()
-        .map(|r| {
-            (0..ids.len())
-                .filter(|&i| groups.root(i) == r)
-                .map(|i| ids[i])
-                .collect()
-        })
-        .collect()
 }
 
 /// Every part id of the stack (islands and shafts), ascending, and the groups the shafts hold

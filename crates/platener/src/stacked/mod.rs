@@ -59,7 +59,6 @@ use crate::plan::PlanInput;
 use crate::read::Model;
 use crate::settings::Settings;
 
-pub use glued::glued_groups;
 pub(crate) use glued::shaft_groups;
 pub use islands::{DroppedIsland, LayerIslands, island_rule, islands_of};
 pub(crate) use islands::{fill, islands_from, keep_cuttable};

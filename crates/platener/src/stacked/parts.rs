@@ -57,6 +57,14 @@ fn layer_parts(
     let mut parts = Vec::new();
     let mut numbers = Numbers::default();
     let mut unnumbered = Vec::new();
+    let glue = super::glued::glued(stack).0;
+    let island_of = |id: u32| {
+        stack
+            .layers
+            .iter()
+            .enumerate()
+            .find_map(|(k, l)| l.islands.iter().position(|i| i.part == id).map(|i| (k, i)))
+    };
     for (k, layer) in stack.layers.iter().enumerate() {
         for (i, island) in layer.islands.iter().enumerate() {
             let text = format!("L{}", layer.number);
@@ -68,6 +76,7 @@ fn layer_parts(
                 let on = boolean::intersection(&r.regions, std::slice::from_ref(&island.polygon)).map_err(geometry)?;
                 marks.extend(crate::parts::score_rings(&on, r.side));
             }
+            marks.extend(glue_marks(stack, &glue, island.part, &island_of).map_err(geometry)?);
             let mut part = Part {
                 id: island.part,
                 kind: PartKind::Layer,
@@ -114,6 +123,36 @@ fn layer_parts(
         }
     }
     Ok((parts, numbers))
+}
+
+/// The glue marks of part `id`: for every part only glue holds to it, the outline of the area
+/// they share, scored on the face that touches it (issue 31: where to glue, on both parts). A
+/// layer's face down on the sheet is its upper face, so the lower part's mark is on its
+/// `Bottom` side (engraved with the part turned over) and the upper part's on its `Top`.
+fn glue_marks(
+    stack: &Stack,
+    glue: &[crate::plan::Glue],
+    id: u32,
+    island_of: &dyn Fn(u32) -> Option<(usize, usize)>,
+) -> std::result::Result<Vec<crate::plan::Mark>, platener_geom::GridError> {
+    let mut marks = Vec::new();
+    for g in glue.iter().filter(|g| g.parts.contains(&id)) {
+        let (Some(a), Some(b)) = (island_of(g.parts[0]), island_of(g.parts[1])) else {
+            continue;
+        };
+        let (pa, pb) = (
+            &stack.layers[a.0].islands[a.1].polygon,
+            &stack.layers[b.0].islands[b.1].polygon,
+        );
+        let shared = boolean::intersection(std::slice::from_ref(pa), std::slice::from_ref(pb))?;
+        let side = if g.parts[0] == id {
+            crate::plan::MarkSide::Bottom
+        } else {
+            crate::plan::MarkSide::Top
+        };
+        marks.extend(crate::parts::score_rings(&shared, side));
+    }
+    Ok(marks)
 }
 
 /// Engraves the footprint and number of island `i` of layer `k` on the part of an adjacent
