@@ -21,7 +21,7 @@ use super::{Interlocked, Piece};
 use crate::plan::{CutSettings, Joint, JointKind, Mark, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
 use crate::read::Model;
 use crate::settings::Settings;
-use crate::stacked::{Numbers, number_fits, tag, text_near, with_tab_where};
+use crate::stacked::{Numbers, add_keeping_number, number_fits, tag, text_near, with_tab_where};
 
 /// Room kept around a name or slot label, mm.
 const CLEARANCE: f64 = 1.0;
@@ -158,12 +158,9 @@ fn on_partner(i: &Interlocked, piece: &Piece, parts: &mut [Part], cut: &CutSetti
         let Some((label, _)) = text_near(&free, &format!("#{}", piece.part), reference)? else {
             continue;
         };
-        let before = parts[at].marks.len();
-        parts[at].marks.extend(label);
-        if number_fits(&parts[at], cut) {
+        if add_keeping_number(&mut parts[at], label, cut) {
             return Ok(Some(on));
         }
-        parts[at].marks.truncate(before);
     }
     Ok(None)
 }

@@ -72,7 +72,7 @@ pub use slice::{SliceLoop, Sliced, slice};
 pub(crate) use slice::{section, slice_marked};
 pub use support::KeptIsland;
 pub use tabs::{TAB_SIZE, tab_size};
-pub(crate) use tabs::{number_fits, with_tab_where};
+pub(crate) use tabs::{add_keeping_number, number_fits, with_tab_where};
 
 /// One island of a layer: a connected piece of the cross-section, cut as one part.
 #[derive(Debug, Clone, Serialize)]

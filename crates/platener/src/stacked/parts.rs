@@ -13,7 +13,7 @@ use platener_geom::{Polygon, boolean};
 
 use super::Stack;
 use super::marks::tag;
-use super::tabs::{number_fits, reference_marks, with_tab};
+use super::tabs::{add_keeping_number, number_fits, reference_marks, with_tab};
 use crate::error::{Error, ModelProblem, Result};
 use crate::plan::{CutSettings, Joint, JointKind, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
 use crate::read::Model;
@@ -186,12 +186,9 @@ fn on_neighbour(
         let Some(marks) = reference_marks(&island.outline, island.part, &parts[at], cut.kerf())? else {
             continue;
         };
-        let before = parts[at].marks.len();
-        parts[at].marks.extend(marks);
-        if number_fits(&parts[at], cut) {
+        if add_keeping_number(&mut parts[at], marks, cut) {
             return Ok(Some(on));
         }
-        parts[at].marks.truncate(before);
     }
     Ok(None)
 }

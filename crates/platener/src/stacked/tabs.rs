@@ -40,6 +40,18 @@ pub(crate) fn number_fits(part: &Part, cut: &CutSettings) -> bool {
     cut.labels == LabelMode::None || labels::label_part(part, LabelMode::Parts, cut.kerf()).0.boxes.len() == 1
 }
 
+/// Adds `marks` (another part's number, engraved here) to `part` if its own number still
+/// fits, and says whether it did.
+pub(crate) fn add_keeping_number(part: &mut Part, marks: Vec<Mark>, cut: &CutSettings) -> bool {
+    let before = part.marks.len();
+    part.marks.extend(marks);
+    if number_fits(part, cut) {
+        return true;
+    }
+    part.marks.truncate(before);
+    false
+}
+
 /// `polygon` (an island of a layer, as cut) with a tab for the number `id`, clear of `others`
 /// (the layer's other islands) and of `slots` (the shafts' sections through it); `None` when no
 /// side is clear.
