@@ -25,19 +25,29 @@ pub struct LeftOut {
     pub slice: String,
     /// Its area, mm².
     pub area: f64,
-    /// Why: `too-small` or `unheld`.
-    pub why: &'static str,
+    /// Why.
+    pub why: Why,
+}
+
+/// Why a piece was left out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Why {
+    /// Smaller than the smallest part.
+    TooSmall,
+    /// No crossing grips it: only glue would hold it.
+    Unheld,
 }
 
 impl LeftOut {
     /// The warning for it.
     pub fn describe(&self) -> String {
         match self.why {
-            "too-small" => format!(
+            Why::TooSmall => format!(
                 "slice {}: a piece of {:.1} mm² is too small or thin to cut and was left out",
                 self.slice, self.area
             ),
-            _ => format!(
+            Why::Unheld => format!(
                 "slice {}: a piece of {:.1} mm² crosses no slice of the other family, so nothing would hold it without glue; left out (a smaller slice spacing reaches it)",
                 self.slice, self.area
             ),
@@ -74,7 +84,7 @@ pub fn pieces(families: &[Family; 2], crossed: Crossed, half: f64, rule: &Rule) 
         .map(|&(f, k, area)| LeftOut {
             slice: name(f, k),
             area,
-            why: "too-small",
+            why: Why::TooSmall,
         })
         .collect();
     // Candidates: every piece worth cutting, by family, slice, position.
@@ -91,7 +101,7 @@ pub fn pieces(families: &[Family; 2], crossed: Crossed, half: f64, rule: &Rule) 
                     left_out.push(LeftOut {
                         slice: name(f, k),
                         area: p.area(),
-                        why: "too-small",
+                        why: Why::TooSmall,
                     });
                 }
             }
@@ -122,7 +132,7 @@ pub fn pieces(families: &[Family; 2], crossed: Crossed, half: f64, rule: &Rule) 
             left_out.push(LeftOut {
                 slice: piece.name.clone(),
                 area: piece.polygon.area(),
-                why: "unheld",
+                why: Why::Unheld,
             });
         }
     }

@@ -41,7 +41,7 @@ use crate::read::Model;
 use crate::settings::Settings;
 
 pub use cross::{Crossing, column_extent};
-pub use held::LeftOut;
+pub use held::{LeftOut, Why};
 pub use place::{Family, default_spacing};
 
 /// One piece of a slice as cut: part of a cross-section, minus its slots.

@@ -151,7 +151,7 @@ fn a_piece_no_slice_of_the_other_family_meets_is_left_out_and_said() {
         DVec3::new(62.0, 3.0, 20.0),
     ));
     let (_, made) = made(&tris, 3.0, 10.0);
-    let unheld: Vec<&LeftOut> = made.left_out.iter().filter(|l| l.why == "unheld").collect();
+    let unheld: Vec<&LeftOut> = made.left_out.iter().filter(|l| l.why == Why::Unheld).collect();
     assert!(!unheld.is_empty(), "{:?}", made.left_out);
     assert!(unheld[0].describe().contains("crosses no slice of the other family"));
     assert_all_held(&made);
