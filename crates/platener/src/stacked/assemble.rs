@@ -77,6 +77,7 @@ pub(crate) fn assemble(
         dropped: islands.dropped,
         kept_small: islands.kept_small,
         unjoined: placed.unjoined,
+        bosses: Vec::new(),
         shafts_removed: placed.removed,
         loops,
         raised: Vec::new(),

@@ -13,7 +13,7 @@ use glam::DVec2;
 use platener_geom::{GridError, Polygon, offset};
 
 /// Directions tried (every 180° / `DIRECTIONS`).
-const DIRECTIONS: usize = 12;
+pub(super) const DIRECTIONS: usize = 12;
 /// Parallel lines tried per direction.
 const LINES: usize = 48;
 /// Slots whose lengths differ by less than this (mm) are equally long.

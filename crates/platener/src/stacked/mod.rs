@@ -16,7 +16,8 @@
 //! | `fit` | the longest slot that fits a region |
 //! | `shafts` | the three phases of shaft placement |
 //! | `extend` | phase 2: a shaft extended flush into a layer left unjoined |
-//! | `peg` | the last resort: a short shaft with thin walls for layers only glue would hold |
+//! | `peg` | a short shaft with thin walls for layers only glue would hold |
+//! | `boss` | the last resort: a boss on both layers where even a peg finds no room |
 //! | `notch` | slots cut into a layer, notches opened where they would pinch it |
 //! | `assemble` | slots cut into the layers, shaft outlines, frames |
 //! | `glued` | groups of parts no shaft holds together, only glue |
@@ -29,6 +30,7 @@
 //! The decisions (orientation rule, shaft phases, margins) are in docs/stacked.md.
 
 mod assemble;
+mod boss;
 mod extend;
 mod fit;
 mod glued;
@@ -59,6 +61,7 @@ use crate::plan::PlanInput;
 use crate::read::Model;
 use crate::settings::Settings;
 
+pub use boss::Boss;
 pub(crate) use glued::shaft_groups;
 pub use islands::{DroppedIsland, LayerIslands, island_rule, islands_of};
 pub(crate) use islands::{fill, islands_from, keep_cuttable};
@@ -162,6 +165,8 @@ pub struct Stack {
     pub kept_small: Vec<KeptIsland>,
     /// Overlapping islands left without a shaft.
     pub unjoined: Vec<Unjoined>,
+    /// Bosses added where only glue would have held two layers (they hold a peg).
+    pub bosses: Vec<Boss>,
     /// Shafts removed in phase 3 because they joined fewer than two layers.
     pub shafts_removed: usize,
     /// How the slice loops closed.
@@ -264,15 +269,45 @@ pub(crate) fn parts_of(
 pub(crate) fn build(
     name: &str,
     plan: SlicePlan,
-    layers: LayerIslands,
+    mut layers: LayerIslands,
     loops: LoopStats,
     settings: &Settings,
     cx: &StepContext<'_>,
 ) -> Result<Stack> {
     let geometry = |e: platener_geom::GridError| Error::model(name, ModelProblem::OffGrid(e));
-    let placed = shafts::place(&layers.islands, &settings.stacked, settings.shaft_thickness()).map_err(geometry)?;
+    let (placed, bosses) = place_with_bosses(&mut layers.islands, settings).map_err(geometry)?;
     cx.check_cancel()?;
-    assemble::assemble(plan, settings.shaft_thickness(), layers, placed, loops).map_err(geometry)
+    let mut stack = assemble::assemble(plan, settings.shaft_thickness(), layers, placed, loops).map_err(geometry)?;
+    stack.bosses = bosses;
+    Ok(stack)
+}
+
+/// Shafts placed through `islands`; where only glue would hold two layers, bosses added to
+/// both and the shafts placed again (`boss`). Bosses the second placement still leaves
+/// unheld are taken back.
+fn place_with_bosses(
+    islands: &mut [Vec<Polygon>],
+    settings: &Settings,
+) -> std::result::Result<(shafts::Placed, Vec<Boss>), platener_geom::GridError> {
+    let t = settings.shaft_thickness();
+    let placed = shafts::place(islands, &settings.stacked, t)?;
+    let original = islands.to_vec();
+    let mut bosses = boss::add_bosses(islands, &placed, t)?;
+    if bosses.is_empty() {
+        return Ok((placed, bosses));
+    }
+    let again = shafts::place_bossed(islands, &settings.stacked, t, &bosses)?;
+    let mut groups = peg::IslandGroups::of(islands, &again.shafts);
+    let count = bosses.len();
+    bosses.retain(|b| groups.same(b.layer, b.lower, b.upper));
+    if bosses.len() == count {
+        return Ok((again, bosses));
+    }
+    islands.clone_from_slice(&original);
+    for b in &bosses {
+        boss::apply(islands, b)?;
+    }
+    Ok((shafts::place_bossed(islands, &settings.stacked, t, &bosses)?, bosses))
 }
 
 /// Where the numbers of layers too thin for them went.
@@ -283,6 +318,11 @@ fn number_warnings(n: &Numbers) -> Vec<String> {
             "{} layer part(s) ({}) are too thin for their numbers: each carries its number on a tab on its outline",
             n.on_tab.len(),
             crate::labels::id_ranges(&n.on_tab)
+        ));
+    }
+    for [shaft, on] in &n.beside_slot {
+        out.push(format!(
+            "shaft {shaft} is too narrow for its number: it is engraved beside its slot on part {on}"
         ));
     }
     for [part, on] in &n.on_neighbour {
@@ -311,8 +351,30 @@ pub fn warnings(stack: &Stack) -> Vec<String> {
             k.enlarged
         ));
     }
+    for b in &stack.bosses {
+        let part = |k: usize, i: usize| stack.layers[k].islands[i].part;
+        out.push(format!(
+            "layers {} and {}: parts {} and {} overlap by {:.1} mm² but nowhere wide enough for a peg; both are widened there by a {:.1} mm square that holds one ({:.1} mm² added outside the model)",
+            b.layer + 1,
+            b.layer + 2,
+            part(b.layer, b.lower),
+            part(b.layer + 1, b.upper),
+            b.overlap,
+            b.side,
+            b.added
+        ));
+    }
+    // A pair held through other layers needs no glue: nothing falls apart there.
+    let (ids, mut groups) = shaft_groups(stack);
+    let mut apart = |a: u32, b: u32| {
+        let (x, y) = (ids.binary_search(&a), ids.binary_search(&b));
+        x.ok().map(|x| groups.root(x)) != y.ok().map(|y| groups.root(y))
+    };
     for u in &stack.unjoined {
         let part = |k: usize, i: usize| stack.layers[k].islands[i].part;
+        if !apart(part(u.layer, u.lower), part(u.layer + 1, u.upper)) {
+            continue;
+        }
         out.push(format!(
             "layers {} and {}: parts {} and {} overlap by {:.1} mm² but no shaft fits between them; glue them",
             u.layer + 1,

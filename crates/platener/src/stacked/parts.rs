@@ -13,7 +13,7 @@ use platener_geom::{Polygon, boolean};
 
 use super::Stack;
 use super::marks::tag;
-use super::tabs::{add_keeping_number, number_fits, reference_marks, with_tab};
+use super::tabs::{add_keeping_number, number_fits, number_near, reference_marks, with_tab};
 use crate::error::{Error, ModelProblem, Result};
 use crate::plan::{CutSettings, Joint, JointKind, Method, Part, PartKind, PlanInput, SettingValue, SourceInfo};
 use crate::read::Model;
@@ -23,8 +23,8 @@ use crate::settings::{Settings, StackAxis};
 /// of layers too thin for them went (`tabs.rs`).
 pub fn plan_input(stack: &Stack, model: &Model, settings: &Settings) -> Result<(PlanInput, Numbers)> {
     let geometry = |e: platener_geom::GridError| Error::model(&model.name, ModelProblem::OffGrid(e));
-    let (mut parts, numbers) = layer_parts(stack, &settings.cut, &geometry)?;
-    let joints = shaft_parts(stack, &mut parts, &settings.cut, &geometry)?;
+    let (mut parts, mut numbers) = layer_parts(stack, &settings.cut, &geometry)?;
+    let joints = shaft_parts(stack, &mut parts, &settings.cut, &mut numbers, &geometry)?;
     let method_settings = method_settings(stack, settings);
     let mut input = PlanInput::new(SourceInfo::from(model), Method::Stacked, parts, joints);
     input.settings = settings.cut.clone();
@@ -42,6 +42,9 @@ pub struct Numbers {
     /// Parts whose footprint and number are engraved on a part of an adjacent layer:
     /// `[part, the part carrying it]`.
     pub on_neighbour: Vec<[u32; 2]>,
+    /// Shafts too narrow for their numbers (a peg of a thin sheet), numbered beside their slot
+    /// on a layer they pass through: `[shaft, the layer part carrying it]`.
+    pub beside_slot: Vec<[u32; 2]>,
     /// Parts left without a number.
     pub none: Vec<u32>,
 }
@@ -211,14 +214,17 @@ fn make_room_for_number(part: &mut Part, cut: &CutSettings) -> bool {
 }
 
 /// Every shaft as a part of kind `shaft` (added to `parts`), tagged with its number and the
-/// layers it spans; returns one joint per slot.
+/// layers it spans (a shaft too narrow for its number has it beside its slot on a layer,
+/// noted in `numbers`); returns one joint per slot.
 fn shaft_parts(
     stack: &Stack,
     parts: &mut Vec<Part>,
     cut: &CutSettings,
+    numbers: &mut Numbers,
     geometry: &dyn Fn(platener_geom::GridError) -> Error,
 ) -> Result<Vec<Joint>> {
     let mut joints = Vec::new();
+    let mut narrow = Vec::new();
     for (j, shaft) in stack.shafts.iter().enumerate() {
         let (lo, hi) = shaft.polygon.bounds();
         let center = (lo + hi) / 2.0;
@@ -244,7 +250,9 @@ fn shaft_parts(
             segments: Vec::new(),
             bends: Vec::new(),
         };
-        make_room_for_number(&mut part, cut);
+        if !make_room_for_number(&mut part, cut) {
+            narrow.push(shaft);
+        }
         parts.push(part);
         for b in &shaft.bands {
             joints.push(Joint {
@@ -257,7 +265,32 @@ fn shaft_parts(
             });
         }
     }
+    for shaft in narrow {
+        match number_beside_slot(stack, shaft, parts, cut) {
+            Some(on) => numbers.beside_slot.push([shaft.part, on]),
+            None => numbers.none.push(shaft.part),
+        }
+    }
     Ok(joints)
+}
+
+/// Engraves `shaft`'s number beside its slot on the first layer part it passes through whose
+/// own number still fits; returns that part's id.
+fn number_beside_slot(stack: &Stack, shaft: &super::Shaft, parts: &mut [Part], cut: &CutSettings) -> Option<u32> {
+    for b in &shaft.bands {
+        let on = stack.layers[b.layer].islands[b.island].part;
+        let Some(at) = parts.iter().position(|p| p.id == on) else {
+            continue;
+        };
+        let slot = shaft.start + shaft.direction * ((b.from + b.to) / 2.0);
+        let Some(marks) = number_near(&parts[at], shaft.part, slot, cut.kerf()) else {
+            continue;
+        };
+        if add_keeping_number(&mut parts[at], marks, cut) {
+            return Some(on);
+        }
+    }
+    None
 }
 
 /// The stacked method's settings as the plan records them.

@@ -20,7 +20,7 @@ use platener_geom::{GridError, Polygon, boolean};
 
 use super::extend::Extension;
 use super::fit::{SlotLine, best_slot};
-use super::shafts::{Pair, Planner, Rule, SLIVER};
+use super::shafts::{Pair, PlacedShaft, Planner, Rule, SLIVER};
 use crate::assembly::UnionFind;
 
 /// The least material kept between a peg's slot and the layer's outline, mm.
@@ -77,18 +77,59 @@ impl Planner<'_> {
             peg: true,
         };
         for pair in pairs {
-            if !self.held_together(pair) && !self.expand(pair, ext)? {
+            if self.held_together(pair) {
+                continue;
+            }
+            if let Some(bossed) = self.in_boss(pair)?
+                && self.connect(&bossed, rule)?
+            {
+                continue;
+            }
+            if !self.expand(pair, ext)? {
                 self.connect(pair, rule)?;
             }
         }
         Ok(())
     }
 
+    /// `pair` with its overlap cut down to the boss added for it, if there is one: the peg
+    /// goes there (in the whole overlap the longest chord, looked for first, may lie where no
+    /// peg fits).
+    fn in_boss(&self, pair: &Pair) -> Result<Option<Pair>, GridError> {
+        let Some(boss) = self
+            .bosses
+            .iter()
+            .find(|b| (b.layer, b.lower, b.upper) == (pair.k, pair.lower, pair.upper))
+        else {
+            return Ok(None);
+        };
+        let overlap = boolean::intersection(&pair.overlap, std::slice::from_ref(&boss.square))?;
+        Ok(Some(Pair {
+            k: pair.k,
+            lower: pair.lower,
+            upper: pair.upper,
+            area: total_area(&overlap),
+            overlap,
+        }))
+    }
+
     /// Whether the two islands of `pair` are in one group of the shafts placed so far (a shaft
     /// with one slot holds nothing).
     fn held_together(&self, pair: &Pair) -> bool {
-        let offsets: Vec<usize> = self
-            .islands
+        IslandGroups::of(self.islands, &self.shafts).same(pair.k, pair.lower, pair.upper)
+    }
+}
+
+/// The groups of islands the shafts hold together (a shaft with one slot holds nothing).
+pub(super) struct IslandGroups {
+    /// Per layer, the index of its first island among all.
+    offsets: Vec<usize>,
+    groups: UnionFind,
+}
+
+impl IslandGroups {
+    pub(super) fn of(islands: &[Vec<Polygon>], shafts: &[PlacedShaft]) -> Self {
+        let offsets: Vec<usize> = islands
             .iter()
             .scan(0, |n, l| {
                 let at = *n;
@@ -96,16 +137,33 @@ impl Planner<'_> {
                 Some(at)
             })
             .collect();
-        let index = |layer: usize, island: usize| offsets[layer] + island;
-        let total = self.islands.iter().map(Vec::len).sum();
-        let mut groups = UnionFind::new(total);
-        for sh in self.shafts.iter().filter(|s| s.bands.len() >= 2) {
+        let total = islands.iter().map(Vec::len).sum();
+        let mut g = IslandGroups {
+            offsets,
+            groups: UnionFind::new(total),
+        };
+        for sh in shafts.iter().filter(|s| s.bands.len() >= 2) {
             for w in sh.bands.windows(2) {
-                groups.join(index(w[0].layer, w[0].island), index(w[1].layer, w[1].island));
+                g.join(w[0].layer, w[0].island, w[1].island);
             }
         }
-        let lower = groups.root(index(pair.k, pair.lower));
-        lower == groups.root(index(pair.k + 1, pair.upper))
+        g
+    }
+
+    fn index(&self, layer: usize, island: usize) -> usize {
+        self.offsets[layer] + island
+    }
+
+    /// Whether island `lower` of layer `k` and island `upper` of layer `k + 1` are held together.
+    pub(super) fn same(&mut self, k: usize, lower: usize, upper: usize) -> bool {
+        let (a, b) = (self.index(k, lower), self.index(k + 1, upper));
+        self.groups.root(a) == self.groups.root(b)
+    }
+
+    /// Counts island `lower` of layer `k` and island `upper` of layer `k + 1` as held together.
+    pub(super) fn join(&mut self, k: usize, lower: usize, upper: usize) {
+        let (a, b) = (self.index(k, lower), self.index(k + 1, upper));
+        self.groups.join(a, b);
     }
 }
 

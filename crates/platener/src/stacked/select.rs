@@ -3,7 +3,7 @@
 //! The classifier's `layers` step builds a stack among plates and keeps only the groups of
 //! layers its shafts hold to a plate: a group nothing holds could not be put in place. What is
 //! left must read as a stack built that way: islands indexed densely per layer (shafts and
-//! unjoined pairs point at them by index) and part ids numbered without gaps, bottom layer
+//! unjoined pairs and bosses point at them by index) and part ids numbered without gaps, bottom layer
 //! first, then the shafts, as [`super::assemble`] numbers them.
 
 use std::collections::BTreeMap;
@@ -46,6 +46,15 @@ impl Stack {
                 _ => false,
             },
         );
+        self.bosses.retain_mut(
+            |b| match (new_index[b.layer][b.lower], new_index[b.layer + 1][b.upper]) {
+                (Some(lower), Some(upper)) => {
+                    (b.lower, b.upper) = (lower, upper);
+                    true
+                }
+                _ => false,
+            },
+        );
     }
 
     /// Numbers the parts from `first` on (islands bottom up, then shafts); returns each old id's
@@ -83,6 +92,8 @@ impl Stack {
         }
         self.unjoined.retain(|u| u.layer != k && u.layer + 1 != k);
         self.unjoined.iter_mut().for_each(|u| down(&mut u.layer));
+        self.bosses.retain(|b| b.layer != k && b.layer + 1 != k);
+        self.bosses.iter_mut().for_each(|b| down(&mut b.layer));
         self.dropped.iter_mut().for_each(|d| down(&mut d.layer));
         self.kept_small.iter_mut().for_each(|s| down(&mut s.layer));
         for (i, layer) in self.layers.iter_mut().enumerate() {
@@ -127,6 +138,10 @@ mod tests {
         for u in &stack.unjoined {
             assert!(u.lower < stack.layers[u.layer].islands.len());
             assert!(u.upper < stack.layers[u.layer + 1].islands.len());
+        }
+        for b in &stack.bosses {
+            assert!(b.lower < stack.layers[b.layer].islands.len());
+            assert!(b.upper < stack.layers[b.layer + 1].islands.len());
         }
         for (k, layer) in stack.layers.iter().enumerate() {
             assert_eq!(layer.number, k as u32 + 1);

@@ -33,6 +33,7 @@ use platener_geom::polygon::total_area;
 use platener_geom::{GridError, Polygon, boolean, offset};
 use rayon::prelude::*;
 
+use super::boss::Boss;
 use super::extend::Extension;
 use super::fit::{SlotLine, fit_slot};
 use super::peg::{PEG_PHASE, fit_peg};
@@ -117,10 +118,22 @@ pub(super) struct Planner<'a> {
     pub slots: Vec<Vec<(usize, Polygon)>>,
     pub shafts: Vec<PlacedShaft>,
     pub joined: BTreeSet<(usize, usize, usize)>,
+    /// Bosses added for pegs (`boss`): the peg phase puts a boss's peg in it.
+    pub bosses: &'a [Boss],
 }
 
 /// Places shafts `shaft_thickness` thick through the layers' `islands`.
 pub(crate) fn place(islands: &[Vec<Polygon>], s: &StackedSettings, shaft_thickness: f64) -> Result<Placed, GridError> {
+    place_bossed(islands, s, shaft_thickness, &[])
+}
+
+/// [`place`] through islands that carry `bosses` (already added to them).
+pub(crate) fn place_bossed(
+    islands: &[Vec<Polygon>],
+    s: &StackedSettings,
+    shaft_thickness: f64,
+    bosses: &[Boss],
+) -> Result<Placed, GridError> {
     let pairs = overlapping_pairs(islands)?;
     let mut p = Planner {
         islands,
@@ -129,6 +142,7 @@ pub(crate) fn place(islands: &[Vec<Polygon>], s: &StackedSettings, shaft_thickne
         slots: vec![Vec::new(); islands.len()],
         shafts: Vec::new(),
         joined: BTreeSet::new(),
+        bosses,
     };
     // Phase 1.
     for pair in &pairs {

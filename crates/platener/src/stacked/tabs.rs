@@ -150,17 +150,27 @@ pub(crate) fn reference_marks(
     let mut with = on.clone();
     with.marks.extend(outline.iter().cloned());
     let (lo, hi) = largest.bounds();
-    let Some(b) = labels::place_near(&with, &id.to_string(), (lo + hi) / 2.0, kerf) else {
+    let Some(text) = number_near(&with, id, (lo + hi) / 2.0, kerf) else {
         return Ok(None);
     };
-    let text = font::place_text(&b.text, b.size, b.origin, b.direction)
-        .into_iter()
-        .map(|path| Mark {
-            kind: MarkKind::Label,
-            path,
-            side: None,
-        });
     Ok(Some(outline.into_iter().chain(text).collect()))
+}
+
+/// The engraved strokes of the number `id` on `on`, as near `at` as there is room (clear of
+/// its marks); `None` when there is none.
+pub(crate) fn number_near(on: &Part, id: u32, at: DVec2, kerf: f64) -> Option<Vec<Mark>> {
+    let b = labels::place_near(on, &id.to_string(), at, kerf)?;
+    let strokes = font::place_text(&b.text, b.size, b.origin, b.direction);
+    Some(
+        strokes
+            .into_iter()
+            .map(|path| Mark {
+                kind: MarkKind::Label,
+                path,
+                side: None,
+            })
+            .collect(),
+    )
 }
 
 /// Whether `tab` comes within [`GAP`] of `other` (bounds first, then exactly).
