@@ -1,6 +1,6 @@
 //! Issue 15, stacked layers, checked on the corpus: every part of every stacked plan carries
 //! its number inside its outline, a layer that holds others is not dropped (the teapot's lid
-//! knob), and layers no shaft joins are named as glued groups (the acrylic bracket).
+//! knob), and layers no shaft or peg joins are named as glued groups (the acrylic bracket).
 //!
 //! Tolerances: a label box "lies inside" its part when the box minus the part is under
 //! [`OUTSIDE`] mm² (the 1 µm grid of the booleans); islands "touch" as the stacked step decides
@@ -60,6 +60,11 @@ fn stack(c: &State) -> &Stack {
 /// Where a layer part's number went when it has no room for it: `[part, carrier]` pairs of
 /// report.json's `method_report.numbers.on_neighbour`.
 fn numbered_on_neighbour(c: &State) -> Vec<[u32; 2]> {
+    numbers(c, "on_neighbour")
+}
+
+/// `[part, carrier]` pairs of report.json's `method_report.numbers.{key}`.
+fn numbers(c: &State, key: &str) -> Vec<[u32; 2]> {
     let report = c
         .parts
         .as_ref()
@@ -67,7 +72,7 @@ fn numbered_on_neighbour(c: &State) -> Vec<[u32; 2]> {
         .method_report
         .clone()
         .expect("a report");
-    serde_json::from_value(report["numbers"]["on_neighbour"].clone()).expect("pairs")
+    serde_json::from_value(report["numbers"][key].clone()).expect("pairs")
 }
 
 /// Every part's number is placed, inside its outline (not across a cut), and written to
@@ -78,11 +83,16 @@ fn assert_every_part_numbered(name: &str, c: &State) -> (usize, usize) {
     let labels = c.labels.as_ref().expect("labels");
     let plan = plan(c);
     let on_neighbour = numbered_on_neighbour(c);
+    let beside_slot = numbers(c, "beside_slot");
     let mut on_tabs = 0;
     for (i, part) in input.parts.iter().enumerate() {
         let placed = &labels.parts[i];
         assert_eq!(placed.id, part.id);
         let Some(number) = placed.boxes.first() else {
+            if let Some(&[_, on]) = beside_slot.iter().find(|r| r[0] == part.id) {
+                assert_beside_slot(name, c, part.id, on);
+                continue;
+            }
             let [_, on] = on_neighbour
                 .iter()
                 .find(|r| r[0] == part.id)
@@ -161,6 +171,33 @@ fn assert_neighbour_reference(name: &str, c: &State, id: u32, on: u32) {
         footprint_marks >= 1,
         "{name}: part {on} does not show where part {id} goes"
     );
+}
+
+/// Shaft `id`'s number is engraved on layer part `on`, which it passes through, within a
+/// few millimetres of its slot there.
+fn assert_beside_slot(name: &str, c: &State, id: u32, on: u32) {
+    let st = stack(c);
+    let shaft = st.shafts.iter().find(|s| s.part == id).expect("a shaft");
+    let band = shaft
+        .bands
+        .iter()
+        .find(|b| st.layers[b.layer].islands[b.island].part == on)
+        .unwrap_or_else(|| panic!("{name}: shaft {id} does not pass through part {on}"));
+    let slot = shaft.start + shaft.direction * ((band.from + band.to) / 2.0);
+    let carrier = c
+        .parts
+        .as_ref()
+        .expect("parts")
+        .parts
+        .iter()
+        .find(|p| p.id == on)
+        .expect("part");
+    let near = carrier
+        .marks
+        .iter()
+        .filter(|m| m.kind == MarkKind::Label)
+        .any(|m| m.path.iter().all(|p| p.distance(slot) < 15.0));
+    assert!(near, "{name}: shaft {id}'s number is not beside its slot on part {on}");
 }
 
 /// Polylines of an SVG group.
@@ -340,7 +377,10 @@ fn the_bird_feeder_cups_thin_rings_carry_their_numbers_on_tabs() {
     let c = stacked_at(dir.join("other/bird_water_feeder_cup.stl"), 2.0).expect("converts");
     let (tabs, _) = assert_every_part_numbered("bird_water_feeder_cup", &c);
     let parts = plan(&c).parts.len();
-    assert_eq!(parts, 48);
+    // 48 rings and one peg through bosses that holds them all (issue 31); the peg, 2 mm wide,
+    // has its number beside its slot in the bottom ring.
+    assert_eq!(parts, 49);
+    assert_eq!(numbers(&c, "beside_slot"), vec![[49, 1]]);
     // Before tabs, the rings had no number; each now has it on a tab of the size the step
     // makes (its length out of the outline, plus under ATTACH into it, times its width).
     assert_eq!(tabs, TABS_AT_2MM, "{parts} parts");
@@ -408,22 +448,22 @@ fn the_teapots_lid_knob_rests_on_the_layer_below_it() {
 }
 
 #[test]
-fn the_acrylic_brackets_unjoined_layers_are_named_as_three_glued_groups() {
+fn the_acrylic_brackets_unjoined_layers_are_named_as_two_glued_groups() {
     let Some(dir) = corpus() else { return };
     let c = stacked(dir.join("plates/acrylic_case_corner_bracket_5mm.stl")).expect("converts");
     let plan = plan(&c);
-    // Four layers and the peg (part 5) joining layers 3 and 4 (tests/stacked_pegs.rs).
-    assert_eq!(plan.parts.len(), 5);
-    assert_eq!(plan.joints.len(), 2, "only the peg fits the bracket's layers");
+    // Four layers and two pegs: part 5 in a boss joining layers 1 and 2, part 6 joining layers
+    // 3 and 4 (tests/stacked_pegs.rs). Between layers 2 and 3 nothing fits.
+    assert_eq!(plan.parts.len(), 6);
+    assert_eq!(plan.joints.len(), 4, "two pegs of two layers each");
     let pairs: Vec<[u32; 2]> = plan.glued.iter().map(|g| g.parts).collect();
-    assert_eq!(pairs, vec![[1, 2], [2, 3]]);
+    assert_eq!(pairs, vec![[2, 3]]);
     assert!(plan.glued.iter().all(|g| g.area > 1.0), "{:?}", plan.glued);
-    assert_eq!(plan.glued_groups(), vec![vec![1], vec![2], vec![3, 4, 5]]);
-    assert_eq!((groups(plan, false), groups(plan, true)), (3, 1));
-    let warned =
-        c.records.iter().flat_map(|r| &r.warnings).any(|w| {
-            w.step == "stacked" && w.message.contains("these 3 groups") && w.message.contains("[1], [2], [3–5]")
-        });
+    assert_eq!(plan.glued_groups(), vec![vec![1, 2, 5], vec![3, 4, 6]]);
+    assert_eq!((groups(plan, false), groups(plan, true)), (2, 1));
+    let warned = c.records.iter().flat_map(|r| &r.warnings).any(|w| {
+        w.step == "stacked" && w.message.contains("these 2 groups") && w.message.contains("[1–2, 5], [3–4, 6]")
+    });
     assert!(warned, "{:?}", c.records);
     // plan.json carries the list (and reads back).
     let json = plan.to_json().expect("json");
