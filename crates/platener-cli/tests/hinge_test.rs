@@ -46,29 +46,54 @@ fn swatch(args: &[&str], out: &std::path::Path) -> String {
     String::from_utf8_lossy(&assert.get_output().stdout).to_string()
 }
 
+/// The distinct x of `slits` (rows across the strip), ascending.
+fn rows(slits: &[[(f64, f64); 2]]) -> Vec<f64> {
+    let mut xs: Vec<f64> = slits.iter().map(|s| s[0].0).collect();
+    xs.sort_by(f64::total_cmp);
+    xs.dedup_by(|a, b| (*a - *b).abs() < 1e-3);
+    xs
+}
+
 #[test]
-fn a_wood_swatch_is_written_at_true_size_with_its_slits() {
+fn a_wood_swatch_is_written_at_true_size_with_a_strip_per_pattern() {
     let dir = tempfile::tempdir().expect("temp dir");
     let out = dir.path().join("hinge.svg");
     let stdout = swatch(&["-t", "3", "-m", "wood"], &out);
+    assert!(stdout.contains("2 strip(s)"), "{stdout}");
     assert!(stdout.contains("23 links 3.00 × 12.00 mm in 24 rows"), "{stdout}");
+    // The straight flex: rows 1.5 mm apart (0.5 t), slits 12 mm with 3 mm bridges, bent at
+    // 5 t: 16 pitches of 1.5 mm over a quarter turn, a 15.28 mm radius.
+    assert!(stdout.contains("straight pattern"), "{stdout}");
+    assert!(
+        stdout.contains("zone 24.00 mm wide (flat), neutral radius 15.28 mm"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("16 links 1.30 × 4.50 mm in 17 rows of slits 12.00 mm long (bridges 3.00 mm"),
+        "{stdout}"
+    );
     let svg = std::fs::read_to_string(&out).expect("svg written");
     let (w, h, view) = size(&svg);
     assert_eq!(view, format!("0 0 {w} {h}"));
     // Two 30 mm ends (at least) around a 23 × 3.2 mm zone, 5 mm margins.
     assert!(w >= 10.0 + 60.0 + 73.6 - 1e-9 && h >= 50.0, "{w} × {h}");
-    let slits = red_slits(&svg);
-    assert!(slits.len() > 48, "{} slits", slits.len());
+    let split = svg.find("<g id=\"part-2\">").expect("a second strip");
+    let (lattice, straight) = (red_slits(&svg[..split]), red_slits(&svg[split..]));
+    assert!(lattice.len() > 48, "{} slits", lattice.len());
     // Slits run across the strip (vertical), inside it, on 24 distinct rows 3.2 mm apart.
-    let mut xs: Vec<f64> = slits.iter().map(|s| s[0].0).collect();
-    xs.sort_by(f64::total_cmp);
-    xs.dedup_by(|a, b| (*a - *b).abs() < 1e-3);
+    let xs = rows(&lattice);
     assert_eq!(xs.len(), 24);
     assert!(xs.windows(2).all(|p| (p[1] - p[0] - 3.2).abs() < 1e-3));
-    for s in &slits {
+    for s in lattice.iter().chain(&straight) {
         assert!((s[0].0 - s[1].0).abs() < 1e-9);
         assert!(s.iter().all(|p| p.1 > 5.0 && p.1 < h - 5.0));
     }
+    // The flex strip lies below the lattice's, its 17 rows 1.5 mm apart.
+    let xs = rows(&straight);
+    assert_eq!(xs.len(), 17);
+    assert!(xs.windows(2).all(|p| (p[1] - p[0] - 1.5).abs() < 1e-3));
+    let lowest_lattice = lattice.iter().flat_map(|s| [s[0].1, s[1].1]).fold(f64::MIN, f64::max);
+    assert!(straight.iter().all(|s| s[0].1.min(s[1].1) > lowest_lattice));
     assert!(svg.contains("stroke=\"#0000ff\""), "engraved legend");
 }
 

@@ -81,6 +81,7 @@ fn bent_part(with_slits: bool) -> Part {
         line: [DVec2::new(x, 0.0), DVec2::new(x, SIDE)],
         angle_deg: 90.0,
         style: BendStyle::LivingHinge,
+        pattern: platener::plan::HingePattern::Lattice,
         width: ZONE,
         segments: [0, 1],
     }];

@@ -144,3 +144,36 @@ fn a_card_cone_is_one_part_with_perforated_folds_and_a_seam_flap() {
     assert_eq!(flaps.len(), 1);
     assert_eq!(flaps[0].parts, [part.id, part.id]);
 }
+
+/// Issue 32: a 16-facet tube of 26 mm radius in 3 mm plywood. The lattice needs a zone wider
+/// than the room between its facets (9.6 mm at mid-wall, 7.6 mm of room at 22.5° a turn), so
+/// it stayed 16 jointed plates; the straight flex bends it at its 5 t radius: 4 rows of 1.5 mm,
+/// a 6 mm zone and a 15.3 mm neutral radius, inside the wall's own 24.5 mm.
+#[test]
+fn a_16_facet_tube_too_tight_for_the_lattice_bends_with_the_straight_flex() {
+    let (n, r, t) = (16, 26.0, 3.0);
+    let (turn, half) = (std::f64::consts::TAU / n as f64, std::f64::consts::PI / n as f64);
+    let facet = 2.0 * (r - t / 2.0) * half.cos() * half.tan();
+    let lattice = platener::hinge::design_lattice(BendStyle::LivingHinge, Material::Wood, t, turn, 0.8 * facet);
+    assert!(lattice.is_err(), "{lattice:?}");
+    let state = convert_sample(samples::tube(n, r, 60.0, t), Material::Wood, t);
+    let (plan, _) = rebuilt_within(&state, 0.9);
+    let bent: Vec<_> = plan.parts.iter().filter(|p| p.kind == PartKind::Bent).collect();
+    assert_eq!(bent.len(), 1, "one wrap");
+    let bends = &bent[0].bends;
+    assert!(bends.len() >= n - 2, "{} bends", bends.len());
+    for b in bends {
+        assert_eq!(b.pattern, platener::plan::HingePattern::Straight);
+        assert!((b.width - 6.0).abs() < 1e-6, "{}", b.width);
+        assert!((b.angle - (180.0 - 22.5)).abs() < 0.5, "{}", b.angle);
+    }
+    // The slits: rows 1.5 mm apart across each zone, staggered, cut (red).
+    let slits = bent[0].marks.iter().filter(|m| m.kind == MarkKind::Cut).count();
+    assert!(slits >= 5 * bends.len(), "{slits} slits");
+    // plan.json says so, and reads back.
+    let json = plan.to_json().expect("json");
+    assert!(json.contains("\"pattern\": \"straight\""));
+    let back: Plan = serde_json::from_str(&json).expect("reads");
+    let patterns = |p: &Plan| -> Vec<_> { p.parts.iter().flat_map(|q| q.bends.iter().map(|b| b.pattern)).collect() };
+    assert_eq!(patterns(&back), patterns(&plan));
+}

@@ -10,7 +10,7 @@
 
 use serde::Serialize;
 
-use crate::hinge::{BendDesign, HingeError, design as hinge_design};
+use crate::hinge::{BendDesign, HingeError, design as hinge_design, design_lattice};
 use crate::plan::{BendStyle, Material};
 
 /// The zone of one bend: its hinge or fold design, the one source of its width and radius.
@@ -59,6 +59,11 @@ impl Zone {
     }
 }
 
+/// The largest turn the straight flex makes when the style is chosen by material: 16 facets
+/// or more per full turn, a tessellated curve (a cylinder of 20 mm radius in 16 facets), not a
+/// faceted design. Its limit is reported practice, not designed margin (docs/bending.md).
+const FLEX_MAX_TURN_DEG: f64 = 22.6;
+
 /// The widest zone of a turn whose arc passes at most `gap` inside the sharp corner.
 fn width_for_gap(turn: f64, gap: f64) -> f64 {
     let sec = 1.0 / (turn / 2.0).cos() - 1.0;
@@ -81,7 +86,10 @@ fn width_for_bulge(turn: f64, t: f64, depth: f64) -> f64 {
 /// `max_width` wide on the flat, or why there is none. The widest hinge (strongest links)
 /// whose bulge out of the model stays small is taken; else the narrowest hinge there is, if
 /// it rounds the model's corner by at most a thickness, or (`strict` off: a style the user
-/// asked for) if it fits at all.
+/// asked for) if it fits at all. All of this with the lattice first, so every bend it made
+/// stays as it was; only where it makes none is the straight flex tried, and with the style
+/// chosen by material (`strict`) only on a tessellated curve ([`FLEX_MAX_TURN_DEG`]): a
+/// coarser corner (the low-poly lamp's 25–40°) is a design and stays jointed.
 pub(crate) fn design(
     style: BendStyle,
     material: Material,
@@ -90,8 +98,27 @@ pub(crate) fn design(
     max_width: f64,
     strict: bool,
 ) -> Result<Zone, String> {
+    let lattice = |limit: f64| design_lattice(style, material, thickness, turn, limit);
+    let why = match fit(lattice, (thickness, depth), turn, max_width, strict) {
+        Ok(zone) => return Ok(zone),
+        Err(why) => why,
+    };
+    if strict && turn > FLEX_MAX_TURN_DEG.to_radians() {
+        return Err(why);
+    }
+    let either = |limit: f64| hinge_design(style, material, thickness, turn, limit);
+    fit(either, (thickness, depth), turn, max_width, strict).map_err(|_| why)
+}
+
+/// [`design`] with the hinges `attempt` gives for a width limit.
+fn fit(
+    attempt: impl Fn(f64) -> Result<BendDesign, HingeError>,
+    (thickness, depth): (f64, f64),
+    turn: f64,
+    max_width: f64,
+    strict: bool,
+) -> Result<Zone, String> {
     let zone = |design: BendDesign| Zone { design };
-    let attempt = |limit: f64| hinge_design(style, material, thickness, turn, limit);
     let narrowest = match attempt(max_width.min(width_for_bulge(turn, thickness, depth))) {
         Ok(design) => return Ok(zone(design)),
         Err(HingeError::TooWide { needed, .. }) => needed,

@@ -96,7 +96,8 @@ pub fn snap_distance(c: &Classification, tolerance: f64) -> f64 {
 /// Whether `p` is a small solid cylinder the classifier stacks as discs (step `layers`)
 /// instead of wrapping it: the material fills it, and a bend of the material's style
 /// (`--bend`) turning from one of its facets to the next needs a zone wider than a facet
-/// (3 mm plywood: a radius under about 26 mm). With bending off, never: its facets are
+/// (3 mm plywood: a radius under about 26 mm), or a radius larger than the wall's own. With
+/// bending off, never: its facets are
 /// jointed plates as before.
 pub fn stacked_instead(p: &Primitive, settings: &Settings) -> bool {
     let Shape::Cylinder { radius, .. } = p.shape else {
@@ -109,7 +110,11 @@ pub fn stacked_instead(p: &Primitive, settings: &Settings) -> bool {
     let t = settings.thinnest();
     let n = facet_count(radius, t / 2.0);
     let facet = 2.0 * facet_distance(radius, n) * (PI / n as f64).tan();
-    p.outward && crate::hinge::design(style, material, t, TAU / n as f64, facet).is_err()
+    // A wall wrapped round it curves at its own neutral radius, r − t/2: a hinge that needs
+    // more (the straight flex's 5 t) cannot make it, though its zone fits a facet.
+    let wraps = crate::hinge::design(style, material, t, TAU / n as f64, facet)
+        .is_ok_and(|d| d.neutral_radius <= radius - t / 2.0 + 1e-9);
+    p.outward && !wraps
 }
 
 /// The fixed groups of a classification (see the module doc), for [`crate::coplanar::group_rest`],

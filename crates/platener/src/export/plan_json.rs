@@ -168,6 +168,7 @@ fn plan_bend(bend: &Bend) -> PlanBend {
         line: bend.line,
         angle: bend.angle_deg,
         style: bend.style,
+        pattern: bend.pattern,
         width: bend.width,
         segments: bend.segments,
     }

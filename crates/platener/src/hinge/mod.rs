@@ -15,7 +15,7 @@ pub mod swatch;
 mod tests;
 
 pub use pattern::marks;
-pub use physics::{BendDesign, MaterialData, design, max_turn, torsion_ratio};
+pub use physics::{BendDesign, MaterialData, design, design_lattice, design_pattern, max_turn, torsion_ratio};
 
 use crate::plan::{BendStyle, Material};
 

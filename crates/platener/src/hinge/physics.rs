@@ -13,7 +13,7 @@
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use super::HingeError;
-use crate::plan::{BendStyle, Material};
+use crate::plan::{BendStyle, HingePattern, Material};
 
 /// Thickest sheet accepted, mm (as the kerf strip).
 const MAX_THICKNESS: f64 = 50.0;
@@ -24,6 +24,19 @@ const MAX_LINK_LENGTH: f64 = 4.0;
 const MIN_LINK_WIDTH: f64 = 0.5;
 /// Link widths tried from square (b = t) down to [`MIN_LINK_WIDTH`].
 const WIDTH_STEPS: u32 = 10;
+
+/// The straight-cut flex (boxes.py's flex pattern, whose parameters are in thicknesses: cut
+/// lines 0.5 t apart, t bridges, a slit every 5 t) bends in plywood to about 5 t: makers bend
+/// it around 15 mm in 3 mm plywood, boxes.py's FlexBox default. An empirical limit, not the
+/// torsion model (which gives 36 mm for it at 3 mm); `platener hinge-test` draws it so the stock can
+/// be checked. docs/bending.md has the sources.
+const FLEX_MIN_RADIUS: f64 = 5.0;
+/// Distance between the flex's cut lines, in thicknesses.
+const FLEX_PITCH: f64 = 0.5;
+/// The flex's bridges, in thicknesses.
+const FLEX_BRIDGE: f64 = 1.0;
+/// The flex's period along the line (a slit and a bridge), in thicknesses.
+const FLEX_PERIOD: f64 = 5.0;
 
 /// Torsion table of a rectangular section (Timoshenko & Goodier, Theory of Elasticity, §109;
 /// Roark's Formulas, table of torsion constants): `(short/long side, k1, k2)` with the torque
@@ -114,6 +127,8 @@ impl MaterialData {
 pub struct BendDesign {
     /// How it bends.
     pub style: BendStyle,
+    /// A living hinge's slit pattern (the lattice for every other style).
+    pub pattern: HingePattern,
     /// Sheet thickness, mm.
     pub thickness: f64,
     /// The turn, radians (π − the enclosed angle).
@@ -194,6 +209,29 @@ pub fn design(
     turn: f64,
     max_width: f64,
 ) -> Result<BendDesign, HingeError> {
+    design_with(style, material, (thickness, turn), max_width, true)
+}
+
+/// [`design`] without the straight flex: a living hinge is always the lattice (the `bends`
+/// step tries it first, so the bends it made before the flex stay as they were).
+pub fn design_lattice(
+    style: BendStyle,
+    material: Material,
+    thickness: f64,
+    turn: f64,
+    max_width: f64,
+) -> Result<BendDesign, HingeError> {
+    design_with(style, material, (thickness, turn), max_width, false)
+}
+
+/// [`design`], with the straight flex as the living hinge's fallback when `flex`.
+fn design_with(
+    style: BendStyle,
+    material: Material,
+    (thickness, turn): (f64, f64),
+    max_width: f64,
+    flex: bool,
+) -> Result<BendDesign, HingeError> {
     let t = positive("thickness", thickness)?;
     if t > MAX_THICKNESS {
         return Err(HingeError::Invalid {
@@ -224,6 +262,7 @@ pub fn design(
         });
     }
     let design = match (style, MaterialData::of(material)) {
+        (BendStyle::LivingHinge, Some(data)) if flex => return either_pattern(&data, material, t, turn, max_width),
         (BendStyle::LivingHinge, Some(data)) => return living_hinge(&data, t, turn, max_width),
         _ => fold(style, t, turn),
     };
@@ -234,6 +273,73 @@ pub fn design(
         });
     }
     Ok(design)
+}
+
+/// The lattice when it fits `max_width` (its links are designed from their torsion, with the
+/// margin that gives), else the straight flex where the material takes it (wood) and its
+/// tighter radius fits.
+fn either_pattern(
+    data: &MaterialData,
+    material: Material,
+    t: f64,
+    turn: f64,
+    max_width: f64,
+) -> Result<BendDesign, HingeError> {
+    let lattice = living_hinge(data, t, turn, max_width);
+    let Err(HingeError::TooWide { needed, .. }) = lattice else {
+        return lattice;
+    };
+    match straight_flex(data, material, t, turn) {
+        Some(d) if d.zone_width <= max_width => Ok(d),
+        Some(d) => Err(HingeError::TooWide {
+            needed: needed.min(d.zone_width),
+            max_width,
+        }),
+        None => lattice,
+    }
+}
+
+/// A living hinge of `pattern` turning by `turn` in `thickness` mm of `material` (the swatch
+/// draws each pattern); `None` when the pattern does not suit the material or sheet.
+pub fn design_pattern(pattern: HingePattern, material: Material, thickness: f64, turn: f64) -> Option<BendDesign> {
+    if turn > max_turn(BendStyle::LivingHinge, material, thickness) + 1e-9 || turn.is_nan() || turn <= 0.0 {
+        return None;
+    }
+    let data = MaterialData::of(material)?;
+    match pattern {
+        HingePattern::Lattice => living_hinge(&data, thickness, turn, f64::INFINITY).ok(),
+        HingePattern::Straight => straight_flex(&data, material, thickness, turn),
+    }
+}
+
+/// The straight-cut flex turning by `turn` at its tightest radius ([`FLEX_MIN_RADIUS`]): rows
+/// [`FLEX_PITCH`] apart across a zone of that radius' arc. Wood only (acrylic's links crack
+/// at such radii); `None` for a sheet so thin that its links would be under half the pitch.
+fn straight_flex(data: &MaterialData, material: Material, t: f64, turn: f64) -> Option<BendDesign> {
+    let pitch = FLEX_PITCH * t;
+    let link_width = pitch - data.kerf;
+    if material != Material::Wood || link_width < pitch / 2.0 {
+        return None;
+    }
+    let links = (FLEX_MIN_RADIUS * t * turn / pitch).ceil().max(1.0);
+    let zone_width = links * pitch;
+    let bridge = FLEX_BRIDGE * t;
+    let slit_length = FLEX_PERIOD * t - bridge;
+    Some(BendDesign {
+        style: BendStyle::LivingHinge,
+        pattern: HingePattern::Straight,
+        thickness: t,
+        turn,
+        zone_width,
+        neutral_radius: zone_width / turn,
+        links: links as u32,
+        link_width,
+        link_length: (slit_length - bridge) / 2.0,
+        slit_length,
+        bridge,
+        rows: links as u32 + 1,
+        pitch,
+    })
 }
 
 /// The living hinge of the widest links, from square down to half the thickness, whose zone
@@ -271,6 +377,7 @@ fn lattice(data: &MaterialData, t: f64, turn: f64, b: f64) -> BendDesign {
     let bridge = t;
     BendDesign {
         style: BendStyle::LivingHinge,
+        pattern: HingePattern::Lattice,
         thickness: t,
         turn,
         zone_width,
@@ -300,6 +407,7 @@ fn fold(style: BendStyle, t: f64, turn: f64) -> BendDesign {
     };
     BendDesign {
         style,
+        pattern: HingePattern::Lattice,
         thickness: t,
         turn,
         zone_width: neutral_radius * turn,

@@ -10,7 +10,7 @@ use proptest::prelude::*;
 use super::pattern::clip_segment;
 use super::swatch::hinge_swatch;
 use super::*;
-use crate::plan::{BendStyle, Mark, MarkKind, Material};
+use crate::plan::{BendStyle, HingePattern, Mark, MarkKind, Material};
 
 /// The design of a right-angle bend with no limit on its width.
 fn unlimited(style: BendStyle, material: Material, t: f64) -> BendDesign {
@@ -289,21 +289,69 @@ fn segments_are_clipped_to_polygons_with_holes() {
 #[test]
 fn the_swatch_is_at_true_size_with_red_slits() {
     let s = hinge_swatch(None, Material::Wood, 3.0, 90.0).expect("swatch");
-    assert_eq!(s.design.links, 23);
-    let (lo, hi) = s.strip.bounds();
-    assert!(((hi.x - lo.x) - (2.0 * (s.line[0].x - lo.x) - s.design.zone_width) - s.design.zone_width).abs() < 1e-9);
-    assert!((s.width - (hi.x - lo.x) - 10.0).abs() < 1e-9 && (s.height - (hi.y - lo.y) - 10.0).abs() < 1e-9);
-    check_slits(&s.design, s.line, &s.strip, &s.marks);
+    // Wood: a strip per pattern, the lattice first.
+    assert_eq!(s.strips.len(), 2);
+    let lattice = &s.strips[0];
+    assert_eq!(lattice.design.pattern, HingePattern::Lattice);
+    assert_eq!(lattice.design.links, 23);
+    let (lo, hi) = lattice.strip.bounds();
+    let d = &lattice.design;
+    assert!(((hi.x - lo.x) - (2.0 * (lattice.line[0].x - lo.x) - d.zone_width) - d.zone_width).abs() < 1e-9);
+    for st in &s.strips {
+        check_slits(&st.design, st.line, &st.strip, &st.marks);
+        let (lo, hi) = st.strip.bounds();
+        assert!(s.width - hi.x >= 5.0 - 1e-9 && lo.x >= 5.0 - 1e-9);
+    }
+    // The flex below the lattice, 5 mm apart, and 5 mm to the sheet's bottom edge.
+    let (top, bottom) = (s.strips[0].strip.bounds().1.y, s.strips[1].strip.bounds().0.y);
+    assert!((bottom - top - 5.0).abs() < 1e-9);
+    assert!((s.height - s.strips[1].strip.bounds().1.y - 5.0).abs() < 1e-9);
     let svg = s.svg();
     let w = crate::export::svg::num(s.width);
     let h = crate::export::svg::num(s.height);
     assert!(svg.contains(&format!("width=\"{w}mm\" height=\"{h}mm\" viewBox=\"0 0 {w} {h}\"")));
-    assert_eq!(svg.matches("#ff0000").count(), 1 + s.marks.len());
-    assert!(s.marks.len() > 2 * s.design.rows as usize);
+    let marks: usize = s.strips.iter().map(|st| st.marks.len()).sum();
+    assert_eq!(svg.matches("#ff0000").count(), 2 + marks);
+    assert!(lattice.marks.len() > 2 * d.rows as usize);
     assert!(svg.matches("#0000ff").count() > 20, "legend strokes");
     let heat = hinge_swatch(Some(BendStyle::Heat), Material::Acrylic, 3.0, 90.0).expect("heat");
+    assert_eq!(heat.strips.len(), 1);
     assert_eq!(heat.svg().matches("#ff0000").count(), 1);
+    // Acrylic takes the lattice only.
+    let acrylic = hinge_swatch(Some(BendStyle::LivingHinge), Material::Acrylic, 3.0, 90.0).expect("acrylic");
+    assert_eq!(acrylic.strips.len(), 1);
     assert!(hinge_swatch(None, Material::Wood, -3.0, 90.0).is_err());
+}
+
+#[test]
+fn the_straight_flex_bends_at_five_thicknesses_where_the_lattice_has_no_room() {
+    let quarter = FRAC_PI_2;
+    // Unlimited room: the lattice, whose square links make a 73.6 mm zone at 3 mm.
+    let wide = design(BendStyle::LivingHinge, Material::Wood, 3.0, quarter, f64::INFINITY).expect("wood");
+    assert_eq!(wide.pattern, HingePattern::Lattice);
+    // 30 mm of room: no lattice fits (its narrowest links still need more), the flex does,
+    // at its 5 t radius rounded up to whole rows.
+    let tight = design(BendStyle::LivingHinge, Material::Wood, 3.0, quarter, 30.0).expect("the flex fits");
+    assert_eq!(tight.pattern, HingePattern::Straight);
+    assert!((tight.zone_width - 24.0).abs() < 1e-9, "{}", tight.zone_width);
+    assert!(tight.neutral_radius >= 15.0 && tight.neutral_radius < 15.0 + 1.5 / quarter);
+    assert!((tight.slit_length - 12.0).abs() < 1e-9 && (tight.bridge - 3.0).abs() < 1e-9);
+    assert!((tight.pitch - 1.5).abs() < 1e-9 && (tight.link_width - 1.3).abs() < 1e-9);
+    // Less room than the flex needs: too wide, naming the narrower of the two.
+    match design(BendStyle::LivingHinge, Material::Wood, 3.0, quarter, 20.0) {
+        Err(HingeError::TooWide { needed, max_width }) => {
+            assert!((needed - 24.0).abs() < 1e-9 && max_width == 20.0, "{needed}");
+        }
+        other => panic!("{other:?}"),
+    }
+    // Acrylic never takes the flex.
+    assert!(design(BendStyle::LivingHinge, Material::Acrylic, 3.0, quarter, 30.0).is_err());
+    assert!(design_pattern(HingePattern::Straight, Material::Acrylic, 3.0, quarter).is_none());
+    // Its slits are drawn like the lattice's: staggered rows inside the part.
+    let part = Polygon::new(rect(0.0, 0.0, 60.0, 50.0));
+    let line = [DVec2::new(30.0, 0.0), DVec2::new(30.0, 50.0)];
+    let m = marks(&tight, line, &part).expect("marks");
+    check_slits(&tight, line, &part, &m);
 }
 
 proptest! {
@@ -313,6 +361,11 @@ proptest! {
     ) {
         let turn = deg.to_radians();
         match design(BendStyle::LivingHinge, Material::Wood, t, turn, room) {
+            Ok(d) if d.pattern == HingePattern::Straight => {
+                // The flex where the lattice has no room: its empirical radius, never tighter.
+                prop_assert!(d.zone_width <= room);
+                prop_assert!(d.neutral_radius >= 5.0 * t - 1e-9);
+            }
             Ok(d) => {
                 prop_assert!(d.zone_width <= room);
                 let twist = MaterialData::PLYWOOD.max_link_twist(d.link_width, t, d.link_length);

@@ -130,6 +130,7 @@ fn bent(at: f64, width: f64) -> Part {
         line: [DVec2::new(at, 0.0), DVec2::new(at, 30.0)],
         angle_deg: 90.0,
         style: crate::plan::BendStyle::LivingHinge,
+        pattern: crate::plan::HingePattern::Lattice,
         width,
         segments: [0, 1],
     }];

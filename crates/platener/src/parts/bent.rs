@@ -82,6 +82,7 @@ pub(super) fn part(
             line: b.line,
             angle_deg: b.enclosed_deg,
             style,
+            pattern: b.zone.design.pattern,
             width: b.zone.width(),
             segments: b.members,
         })

@@ -408,6 +408,7 @@ pub fn sample_strip(id: u32, thickness: f64, wide: f64, lengths: &[f64], turns_d
             line: [DVec2::new(x + zone / 2.0, 0.0), DVec2::new(x + zone / 2.0, wide)],
             angle_deg: 180.0 - turn_deg.abs(),
             style: BendStyle::LivingHinge,
+            pattern: crate::plan::HingePattern::Lattice,
             width: zone,
             segments: [k, k + 1],
         });

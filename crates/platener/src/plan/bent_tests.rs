@@ -189,6 +189,7 @@ fn plan_part(p: &Part) -> crate::plan::PlanPart {
                 line: b.line,
                 angle: b.angle_deg,
                 style: b.style,
+                pattern: b.pattern,
                 width: b.width,
                 segments: b.segments,
             })

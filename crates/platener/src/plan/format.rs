@@ -155,6 +155,9 @@ pub struct PlanBend {
     pub angle: f64,
     /// How the material is made to bend there.
     pub style: super::part::BendStyle,
+    /// Extension: a living hinge's slit pattern; absent for the lattice.
+    #[serde(default, skip_serializing_if = "super::part::HingePattern::is_lattice")]
+    pub pattern: super::part::HingePattern,
     /// Extension: the width of the bend zone on the flat part, centred on `line`, mm.
     #[serde(default)]
     pub width: f64,

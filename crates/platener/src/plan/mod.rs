@@ -22,7 +22,9 @@ pub use format::{
     Glue, Method, Plan, PlanBend, PlanJoint, PlanPart, PlanSegment, PlanSettings, PlanSheet, PlanSource, SheetLegend,
     SheetPlacement,
 };
-pub use part::{Bend, BendStyle, EdgeLabel, Joint, JointKind, Mark, MarkKind, MarkSide, Part, PartKind, Segment};
+pub use part::{
+    Bend, BendStyle, EdgeLabel, HingePattern, Joint, JointKind, Mark, MarkKind, MarkSide, Part, PartKind, Segment,
+};
 pub use settings::{CutSettings, LabelMode, MAX_KERF, MAX_MARGIN, Material, SPACING_RANGE, SettingValue, SheetSize};
 
 /// The model the parts were made from, for plan.json's `source`.

@@ -129,6 +129,34 @@ impl BendStyle {
     }
 }
 
+/// The slit pattern of a living hinge (plan.json's `bends[].pattern`, an extension; absent
+/// means `lattice`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum HingePattern {
+    /// Staggered slits whose links are designed from their torsion (docs/bending.md).
+    #[default]
+    Lattice,
+    /// The straight-cut flex of boxes.py: slits 4 t long with t bridges, rows 0.5 t apart,
+    /// bent to the radius makers find it takes (5 t in plywood).
+    Straight,
+}
+
+impl HingePattern {
+    /// The name used in plan.json, on the command line and on the swatch.
+    pub fn name(self) -> &'static str {
+        match self {
+            HingePattern::Lattice => "lattice",
+            HingePattern::Straight => "straight",
+        }
+    }
+
+    /// Whether this is the default (plan.json leaves it out).
+    pub fn is_lattice(&self) -> bool {
+        *self == HingePattern::Lattice
+    }
+}
+
 /// One flat piece of a bent part: a region of the part's flat shape and the rigid frame that
 /// places it in the model (local z from 0 to the thickness, as for a plate).
 #[derive(Debug, Clone, PartialEq)]
@@ -148,6 +176,8 @@ pub struct Bend {
     pub angle_deg: f64,
     /// How the material is made to bend.
     pub style: BendStyle,
+    /// A living hinge's slit pattern (plan.json extension `bends[].pattern`).
+    pub pattern: HingePattern,
     /// Width of the bend zone on the flat part, mm, centred on `line`: the strip that curves
     /// (plan.json extension `bends[].width`; the neutral axis' arc length, so the flat
     /// length includes the bend allowance).
