@@ -149,14 +149,7 @@ fn assert_neighbour_reference(name: &str, c: &State, id: u32, on: u32) {
         touches(&a.outline, &b.outline),
         "{name}: part {id} does not rest on part {on}"
     );
-    let carrier = c
-        .parts
-        .as_ref()
-        .expect("parts")
-        .parts
-        .iter()
-        .find(|p| p.id == on)
-        .expect("part");
+    let carrier = part_of(c, on);
     let footprint_marks = carrier
         .marks
         .iter()
@@ -173,6 +166,17 @@ fn assert_neighbour_reference(name: &str, c: &State, id: u32, on: u32) {
     );
 }
 
+/// Part `id` of the `parts` snapshot.
+fn part_of(c: &State, id: u32) -> &platener::plan::Part {
+    c.parts
+        .as_ref()
+        .expect("parts")
+        .parts
+        .iter()
+        .find(|p| p.id == id)
+        .expect("part")
+}
+
 /// Shaft `id`'s number is engraved on layer part `on`, which it passes through, within a
 /// few millimetres of its slot there.
 fn assert_beside_slot(name: &str, c: &State, id: u32, on: u32) {
@@ -184,14 +188,7 @@ fn assert_beside_slot(name: &str, c: &State, id: u32, on: u32) {
         .find(|b| st.layers[b.layer].islands[b.island].part == on)
         .unwrap_or_else(|| panic!("{name}: shaft {id} does not pass through part {on}"));
     let slot = shaft.start + shaft.direction * ((band.from + band.to) / 2.0);
-    let carrier = c
-        .parts
-        .as_ref()
-        .expect("parts")
-        .parts
-        .iter()
-        .find(|p| p.id == on)
-        .expect("part");
+    let carrier = part_of(c, on);
     let near = carrier
         .marks
         .iter()

@@ -53,6 +53,7 @@ export const GLOSSARY = [
   ['jimjoint', 'Fingers that widen towards their tip and snap behind the other part: they hold in card and paper, which give way.'],
   ['halved', 'Two plates crossing, each slotted half way so they slide into each other.'],
   ['shaft', 'A strip cut from a sheet that goes through slots in stacked layers and holds them in line.'],
+  ['peg', 'A short shaft through two or more layers where a full shaft has no room. Where even a peg would not fit, a small square is added to both layers to hold one: glue is not needed.'],
   ['other family', 'The interlocked method stands two families of slices at right angles: A across the model’s longer side, B across the other. B slices stand first; each A slice is lowered onto them, crossing each in a slot.'],
   ['island', 'A separate piece of one layer or plate; one too small or thin to cut is left out.'],
   ['neck', 'A narrow part of an outline that would break when cut; it is widened or the part is split.'],

@@ -241,12 +241,7 @@ fn united(island: &Polygon, square: &Polygon) -> Result<Polygon, GridError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Polygon {
-        let mut p = Polygon::new(platener_geom::polygon::rect(x0, y0, x1, y1));
-        p.normalize_orientation();
-        p
-    }
+    use crate::stacked::peg::tests::rect;
 
     #[test]
     fn the_square_covers_the_most_of_both_islands() {

@@ -333,6 +333,47 @@ fn number_warnings(n: &Numbers) -> Vec<String> {
     out
 }
 
+/// What the bosses added: one line per boss, or one line for them all when there are more
+/// than [`BOSS_LINES`] (a box's rings: one per pair of layers).
+fn boss_warnings(stack: &Stack) -> Vec<String> {
+    let part = |k: usize, i: usize| stack.layers[k].islands[i].part;
+    let Some(first) = stack.bosses.first() else {
+        return Vec::new();
+    };
+    let widened = format!("{:.1} mm square that holds one", first.side);
+    if stack.bosses.len() <= BOSS_LINES {
+        return stack
+            .bosses
+            .iter()
+            .map(|b| {
+                format!(
+                    "layers {} and {}: parts {} and {} overlap by {:.1} mm² but nowhere wide enough for a peg; both are widened there by a {widened} ({:.1} mm² added outside the model)",
+                    b.layer + 1,
+                    b.layer + 2,
+                    part(b.layer, b.lower),
+                    part(b.layer + 1, b.upper),
+                    b.overlap,
+                    b.added
+                )
+            })
+            .collect();
+    }
+    let pairs: Vec<String> = stack
+        .bosses
+        .iter()
+        .map(|b| format!("{}–{}", part(b.layer, b.lower), part(b.layer + 1, b.upper)))
+        .collect();
+    let added: f64 = stack.bosses.iter().map(|b| b.added).sum();
+    vec![format!(
+        "{} pairs of parts overlap nowhere wide enough for a peg ({}): both parts of each are widened there by a {widened} ({added:.1} mm² added outside the model in all)",
+        stack.bosses.len(),
+        pairs.join(", ")
+    )]
+}
+
+/// Bosses said one per line up to this many.
+const BOSS_LINES: usize = 3;
+
 /// What the user should know about a stack: dropped islands, unjoined layers, repaired loops.
 pub fn warnings(stack: &Stack) -> Vec<String> {
     let mut out = Vec::new();
@@ -351,19 +392,7 @@ pub fn warnings(stack: &Stack) -> Vec<String> {
             k.enlarged
         ));
     }
-    for b in &stack.bosses {
-        let part = |k: usize, i: usize| stack.layers[k].islands[i].part;
-        out.push(format!(
-            "layers {} and {}: parts {} and {} overlap by {:.1} mm² but nowhere wide enough for a peg; both are widened there by a {:.1} mm square that holds one ({:.1} mm² added outside the model)",
-            b.layer + 1,
-            b.layer + 2,
-            part(b.layer, b.lower),
-            part(b.layer + 1, b.upper),
-            b.overlap,
-            b.side,
-            b.added
-        ));
-    }
+    out.extend(boss_warnings(stack));
     // A pair held through other layers needs no glue: nothing falls apart there.
     let (ids, mut groups) = shaft_groups(stack);
     let mut apart = |a: u32, b: u32| {

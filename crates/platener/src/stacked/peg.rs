@@ -168,11 +168,12 @@ impl IslandGroups {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::stacked::fit::fit_slot;
 
-    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Polygon {
+    /// The rectangle `x0..x1` × `y0..y1`, counter-clockwise.
+    pub(in crate::stacked) fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Polygon {
         let mut p = Polygon::new(platener_geom::polygon::rect(x0, y0, x1, y1));
         p.normalize_orientation();
         p
