@@ -29,13 +29,24 @@ const FATAL: &str = "FATAL ";
 const CORPUS_INVALID: usize = 6;
 /// Invalid outlines or cut paths of the classifier's corpus plans (see [`CORPUS_INVALID`]).
 const CLASSIFIER_INVALID: usize = 4;
-/// Invalid outlines or cut paths tolerated in the samples sweep: not bounded. Which sample
-/// conversions beat the time limit depends on the machine (spheres and tori at 1–3 mm did
-/// not on two cores), and those that do not show none of their outlines, so any ceiling
-/// would be a timing assertion. 9 were listed when the sweep joined the default run
-/// (rounded-box and two-bodies at 1–2 mm); the sweep still fails on any panic or internal
-/// error.
-const SAMPLES_INVALID: usize = usize::MAX;
+/// The sample conversions whose outlines may be invalid: the sphere at 4 mm (four facet
+/// plates of the plate and classifier methods with necks the repairs refuse, measured
+/// 2026-11-28), and those that passed the time limit on two loaded cores and so were never
+/// checked (spheres and tori at 1–3 mm, two bodies at 2 mm; the two bodies had invalid
+/// outlines at 1–2 mm when the sweep joined the default run). Which of these beat the limit
+/// depends on the machine, so they are exempt rather than counted (a count would be a timing
+/// assertion); every other sample at every thickness must have valid outlines and cut paths.
+const SAMPLES_MAY_BE_INVALID: [(&str, f64); 9] = [
+    ("sphere", 1.0),
+    ("sphere", 2.0),
+    ("sphere", 3.0),
+    ("sphere", 4.0),
+    ("torus", 1.0),
+    ("torus", 2.0),
+    ("torus", 3.0),
+    ("two-bodies", 1.0),
+    ("two-bodies", 2.0),
+];
 
 /// The sheet thicknesses swept, mm.
 const THICKNESSES: [f64; 6] = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
@@ -141,7 +152,15 @@ fn sweep_one(source: Source, t: f64) -> (Vec<String>, [usize; 2]) {
 /// when the sweep joined the default test run (a ceiling that only goes down: the repairs
 /// refuse to cut off more than 2 % of a part, see docs/decisions.md). Panics and internal
 /// errors are never tolerated.
-fn sweep(what: &str, sources: Vec<Source>, thicknesses: &[f64], [invalid_at_most, invalid_classifier]: [usize; 2]) {
+///
+/// Problems of the `exempt` (model, thickness) conversions are listed but not counted.
+fn sweep(
+    what: &str,
+    sources: Vec<Source>,
+    thicknesses: &[f64],
+    [invalid_at_most, invalid_classifier]: [usize; 2],
+    exempt: &[(&str, f64)],
+) {
     let start = Instant::now();
     let jobs: Vec<(Source, f64)> = sources
         .into_iter()
@@ -178,6 +197,12 @@ fn sweep(what: &str, sources: Vec<Source>, thicknesses: &[f64], [invalid_at_most
         fatal.len()
     );
     eprintln!("{what}: invalid outlines or cut paths:\n{}", found.join("\n"));
+    let is_exempt = |p: &String| {
+        exempt
+            .iter()
+            .any(|(model, t)| p.starts_with(&format!("{model} ")) && p.contains(&format!(" {t} mm: ")))
+    };
+    let found: Vec<String> = found.into_iter().filter(|p| !is_exempt(p)).collect();
     let (classifier, found): (Vec<String>, Vec<String>) = found.into_iter().partition(|p| p.contains(" Classifier "));
     assert!(
         classifier.len() <= invalid_classifier,
@@ -197,7 +222,13 @@ fn sweep(what: &str, sources: Vec<Source>, thicknesses: &[f64], [invalid_at_most
 /// layers once made jagua-rs panic; see `sheets::RETRY_MARGINS`); invalid outlines are listed.
 #[test]
 fn every_sample_at_every_thickness_converts_with_valid_outlines() {
-    sweep("samples", sample_sources(), &THICKNESSES, [SAMPLES_INVALID; 2]);
+    sweep(
+        "samples",
+        sample_sources(),
+        &THICKNESSES,
+        [0, 0],
+        &SAMPLES_MAY_BE_INVALID,
+    );
 }
 
 /// The corpus files, or `None` after saying why the corpus tests skip.
@@ -220,6 +251,7 @@ fn every_corpus_model_at_every_thickness_converts_or_fails_with_a_reason() {
         sources,
         &THICKNESSES,
         [CORPUS_INVALID, CLASSIFIER_INVALID],
+        &[],
     );
 }
 
