@@ -54,6 +54,7 @@ const PASSING: &[&str] = &[
     "ipad_mini_arcade_cabinet_half/interlocked",
     "ipad_mini_arcade_cabinet_half/stacked",
     "lasercut_fingerjoint_examples_assembly/plate",
+    "lasercut_fingerjoint_examples_assembly/stacked",
     "lasercut_fingerjoint_examples_assembly/interlocked",
     "model_house_walls/plate",
     "model_house_walls/interlocked",

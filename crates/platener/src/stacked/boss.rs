@@ -21,6 +21,7 @@ use platener_geom::polygon::total_area;
 use platener_geom::{GridError, Polygon, boolean, offset};
 use serde::Serialize;
 
+use super::Unjoined;
 use super::fit::DIRECTIONS;
 use super::peg::{IslandGroups, PEG_MIN_WALL};
 use super::shafts::{Placed, boxes_meet};
@@ -78,25 +79,13 @@ pub(crate) fn add_bosses(
         if groups.same(u.layer, u.lower, u.upper) {
             continue;
         }
-        let (a, b) = (&islands[u.layer][u.lower], &islands[u.layer + 1][u.upper]);
         let below = out
             .iter()
             .rev()
             .find(|x: &&Boss| x.layer + 1 == u.layer && x.upper == u.lower);
-        let mut found = match below {
-            Some(x) => aligned(a, b, &x.square, side)?,
-            None => None,
-        };
-        if found.is_none() {
-            let slots = slots_in(placed, u.layer, thickness / 2.0);
-            found = best_square(a, b, &slots, side, placed.bridge)?;
-        }
-        let Some((square, added)) = found else {
+        let Some((square, added)) = square_for(islands, placed, u, below, (side, thickness / 2.0))? else {
             continue;
         };
-        if added > MAX_ADDED * side * side || !clear_of_others(islands, u.layer, [u.lower, u.upper], &square)? {
-            continue;
-        }
         let boss = Boss {
             layer: u.layer,
             lower: u.lower,
@@ -121,12 +110,33 @@ pub(crate) fn apply(islands: &mut [Vec<Polygon>], boss: &Boss) -> Result<(), Gri
     Ok(())
 }
 
-/// The square of the boss below (`square`, on the lower island already) when it suits `a` and
-/// `b` too: one peg then runs through the three layers (a handle's pieces, one above the
-/// other), where squares side by side would need room for two.
-fn aligned(a: &Polygon, b: &Polygon, square: &Polygon, side: f64) -> Result<Option<(Polygon, f64)>, GridError> {
-    let added = 2.0 * side * side - covered(square, a)? - covered(square, b)?;
-    Ok((added <= MAX_ADDED * side * side && covered(square, b)? > 0.0).then(|| (square.clone(), added)))
+/// The square for pair `u` and the area it adds: the square of the boss `below` when it suits
+/// (one peg then runs through the three layers, a handle's pieces one above the other, where
+/// squares side by side would need room for two), else the best one; either only if it adds
+/// at most [`MAX_ADDED`] squares and keeps clear of the layers' other islands.
+fn square_for(
+    islands: &[Vec<Polygon>],
+    placed: &Placed,
+    u: &Unjoined,
+    below: Option<&Boss>,
+    (side, half): (f64, f64),
+) -> Result<Option<(Polygon, f64)>, GridError> {
+    let (a, b) = (&islands[u.layer][u.lower], &islands[u.layer + 1][u.upper]);
+    let fits = |(square, added): &(Polygon, f64)| -> Result<bool, GridError> {
+        Ok(*added <= MAX_ADDED * side * side && clear_of_others(islands, u.layer, [u.lower, u.upper], square)?)
+    };
+    if let Some(x) = below {
+        let on_b = covered(&x.square, b)?;
+        let same = (x.square.clone(), 2.0 * side * side - covered(&x.square, a)? - on_b);
+        if on_b > 0.0 && fits(&same)? {
+            return Ok(Some(same));
+        }
+    }
+    let slots = slots_in(placed, u.layer, half);
+    match best_square(a, b, &slots, side, placed.bridge)? {
+        Some(best) if fits(&best)? => Ok(Some(best)),
+        _ => Ok(None),
+    }
 }
 
 /// The slots `placed` cuts into layers `k` and `k + 1`, shafts `2·half` thick.
