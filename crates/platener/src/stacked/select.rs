@@ -37,24 +37,12 @@ impl Stack {
             });
         }
         self.shafts.retain(|s| keep(s.part) && !s.bands.is_empty());
-        self.unjoined.retain_mut(
-            |u| match (new_index[u.layer][u.lower], new_index[u.layer + 1][u.upper]) {
-                (Some(lower), Some(upper)) => {
-                    (u.lower, u.upper) = (lower, upper);
-                    true
-                }
-                _ => false,
-            },
-        );
-        self.bosses.retain_mut(
-            |b| match (new_index[b.layer][b.lower], new_index[b.layer + 1][b.upper]) {
-                (Some(lower), Some(upper)) => {
-                    (b.lower, b.upper) = (lower, upper);
-                    true
-                }
-                _ => false,
-            },
-        );
+        let kept = |k: usize, lower: &mut usize, upper: &mut usize| {
+            let pair = new_index[k][*lower].zip(new_index[k + 1][*upper]);
+            pair.inspect(|&p| (*lower, *upper) = p).is_some()
+        };
+        self.unjoined.retain_mut(|u| kept(u.layer, &mut u.lower, &mut u.upper));
+        self.bosses.retain_mut(|b| kept(b.layer, &mut b.lower, &mut b.upper));
     }
 
     /// Numbers the parts from `first` on (islands bottom up, then shafts); returns each old id's
