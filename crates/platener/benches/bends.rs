@@ -52,10 +52,10 @@ fn bench(c: &mut Criterion) {
     for (sides, rings) in [(20, 20), (50, 50), (100, 100)] {
         let plates = vase(sides, rings);
         let style = Bending::Style(BendStyle::LivingHinge);
-        let once = compute(&plates, style, Material::Wood, (1e5, 1e5)).expect("grid");
+        let once = compute(&plates, None, style, Material::Wood, (1e5, 1e5)).expect("grid");
         assert!(!once.parts.is_empty());
         group.bench_function(format!("vase/{} facets", plates.len()), |b| {
-            b.iter(|| compute(&plates, style, Material::Wood, (1e5, 1e5)).expect("grid"));
+            b.iter(|| compute(&plates, None, style, Material::Wood, (1e5, 1e5)).expect("grid"));
         });
     }
     group.finish();

@@ -676,6 +676,13 @@ pub fn small_chair() -> Vec<Triangle> {
     )
 }
 
+/// The rounded tray of issue 32: 120 × 80 × 40 mm, 3 mm walls and bottom, its vertical corners
+/// filleted at 12 mm as 6 facets each (3.1 mm wide outside, 2.4 mm inside): too narrow for a
+/// bend zone each, a run of them turns 90°.
+pub fn filleted_tray() -> Vec<Triangle> {
+    rounded_tray(120.0, 80.0, 40.0, 12.0, 6, 3.0)
+}
+
 /// The samples of issue 32's CAD details (file name, triangles): a hexagonal and an octagonal
 /// tube with 2 mm walls (to cut from 2 mm sheet), a table on square legs and a keychain tag
 /// with raised letters, a teacup with 1.5 mm curved walls and a small chair on 4 × 4 mm legs.
@@ -687,6 +694,12 @@ pub fn cad_detail_samples() -> Vec<(&'static str, Vec<Triangle>)> {
         ("keychain_tag.stl", keychain_tag()),
         ("teacup_1.5mm.stl", teacup(48, 12, 1.5)),
         ("small_chair_2mm.stl", small_chair()),
+        ("filleted_tray.stl", filleted_tray()),
+        ("filleted_tray_2mm.stl", rounded_tray(120.0, 80.0, 40.0, 12.0, 6, 2.0)),
+        (
+            "filleted_tray_card_1.5mm.stl",
+            rounded_tray(120.0, 80.0, 40.0, 12.0, 6, 1.5),
+        ),
     ]
 }
 

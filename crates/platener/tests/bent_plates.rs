@@ -129,6 +129,59 @@ fn a_rounded_tray_is_its_bottom_and_one_wrap() {
     assert_eq!(v.groups, 1);
 }
 
+/// Issue 32: a tray whose corners are 12 mm fillets drawn as six facets each (3 mm wide: too
+/// narrow for a bend zone each, and at 2 mm and 1.5 mm found as plates of their own) was four
+/// flat walls with the corners cut alone or dropped. Each fillet is now one arc zone
+/// spanning its run of facets, the ring is cut open in the middle of a wall (no joint closes
+/// a fillet), and the plan is the bottom and one wrap, in plywood a straight flex or lattice
+/// and in card creases spread over the arc.
+#[test]
+fn a_tray_with_faceted_fillets_is_its_bottom_and_one_wrap_bent_across_each_fillet() {
+    use std::f64::consts::FRAC_PI_2;
+    let cases = [
+        (3.0, Material::Wood, BendStyle::LivingHinge),
+        (2.0, Material::Wood, BendStyle::LivingHinge),
+        (1.5, Material::Cardboard, BendStyle::Perforation),
+    ];
+    for (t, material, style) in cases {
+        let state = convert_sample(samples::rounded_tray(120.0, 80.0, 40.0, 12.0, 6, t), material, t);
+        let (plan, v) = rebuilt_within(&state, 0.92);
+        let kinds: Vec<PartKind> = plan.parts.iter().map(|p| p.kind).collect();
+        assert_eq!(kinds.len(), 2, "{t} mm: {kinds:?}");
+        assert_eq!(v.groups, 1, "{t} mm: the wrap holds on the bottom");
+        assert!(v.surface_covered.expect("measured") >= 0.97, "{t} mm: {v:?}");
+        let wrap = plan.parts.iter().find(|p| p.kind == PartKind::Bent).expect("a wrap");
+        // Four fillets bent; the wall cut open in two makes a fifth segment, and no seam.
+        assert_eq!(wrap.bends.len(), 4, "{t} mm");
+        assert_eq!(wrap.segments.len(), 5, "{t} mm");
+        assert!(
+            !plan.joints.iter().any(|j| j.parts == [wrap.id, wrap.id]),
+            "{t} mm: no seam"
+        );
+        // The fillet's neutral arc (outer radius 12, chord sag under 0.1 mm).
+        let fillet = 12.0 - t / 2.0;
+        for b in &wrap.bends {
+            assert_eq!(b.style, style);
+            assert!((b.angle - 90.0).abs() < 0.5, "{t} mm: {}", b.angle);
+            let radius = b.width / FRAC_PI_2;
+            assert!(
+                radius >= fillet - 0.3,
+                "{t} mm: the zone spans the fillet ({radius:.2})"
+            );
+            let off = (radius - fillet) * (std::f64::consts::SQRT_2 - 1.0);
+            assert!(
+                off <= t,
+                "{t} mm: the arc keeps within a thickness of the fillet ({off:.2})"
+            );
+        }
+        if style == BendStyle::Perforation {
+            // Six creases of 15° each across every zone, not one crease.
+            let dashes = wrap.marks.iter().filter(|m| m.kind == MarkKind::Cut).count();
+            assert!(dashes >= 4 * 6 * 3, "{dashes} dashes");
+        }
+    }
+}
+
 #[test]
 fn a_card_cone_is_one_part_with_perforated_folds_and_a_seam_flap() {
     let state = convert_sample(samples::cone_shell(24, 60.0, 35.0, 50.0, 1.5), Material::Cardboard, 1.5);

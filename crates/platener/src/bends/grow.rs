@@ -26,6 +26,10 @@ pub struct HalfPlane {
     pub axis: DVec3,
     /// Into the kept half, perpendicular to the line, in the member's plane.
     pub into: DVec3,
+    /// How far short of the line the member's plate stops across a fillet, mm (0 at a
+    /// corner): the flat part is filled up to the line over it, where the arc zone replaces
+    /// the fillet's facets.
+    pub gap: f64,
 }
 
 impl HalfPlane {
@@ -170,6 +174,7 @@ impl<'a> Layout<'a> {
             point: c.point,
             axis: c.axis,
             into: c.into[c.side_of(plate)],
+            gap: c.gap,
         };
         let (hp, hc) = (cut(parent), cut(child));
         let tangent = |h: HalfPlane| HalfPlane {

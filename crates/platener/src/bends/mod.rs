@@ -18,6 +18,8 @@
 //! lines and seams; the `joints` step leaves bends (and glued seams) without fingers and
 //! the `parts` step merges the jointed plates into one part.
 
+mod close;
+mod fillet;
 mod find;
 mod grow;
 mod remove;
@@ -34,6 +36,7 @@ use serde::Serialize;
 
 use crate::context::{StepContext, WarningKind};
 use crate::error::{Error, ModelProblem, Result};
+use crate::mesh::Mesh;
 use crate::plan::{BendStyle, Material, SheetSize};
 use crate::plates::{Plate, Plates};
 use crate::settings::{Bending, Settings};
@@ -72,6 +75,9 @@ pub struct Bends {
     /// `joints` step to take (the joints snapshot shows them).
     #[serde(skip)]
     pub joints: Option<std::sync::Arc<crate::joints::reuse::Computed>>,
+    /// How many plates there were (the pairs [`Bends::unjointed`] names reach them all).
+    #[serde(skip)]
+    pub plate_count: usize,
 }
 
 /// A candidate that stayed a joint.
@@ -95,6 +101,33 @@ pub struct BentPart {
     pub bends: Vec<BendLine>,
     /// The seams: where a ring of plates is cut open; a joint closes them.
     pub seams: Vec<Seam>,
+    /// Where a ring is cut open in the middle of a wall instead (its seam lay across a
+    /// fillet, which no joint closes): that wall's plate is two members, each keeping a half.
+    pub splits: Vec<Split>,
+}
+
+/// The half of its plate a member keeps where its wall is cut in two to open a ring.
+#[derive(Debug, Clone, Serialize)]
+pub struct Split {
+    /// The member (index into [`BentPart::members`]).
+    pub member: usize,
+    /// The half it keeps.
+    pub keep: HalfPlane,
+}
+
+impl BentPart {
+    /// The halves member `i` keeps of its plate where its wall is cut in two (none, or one).
+    pub fn splits_of(&self, i: usize) -> impl Iterator<Item = &HalfPlane> {
+        self.splits.iter().filter(move |s| s.member == i).map(|s| &s.keep)
+    }
+
+    /// The plates it is made of, ascending, each once (a wall cut in two is one plate).
+    pub fn plates(&self) -> Vec<u32> {
+        let mut plates: Vec<u32> = self.members.iter().map(|m| m.plate).collect();
+        plates.sort_unstable();
+        plates.dedup();
+        plates
+    }
 }
 
 /// One bend of a bent part.
@@ -110,6 +143,22 @@ pub struct BendLine {
     pub line: [DVec2; 2],
     /// Per member: where its flat segment begins (the zone's edge on its side), in the model.
     pub tangents: [HalfPlane; 2],
+    /// The neutral radius of the model's fillet the zone replaces (an arc zone), mm.
+    pub fillet: Option<f64>,
+    /// The plates the fillet's facets were found as, which the zone replaces: they make no
+    /// part and no joint.
+    pub facets: Vec<u32>,
+}
+
+impl BendLine {
+    /// How far the bent arc passes inside the model's own corner, mm: its sharp corner, or
+    /// across a fillet the fillet's arc.
+    pub fn rounding(&self) -> f64 {
+        let own = self
+            .fillet
+            .map_or(0.0, |r| r * (1.0 / (self.zone.turn() / 2.0).cos() - 1.0));
+        (self.zone.corner_gap() - own).max(0.0)
+    }
 }
 
 /// A seam of a bent part.
@@ -130,11 +179,26 @@ impl Bends {
             .find_map(|(k, part)| part.members.iter().position(|m| m.plate as usize == p).map(|i| (k, i)))
     }
 
-    /// The plate pairs (lower first) that need no joint: the bends, and with paper and card
-    /// the seams (a glue flap closes them).
+    /// The plates that arc zones replace (a fillet's facets): they make no part.
+    pub fn absorbed(&self) -> std::collections::BTreeSet<u32> {
+        self.parts
+            .iter()
+            .flat_map(|p| p.bends.iter().flat_map(|b| b.facets.iter().copied()))
+            .collect()
+    }
+
+    /// The plate pairs (lower first) that need no joint: the bends, with paper and card
+    /// the seams (a glue flap closes them), and every pair with a plate an arc zone replaced.
     pub fn unjointed(&self) -> std::collections::BTreeSet<(u32, u32)> {
         let flaps = matches!(self.style, Some(BendStyle::Perforation | BendStyle::Score));
         let mut pairs = std::collections::BTreeSet::new();
+        for f in self.absorbed() {
+            pairs.extend(
+                (0..self.plate_count as u32)
+                    .filter(|&j| j != f)
+                    .map(|j| (f.min(j), f.max(j))),
+            );
+        }
         for part in &self.parts {
             let pair = |[i, j]: [usize; 2]| {
                 let (a, b) = (part.members[i].plate, part.members[j].plate);
@@ -150,7 +214,7 @@ impl Bends {
 }
 
 /// Step `bends`: the bent parts of the plates, in the style `--bend` asks for.
-pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Result<Bends> {
+pub fn run(plates: &Plates, mesh: &Mesh, settings: &Settings, cx: &mut StepContext<'_>) -> Result<Bends> {
     cx.check_cancel()?;
     let material = settings.cut.material;
     // A bent part's flat shape grows by its joints' fingers at its ends (a sheet's thickness
@@ -176,11 +240,11 @@ pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Re
         );
     }
     let off_grid = |e| Error::model(cx.model(), ModelProblem::OffGrid(e));
-    let mut bends = compute(&plates.plates, settings.bending, material, sheet).map_err(off_grid)?;
+    let mut bends = compute(&plates.plates, Some(mesh), settings.bending, material, sheet).map_err(off_grid)?;
     keep_sound(&mut bends, plates, settings).map_err(off_grid)?;
     for (k, part) in bends.parts.iter().enumerate() {
         let t = plates.plates[part.members[0].plate as usize].thickness;
-        let round = part.bends.iter().map(|b| b.zone.corner_gap()).fold(0.0, f64::max);
+        let round = part.bends.iter().map(BendLine::rounding).fold(0.0, f64::max);
         if round > t {
             cx.warn(
                 WarningKind::Joints,
@@ -193,7 +257,7 @@ pub fn run(plates: &Plates, settings: &Settings, cx: &mut StepContext<'_>) -> Re
         }
     }
     if !bends.parts.is_empty() {
-        let merged: usize = bends.parts.iter().map(|p| p.members.len()).sum();
+        let merged: usize = bends.parts.iter().map(|p| p.plates().len()).sum();
         cx.warn(
             WarningKind::Joints,
             format!(
@@ -239,13 +303,20 @@ fn keep_sound(bends: &mut Bends, plates: &Plates, settings: &Settings) -> std::r
 
 /// The plates of a bent part, numbered as in the plates step, for messages.
 fn plate_list(part: &BentPart) -> String {
-    let ids: Vec<String> = part.members.iter().map(|m| (m.plate + 1).to_string()).collect();
+    let ids: Vec<String> = part.plates().iter().map(|p| (p + 1).to_string()).collect();
     ids.join(", ")
 }
 
 /// The bent parts of `plates` made with `bending` in `material`, each fitting a sheet of
-/// `sheet` (width, height) mm.
-pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f64, f64)) -> Result<Bends, GridError> {
+/// `sheet` (width, height) mm; with the `mesh` they were found in, also across its fillets
+/// (runs of facets too narrow to be plates: one arc zone each).
+pub fn compute(
+    plates: &[Plate],
+    mesh: Option<&Mesh>,
+    bending: Bending,
+    material: Material,
+    sheet: (f64, f64),
+) -> Result<Bends, GridError> {
     let Some(style) = bending.style(material) else {
         return Ok(Bends::default());
     };
@@ -256,11 +327,12 @@ pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f
     } else {
         physical
     };
-    let candidates = find::candidates(plates, max_turn);
+    let candidates = find::candidates(plates, (max_turn, physical), mesh);
     let zones: Vec<_> = candidates
         .iter()
         .map(|c| zone_of(c, plates, style, material, bending == Bending::Auto))
         .collect();
+    let (candidates, zones) = fillet::prefer_arcs(candidates, zones);
     let grow = |order: &[usize]| grow::Layout::new(plates, &candidates, &zones, sheet).grow(order);
     let mut best: Option<(grow::Layout, Vec<usize>)> = None;
     for order in orders(&candidates, plates) {
@@ -271,9 +343,14 @@ pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f
     }
     let (layout, order) = best.expect("at least one order is tried");
     let layout = remove::improve(layout, order, &candidates, grow)?;
+    let mut parts = parts_of(&layout, &candidates, &zones);
+    let zone_of = |c: &Candidate| zone_of(c, plates, style, material, bending == Bending::Auto);
+    for part in &mut parts {
+        close::close_fillet_seams(part, plates, &zone_of, sheet)?;
+    }
     Ok(Bends {
         style: Some(style),
-        parts: parts_of(&layout, &candidates, &zones),
+        parts,
         candidates: candidates.len(),
         refused: layout
             .refused
@@ -284,6 +361,7 @@ pub fn compute(plates: &[Plate], bending: Bending, material: Material, sheet: (f
             })
             .collect(),
         joints: None,
+        plate_count: plates.len(),
     })
 }
 
@@ -297,9 +375,15 @@ fn zone_of(
     material: Material,
     strict: bool,
 ) -> Result<Zone, String> {
-    let t = plates[c.plates[0]].thickness;
+    let thickness = plates[c.plates[0]].thickness;
     let depth = c.depth[0].min(c.depth[1]);
-    zone::design(style, material, (t, depth), c.turn(), 0.8 * depth, strict)
+    let room = zone::Room {
+        thickness,
+        depth,
+        max_width: 0.8 * depth,
+        fillet: (c.gap > 0.0).then(|| fillet::Arc::of(c, c.gap).radius),
+    };
+    zone::design(style, material, room, c.turn(), strict)
 }
 
 /// The orders in which candidates are tried: the easiest bends first (smallest turn, then
@@ -410,6 +494,7 @@ fn parts_of(layout: &grow::Layout, candidates: &[Candidate], zones: &[Result<Zon
             cuts,
             bends,
             seams,
+            splits: Vec::new(),
         });
     }
     parts
@@ -423,6 +508,7 @@ fn bend_line(c: &Candidate, zone: Zone, parent: usize, pm: &Member, members: [us
         point: c.point + c.into[side] * zone.setback(),
         axis: c.axis,
         into: c.into[side],
+        gap: 0.0,
     };
     let into = c.into[c.side_of(parent)];
     let centre = c.point + into * (zone.setback() - zone.width() / 2.0);
@@ -433,5 +519,7 @@ fn bend_line(c: &Candidate, zone: Zone, parent: usize, pm: &Member, members: [us
         zone,
         line: [flat(c.reach.0), flat(c.reach.1)],
         tangents: [t_half(0), t_half(1)],
+        fillet: (c.gap > 0.0).then(|| fillet::Arc::of(c, c.gap).radius),
+        facets: c.facets.iter().map(|&p| p as u32).collect(),
     }
 }

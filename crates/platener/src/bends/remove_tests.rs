@@ -57,6 +57,7 @@ fn removing_the_plate_that_blocks_two_others_leaves_fewer_parts_than_any_order()
     let plates = net();
     let bends = super::compute(
         &plates,
+        None,
         crate::Bending::Style(BendStyle::Heat),
         Material::Acrylic,
         (1e4, 1e4),
@@ -64,7 +65,11 @@ fn removing_the_plate_that_blocks_two_others_leaves_fewer_parts_than_any_order()
     .expect("on the grid");
     assert_eq!(bends.candidates, 3);
     // Every order alone: the top flap joins first, the side flaps stay plates (3 parts).
-    let candidates = super::find::candidates(&plates, std::f64::consts::FRAC_PI_2);
+    let candidates = super::find::candidates(
+        &plates,
+        (std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2),
+        None,
+    );
     let zones: Vec<_> = candidates
         .iter()
         .map(|c| super::zone_of(c, &plates, BendStyle::Heat, Material::Acrylic, false))

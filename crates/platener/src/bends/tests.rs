@@ -223,7 +223,7 @@ mod chains {
         ) {
             let (_, plates) = chain(&widths, &tapers, &turns);
             let bends = crate::bends::compute(
-                &plates, crate::Bending::Style(BendStyle::Heat), Material::Acrylic, (1e4, 1e4),
+                &plates, None, crate::Bending::Style(BendStyle::Heat), Material::Acrylic, (1e4, 1e4),
             ).expect("on the grid");
             prop_assert_eq!(bends.parts.len(), 1, "{:?}", bends.refused);
             let part = &bends.parts[0];
@@ -326,4 +326,36 @@ mod orders {
             }
         }
     }
+}
+
+/// The arc of a fillet: tangent to both mid-planes at the setback, its radius
+/// setback / tan(turn / 2), its middle on the bisector (a right-angle corner at the origin,
+/// walls along +x and +y, setback 10: radius 10, centre (10, 10), middle at 10 − 5√2).
+#[test]
+fn a_fillet_arc_is_tangent_to_both_walls_at_its_setback() {
+    let c = crate::bends::Candidate {
+        plates: [0, 1],
+        point: DVec3::ZERO,
+        axis: DVec3::Z,
+        span: (0.0, 40.0),
+        reach: (0.0, 40.0),
+        into: [DVec3::X, DVec3::Y],
+        depth: [100.0, 60.0],
+        enclosed: std::f64::consts::FRAC_PI_2,
+        gap: 10.0,
+        facets: Vec::new(),
+    };
+    let arc = super::fillet::Arc::of(&c, 10.0);
+    assert!((arc.radius - 10.0).abs() < 1e-9);
+    assert!(arc.centre.distance(DVec3::new(10.0, 10.0, 0.0)) < 1e-9);
+    for (k, tangent) in [DVec3::new(10.0, 0.0, 0.0), DVec3::new(0.0, 10.0, 0.0)]
+        .into_iter()
+        .enumerate()
+    {
+        assert!((arc.centre + arc.ends[k] * arc.radius).distance(tangent) < 1e-9);
+        assert!(arc.ends[k].dot(c.into[k]).abs() < 1e-9, "perpendicular to its wall");
+    }
+    let middle = arc.centre + arc.direction(0.5) * arc.radius;
+    let m = 10.0 - 5.0 * std::f64::consts::SQRT_2;
+    assert!(middle.distance(DVec3::new(m, m, 0.0)) < 1e-9);
 }

@@ -82,22 +82,85 @@ fn width_for_bulge(turn: f64, t: f64, depth: f64) -> f64 {
     turn * (t / 2.0 + (0.04 * t * depth / lune).sqrt())
 }
 
-/// The zone of a bend of `turn` radians in `style` between plates `depth` deep, at most
-/// `max_width` wide on the flat, or why there is none. The widest hinge (strongest links)
-/// whose bulge out of the model stays small is taken; else the narrowest hinge there is, if
-/// it rounds the model's corner by at most a thickness, or (`strict` off: a style the user
-/// asked for) if it fits at all. All of this with the lattice first, so every bend it made
-/// stays as it was; only where it makes none is the straight flex tried, and with the style
-/// chosen by material (`strict`) only on a tessellated curve ([`FLEX_MAX_TURN_DEG`]): a
+/// The room a bend has: the sheet, how deep its plates are and how wide its zone may be.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Room {
+    /// Sheet thickness, mm.
+    pub thickness: f64,
+    /// How far the shallower plate reaches from the line where the mid-planes meet, mm.
+    pub depth: f64,
+    /// The widest zone that leaves each plate a flat segment, mm.
+    pub max_width: f64,
+    /// The neutral radius of the model's own rounding when the plates stop short of their
+    /// corner by a run of narrow facets (an arc zone replaces them), mm.
+    pub fillet: Option<f64>,
+}
+
+/// The zone of a bend of `turn` radians in `style` with `room`, or why there is none. The
+/// widest hinge (strongest links) whose bulge out of the model stays small is taken; else
+/// the narrowest hinge there is, if it rounds the model's corner by at most a thickness, or
+/// (`strict` off: a style the user asked for) if it fits at all. All of this with the
+/// lattice first, so every bend it made stays as it was; only where it makes none is the
+/// straight flex tried, and with the style chosen by material (`strict`) only on a
+/// tessellated curve ([`FLEX_MAX_TURN_DEG`], or a fillet: a run of narrow facets): a
 /// coarser corner (the low-poly lamp's 25–40°) is a design and stays jointed.
+///
+/// Across a fillet the zone spans the whole run of facets: a hinge that could bend tighter
+/// is widened to the fillet's own arc, and one that needs a larger radius may pass at most
+/// a thickness inside the fillet (strict) instead of inside the sharp corner.
 pub(crate) fn design(
     style: BendStyle,
     material: Material,
-    (thickness, depth): (f64, f64),
+    room: Room,
     turn: f64,
-    max_width: f64,
     strict: bool,
 ) -> Result<Zone, String> {
+    let Some(fillet) = room.fillet else {
+        return design_corner(style, material, room, turn, strict);
+    };
+    let own = fillet * turn;
+    let sec = 1.0 / (turn / 2.0).cos() - 1.0;
+    let rounding = width_for_gap(turn, fillet * sec + room.thickness);
+    let allowed = if strict {
+        room.max_width.min(rounding)
+    } else {
+        room.max_width
+    };
+    if own > room.max_width {
+        return Err(format!(
+            "the fillet's arc is {own:.1} mm long, only {:.1} mm of its walls could bend",
+            room.max_width
+        ));
+    }
+    let design = match hinge_design(style, material, room.thickness, turn, allowed) {
+        Ok(design) => design,
+        Err(HingeError::TooWide { needed, .. }) => {
+            let why = if strict && needed <= room.max_width {
+                " without rounding the model's fillet by more than a thickness"
+            } else {
+                ""
+            };
+            return Err(format!(
+                "the bend zone would be {needed:.1} mm wide, only {allowed:.1} mm fit{why}"
+            ));
+        }
+        Err(e) => return Err(e.to_string()),
+    };
+    let design = design.widened(own);
+    // A fold is one crease: it makes a sharp corner where the model is round.
+    let off = (design.neutral_radius - fillet).abs() * sec;
+    if strict && off > room.thickness {
+        return Err(format!(
+            "a {} would leave the model's {fillet:.1} mm fillet by {off:.1} mm",
+            style.name()
+        ));
+    }
+    Ok(Zone { design })
+}
+
+/// [`design`] at a sharp corner (plates that reach their line).
+fn design_corner(style: BendStyle, material: Material, room: Room, turn: f64, strict: bool) -> Result<Zone, String> {
+    let (thickness, depth, max_width) = (room.thickness, room.depth, room.max_width);
     let lattice = |limit: f64| design_lattice(style, material, thickness, turn, limit);
     let why = match fit(lattice, (thickness, depth), turn, max_width, strict) {
         Ok(zone) => return Ok(zone),

@@ -43,18 +43,29 @@ pub fn marks(design: &BendDesign, line: [DVec2; 2], clip: &Polygon) -> Result<Ve
         }
         BendStyle::Perforation => {
             let inner = offset(std::slice::from_ref(clip), -design.bridge)?;
-            Ok(dashes(design, &axes, &inner, [(0.0, 0.0)].into_iter(), 0.0))
+            Ok(dashes(design, &axes, &inner, creases(design).map(|d| (d, 0.0)), 0.0))
         }
         BendStyle::Score | BendStyle::Heat => {
             let clip = std::slice::from_ref(clip);
             let (lo, hi) = axes.extent(clip);
-            let (a, b) = (axes.at(lo - 1.0, 0.0), axes.at(hi + 1.0, 0.0));
-            Ok(clip_segment(a, b, clip)
-                .into_iter()
+            Ok(creases(design)
+                .flat_map(|d| clip_segment(axes.at(lo - 1.0, d), axes.at(hi + 1.0, d), clip))
                 .map(|s| mark(MarkKind::Score, s))
                 .collect())
         }
     }
+}
+
+/// Where a fold's creases lie across its zone: one on the line, or (a fold spread over a
+/// fillet's arc) `rows` evenly spaced, each in the middle of its share of the zone.
+fn creases(design: &BendDesign) -> impl Iterator<Item = f64> + '_ {
+    (0..design.rows.max(1)).map(|i| {
+        if design.rows <= 1 {
+            0.0
+        } else {
+            -design.zone_width / 2.0 + (f64::from(i) + 0.5) * design.pitch
+        }
+    })
 }
 
 /// The bend's own axes: `u` along the line from its first point, `v` across it.

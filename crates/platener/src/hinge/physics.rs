@@ -38,6 +38,10 @@ const FLEX_BRIDGE: f64 = 1.0;
 /// The flex's period along the line (a slit and a bridge), in thicknesses.
 const FLEX_PERIOD: f64 = 5.0;
 
+/// The largest turn of one crease of a fold spread over a fillet's arc, degrees: six creases
+/// round a right angle, as a fillet of six facets does.
+pub const MAX_CREASE_TURN_DEG: f64 = 15.0;
+
 /// Torsion table of a rectangular section (Timoshenko & Goodier, Theory of Elasticity, §109;
 /// Roark's Formulas, table of torsion constants): `(short/long side, k1, k2)` with the torque
 /// `T = k1 · G · θ' · a · b³` and the largest stress `τ = T / (k2 · a · b²)`, `b` the short side.
@@ -147,9 +151,11 @@ pub struct BendDesign {
     pub slit_length: f64,
     /// Uncut material between two slits of a row (living hinge) or two dashes (perforation), mm.
     pub bridge: f64,
-    /// Rows of slits (living hinge), or 1: the one line of a fold or heat bend.
+    /// Rows of slits (living hinge), or the creases of a fold (1, or several when it spans a
+    /// fillet's arc), or 1: the one line of a heat bend.
     pub rows: u32,
-    /// Row pitch (link width + kerf), mm; 0 for a single line.
+    /// Row pitch (link width + kerf), or the spacing of a fold's creases, mm; 0 for a single
+    /// line.
     pub pitch: f64,
 }
 
@@ -163,6 +169,40 @@ impl BendDesign {
             return f64::INFINITY;
         }
         self.neutral_radius * (1.0 / (self.turn / 2.0).cos() - 1.0)
+    }
+
+    /// The same hinge spread over a zone at least `width` wide, to span a fillet's whole arc:
+    /// more rows at the same pitch, so each link twists less (a wider zone only eases a
+    /// hinge). A fold becomes evenly spaced creases over exactly `width`, each turning at
+    /// most [`MAX_CREASE_TURN_DEG`], so the card follows the arc; a heat bend (one guide line
+    /// over the heater) stays as it is.
+    #[must_use]
+    pub fn widened(self, width: f64) -> Self {
+        if width.is_nan() || width <= self.zone_width {
+            return self;
+        }
+        if matches!(self.style, BendStyle::Perforation | BendStyle::Score) {
+            let creases = (self.turn / MAX_CREASE_TURN_DEG.to_radians() - 1e-9).ceil().max(2.0);
+            return Self {
+                rows: creases as u32,
+                pitch: width / creases,
+                zone_width: width,
+                neutral_radius: width / self.turn,
+                ..self
+            };
+        }
+        if self.style != BendStyle::LivingHinge || self.pitch <= 0.0 {
+            return self;
+        }
+        let links = (width / self.pitch - 1e-9).ceil().max(f64::from(self.links));
+        let zone_width = links * self.pitch;
+        Self {
+            links: links as u32,
+            rows: links as u32 + 1,
+            zone_width,
+            neutral_radius: zone_width / self.turn,
+            ..self
+        }
     }
 
     /// How far one slit pattern repeats along the bend line, mm (slit + bridge).

@@ -380,3 +380,42 @@ proptest! {
         }
     }
 }
+
+/// Issue 32: across a fillet a zone is widened to the fillet's arc. A hinge gets more rows
+/// at its own pitch (its links twist less); a fold becomes creases of at most 15° spread
+/// evenly over exactly the arc, drawn one dashed row each; a heat bend stays one line.
+#[test]
+fn a_zone_widened_to_a_fillet_keeps_its_pitch_or_spreads_its_creases() {
+    let turn = std::f64::consts::FRAC_PI_2;
+    let flex = design_pattern(HingePattern::Straight, Material::Wood, 3.0, turn).expect("flex");
+    let wide = flex.widened(40.0);
+    assert_eq!(wide.pitch, flex.pitch);
+    assert!(wide.zone_width >= 40.0 && wide.zone_width < 40.0 + flex.pitch);
+    assert_eq!(wide.rows, wide.links + 1);
+    assert!((wide.neutral_radius - wide.zone_width / turn).abs() < 1e-9);
+    assert_eq!(flex.widened(10.0), flex, "never narrower");
+    let fold = unlimited(BendStyle::Perforation, Material::Cardboard, 1.5);
+    let spread = fold.widened(17.0);
+    assert_eq!(spread.rows, 6);
+    assert!((spread.zone_width - 17.0).abs() < 1e-9 && (spread.pitch - 17.0 / 6.0).abs() < 1e-9);
+    let line = [DVec2::new(0.0, 0.0), DVec2::new(100.0, 0.0)];
+    let clip = Polygon::new(vec![
+        DVec2::new(-5.0, -20.0),
+        DVec2::new(105.0, -20.0),
+        DVec2::new(105.0, 20.0),
+        DVec2::new(-5.0, 20.0),
+    ]);
+    let marks = marks(&spread, line, &clip).expect("marks");
+    let mut rows: Vec<i64> = marks.iter().map(|m| (m.path[0].y * 1000.0).round() as i64).collect();
+    rows.sort_unstable();
+    rows.dedup();
+    let expected: Vec<i64> = (0..6)
+        .map(|i| ((-8.5 + (f64::from(i) + 0.5) * 17.0 / 6.0) * 1000.0).round() as i64)
+        .collect();
+    assert_eq!(
+        rows, expected,
+        "one dashed row per crease, each in the middle of its share"
+    );
+    let heat = design(BendStyle::Heat, Material::Acrylic, 3.0, turn, f64::INFINITY).expect("heat");
+    assert_eq!(heat.widened(30.0), heat);
+}

@@ -39,7 +39,7 @@ pub(super) fn part(
         for h in &cuts {
             shape = union(&shape, &reach_to_line(h, m, t, &own)?)?;
         }
-        for h in &cuts {
+        for h in cuts.iter().chain(bent.splits_of(i)) {
             shape = h.cut(m, t, &shape)?;
         }
         let flat: Vec<Polygon> = shape.iter().map(|p| m.place.apply_polygon(p)).collect();
@@ -105,9 +105,9 @@ pub(super) fn part(
 
 /// The gap between a plate (`own`, in the member's frame) and a line it is cut at: plate
 /// finding may have trimmed it up to a couple of thicknesses short of the line where its
-/// neighbour's slab was, and the flat part must be whole across the bend. The hull of its
-/// corners near the line and their feet on the line, less the plate itself (so notches that
-/// joints cut near the line stay open).
+/// neighbour's slab was, or it stops where a fillet's facets begin (`h.gap`), and the flat
+/// part must be whole across the bend. The hull of its corners near the line and their feet
+/// on the line, less the plate itself (so notches that joints cut near the line stay open).
 fn reach_to_line(h: &HalfPlane, m: &Member, t: f64, own: &Polygon) -> Result<Vec<Polygon>, GridError> {
     let mid = m.mid(t);
     let origin = mid.to_2d(h.point);
@@ -115,7 +115,7 @@ fn reach_to_line(h: &HalfPlane, m: &Member, t: f64, own: &Polygon) -> Result<Vec
     let mut points = Vec::new();
     for q in &own.outer {
         let s = (*q - origin).dot(into);
-        if s.abs() <= 2.0 * t {
+        if s.abs() <= 2.0 * t + h.gap {
             points.extend([*q, *q - into * s]);
         }
     }
@@ -137,19 +137,34 @@ fn add_member_marks(
     labels: &[Vec<(u32, [DVec2; 2])>],
     marks_of: &dyn Fn(u32, &Polygon) -> Vec<Mark>,
 ) {
+    let t = part.thickness;
     for (i, m) in bent.members.iter().enumerate() {
         let local = |q: DVec2| if m.flipped { DVec2::new(q.x, -q.y) } else { q };
         let to_flat = |q: DVec2| m.place.apply(local(q));
-        part.edge_labels
-            .extend(labels[i].iter().map(|&(connection, [a, b])| EdgeLabel {
-                connection,
-                segment: [to_flat(a), to_flat(b)],
-            }));
-        part.marks
-            .extend(marks_of(m.plate, outlines[i]).into_iter().map(|mut mark| {
-                mark.path = mark.path.iter().map(|q| to_flat(*q)).collect();
-                mark
-            }));
+        // A wall cut in two carries each label and mark on the half it lies on.
+        let kept = |path: &[DVec2]| {
+            let Some(q) = path.first() else { return true };
+            let at = m.mid(t).to_model_2d(local(*q));
+            bent.splits_of(i).all(|h| (at - h.point).dot(h.into) >= 0.0)
+        };
+        part.edge_labels.extend(
+            labels[i]
+                .iter()
+                .filter(|(_, ends)| kept(&[(ends[0] + ends[1]) / 2.0]))
+                .map(|&(connection, [a, b])| EdgeLabel {
+                    connection,
+                    segment: [to_flat(a), to_flat(b)],
+                }),
+        );
+        part.marks.extend(
+            marks_of(m.plate, outlines[i])
+                .into_iter()
+                .filter(|mark| kept(&mark.path))
+                .map(|mut mark| {
+                    mark.path = mark.path.iter().map(|q| to_flat(*q)).collect();
+                    mark
+                }),
+        );
     }
 }
 
@@ -198,6 +213,7 @@ fn seam_cut(seam: &Seam, i: usize) -> Option<HalfPlane> {
         point: c.point,
         axis: c.axis,
         into: c.into[side],
+        gap: c.gap,
     })
 }
 

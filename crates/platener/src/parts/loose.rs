@@ -30,9 +30,15 @@ pub(super) fn part_ids(
         *h |= bent_of(i).is_some();
     }
     let largest = plates.plates.iter().map(|p| p.area).fold(0.0, f64::max);
+    let absorbed = bends.map(Bends::absorbed).unwrap_or_default();
     let mut next = 0;
     let mut ids = Vec::with_capacity(plates.plates.len());
     for (i, p) in plates.plates.iter().enumerate() {
+        // A fillet's facet whose arc zone a bent part bends in its place.
+        if absorbed.contains(&(i as u32)) {
+            ids.push(None);
+            continue;
+        }
         if let Some(id) = bent_of(i).and_then(|k| bent_ids.get(&k)) {
             ids.push(Some(*id));
             continue;

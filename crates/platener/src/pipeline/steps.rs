@@ -225,7 +225,10 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
             state.shapes = Some(Arc::new(shapes::run(mesh, groups, cleaned, &s, cx)?));
         }
         StepId::Plates => plates_step(state, &s, cx)?,
-        StepId::Bends => state.bends = Some(Arc::new(bends::run(need(&state.plates, name, "plates")?, &s, cx)?)),
+        StepId::Bends => {
+            let (plates, mesh) = (need(&state.plates, name, "plates")?, need(&state.mesh, name, "mesh")?);
+            state.bends = Some(Arc::new(bends::run(plates, mesh, &s, cx)?));
+        }
         StepId::Joints => {
             let plates = need(&state.plates, name, "plates")?;
             state.joints = Some(Arc::new(joints::run(plates, state.bends.as_deref(), &s, cx)?));
