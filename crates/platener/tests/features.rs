@@ -199,6 +199,32 @@ fn legs_built_as_plates_are_not_reported_as_bosses_left_out() {
     assert!(bosses.is_empty(), "{bosses:?}");
 }
 
+/// Issue 32: raised letters up to a sheet high (the keychain's 1.25 mm) are engraved as
+/// their outline, and said so, not "left out"; and the score counts the details kept: with
+/// `features` ignored the tag is blank, keeps under half of the model's sharp edges (the
+/// letters' outlines) and scores below the engraved tag, which keeps them all.
+#[test]
+fn raised_letters_are_said_engraved_and_a_blank_tag_scores_lower() {
+    let engraved = plate_method("keychain", platener::samples::keychain_tag(), Features::Engrave);
+    let said: Vec<&str> = engraved.warnings().map(|w| w.message.as_str()).collect();
+    assert!(
+        said.iter()
+            .any(|m| m.contains("5 raised detail(s)") && m.contains("engraved")),
+        "{said:?}"
+    );
+    assert!(!said.iter().any(|m| m.contains("left out")), "{said:?}");
+    let blank = plate_method("keychain", platener::samples::keychain_tag(), Features::Ignore);
+    let score = |state: &State| {
+        let bundle = state.export.as_ref().expect("exported");
+        let mesh = state.mesh.as_deref().expect("mesh");
+        platener::score::score(mesh, bundle, state.plates.as_deref())
+    };
+    let (kept, lost) = (score(&engraved), score(&blank));
+    assert!(kept.quality.details.kept > 0.99, "{:?}", kept.quality.details);
+    assert!(lost.quality.details.kept < 0.5, "{:?}", lost.quality.details);
+    assert!(kept.total - lost.total > 0.04, "{} against {}", kept.total, lost.total);
+}
+
 #[test]
 fn plan_json_has_the_marks_as_score() {
     let state = plate_method("pocket", plate_with_cell(|k| k == 0), Features::Engrave);

@@ -431,9 +431,24 @@ fn plate_warnings(plate: u32, fs: &[Feature], slabs: &[Slab]) -> Vec<String> {
             ""
         }
     )];
-    let bosses: Vec<String> = fs
+    // Raised lettering and relief up to a sheet high are kept as their engraved outline;
+    // only what stands taller is material the plan leaves out.
+    let sheet = slabs.get(plate as usize).map_or(f64::INFINITY, |s| s.thickness);
+    let (low, bosses): (Vec<&Feature>, Vec<&Feature>) = fs
         .iter()
         .filter(|f| f.relief == Relief::Raised && !built_by_plates(f, slabs))
+        .partition(|f| f.height.is_some_and(|h| h <= sheet + 1e-6));
+    if !low.is_empty() {
+        let area: f64 = low.iter().map(|f| f.area).sum();
+        lines.push(format!(
+            "plate {}: {} raised detail(s) (lettering, relief; {area:.1} mm², up to a sheet high) are engraved as \
+             their outline on the face they stand on",
+            plate + 1,
+            low.len()
+        ));
+    }
+    let bosses: Vec<String> = bosses
+        .iter()
         .map(|f| {
             let tall = f
                 .height
@@ -447,7 +462,7 @@ fn plate_warnings(plate: u32, fs: &[Feature], slabs: &[Slab]) -> Vec<String> {
         .collect();
     if !bosses.is_empty() {
         lines.push(format!(
-            "plate {}: {} boss(es) standing on it left out (only their footprints are scored): {}",
+            "plate {}: {} boss(es) standing on it left out (taller than a sheet; only their footprints are scored): {}",
             plate + 1,
             bosses.len(),
             bosses.join("; ")

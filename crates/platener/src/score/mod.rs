@@ -4,7 +4,7 @@
 //! ```text
 //! total    = surface × (0.4 + 0.3·assembly + 0.2·quality + 0.1·effort)
 //! assembly = connectivity × max(0, 1 − interference / 0.05) × (1 − glued parts / parts)
-//! quality  = fidelity × slender × fit
+//! quality  = fidelity × slender × fit × details
 //! effort   = 1 / (1 + work_minutes / 60)
 //! ```
 //!
@@ -23,6 +23,9 @@
 //!   perimeter (the width of a strip), weighted by area; shafts left out.
 //! - **fit**: 1 − ½·(1 − min(1, inside / 0.9)), inside the share of the parts' volume inside
 //!   the model (issue 32): stock thicker than the model's walls stands out of it.
+//! - **details**: 1 − ½·(1 − kept), kept the share of the model's sharp edges (faces turning
+//!   by more than 30°) within the cover distance of a part's outline or a score mark (issue
+//!   32: raised letters a blank part drops).
 //! - **work_minutes**: laser time (report.json's estimate) + 1 minute per part to assemble
 //!   + 2 minutes per sheet to handle.
 //!
@@ -31,6 +34,7 @@
 //! assembly analysis, deterministically: the same conversion always gets the same score.
 //! docs/score.md explains the choices.
 
+pub mod details;
 pub mod quality;
 #[cfg(test)]
 mod tests;

@@ -15,7 +15,9 @@
 //!   [`INSIDE_FULL`])) (issue 32): a 3 mm sheet for a 1.5 mm wall puts half of every wall
 //!   outside the model, which the surface, reproduced either way, does not see. Half weight:
 //!   a tray whose walls came out thicker still assembles and holds, a frame whose joints are
-//!   5° off does not close.
+//!   5° off does not close;
+//! - the model's sharp edges the plan keeps ([`super::details`]): raised letters a blank part
+//!   drops.
 
 use glam::DVec3;
 use serde::Serialize;
@@ -52,7 +54,7 @@ pub struct JointAngle {
 /// Whether the joints are true to the model and the parts are no slivers.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct QualityScore {
-    /// `fidelity × slender × fit`.
+    /// `fidelity × slender × fit × details`.
     pub value: f64,
     /// Mean over the judged joints of 1 / (1 + (Δ/2°)²); 1 when none is judged.
     pub fidelity: f64,
@@ -71,6 +73,8 @@ pub struct QualityScore {
     pub slender: f64,
     /// Parts narrower than their thickness (w < t), ascending.
     pub slivers: Vec<u32>,
+    /// The model's sharp edges the plan keeps.
+    pub details: super::details::DetailScore,
 }
 
 /// Measures the plan's joint quality against `mesh`; `reach` is the cover distance and
@@ -107,8 +111,9 @@ pub fn measure(mesh: &Mesh, plan: &Plan, reach: f64, inside: Option<f64>) -> Qua
     let worst_joint = angles.iter().max_by(|a, b| off(a).total_cmp(&off(b))).cloned();
     let (slender, slivers) = slenderness(plan);
     let fit = inside.map_or(1.0, |v| 1.0 - FIT_WEIGHT * (1.0 - (v / INSIDE_FULL).clamp(0.0, 1.0)));
+    let details = super::details::measure(mesh, plan, &solids, reach);
     QualityScore {
-        value: fidelity * slender * fit,
+        value: fidelity * slender * fit * details.value,
         fidelity,
         inside,
         fit,
@@ -116,6 +121,7 @@ pub fn measure(mesh: &Mesh, plan: &Plan, reach: f64, inside: Option<f64>) -> Qua
         worst_joint,
         slender,
         slivers,
+        details,
     }
 }
 

@@ -201,3 +201,28 @@ fn ray_parity_knows_the_inside_of_a_hollow_box() {
     assert!(!inside.contains(DVec3::new(-5.0, 40.1, 30.2)));
     assert!(!inside.contains(DVec3::new(50.3, 40.1, 90.0)));
 }
+
+/// The box's sharp edges are its 12 outer and 12 inner corners' edges (a closed box of
+/// 100 × 80 × 60 with 3 mm walls: 4·(100 + 80 + 60) outside, 4·(94 + 74 + 54) inside), and its
+/// six plates keep every one. Moving one wall a sheet away from its place loses its edges:
+/// `details` drops while nothing else about the parts changes.
+#[test]
+fn the_box_keeps_its_sharp_edges_and_a_moved_wall_loses_them() {
+    let c = box_conversion();
+    let s = score_of(&c);
+    let expected = 4.0 * (100.0 + 80.0 + 60.0) + 4.0 * (94.0 + 74.0 + 54.0);
+    assert!(
+        (s.quality.details.sharp_edges - expected).abs() < 1e-6,
+        "{:?}",
+        s.quality.details
+    );
+    assert!(s.quality.details.kept > 0.999, "{:?}", s.quality.details);
+    let mut plan = c.bundle().expect("bundle").plan.clone();
+    let part = plan.parts.iter_mut().max_by(|a, b| a.id.cmp(&b.id)).expect("a part");
+    let n = DVec3::new(part.transform[0][2], part.transform[1][2], part.transform[2][2]);
+    for (row, d) in part.transform.iter_mut().zip((n * 10.0 * part.thickness).to_array()) {
+        row[3] += d;
+    }
+    let moved = score_plan(&c, &plan);
+    assert!(moved.quality.details.kept < 0.95, "{:?}", moved.quality.details);
+}
