@@ -50,21 +50,20 @@ pub(crate) fn measure(mesh: &Mesh, plan: &Plan, solids: &[Solid], reach: f64) ->
             value: 1.0,
         };
     }
-    let grid = SegmentGrid::new(plan_edges(plan, solids), reach);
-    let spacing = (total / MAX_SAMPLES).max(reach / 4.0);
-    let mut kept = 0.0;
-    for (a, b) in &edges {
+    // A model of more sharp edges than samples (a knurled or textured surface) is judged on
+    // every k-th edge.
+    let stride = edges.len().div_ceil(MAX_SAMPLES as usize).max(1);
+    let judged: f64 = edges.iter().step_by(stride).map(|(a, b)| a.distance(*b)).sum();
+    let spacing = (judged / MAX_SAMPLES).max(reach / 4.0);
+    let mut samples = Vec::new();
+    for (a, b) in edges.iter().step_by(stride) {
         let len = a.distance(*b);
         let n = (len / spacing).ceil().max(1.0);
-        let w = len / n;
-        for k in 0..n as usize {
-            let p = a.lerp(*b, (k as f64 + 0.5) / n);
-            if grid.near(p, reach) {
-                kept += w;
-            }
-        }
+        samples.extend((0..n as usize).map(|k| (a.lerp(*b, (k as f64 + 0.5) / n), len / n)));
     }
-    let kept = (kept / total).clamp(0.0, 1.0);
+    let kept_at = reached(&samples, &plan_edges(plan, solids), reach);
+    let kept: f64 = samples.iter().zip(&kept_at).filter(|(_, k)| **k).map(|((_, w), _)| w).sum();
+    let kept = if judged > 0.0 { (kept / judged).clamp(0.0, 1.0) } else { 1.0 };
     DetailScore {
         sharp_edges: total,
         kept,
@@ -145,48 +144,42 @@ fn push_ring(out: &mut Vec<(DVec3, DVec3)>, ring: &[DVec2], to_model: impl Fn(DV
     out.extend((0..segments).map(|i| (points[i], points[(i + 1) % n])));
 }
 
-/// Segments binned by the cells of a uniform grid their reach-grown boxes touch.
-struct SegmentGrid {
-    segments: Vec<(DVec3, DVec3)>,
-    cell: f64,
-    cells: std::collections::HashMap<[i64; 3], Vec<u32>>,
-}
-
-impl SegmentGrid {
-    fn new(segments: Vec<(DVec3, DVec3)>, reach: f64) -> Self {
-        let cell = (2.0 * reach).max(1.0);
-        let mut cells: std::collections::HashMap<[i64; 3], Vec<u32>> = std::collections::HashMap::new();
-        for (i, (a, b)) in segments.iter().enumerate() {
-            // Points half a cell apart along the segment, each binned with its neighbours: a
-            // point within `reach` (half a cell) of the segment is in one of those cells.
-            let steps = (a.distance(*b) / (cell / 2.0)).ceil().max(1.0) as usize;
-            let mut mine = std::collections::BTreeSet::new();
-            for k in 0..=steps {
-                let [x, y, z] = key(a.lerp(*b, k as f64 / steps as f64), cell);
-                for dx in -1..=1 {
-                    for dy in -1..=1 {
-                        for dz in -1..=1 {
-                            mine.insert([x + dx, y + dy, z + dz]);
+/// Which of `samples` lie within `reach` of some segment. The samples (at most
+/// [`MAX_SAMPLES`]) are binned on a grid of cells 3·reach wide; each segment is walked in
+/// steps of `reach`, and a sample within reach of the segment is within 1.5·reach of some
+/// step, so in one of the at most 8 cells the box of that half-width around the step meets.
+fn reached(samples: &[(DVec3, f64)], segments: &[(DVec3, DVec3)], reach: f64) -> Vec<bool> {
+    let cell = 3.0 * reach;
+    let mut grid: std::collections::HashMap<[i64; 3], Vec<u32>> = std::collections::HashMap::new();
+    for (i, (p, _)) in samples.iter().enumerate() {
+        grid.entry(key(*p, cell)).or_default().push(i as u32);
+    }
+    let mut kept = vec![false; samples.len()];
+    let mut cells: Vec<[i64; 3]> = Vec::new();
+    for &(a, b) in segments {
+        cells.clear();
+        let steps = (a.distance(b) / reach).ceil().max(1.0) as usize;
+        for k in 0..=steps {
+            let p = a.lerp(b, k as f64 / steps as f64);
+            let (lo, hi) = (key(p - 1.5 * reach, cell), key(p + 1.5 * reach, cell));
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        if !cells.contains(&[x, y, z]) {
+                            cells.push([x, y, z]);
                         }
                     }
                 }
             }
-            for c in mine {
-                cells.entry(c).or_default().push(i as u32);
+        }
+        for c in &cells {
+            for &i in grid.get(c).into_iter().flatten() {
+                let i = i as usize;
+                kept[i] = kept[i] || distance_to_segment(samples[i].0, a, b) <= reach;
             }
         }
-        Self { segments, cell, cells }
     }
-
-    /// Whether some segment passes within `reach` of `p`.
-    fn near(&self, p: DVec3, reach: f64) -> bool {
-        self.cells.get(&key(p, self.cell)).is_some_and(|list| {
-            list.iter().any(|&i| {
-                let (a, b) = self.segments[i as usize];
-                distance_to_segment(p, a, b) <= reach
-            })
-        })
-    }
+    kept
 }
 
 /// The grid cell of `p`.
