@@ -700,6 +700,7 @@ pub fn cad_detail_samples() -> Vec<(&'static str, Vec<Triangle>)> {
             "filleted_tray_card_1.5mm.stl",
             rounded_tray(120.0, 80.0, 40.0, 12.0, 6, 1.5),
         ),
+        ("filleted_case.stl", rounded_case(120.0, 80.0, 40.0, 12.0, 6, 3.0)),
     ]
 }
 
@@ -907,6 +908,28 @@ pub fn cup(n: usize, radius: f64, height: f64, wall: f64) -> Vec<Triangle> {
 /// corners lie on a circle of `corner_radius`, and the walls are `wall` thick perpendicular to
 /// every facet. A bent-plate model: one strip bent at every corner facet.
 pub fn rounded_tray(w: f64, d: f64, h: f64, corner_radius: f64, corner_facets: usize, wall: f64) -> Vec<Triangle> {
+    tray_on(&rounded_outline(w, d, corner_radius, corner_facets, wall), h, wall)
+}
+
+/// A closed case `w × d × h` (outer corner at the origin) with walls, floor and lid `wall`
+/// thick, its four vertical edges rounded as [`rounded_tray`]'s: issue 32's filleted box.
+pub fn rounded_case(w: f64, d: f64, h: f64, corner_radius: f64, corner_facets: usize, wall: f64) -> Vec<Triangle> {
+    assert!(h > 2.0 * wall, "a case is taller than its floor and lid");
+    let outline = rounded_outline(w, d, corner_radius, corner_facets, wall);
+    let outer = [DVec2::new(0.0, 0.0), DVec2::new(0.0, h)];
+    let inner = [DVec2::new(-wall, h - wall), DVec2::new(-wall, wall)];
+    let mut out = sweep_outline(&outline, &outer, false);
+    out.extend(sweep_outline(&outline, &inner, false));
+    out.extend(outline_cap(&outline, outer[0], false));
+    out.extend(outline_cap(&outline, outer[1], true));
+    out.extend(outline_cap(&outline, inner[0], false));
+    out.extend(outline_cap(&outline, inner[1], true));
+    out
+}
+
+/// The outer outline of [`rounded_tray`] and [`rounded_case`]: a `w × d` rectangle whose
+/// corners are `corner_facets` facets on circles of `corner_radius`.
+fn rounded_outline(w: f64, d: f64, corner_radius: f64, corner_facets: usize, wall: f64) -> Vec<DVec2> {
     let (r, f) = (corner_radius, corner_facets.max(1));
     let step = std::f64::consts::FRAC_PI_2 / f as f64;
     // Inner facets shrink by wall·tan(step/2) at each end: below r·cos(step/2) they stay.
@@ -928,7 +951,7 @@ pub fn rounded_tray(w: f64, d: f64, h: f64, corner_radius: f64, corner_facets: u
             outline.push(centre + DVec2::new(co, s) * r);
         }
     }
-    tray_on(&outline, h, wall)
+    outline
 }
 
 /// An open truncated `n`-sided cone shell around the z axis (no caps): outer corners on a

@@ -182,6 +182,24 @@ fn a_tray_with_faceted_fillets_is_its_bottom_and_one_wrap_bent_across_each_fille
     }
 }
 
+/// Issue 32's filleted box: the closed case of the same outline (floor and lid 3 mm) is its
+/// floor, its lid and one wrap bent across the four fillets.
+#[test]
+fn a_closed_case_with_faceted_fillets_is_floor_lid_and_one_wrap() {
+    let state = convert_sample(
+        samples::rounded_case(120.0, 80.0, 40.0, 12.0, 6, 3.0),
+        Material::Wood,
+        3.0,
+    );
+    let (plan, v) = rebuilt_within(&state, 0.92);
+    let kinds: Vec<PartKind> = plan.parts.iter().map(|p| p.kind).collect();
+    assert_eq!(kinds.len(), 3, "{kinds:?}");
+    assert_eq!(v.groups, 1);
+    let wrap = plan.parts.iter().find(|p| p.kind == PartKind::Bent).expect("a wrap");
+    assert_eq!(wrap.bends.len(), 4);
+    assert!(wrap.bends.iter().all(|b| (b.angle - 90.0).abs() < 0.5));
+}
+
 #[test]
 fn a_card_cone_is_one_part_with_perforated_folds_and_a_seam_flap() {
     let state = convert_sample(samples::cone_shell(24, 60.0, 35.0, 50.0, 1.5), Material::Cardboard, 1.5);

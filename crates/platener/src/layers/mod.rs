@@ -130,7 +130,8 @@ fn too_little(share: f64) -> Option<String> {
     (share < MIN_MARKED_SHARE).then(|| {
         format!(
             "{:.1} % of the surface is neither plate nor plane, cylinder or cone (layers start at {:.0} %)",
-            100.0 * share,
+            // A share rounding to −0 (the plates' area a hair over the surface) reads 0.
+            (100.0 * share).max(0.0),
             100.0 * MIN_MARKED_SHARE
         )
     })

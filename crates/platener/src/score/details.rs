@@ -62,8 +62,17 @@ pub(crate) fn measure(mesh: &Mesh, plan: &Plan, solids: &[Solid], reach: f64) ->
         samples.extend((0..n as usize).map(|k| (a.lerp(*b, (k as f64 + 0.5) / n), len / n)));
     }
     let kept_at = reached(&samples, &plan_edges(plan, solids), reach);
-    let kept: f64 = samples.iter().zip(&kept_at).filter(|(_, k)| **k).map(|((_, w), _)| w).sum();
-    let kept = if judged > 0.0 { (kept / judged).clamp(0.0, 1.0) } else { 1.0 };
+    let kept: f64 = samples
+        .iter()
+        .zip(&kept_at)
+        .filter(|(_, k)| **k)
+        .map(|((_, w), _)| w)
+        .sum();
+    let kept = if judged > 0.0 {
+        (kept / judged).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
     DetailScore {
         sharp_edges: total,
         kept,
