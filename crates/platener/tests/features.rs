@@ -9,7 +9,7 @@
 use platener::convert::convert;
 use platener::glam::{DVec2, DVec3};
 use platener::method::MethodKind;
-use platener::plan::{MarkKind, Part};
+use platener::plan::{JointKind, MarkKind, Part};
 use platener::plates::{Feature, Relief, Side};
 use platener::samples::voxels;
 use platener::{Cancel, Features, Settings, Source, State, WarningKind, Weld};
@@ -477,4 +477,124 @@ fn plan_json(state: &State) -> serde_json::Value {
         .find(|(n, _)| n.ends_with("plan.json"))
         .expect("plan.json");
     serde_json::from_slice(json).expect("json")
+}
+
+/// Issue 32: offered a sheet as thin as the raised details stand tall (`-t 2.5 -t 1.25`),
+/// each detail that passes the smallest-part rule at that sheet is cut from it as a part
+/// glued on its engraved outline: a 60 × 13 × 2.5 mm tag with a 10 × 8 mm block and a
+/// 10 × 8 mm ring (4 × 2 mm hole) standing 1.25 mm on it, and a 1 × 8 mm stroke too thin to
+/// cut, which stays engraved only. Each cut detail lies on the tag's face over its own
+/// footprint, 1.25 mm thick; plan.json names the glue (a `glued` joint and `glued` entry).
+#[test]
+fn raised_details_as_tall_as_an_offered_sheet_are_cut_from_it_and_glued() {
+    let blocks = [
+        (10.0, 2.5, 20.0, 10.5),
+        (25.0, 2.5, 35.0, 10.5),
+        (45.0, 2.5, 46.0, 10.5),
+    ];
+    let mut xs = vec![0.0, 60.0, 28.0, 32.0];
+    let mut ys = vec![0.0, 13.0, 5.5, 7.5];
+    for (x0, y0, x1, y1) in blocks {
+        xs.extend([x0, x1]);
+        ys.extend([y0, y1]);
+    }
+    for v in [&mut xs, &mut ys] {
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+    }
+    let (cx, cy) = (xs.clone(), ys.clone());
+    let triangles = voxels(&xs, &ys, &[0.0, 2.5, 3.75], move |i, j, k| {
+        let (x, y) = ((cx[i] + cx[i + 1]) / 2.0, (cy[j] + cy[j + 1]) / 2.0);
+        let hole = x > 28.0 && x < 32.0 && y > 5.5 && y < 7.5;
+        k == 0
+            || (!hole
+                && blocks
+                    .iter()
+                    .any(|&(x0, y0, x1, y1)| x > x0 && x < x1 && y > y0 && y < y1))
+    });
+    let settings = Settings {
+        weld: Weld::Off,
+        thicknesses: vec![2.5, 1.25],
+        ..Settings::default()
+    };
+    let state = convert(
+        MethodKind::Plate,
+        Source::triangles("tag", triangles),
+        settings,
+        &Cancel::default(),
+    )
+    .expect("converts");
+    let plan = &state.export.as_ref().expect("exported").plan;
+    assert_eq!(plan.parts.len(), 3, "the tag and two details");
+    let tag = plan
+        .parts
+        .iter()
+        .find(|p| (p.thickness - 2.5).abs() < 1e-9)
+        .expect("the tag");
+    let glued: Vec<_> = plan.joints.iter().filter(|j| j.kind == JointKind::Glued).collect();
+    assert_eq!(glued.len(), 2);
+    assert_eq!(plan.glued.len(), 2);
+    let mut areas = Vec::new();
+    for j in &glued {
+        assert_eq!(j.parts[0], tag.id);
+        let part = plan.parts.iter().find(|p| p.id == j.parts[1]).expect("the detail");
+        assert!((part.thickness - 1.25).abs() < 1e-9);
+        // On the tag's upper face, over its footprint: its volume spans z 2.5–3.75.
+        let frame = platener::plan::bent::frame_from_matrix(&part.transform);
+        let zs: Vec<f64> = [0.0, part.thickness]
+            .iter()
+            .map(|&z| frame.to_model(part.outline[0].extend(z)).z)
+            .collect();
+        let (lo, hi) = (zs[0].min(zs[1]), zs[0].max(zs[1]));
+        assert!((lo - 2.5).abs() < 1e-6 && (hi - 3.75).abs() < 1e-6, "{zs:?}");
+        let polygon = platener_geom::Polygon {
+            outer: part.outline.clone(),
+            holes: part.holes.clone(),
+        };
+        areas.push(polygon.area());
+    }
+    areas.sort_by(f64::total_cmp);
+    assert!(
+        (areas[0] - 72.0).abs() < 1e-6 && (areas[1] - 80.0).abs() < 1e-6,
+        "{areas:?}"
+    );
+    // The stroke stays engraved only; every detail keeps its engraved outline on the tag.
+    let rings = tag.marks.iter().filter(|m| m.kind == MarkKind::Score).count();
+    assert!(
+        rings >= 4,
+        "{rings} engraved rings: the block, the ring's two, the stroke"
+    );
+    assert_eq!(plan.glue_note(), "needs glue: 3 parts in 1 group");
+    let v = platener::verify::verify(plan, state.mesh.as_deref());
+    assert!(v.passed(), "{:?}", v.problems);
+    assert_eq!(v.groups, 1);
+    assert!(v.interference_share < 1e-3);
+}
+
+/// Issue 32: a 2.5 mm tag cut from 1.25 mm sheet is two plates face to face that no joint
+/// can hold; they are glued, and plan.json says so (before: two loose parts, verify failed).
+#[test]
+fn plates_face_to_face_that_no_joint_holds_are_glued() {
+    let settings = Settings {
+        weld: Weld::Off,
+        thicknesses: vec![1.25],
+        ..Settings::default()
+    };
+    let tag = voxels(&[0.0, 60.0], &[0.0, 13.0], &[0.0, 2.5], |_, _, _| true);
+    let state = convert(
+        MethodKind::Plate,
+        Source::triangles("tag", tag),
+        settings,
+        &Cancel::default(),
+    )
+    .expect("converts");
+    let plan = &state.export.as_ref().expect("exported").plan;
+    assert_eq!(plan.parts.len(), 2);
+    let glued: Vec<_> = plan.joints.iter().filter(|j| j.kind == JointKind::Glued).collect();
+    assert_eq!(glued.len(), 1);
+    assert_eq!(plan.glued.len(), 1);
+    assert!((plan.glued[0].area - 60.0 * 13.0).abs() < 1e-3, "{:?}", plan.glued);
+    let v = platener::verify::verify(plan, state.mesh.as_deref());
+    assert!(v.passed(), "{:?}", v.problems);
+    assert_eq!(v.groups, 1);
 }

@@ -15,15 +15,19 @@ use crate::plates::Plates;
 pub(crate) const FRAGMENT_SHARE: f64 = 0.1;
 
 /// The part id of each plate (numbered from 1 in plate order, skipping dropped fragments),
-/// `None` for a dropped one; warns about every plate no joint holds.
-/// The plates of one bent part share its id (its first plate's).
+/// `None` for a dropped one; warns about every plate no joint holds, but those `glued` on
+/// (raised details of a thinner sheet). The plates of one bent part share its id (its first
+/// plate's).
 pub(super) fn part_ids(
     plates: &Plates,
-    joints: Option<&Joints>,
-    bends: Option<&Bends>,
+    (joints, bends): (Option<&Joints>, Option<&Bends>),
+    glued: &std::collections::BTreeSet<usize>,
     cx: &mut StepContext<'_>,
 ) -> Vec<Option<u32>> {
     let mut held = held(plates, joints);
+    for &p in glued {
+        held[p] = true;
+    }
     let bent_of = |i: usize| bends.and_then(|b| b.member_of(i)).map(|(k, _)| k);
     let mut bent_ids: std::collections::BTreeMap<usize, u32> = std::collections::BTreeMap::new();
     for (i, h) in held.iter_mut().enumerate() {

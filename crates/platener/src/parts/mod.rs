@@ -11,6 +11,7 @@ pub(crate) mod bent;
 pub mod clean;
 mod loose;
 pub mod necks;
+mod raised;
 mod small;
 
 use std::collections::BTreeMap;
@@ -39,7 +40,18 @@ pub fn run(
     settings: &Settings,
     cx: &mut StepContext<'_>,
 ) -> Result<PlanInput> {
-    let ids = loose::part_ids(plates, joints, bends, cx);
+    // Raised details as tall as a thinner offered sheet are glued on (`raised`).
+    let details = if settings.features == crate::settings::Features::Engrave {
+        raised::details(
+            plates,
+            joints,
+            &settings.offered_thicknesses(),
+            settings.plates.min_area,
+        )
+    } else {
+        Vec::new()
+    };
+    let ids = loose::part_ids(plates, (joints, bends), &raised::glued_plates(&details), cx);
     let mut parts = plate_parts(plates, joints, &ids);
     if let Some(b) = bends {
         bent_parts(plates, joints, b, &ids, &mut parts, cx)?;
@@ -48,6 +60,11 @@ pub fn run(
         joints.map_or(Vec::new(), |j| j.connections.iter().map(|c| joint(c, &ids)).collect());
     if let Some(j) = joints {
         add_keys(plates, j, &ids, &mut parts, &mut connections);
+    }
+    let mut glued = Vec::new();
+    let made = (&mut parts, &mut connections, &mut glued);
+    for note in raised::glue(&details, plates, &ids, made) {
+        cx.warn(WarningKind::Features, note);
     }
     if let Some(b) = bends {
         add_bends(b, &ids, &mut parts, &mut connections);
@@ -68,6 +85,7 @@ pub fn run(
     );
     let mut input = PlanInput::new(SourceInfo::from(model), Method::Plate, parts, connections);
     input.settings = settings.cut.clone();
+    input.glued = glued;
     input.method_settings = method_settings;
     input.method_report = serde_json::to_value(serde_json::json!({
         "coverage": &plates.coverage,

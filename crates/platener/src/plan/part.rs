@@ -226,6 +226,9 @@ pub enum JointKind {
     /// The seam of a bent part closed by a glue flap (paper and card): `parts` names the
     /// bent part twice (plan.json extension).
     Flap,
+    /// A raised detail cut from a thinner sheet, glued face to face on its outline engraved
+    /// on the part it stands on (plan.json extension; the pair is in `glued` too).
+    Glued,
 }
 
 /// A connection between two parts.

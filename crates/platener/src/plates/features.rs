@@ -381,10 +381,14 @@ const PROBES: f64 = 64.0;
 
 /// Whether other plates than its own build at least half of raised feature `f`: probed on a
 /// grid over its footprint, just off the face (half its height, at most half a thickness).
-fn built_by_plates(f: &Feature, slabs: &[Slab]) -> bool {
-    let Some(own) = slabs.get(f.plate as usize) else {
-        return false;
-    };
+pub(crate) fn built_by_plates(f: &Feature, slabs: &[Slab]) -> bool {
+    builder(f, slabs).is_some()
+}
+
+/// The other plate that builds at least half of raised feature `f` (the one holding the most
+/// probes), as [`built_by_plates`] probes it.
+pub(crate) fn builder(f: &Feature, slabs: &[Slab]) -> Option<usize> {
+    let own = slabs.get(f.plate as usize)?;
     let z_face = own.frame.to_local(f.center).z;
     let rise = f.height.unwrap_or(f.thickness).min(f.thickness) / 2.0;
     let z = match f.side {
@@ -393,7 +397,8 @@ fn built_by_plates(f: &Feature, slabs: &[Slab]) -> bool {
     };
     let (lo, hi) = f.region.bounds();
     let step = (f.area.max(f64::MIN_POSITIVE) / PROBES).sqrt();
-    let (mut inside, mut built) = (0usize, 0usize);
+    let mut inside = 0usize;
+    let mut hits: std::collections::BTreeMap<usize, usize> = std::collections::BTreeMap::new();
     let mut y = lo.y + step / 2.0;
     while y < hi.y {
         let mut x = lo.x + step / 2.0;
@@ -402,17 +407,21 @@ fn built_by_plates(f: &Feature, slabs: &[Slab]) -> bool {
             if f.region.contains(p) {
                 inside += 1;
                 let at = own.frame.to_model(p.extend(z));
-                let other = slabs
-                    .iter()
-                    .enumerate()
-                    .any(|(k, s)| k != f.plate as usize && s.contains(at));
-                built += usize::from(other);
+                if let Some(k) = (0..slabs.len()).find(|&k| k != f.plate as usize && slabs[k].contains(at)) {
+                    *hits.entry(k).or_default() += 1;
+                }
             }
             x += step;
         }
         y += step;
     }
-    inside > 0 && 2 * built >= inside
+    let built: usize = hits.values().sum();
+    if inside == 0 || 2 * built < inside {
+        return None;
+    }
+    hits.into_iter()
+        .max_by(|a, b| a.1.cmp(&b.1).then(b.0.cmp(&a.0)))
+        .map(|(k, _)| k)
 }
 
 /// The lines for one plate's features.

@@ -37,6 +37,7 @@ use crate::settings::{PlateMode, Settings};
 use crate::shapes::Shapes;
 
 pub use coverage::{Coverage, Rejection, ShapeUse, ThicknessShare};
+pub(crate) use features::builder;
 pub use features::{Feature, Relief, Side};
 
 /// How a plate was found.
