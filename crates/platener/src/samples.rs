@@ -618,9 +618,15 @@ pub const KEYCHAIN_STROKES: [(f64, f64, f64, f64); 12] = [
 /// A keychain tag as issue 32 saw it: a 60 × 13 × 2.5 mm base with block letters
 /// ([`KEYCHAIN_STROKES`]) standing 1.25 mm on its top.
 pub fn keychain_tag() -> Vec<Triangle> {
+    tag_with_raised(&KEYCHAIN_STROKES)
+}
+
+/// A 60 × 13 × 2.5 mm tag with `strokes` ((x0, y0, x1, y1) rectangles, mm, inside it)
+/// standing 1.25 mm on its top; touching strokes make one raised detail.
+pub fn tag_with_raised(strokes: &[(f64, f64, f64, f64)]) -> Vec<Triangle> {
     let mut xs = vec![0.0, 60.0];
     let mut ys = vec![0.0, 13.0];
-    for (x0, y0, x1, y1) in KEYCHAIN_STROKES {
+    for &(x0, y0, x1, y1) in strokes {
         xs.extend([x0, x1]);
         ys.extend([y0, y1]);
     }
@@ -632,7 +638,7 @@ pub fn keychain_tag() -> Vec<Triangle> {
     voxels(&xs, &ys, &[0.0, 2.5, 3.75], move |i, j, k| {
         let (x, y) = ((cx[i] + cx[i + 1]) / 2.0, (cy[j] + cy[j + 1]) / 2.0);
         k == 0
-            || KEYCHAIN_STROKES
+            || strokes
                 .iter()
                 .any(|&(x0, y0, x1, y1)| x > x0 && x < x1 && y > y0 && y < y1)
     })

@@ -487,31 +487,15 @@ fn plan_json(state: &State) -> serde_json::Value {
 /// footprint, 1.25 mm thick; plan.json names the glue (a `glued` joint and `glued` entry).
 #[test]
 fn raised_details_as_tall_as_an_offered_sheet_are_cut_from_it_and_glued() {
-    let blocks = [
+    // The block, the ring as four strokes round its hole, the thin stroke.
+    let triangles = platener::samples::tag_with_raised(&[
         (10.0, 2.5, 20.0, 10.5),
-        (25.0, 2.5, 35.0, 10.5),
+        (25.0, 2.5, 35.0, 5.5),
+        (25.0, 7.5, 35.0, 10.5),
+        (25.0, 5.5, 28.0, 7.5),
+        (32.0, 5.5, 35.0, 7.5),
         (45.0, 2.5, 46.0, 10.5),
-    ];
-    let mut xs = vec![0.0, 60.0, 28.0, 32.0];
-    let mut ys = vec![0.0, 13.0, 5.5, 7.5];
-    for (x0, y0, x1, y1) in blocks {
-        xs.extend([x0, x1]);
-        ys.extend([y0, y1]);
-    }
-    for v in [&mut xs, &mut ys] {
-        v.sort_by(f64::total_cmp);
-        v.dedup();
-    }
-    let (cx, cy) = (xs.clone(), ys.clone());
-    let triangles = voxels(&xs, &ys, &[0.0, 2.5, 3.75], move |i, j, k| {
-        let (x, y) = ((cx[i] + cx[i + 1]) / 2.0, (cy[j] + cy[j + 1]) / 2.0);
-        let hole = x > 28.0 && x < 32.0 && y > 5.5 && y < 7.5;
-        k == 0
-            || (!hole
-                && blocks
-                    .iter()
-                    .any(|&(x0, y0, x1, y1)| x > x0 && x < x1 && y > y0 && y < y1))
-    });
+    ]);
     let settings = Settings {
         weld: Weld::Off,
         thicknesses: vec![2.5, 1.25],
