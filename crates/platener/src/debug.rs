@@ -288,8 +288,8 @@ fn bends_summary(state: &State) -> Value {
         return Value::Null;
     };
     let parts = listed(&b.parts, |_, p| {
-        let plates: Vec<u32> = p.members.iter().map(|m| m.plate + 1).collect();
-        json!({"plates": plates, "bends": p.bends.len(), "seams": p.seams.len()})
+        let plates: Vec<u32> = p.plates().iter().map(|plate| plate + 1).collect();
+        json!({"plates": plates, "bends": p.bends.len(), "seams": p.seams.len(), "splits": p.splits.len()})
     });
     let refused = listed(
         &b.refused,
