@@ -13,7 +13,7 @@ use platener_geom::boolean::intersection;
 use platener_geom::polygon::{Polygon, total_area};
 
 use super::find::Candidate;
-use super::grow::HalfPlane;
+use super::grow::{HalfPlane, fits_sheet, laid_flat};
 use super::unfold::{Member, develop};
 use super::zone::Zone;
 use super::{BentPart, Split, bend_line};
@@ -112,20 +112,15 @@ fn closed(
     ));
     out.seams.remove(k);
     let flats = flats(&out, plates)?;
-    let fits = {
-        let (lo, hi) = platener_geom::polygon::bounds_of(flats.iter().flatten().flat_map(|p| p.outer.iter().copied()));
-        let size = hi - lo;
-        (size.x <= sheet.0 && size.y <= sheet.1) || (size.x <= sheet.1 && size.y <= sheet.0)
-    };
+    if !fits_sheet(flats.iter(), sheet) {
+        return Ok(None);
+    }
     for (i, shape) in flats.iter().enumerate() {
-        if i == xt {
-            continue;
-        }
-        if total_area(&intersection(shape, &flats[xt])?) > 0.5 * t * t {
+        if i != xt && total_area(&intersection(shape, &flats[xt])?) > 0.5 * t * t {
             return Ok(None);
         }
     }
-    Ok(fits.then_some(out))
+    Ok(Some(out))
 }
 
 /// The line across `plate` (parallel to a bend line through `point`, `into` pointing away
@@ -145,12 +140,11 @@ fn flats(part: &BentPart, plates: &[Plate]) -> Result<Vec<Vec<Polygon>>, GridErr
         .iter()
         .enumerate()
         .map(|(i, m)| {
-            let plate = &plates[m.plate as usize];
-            let mut shape = vec![m.local(&plate.polygon)];
-            for h in part.cuts[i].iter().chain(part.splits_of(i)) {
-                shape = h.cut(m, plate.thickness, &shape)?;
-            }
-            Ok(shape.iter().map(|s| m.place.apply_polygon(s)).collect())
+            laid_flat(
+                &plates[m.plate as usize],
+                m,
+                part.cuts[i].iter().chain(part.splits_of(i)),
+            )
         })
         .collect()
 }

@@ -310,12 +310,7 @@ impl<'a> Layout<'a> {
 
     /// Plate `p`'s shape cut at its bend lines and `more`, on the flat of `member`.
     fn developed(&self, p: usize, member: &Member, more: &[HalfPlane]) -> Result<Vec<Polygon>, GridError> {
-        let plate = &self.plates[p];
-        let mut shape = vec![member.local(&plate.polygon)];
-        for h in self.cuts[p].iter().chain(more) {
-            shape = h.cut(member, plate.thickness, &shape)?;
-        }
-        Ok(shape.iter().map(|s| member.place.apply_polygon(s)).collect())
+        laid_flat(&self.plates[p], member, self.cuts[p].iter().chain(more))
     }
 
     /// The strip along the bend where the parent's and the child's developed shapes overlap
@@ -332,11 +327,28 @@ impl<'a> Layout<'a> {
 
     /// Whether the shapes' bounding box fits the sheet, either way round.
     fn fits<'s>(&self, shapes: impl Iterator<Item = &'s Vec<Polygon>>) -> bool {
-        let (lo, hi) = platener_geom::polygon::bounds_of(shapes.flatten().flat_map(|p| p.outer.iter().copied()));
-        let size = hi - lo;
-        let (w, h) = self.sheet;
-        (size.x <= w && size.y <= h) || (size.x <= h && size.y <= w)
+        fits_sheet(shapes, self.sheet)
     }
+}
+
+/// `plate`'s shape as `member` keeps it (cut by `halves`), on the member's flat.
+pub(crate) fn laid_flat<'h>(
+    plate: &Plate,
+    member: &Member,
+    halves: impl IntoIterator<Item = &'h HalfPlane>,
+) -> Result<Vec<Polygon>, GridError> {
+    let mut shape = vec![member.local(&plate.polygon)];
+    for h in halves {
+        shape = h.cut(member, plate.thickness, &shape)?;
+    }
+    Ok(shape.iter().map(|s| member.place.apply_polygon(s)).collect())
+}
+
+/// Whether the bounding box of `shapes` fits a `sheet` (width, height), either way round.
+pub(crate) fn fits_sheet<'s>(shapes: impl Iterator<Item = &'s Vec<Polygon>>, (w, h): (f64, f64)) -> bool {
+    let (lo, hi) = platener_geom::polygon::bounds_of(shapes.flatten().flat_map(|p| p.outer.iter().copied()));
+    let size = hi - lo;
+    (size.x <= w && size.y <= h) || (size.x <= h && size.y <= w)
 }
 
 /// Whether the bounding boxes of two sets of shapes overlap.
