@@ -32,6 +32,10 @@ use crate::plan::JointKind;
 /// The least area of a part at any thickness, mm² (the plate and stacked settings' default).
 pub const MIN_AREA: f64 = 25.0;
 
+/// The least material kept between a peg's slot and the outline of a part it passes through,
+/// mm: the stacked method's pegs and the plate method's standoffs (`parts::standoffs`).
+pub const PEG_MIN_WALL: f64 = 1.0;
+
 /// The width a part must reach somewhere, in sheet thicknesses.
 pub const WIDTH_PER_THICKNESS: f64 = 1.0;
 

@@ -644,6 +644,28 @@ pub fn tag_with_raised(strokes: &[(f64, f64, f64, f64)]) -> Vec<Triangle> {
     })
 }
 
+/// An 80 × 50 mm floor 3 mm thick with three standoffs on its top (issue 32): a solid
+/// 10 × 10 mm boss 6 mm tall (x 10–20, y 10–20), a 10 × 10 mm standoff 6 mm tall with a
+/// 3.2 mm square screw hole down to the floor (x 35–45, y 10–20), and an Arduino-like
+/// 5.2 mm standoff 5 mm tall with a 3.2 mm hole, 1 mm walls (x 60–65.2, y 10–15.2).
+pub fn standoff_floor() -> Vec<Triangle> {
+    let xs = [0.0, 10.0, 20.0, 35.0, 38.4, 41.6, 45.0, 60.0, 61.0, 64.2, 65.2, 80.0];
+    let ys = [0.0, 10.0, 11.0, 13.4, 14.2, 15.2, 16.6, 20.0, 50.0];
+    let (cx, cy) = (xs, ys);
+    voxels(&xs, &ys, &[0.0, 3.0, 8.0, 9.0], move |i, j, k| {
+        let (x, y) = ((cx[i] + cx[i + 1]) / 2.0, (cy[j] + cy[j + 1]) / 2.0);
+        let within = |x0: f64, x1: f64, y0: f64, y1: f64| x > x0 && x < x1 && y > y0 && y < y1;
+        let boss = within(10.0, 20.0, 10.0, 20.0);
+        let standoff = within(35.0, 45.0, 10.0, 20.0) && !within(38.4, 41.6, 13.4, 16.6);
+        let small = within(60.0, 65.2, 10.0, 15.2) && !within(61.0, 64.2, 11.0, 14.2);
+        match k {
+            0 => true,
+            1 => boss || standoff || small,
+            _ => boss || standoff,
+        }
+    })
+}
+
 /// A teacup as issue 32 saw it: `segments` facets round and `steps` bands high, 60 mm tall,
 /// its curved wall `wall` thick flaring from a 50 mm foot to an 80 mm rim, on a floor `wall`
 /// thick, open at the top. With 48 × 12 its facets are about 5 × 5 mm: the plate method cuts
@@ -698,6 +720,7 @@ pub fn cad_detail_samples() -> Vec<(&'static str, Vec<Triangle>)> {
         ("octagon_tube_2mm.stl", tube(8, 50.0, 60.0, 2.0)),
         ("table_square_legs.stl", table_square_legs()),
         ("keychain_tag.stl", keychain_tag()),
+        ("standoff_floor.stl", standoff_floor()),
         ("teacup_1.5mm.stl", teacup(48, 12, 1.5)),
         ("small_chair_2mm.stl", small_chair()),
         ("filleted_tray.stl", filleted_tray()),

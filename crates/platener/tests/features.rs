@@ -9,7 +9,7 @@
 use platener::convert::convert;
 use platener::glam::{DVec2, DVec3};
 use platener::method::MethodKind;
-use platener::plan::{JointKind, MarkKind, Part};
+use platener::plan::{JointKind, MarkKind, Part, PartKind};
 use platener::plates::{Feature, Relief, Side};
 use platener::samples::voxels;
 use platener::{Cancel, Features, Settings, Source, State, WarningKind, Weld};
@@ -162,7 +162,10 @@ fn a_standoff_is_scored_and_reported_with_its_size_and_height() {
         .iter()
         .find(|p| (p.polygon.area() - 2400.0).abs() < 1e-6)
         .expect("the whole floor is one part");
+    // A 3 × 3 mm peg's slot would leave discs of 16 mm² with 1 mm walls: too small to cut
+    // (issue 32), so the column is listed, not cut.
     assert!(floor.polygon.holes.is_empty(), "no hole under the standoff");
+    assert_eq!(parts(&state).len(), 1);
     assert_eq!(score_marks(floor).len(), 1);
     let f = features(&state);
     assert_eq!(f.len(), 1);
@@ -340,44 +343,46 @@ fn xyz_cube_faces_have_no_holes_from_their_letters() {
     assert!(features(&state).iter().all(|f| f.relief == Relief::Recessed));
 }
 
+/// The Arduino enclosure's 5.2 mm standoffs (1 mm walls round a 3.2 mm hole) are too small
+/// to cut from 3 mm sheet: listed, with their screw holes cut through the floor for bought
+/// spacers (issue 32).
 #[test]
-fn arduino_floor_has_no_holes_under_its_standoffs_and_reports_them() {
-    let Some((cut, state)) = cut_and_engraved("plates/arduino_uno_enclosure.stl") else {
+fn arduino_floor_has_screw_holes_under_its_standoffs_and_lists_them() {
+    let Some((_, state)) = cut_and_engraved("plates/arduino_uno_enclosure.stl") else {
         return;
     };
-    let ps = parts(&state);
-    // Cut, the standoffs' footprints were holes through the floor (4 of them).
-    let holes = |ps: &[Part]| ps.iter().map(|p| p.polygon.holes.len()).sum::<usize>();
-    assert!(
-        holes(parts(&cut)) >= holes(ps) + 4,
-        "cut {} holes, engraved {}",
-        holes(parts(&cut)),
-        holes(ps)
-    );
-    // The floor: the largest part, lying flat.
-    let floor = ps
-        .iter()
-        .filter(|p| p.frame.n.z.abs() > 0.999)
-        .max_by(|a, b| a.polygon.area().total_cmp(&b.polygon.area()))
-        .expect("a floor");
-    assert!(
-        floor.polygon.holes.is_empty(),
-        "floor holes {:?}",
-        floor.polygon.holes.len()
-    );
+    let floor_of = |ps: &[Part]| -> Part {
+        ps.iter()
+            .filter(|p| p.frame.n.z.abs() > 0.999)
+            .max_by(|a, b| a.polygon.area().total_cmp(&b.polygon.area()))
+            .expect("a floor")
+            .clone()
+    };
+    let floor = floor_of(parts(&state));
+    let hole_areas = |p: &Part| -> Vec<f64> {
+        p.polygon
+            .holes
+            .iter()
+            .map(|r| platener_geom::Polygon::new(r.clone()).area())
+            .collect()
+    };
+    // Four 3.2 mm screw holes (8 mm² each), not the 5.2 mm footprints (21 mm²).
+    let holes = hole_areas(&floor);
+    assert_eq!(holes.len(), 4, "{holes:?}");
+    assert!(holes.iter().all(|a| (a - 8.0).abs() < 1.0), "{holes:?}");
     let standoffs: Vec<&Feature> = features(&state)
         .iter()
-        .filter(|f| f.relief == Relief::Raised && ps[f.plate as usize].id == floor.id)
+        .filter(|f| f.relief == Relief::Raised && parts(&state)[f.plate as usize].id == floor.id)
         .collect();
     assert!(standoffs.len() >= 4, "{} standoffs found", standoffs.len());
     for s in &standoffs {
         assert!(s.height.is_some_and(|h| h > 1.0), "standoff height {:?}", s.height);
     }
     assert!(
-        state
-            .warnings()
-            .any(|w| w.kind == WarningKind::Features && w.message.contains("boss")),
-        "the standoffs are reported"
+        state.warnings().any(|w| w.kind == WarningKind::Features
+            && w.message.contains("4 boss(es)")
+            && w.message.contains("screw holes (3.2 mm)")),
+        "the standoffs are listed"
     );
 }
 
@@ -578,6 +583,141 @@ fn plates_face_to_face_that_no_joint_holds_are_glued() {
     assert_eq!(glued.len(), 1);
     assert_eq!(plan.glued.len(), 1);
     assert!((plan.glued[0].area - 60.0 * 13.0).abs() < 1e-3, "{:?}", plan.glued);
+    let v = platener::verify::verify(plan, state.mesh.as_deref());
+    assert!(v.passed(), "{:?}", v.problems);
+    assert_eq!(v.groups, 1);
+}
+
+/// The model-space z range of a plan part (its outline's first vertex through its thickness).
+fn z_range(part: &platener::plan::PlanPart) -> (f64, f64) {
+    let frame = platener::plan::bent::frame_from_matrix(&part.transform);
+    let zs: Vec<f64> = [0.0, part.thickness]
+        .iter()
+        .map(|&z| frame.to_model(part.outline[0].extend(z)).z)
+        .collect();
+    (zs[0].min(zs[1]), zs[0].max(zs[1]))
+}
+
+/// The model-space box of a plan part (every outline vertex, both faces).
+fn model_box(part: &platener::plan::PlanPart) -> (DVec3, DVec3) {
+    let frame = platener::plan::bent::frame_from_matrix(&part.transform);
+    let points = part
+        .outline
+        .iter()
+        .flat_map(|p| [0.0, part.thickness].map(|z| frame.to_model(p.extend(z))));
+    points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+        (lo.min(p), hi.max(p))
+    })
+}
+
+/// Issue 32: standoffs taller than a sheet become stacked discs held glue-free by a peg, or
+/// by a screw through their own hole; one too small to cut is listed and its screw hole cut
+/// through the floor.
+#[test]
+fn standoffs_become_stacked_discs_on_a_peg_or_a_screw() {
+    let state = plate_method("standoffs", platener::samples::standoff_floor(), Features::Engrave);
+    let plan = &state.export.as_ref().expect("exported").plan;
+    let area = |p: &platener::plan::PlanPart| {
+        platener_geom::Polygon {
+            outer: p.outline.clone(),
+            holes: p.holes.clone(),
+        }
+        .area()
+    };
+    let floor = plan
+        .parts
+        .iter()
+        .max_by(|a, b| area(a).total_cmp(&area(b)))
+        .expect("the floor");
+    // The floor loses the peg's slot (3 × 6 mm), the screw hole and the small standoff's hole.
+    assert_eq!(floor.holes.len(), 3, "{:?}", floor.holes);
+    assert!(
+        (area(floor) - (4000.0 - 18.0 - 2.0 * 3.2 * 3.2)).abs() < 1e-3,
+        "{}",
+        area(floor)
+    );
+    // Two discs for each 6 mm standoff (3–6 and 6–9 mm up), and a peg.
+    let discs: Vec<_> = plan
+        .parts
+        .iter()
+        .filter(|p| p.id != floor.id && p.kind == PartKind::Plate)
+        .collect();
+    assert_eq!(discs.len(), 4, "{:?}", discs.iter().map(|p| p.id).collect::<Vec<_>>());
+    for d in &discs {
+        let (lo, hi) = model_box(d);
+        let on = |x0: f64| (lo.x - x0).abs() < 1e-6 && (hi.x - x0 - 10.0).abs() < 1e-6;
+        assert!(on(10.0) || on(35.0), "over the boss or the standoff: {lo} {hi}");
+        assert!((lo.y - 10.0).abs() < 1e-6 && (hi.y - 20.0).abs() < 1e-6, "{lo} {hi}");
+        let (z0, z1) = z_range(d);
+        assert!(
+            ((z0 - 3.0).abs() < 1e-6 && (z1 - 6.0).abs() < 1e-6)
+                || ((z0 - 6.0).abs() < 1e-6 && (z1 - 9.0).abs() < 1e-6),
+            "{z0}–{z1}"
+        );
+        // The boss's discs have the peg's slot, the standoff's keep its screw hole.
+        let hole = area(d) - 100.0;
+        assert!(
+            (hole + 18.0).abs() < 1e-3 || (hole + 3.2 * 3.2).abs() < 1e-3,
+            "{}",
+            area(d)
+        );
+    }
+    let pegs: Vec<_> = plan.parts.iter().filter(|p| p.kind == PartKind::Shaft).collect();
+    assert_eq!(pegs.len(), 1);
+    let (lo, hi) = model_box(pegs[0]);
+    // Through the floor and both discs: z 0–9, 6 mm along x, 3 mm along y, in the boss.
+    assert!((lo.z - 0.0).abs() < 1e-6 && (hi.z - 9.0).abs() < 1e-6, "{lo} {hi}");
+    assert!(
+        ((hi - lo).x - 6.0).abs() < 1e-6 && ((hi - lo).y - 3.0).abs() < 1e-6,
+        "{lo} {hi}"
+    );
+    assert!(lo.x > 10.0 && hi.x < 20.0 && lo.y > 10.0 && hi.y < 20.0, "{lo} {hi}");
+    let kinds = |k: JointKind| plan.joints.iter().filter(|j| j.kind == k).count();
+    assert_eq!(kinds(JointKind::Shaft), 3, "the peg holds the floor and two discs");
+    assert_eq!(kinds(JointKind::Screw), 2, "floor–disc, disc–disc");
+    assert!(plan.glued.is_empty());
+    let v = platener::verify::verify(plan, state.mesh.as_deref());
+    assert!(v.passed(), "{:?}", v.problems);
+    assert_eq!(v.groups, 1);
+    assert!(v.interference_share < 1e-3, "{}", v.interference_share);
+    let said: Vec<&str> = state
+        .warnings()
+        .filter(|w| w.kind == WarningKind::Features)
+        .map(|w| w.message.as_str())
+        .collect();
+    assert!(
+        said.iter()
+            .any(|m| m.contains("1 boss(es) standing on it left out") && m.contains("5.2 × 5.2 mm, 5.0 mm tall")),
+        "{said:?}"
+    );
+    assert!(said.iter().any(|m| m.contains("2 standoff(s)")), "{said:?}");
+}
+
+/// The same standoffs hanging under the floor (the model upside down): the discs stack
+/// downwards from the floor's lower face and the peg runs through them and the floor.
+#[test]
+fn standoffs_under_a_plate_stack_downwards() {
+    let flipped: Vec<platener::read::Triangle> = platener::samples::standoff_floor()
+        .into_iter()
+        .map(|[a, b, c]| [a, c, b].map(|p| DVec3::new(p.x, p.y, -p.z)))
+        .collect();
+    let state = plate_method("hanging", flipped, Features::Engrave);
+    let plan = &state.export.as_ref().expect("exported").plan;
+    assert_eq!(plan.parts.len(), 6, "the floor, four discs and a peg");
+    let discs: Vec<(f64, f64)> = plan
+        .parts
+        .iter()
+        .filter(|p| p.kind == PartKind::Plate && p.outline.len() == 4 && p.holes.len() == 1)
+        .map(z_range)
+        .collect();
+    assert_eq!(discs.len(), 4, "{discs:?}");
+    for (z0, z1) in &discs {
+        let at = |a: f64, b: f64| (z0 - a).abs() < 1e-6 && (z1 - b).abs() < 1e-6;
+        assert!(at(-6.0, -3.0) || at(-9.0, -6.0), "{z0}–{z1}");
+    }
+    let peg = plan.parts.iter().find(|p| p.kind == PartKind::Shaft).expect("the peg");
+    let (lo, hi) = model_box(peg);
+    assert!((lo.z + 9.0).abs() < 1e-6 && hi.z.abs() < 1e-6, "{lo} {hi}");
     let v = platener::verify::verify(plan, state.mesh.as_deref());
     assert!(v.passed(), "{:?}", v.problems);
     assert_eq!(v.groups, 1);

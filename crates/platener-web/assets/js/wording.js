@@ -58,6 +58,8 @@ export const GLOSSARY = [
   ['island', 'A separate piece of one layer or plate; one too small or thin to cut is left out.'],
   ['neck', 'A narrow part of an outline that would break when cut; it is widened or the part is split.'],
   ['living hinge', 'Rows of slits that let a wood sheet bend; the part is cut flat and bent by hand.'],
+  ['standoff', 'A post standing on a plate, taller than a sheet (to hold a board or a lid): cut as discs stacked on a peg, or on a screw through its own hole, which is cut through the plate too.'],
+  ['boss', 'A post or knob standing on a plate, taller than a sheet. One too small to cut as discs is left out; its screw hole, if it has one, is cut through the plate so a bought spacer and a screw can stand in for it.'],
   ['glue', 'These parts touch but no joint holds them: glue them, or change the thickness or method so joints fit.'],
   ['score', 'A line engraved, not cut through: a fold line in paper, or a feature drawn on a face.'],
 ];

@@ -5,7 +5,9 @@
 //! as parts of their own. Plates no joint holds are named in warnings, and small ones left out
 //! ([`loose`]). Outlines that joints left invalid are repaired ([`clean`]); parts the joints
 //! left smaller than the smallest part are left out ([`small`]); necks the joints left
-//! narrower than twice the thickness are reported ([`necks`]).
+//! narrower than twice the thickness are reported ([`necks`]). Raised details are glued on
+//! from a thinner sheet ([`raised`]); standoffs taller than a sheet become stacked discs
+//! ([`standoffs`]).
 
 pub(crate) mod bent;
 pub mod clean;
@@ -13,6 +15,7 @@ mod loose;
 pub mod necks;
 mod raised;
 mod small;
+mod standoffs;
 
 use std::collections::BTreeMap;
 
@@ -65,6 +68,17 @@ pub fn run(
     let made = (&mut parts, &mut connections, &mut glued);
     for note in raised::glue(&details, plates, &ids, made) {
         cx.warn(WarningKind::Features, note);
+    }
+    // Bosses taller than a sheet are stacked discs on a peg or a screw (`standoffs`).
+    if settings.features != crate::settings::Features::Cut {
+        let name = cx.model();
+        let off_grid = |e| Error::model(name, ModelProblem::OffGrid(e));
+        let found =
+            standoffs::find(plates, &settings.offered_thicknesses(), settings.plates.min_area).map_err(off_grid)?;
+        let made = standoffs::build(&found, plates, &ids, (&mut parts, &mut connections)).map_err(off_grid)?;
+        for note in made {
+            cx.warn(WarningKind::Features, note);
+        }
     }
     if let Some(b) = bends {
         add_bends(b, &ids, &mut parts, &mut connections);

@@ -229,6 +229,10 @@ pub enum JointKind {
     /// A raised detail cut from a thinner sheet, glued face to face on its outline engraved
     /// on the part it stands on (plan.json extension; the pair is in `glued` too).
     Glued,
+    /// A stack of discs (a standoff cut from the sheet) held on the part it stands on by a
+    /// screw through the standoff's own hole, cut through that part too (plan.json
+    /// extension): each disc is joined to the one it lies on, the first to the part.
+    Screw,
 }
 
 /// A connection between two parts.

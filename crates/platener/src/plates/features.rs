@@ -360,9 +360,9 @@ pub(super) fn assign(found: &[Feature], plates: &[Plate]) -> Result<Vec<Feature>
 }
 
 /// The report's lines on features, plate by plate (plates in order): how many were engraved,
-/// their area and sides; and the raised ones (bosses, standoffs) that are left out of the plan,
-/// that is not built by other `plates` (a table's legs stand on its top as bosses do, but
-/// are plates of their own).
+/// their area and sides, and the raised details up to a sheet high engraved as their outline
+/// (not those other `plates` build: a table's legs stand on its top as bosses do, but are
+/// plates of their own). Taller ones are the `parts` step's to build or list.
 pub(super) fn warnings(features: &[Feature], plates: &[Plate]) -> Vec<String> {
     let slabs: Vec<Slab> = plates.iter().map(Plate::slab).collect();
     let mut out = Vec::new();
@@ -441,12 +441,13 @@ fn plate_warnings(plate: u32, fs: &[Feature], slabs: &[Slab]) -> Vec<String> {
         }
     )];
     // Raised lettering and relief up to a sheet high are kept as their engraved outline;
-    // only what stands taller is material the plan leaves out.
+    // what stands taller is the `parts` step's (standoffs: stacked discs, or listed).
     let sheet = slabs.get(plate as usize).map_or(f64::INFINITY, |s| s.thickness);
-    let (low, bosses): (Vec<&Feature>, Vec<&Feature>) = fs
+    let low: Vec<&Feature> = fs
         .iter()
-        .filter(|f| f.relief == Relief::Raised && !built_by_plates(f, slabs))
-        .partition(|f| f.height.is_some_and(|h| h <= sheet + 1e-6));
+        .filter(|f| f.relief == Relief::Raised && f.height.is_some_and(|h| h <= sheet + 1e-6))
+        .filter(|f| !built_by_plates(f, slabs))
+        .collect();
     if !low.is_empty() {
         let area: f64 = low.iter().map(|f| f.area).sum();
         lines.push(format!(
@@ -454,27 +455,6 @@ fn plate_warnings(plate: u32, fs: &[Feature], slabs: &[Slab]) -> Vec<String> {
              their outline on the face they stand on",
             plate + 1,
             low.len()
-        ));
-    }
-    let bosses: Vec<String> = bosses
-        .iter()
-        .map(|f| {
-            let tall = f
-                .height
-                .map_or("height not measured".to_string(), |h| format!("{h:.1} mm tall"));
-            let c = f.center;
-            format!(
-                "{:.1} × {:.1} mm, {tall}, at ({:.1}, {:.1}, {:.1})",
-                f.size[0], f.size[1], c.x, c.y, c.z
-            )
-        })
-        .collect();
-    if !bosses.is_empty() {
-        lines.push(format!(
-            "plate {}: {} boss(es) standing on it left out (taller than a sheet; only their footprints are scored): {}",
-            plate + 1,
-            bosses.len(),
-            bosses.join("; ")
         ));
     }
     lines

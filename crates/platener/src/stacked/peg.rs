@@ -23,8 +23,7 @@ use super::fit::{SlotLine, best_slot};
 use super::shafts::{Pair, PlacedShaft, Planner, Rule, SLIVER};
 use crate::assembly::UnionFind;
 
-/// The least material kept between a peg's slot and the layer's outline, mm.
-pub const PEG_MIN_WALL: f64 = 1.0;
+pub use crate::cuttable::PEG_MIN_WALL;
 /// Grid slack, mm: walls are kept `PEG_MIN_WALL` less this, and a peg's ends stop this short
 /// of the region's, so a strip exactly a peg and two walls wide (the bracket's 5 mm strip for
 /// a 3 mm peg) still takes one despite the 1 µm grid's rounding.
