@@ -460,44 +460,37 @@ fn the_whole_corpus_converts_or_fails_with_reasons() {
     let r = convert(
         &[&dir],
         out.path(),
-        &["--method", "plate", "-j", "2", "--timeout", "10"],
+        &["--method", "plate", "-j", "2", "--timeout", "10", "--json"],
     );
     // Finishes, never crashes: 0 or 1, never a panic's 101 or a signal.
     assert!(r.code == 0 || r.code == 1, "exit {}: {}", r.code, r.stderr);
+    let v = json(&r);
+    let summary = &v["summary"];
     // A caught panic is still a bug: there must be none.
-    assert!(!r.stdout.contains("panicked at"), "{}", r.stdout);
-    let summary = &r.stdout[r.stdout.find("\nsummary\n").expect("the summary is printed")..];
-    assert!(summary.contains("models/s"), "{summary}");
-    let attempted: usize = summary
-        .split_whitespace()
-        .skip_while(|w| *w != "models")
-        .nth(1)
-        .and_then(|n| n.parse().ok())
-        .expect("model count");
-    assert!(attempted >= 50, "{summary}");
-    // Every failed model is listed in the summary with a reason.
-    let failed: Vec<&str> = r
-        .stdout
-        .lines()
-        .filter_map(|l| l.strip_prefix("FAILED  "))
-        .map(|l| l.split("  (").next().unwrap_or(l))
+    assert_eq!(summary["methods"]["plate"]["panicked"], 0, "{summary}");
+    assert!(summary["models_per_second"].as_f64().expect("rate") > 0.0, "{summary}");
+    assert!(summary["models"].as_u64().expect("model count") >= 50, "{summary}");
+    // Every failed model is listed among the failures, with a reason.
+    let failures = summary["failures"].as_array().expect("failures");
+    let failed: Vec<&serde_json::Value> = v["models"]
+        .as_array()
+        .expect("models")
+        .iter()
+        .filter(|m| m["status"] != "converted")
         .collect();
-    for file in &failed {
-        let line = summary
-            .lines()
-            .find(|l| l.trim_start().starts_with(file))
-            .unwrap_or_else(|| panic!("{file} is not in the summary:\n{summary}"));
-        // "FILE [METHOD] STATUS: REASON"
-        let rest = &line.trim_start()[file.len()..];
-        let reason = rest.split_once(": ").map(|(_, why)| why.trim()).unwrap_or("");
-        assert!(!reason.is_empty(), "{line}");
+    for m in failed {
+        let listed = failures
+            .iter()
+            .find(|f| f["file"] == m["file"])
+            .unwrap_or_else(|| panic!("{} is not among the failures:\n{summary}", m["file"]));
+        let reason = listed["reason"].as_str().unwrap_or("");
+        assert!(!reason.trim().is_empty(), "{listed}");
     }
     // The clean plate models convert.
     for stem in ["chess_case_bottom", "model_house_walls", "plycutter_PlyTest0.1"] {
         assert!(
             out.path().join(format!("{stem}-plate.zip")).is_file(),
-            "{stem}\n{}",
-            r.stdout
+            "{stem}\n{summary}"
         );
     }
     eprintln!("{summary}");

@@ -2,34 +2,32 @@
 
 use assert_cmd::Command;
 
+mod svg_support;
+
 fn platener() -> Command {
     Command::cargo_bin("platener").expect("binary built")
 }
 
 /// The `width`, `height` and viewBox numbers of the SVG's root.
 fn size(svg: &str) -> (f64, f64, String) {
-    let attr = |name: &str| {
-        let start = svg.find(&format!("{name}=\"")).expect(name) + name.len() + 2;
-        svg[start..start + svg[start..].find('"').expect("end")].to_string()
+    let mm = |name: &str| -> f64 {
+        let value = svg_support::root_attribute(svg, name);
+        value
+            .trim_end_matches("mm")
+            .parse()
+            .unwrap_or_else(|e| panic!("{name} {value}: {e}"))
     };
-    let w: f64 = attr("width").trim_end_matches("mm").parse().expect("width");
-    let h: f64 = attr("height").trim_end_matches("mm").parse().expect("height");
-    (w, h, attr("viewBox"))
+    (mm("width"), mm("height"), svg_support::root_attribute(svg, "viewBox"))
 }
 
-/// The red open paths (two points each) of the SVG: the slits.
-fn red_slits(svg: &str) -> Vec<[(f64, f64); 2]> {
-    svg.split("<path ")
-        .skip(1)
-        .filter(|p| p.contains("stroke=\"#ff0000\"") && !p.contains(" Z\""))
+/// The red open paths (two points each) of the SVG, or of its group `group`: the slits.
+fn red_slits(svg: &str, group: Option<&str>) -> Vec<[(f64, f64); 2]> {
+    svg_support::paths(svg, group)
+        .into_iter()
+        .filter(|p| p.stroke == "#ff0000" && !p.closed)
         .map(|p| {
-            let d = &p[p.find("d=\"").expect("d") + 3..];
-            let nums: Vec<f64> = d[..d.find('"').expect("end of d")]
-                .split_whitespace()
-                .map(|t| t.trim_start_matches(['M', 'L']).parse().expect("number"))
-                .collect();
-            assert_eq!(nums.len(), 4, "a slit is one straight cut");
-            [(nums[0], nums[1]), (nums[2], nums[3])]
+            assert_eq!(p.points.len(), 2, "a slit is one straight cut");
+            [p.points[0], p.points[1]]
         })
         .collect()
 }
@@ -77,8 +75,7 @@ fn a_wood_swatch_is_written_at_true_size_with_a_strip_per_pattern() {
     assert_eq!(view, format!("0 0 {w} {h}"));
     // Two 30 mm ends (at least) around a 23 × 3.2 mm zone, 5 mm margins.
     assert!(w >= 10.0 + 60.0 + 73.6 - 1e-9 && h >= 50.0, "{w} × {h}");
-    let split = svg.find("<g id=\"part-2\">").expect("a second strip");
-    let (lattice, straight) = (red_slits(&svg[..split]), red_slits(&svg[split..]));
+    let (lattice, straight) = (red_slits(&svg, Some("part-1")), red_slits(&svg, Some("part-2")));
     assert!(lattice.len() > 48, "{} slits", lattice.len());
     // Slits run across the strip (vertical), inside it, on 24 distinct rows 3.2 mm apart.
     let xs = rows(&lattice);
@@ -94,7 +91,11 @@ fn a_wood_swatch_is_written_at_true_size_with_a_strip_per_pattern() {
     assert!(xs.windows(2).all(|p| (p[1] - p[0] - 1.5).abs() < 1e-3));
     let lowest_lattice = lattice.iter().flat_map(|s| [s[0].1, s[1].1]).fold(f64::MIN, f64::max);
     assert!(straight.iter().all(|s| s[0].1.min(s[1].1) > lowest_lattice));
-    assert!(svg.contains("stroke=\"#0000ff\""), "engraved legend");
+    let blue = svg_support::paths(&svg, None)
+        .iter()
+        .filter(|p| p.stroke == "#0000ff")
+        .count();
+    assert!(blue > 0, "engraved legend");
 }
 
 #[test]
@@ -104,7 +105,7 @@ fn a_card_swatch_takes_the_material_style() {
     let stdout = swatch(&["-t", "1.5", "-m", "cardboard", "--angle", "60"], &out);
     assert!(stdout.contains("a perforation bend of 60.0°"), "{stdout}");
     let svg = std::fs::read_to_string(&out).expect("svg written");
-    let dashes = red_slits(&svg);
+    let dashes = red_slits(&svg, None);
     assert!(dashes.len() >= 5 && dashes.iter().all(|s| (s[0].0 - dashes[0][0].0).abs() < 1e-9));
 }
 

@@ -2,6 +2,8 @@
 
 use assert_cmd::Command;
 
+mod svg_support;
+
 fn platener() -> Command {
     Command::cargo_bin("platener").expect("binary built")
 }
@@ -9,24 +11,12 @@ fn platener() -> Command {
 /// Widths are written with 4 decimals: exact to 1e-4 mm.
 const WIDTH_TOL: f64 = 1e-4;
 
-/// The points of the red closed paths of `<g id="{group}">`, in file order.
+/// The points of the red paths of `<g id="{group}">`, in file order.
 fn red_rings(svg: &str, group: &str) -> Vec<Vec<(f64, f64)>> {
-    let start = svg.find(&format!("<g id=\"{group}\">")).expect("group");
-    let end = start + svg[start..].find("</g>").expect("end of group");
-    svg[start..end]
-        .split("<path ")
-        .skip(1)
-        .filter(|p| p.contains("stroke=\"#ff0000\""))
-        .map(|p| {
-            let d = &p[p.find("d=\"").expect("d") + 3..];
-            let d = &d[..d.find('"').expect("end of d")];
-            let nums: Vec<f64> = d
-                .split_whitespace()
-                .filter(|t| *t != "Z")
-                .map(|t| t.trim_start_matches(['M', 'L']).parse().expect("number"))
-                .collect();
-            nums.chunks(2).map(|c| (c[0], c[1])).collect()
-        })
+    svg_support::paths(svg, Some(group))
+        .into_iter()
+        .filter(|p| p.stroke == "#ff0000")
+        .map(|p| p.points)
         .collect()
 }
 

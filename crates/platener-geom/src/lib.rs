@@ -46,3 +46,7 @@ pub use grid::GridError;
 pub use polygon::{Polygon, Ring};
 pub use tolerance::Tolerances;
 pub use validity::{Finding, Problem, RingId, validate};
+
+/// One triangle as three corners, in the order a model file gave them (the winding carries the
+/// normal): what readers return and sample models are made of.
+pub type Triangle = [glam::DVec3; 3];

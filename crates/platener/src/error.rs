@@ -4,11 +4,12 @@
 //! an invariant that broke, with the step; please report it). Callers render these; the
 //! library never prints.
 
+use std::path::PathBuf;
+
 use platener_geom::GridError;
 
 use crate::context::Cancelled;
 use crate::plan::PlanError;
-use crate::read::ReadError;
 
 /// Everything that can stop a conversion.
 #[derive(Debug, Clone, thiserror::Error)]
@@ -121,7 +122,7 @@ pub enum ModelProblem {
     },
     /// The classifier could not classify the model.
     #[error("{0}; use the plate or stacked method")]
-    Classify(crate::classify::ClassifyError),
+    Classify(ClassifyError),
     /// A method made no parts (its step warnings say why).
     #[error("the {method} method made no parts to cut (the warnings say why)")]
     NoParts {
@@ -254,3 +255,97 @@ impl From<PlanError> for Error {
 
 /// Shorthand for results of this crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Why a model file could not be read. Always the input's fault, never ours; the message says
+/// where the problem is and what to do about it.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum ReadErrorKind {
+    /// The file has no bytes.
+    #[error("the file is empty (0 bytes); export the model again")]
+    Empty,
+    /// A binary STL with a header but no facets.
+    #[error("binary STL with a header and no triangles (count field {count}); export the model again")]
+    HeaderOnly {
+        /// The count field of the header.
+        count: u32,
+    },
+    /// A binary STL whose size does not match its count field.
+    #[error(
+        "binary STL count field says {count} triangles ({expected} bytes) but the file has {actual} bytes; \
+         the file is truncated or not an STL: download or export it again"
+    )]
+    CountMismatch {
+        /// The count field.
+        count: u32,
+        /// `84 + 50·count`.
+        expected: u64,
+        /// The real size.
+        actual: u64,
+    },
+    /// A binary file too short to hold even the header.
+    #[error("file of {actual} bytes is too short for a binary STL (84-byte header) and is not ASCII STL")]
+    TooShort {
+        /// The real size.
+        actual: u64,
+    },
+    /// A syntax error in an ASCII STL.
+    #[error("line {line}: {message}")]
+    Syntax {
+        /// 1-based line number.
+        line: usize,
+        /// What was wrong, quoting the offending text.
+        message: String,
+    },
+    /// A coordinate that is NaN or infinite.
+    #[error("{location}: coordinate is not a finite number ({value}); repair the model in a mesh editor")]
+    NonFinite {
+        /// `line N` (ASCII) or `triangle N` (binary, 0-based).
+        location: String,
+        /// The value as read.
+        value: String,
+    },
+    /// The file parsed but holds no triangles.
+    #[error("the file holds no triangles")]
+    NoTriangles,
+    /// The extension names no format we read.
+    #[error("unsupported file type {extension:?}: platener reads .stl, .obj and .3mf")]
+    Unsupported {
+        /// The extension found (may be empty).
+        extension: String,
+    },
+    /// An OBJ file tobj could not read.
+    #[error("OBJ: {0}")]
+    Obj(String),
+    /// A 3MF file that could not be read.
+    #[error("3MF: {0}")]
+    ThreeMf(String),
+    /// The file could not be opened or read.
+    #[error("cannot read the file: {0}")]
+    Io(String),
+}
+
+/// A [`ReadErrorKind`] with the file it happened in.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+#[error("{}: {kind}", path.display())]
+pub struct ReadError {
+    /// The file.
+    pub path: PathBuf,
+    /// What went wrong.
+    pub kind: ReadErrorKind,
+}
+
+/// Why a model could not be classified.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ClassifyError {
+    /// A setting is out of range.
+    #[error("invalid classifier setting {name}: {message}")]
+    Setting {
+        /// The setting.
+        name: &'static str,
+        /// What is allowed.
+        message: String,
+    },
+    /// The mesh has no surface to sample.
+    #[error("the model has no surface area to classify")]
+    NoSurface,
+}

@@ -5,7 +5,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::read::Triangle;
+use platener_geom::Triangle;
 
 /// An axis-aligned box from `min` to `max`, 12 triangles, normals out.
 pub fn cuboid(min: DVec3, max: DVec3) -> Vec<Triangle> {
@@ -1012,6 +1012,20 @@ pub fn cone_shell(n: usize, r_bottom: f64, r_top: f64, height: f64, wall: f64) -
     sweep_outline(&regular_outline(n, r_bottom), &profile, true)
 }
 
+/// Triangles of the parametric patch `f` over [0, 1]², `nu` × `nv` quads.
+pub fn patch(nu: usize, nv: usize, f: impl Fn(f64, f64) -> DVec3) -> Vec<Triangle> {
+    let mut out = Vec::with_capacity(2 * nu * nv);
+    for i in 0..nu {
+        for j in 0..nv {
+            let p = |a: usize, b: usize| f(a as f64 / nu as f64, b as f64 / nv as f64);
+            let (a, b, c, d) = (p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1));
+            out.push([a, b, c]);
+            out.push([a, c, d]);
+        }
+    }
+    out
+}
+
 /// A closed hollow box `w × d × h` with walls `t` thick whose six outer faces carry a
 /// texture of bumps up to `amplitude` high, about `period` apart, on a grid of `period / 4`
 /// (the classifier's textured-box sample). Bumps vanish along the box's edges, so the outer
@@ -1026,7 +1040,7 @@ pub fn textured_box(size: DVec3, t: f64, amplitude: f64, period: f64) -> Vec<Tri
             let (ki, kj) = ((li / period).round().max(1.0), (lj / period).round().max(1.0));
             let mut normal = DVec3::ZERO;
             normal[axis] = if high { 1.0 } else { -1.0 };
-            let face = crate::classify::testsets::patch(4 * ki as usize, 4 * kj as usize, |u, v| {
+            let face = patch(4 * ki as usize, 4 * kj as usize, |u, v| {
                 let mut p = DVec3::ZERO;
                 p[axis] = if high { size[axis] } else { 0.0 };
                 p[i] = u * li;

@@ -287,7 +287,7 @@ pub struct Settings {
     /// The interlocked method (slice spacing).
     pub interlocked: InterlockedSettings,
     /// Joints of the plate method (finger width, style; the style defaults by material).
-    pub joints: crate::joints::JointSettings,
+    pub joints: JointSettings,
     /// Bent parts of the plate method (`--bend`).
     pub bending: Bending,
     /// Run the classifier even on a model whose faces are exact, where it skips by default
@@ -310,7 +310,7 @@ impl Default for Settings {
             features: Features::Engrave,
             stacked: StackedSettings::default(),
             interlocked: InterlockedSettings::default(),
-            joints: crate::joints::JointSettings::default(),
+            joints: JointSettings::default(),
             bending: Bending::Auto,
             classify_exact_faces: false,
             cut: crate::plan::CutSettings::default(),
@@ -536,6 +536,76 @@ impl Settings {
                 (extent / 50.0).min(AUTO_WELD_MAX).min(0.6 * thinnest)
             }
         }
+    }
+}
+
+/// The shape of fingers and tabs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum JointStyle {
+    /// Straight fingers, exact negatives of each other (wood, acrylic).
+    Finger,
+    /// The thesis' JimJoint: fingers and tabs widen towards the tip, so they squeeze through
+    /// and snap behind the other part (paper, card, foam, which give way).
+    Jim,
+    /// Laser-cut dovetails: the fingers (or tabs) of one plate widen towards their tip; the
+    /// other plate's notches (or slots) are as wide as the tips so they go in, and two keys
+    /// per dovetail (small extra parts cut from the dovetailed plate's sheet) fill the rest
+    /// of each notch and wedge the dovetail tight (docs/decisions.md).
+    Dovetail,
+}
+
+impl JointStyle {
+    /// The style that holds in `material`: straight fingers for rigid sheets, snapping ones for
+    /// materials that give way.
+    pub fn for_material(material: crate::plan::Material) -> Self {
+        match material {
+            crate::plan::Material::Acrylic | crate::plan::Material::Wood => JointStyle::Finger,
+            crate::plan::Material::Cardboard | crate::plan::Material::Paper => JointStyle::Jim,
+        }
+    }
+}
+
+/// Settings of the joints.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct JointSettings {
+    /// Finger style; `None` chooses by material ([`JointStyle::for_material`]).
+    pub style: Option<JointStyle>,
+    /// Finger width as a multiple of the thicker plate's thickness.
+    pub finger_factor: f64,
+    /// Plates closer to parallel than this many degrees are not joined. Fingers are capped
+    /// at shallow angles whatever this is (`cap`); below a few degrees two plates are one
+    /// bent sheet rather than a corner.
+    pub min_angle_deg: f64,
+}
+
+impl Default for JointSettings {
+    fn default() -> Self {
+        Self {
+            style: None,
+            finger_factor: 3.0,
+            min_angle_deg: 5.0,
+        }
+    }
+}
+
+impl JointSettings {
+    /// Checks ranges; the error names the setting and what is allowed.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |name, message: String| Err(Error::Setting { name, message });
+        if !(self.finger_factor.is_finite() && (0.5..=20.0).contains(&self.finger_factor)) {
+            return bad(
+                "finger width",
+                format!("{} sheet thicknesses must be from 0.5 to 20", self.finger_factor),
+            );
+        }
+        if !(self.min_angle_deg.is_finite() && (0.0..90.0).contains(&self.min_angle_deg)) {
+            return bad(
+                "least joint angle",
+                format!("{}° must be from 0° to under 90°", self.min_angle_deg),
+            );
+        }
+        Ok(())
     }
 }
 

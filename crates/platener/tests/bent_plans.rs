@@ -207,25 +207,36 @@ fn kerf_keeps_the_slits_as_drawn() {
     assert!((cut.parts[0].cut.area() - area).abs() < 1e-3);
 }
 
-/// The red open paths (`d` without `Z`) of the group `part-ID` of an SVG written by platener,
-/// as point lists.
+/// The red open paths (no `Z`) of the group `part-ID` of an SVG written by platener, as point
+/// lists: read with roxmltree and svgtypes, usvg's own XML and path parsers.
 fn red_open_paths(svg: &str, id: u32) -> Vec<Vec<DVec2>> {
-    let start = svg.find(&format!("<g id=\"part-{id}\">")).expect("the part's group");
-    let group = &svg[start..start + svg[start..].find("</g>").expect("group end")];
-    group
-        .lines()
-        .filter(|l| l.contains("stroke=\"#ff0000\"") && !l.contains(" Z\""))
-        .map(|l| {
-            let d = l.split("d=\"").nth(1).expect("d").split('"').next().expect("d ends");
-            d.split(['M', 'L'])
-                .filter(|s| !s.trim().is_empty())
-                .map(|s| {
-                    let v: Vec<f64> = s.split_whitespace().map(|n| n.parse().expect("number")).collect();
-                    DVec2::new(v[0], v[1])
-                })
-                .collect()
-        })
-        .collect()
+    use svgtypes::{SimplePathSegment, SimplifyingPathParser};
+    let doc = roxmltree::Document::parse(svg).expect("the SVG parses");
+    let group = format!("part-{id}");
+    let group = doc
+        .descendants()
+        .find(|n| n.attribute("id") == Some(group.as_str()))
+        .expect("the part's group");
+    let mut out = Vec::new();
+    for path in group.descendants().filter(|n| n.has_tag_name("path")) {
+        if path.attribute("stroke") != Some("#ff0000") {
+            continue;
+        }
+        let (mut points, mut closed) = (Vec::new(), false);
+        for segment in SimplifyingPathParser::from(path.attribute("d").unwrap_or_default()) {
+            match segment.expect("d parses") {
+                SimplePathSegment::MoveTo { x, y } | SimplePathSegment::LineTo { x, y } => {
+                    points.push(DVec2::new(x, y))
+                }
+                SimplePathSegment::ClosePath => closed = true,
+                other => panic!("straight segments only: {other:?}"),
+            }
+        }
+        if !closed {
+            out.push(points);
+        }
+    }
+    out
 }
 
 #[test]

@@ -67,21 +67,7 @@ impl ClassifySettings {
     }
 }
 
-/// Why a model could not be classified.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum ClassifyError {
-    /// A setting is out of range.
-    #[error("invalid classifier setting {name}: {message}")]
-    Setting {
-        /// The setting.
-        name: &'static str,
-        /// What is allowed.
-        message: String,
-    },
-    /// The mesh has no surface to sample.
-    #[error("the model has no surface area to classify")]
-    NoSurface,
-}
+pub use crate::error::ClassifyError;
 
 /// The tolerances of one run, derived from the model and the settings.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

@@ -24,19 +24,7 @@ pub struct TestSet {
     pub truth: Vec<Shape>,
 }
 
-/// Triangles of the parametric patch `f` over [0, 1]², `nu` × `nv` quads.
-pub fn patch(nu: usize, nv: usize, f: impl Fn(f64, f64) -> DVec3) -> Vec<Triangle> {
-    let mut out = Vec::with_capacity(2 * nu * nv);
-    for i in 0..nu {
-        for j in 0..nv {
-            let p = |a: usize, b: usize| f(a as f64 / nu as f64, b as f64 / nv as f64);
-            let (a, b, c, d) = (p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1));
-            out.push([a, b, c]);
-            out.push([a, c, d]);
-        }
-    }
-    out
-}
+pub use crate::samples::patch;
 
 /// A closed box `size` with faces cut into squares of about `cell`, normals out.
 pub fn fine_box(size: DVec3, cell: f64) -> (Vec<Triangle>, Vec<Shape>) {

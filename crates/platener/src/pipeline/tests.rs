@@ -150,6 +150,84 @@ fn no_step_module_imports_the_pipeline() {
     assert!(!context.contains("crate::"), "context.rs must not import the crate");
 }
 
+/// Layer 1 of docs/architecture.md: the kernel data (context, settings, errors, the plan and
+/// its parts, the smallest-part rule, the sample models) imports only itself and the geometry
+/// kernel, never a step or anything above; test modules may use anything.
+#[test]
+fn kernel_data_imports_no_step() {
+    const DATA: [&str; 6] = ["context", "settings", "error", "plan", "cuttable", "samples"];
+    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut checked = 0;
+    for module in DATA {
+        let dir = src.join(module);
+        let files = if dir.is_dir() {
+            rust_files(&dir)
+        } else {
+            vec![src.join(format!("{module}.rs"))]
+        };
+        for file in files {
+            let name = file.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            if name.ends_with("tests.rs") {
+                continue;
+            }
+            let text = std::fs::read_to_string(&file).expect("readable");
+            // What `#[cfg(test)]` guards comes last in these files.
+            let text = text.split("#[cfg(test)]").next().unwrap_or("");
+            for (at, _) in text.match_indices("crate::") {
+                for used in modules_named(&text[at + 7..]) {
+                    assert!(
+                        DATA.contains(&used.as_str()),
+                        "{} (kernel data) uses crate::{used}: kernel data imports no step",
+                        file.display()
+                    );
+                }
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= DATA.len(), "checked only {checked} files");
+}
+
+/// The crate's modules a path after `crate::` names: `read` in `read::Model`, `a` and `b` in
+/// `{a::X, b}` (the braces' top level; `self` and type names are not modules).
+fn modules_named(rest: &str) -> Vec<String> {
+    let word = |s: &str| -> String { s.chars().take_while(|c| c.is_ascii_lowercase() || *c == '_').collect() };
+    let Some(inner) = rest.strip_prefix('{') else {
+        return vec![word(rest)].into_iter().filter(|w| !w.is_empty()).collect();
+    };
+    let (mut depth, mut items, mut start) = (1, Vec::new(), 0);
+    for (i, c) in inner.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' if depth == 1 => {
+                items.push(&inner[start..i]);
+                break;
+            }
+            '}' => depth -= 1,
+            ',' if depth == 1 => {
+                items.push(&inner[start..i]);
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    items
+        .into_iter()
+        .map(|item| word(item.trim_start()))
+        .filter(|w| !w.is_empty() && w != "self")
+        .collect()
+}
+
+#[test]
+fn modules_named_reads_paths_and_braces() {
+    assert_eq!(modules_named("read::Model;"), ["read"]);
+    assert_eq!(
+        modules_named("{plan::Part, joints::{Key, Joints}, Result};"),
+        ["plan", "joints"]
+    );
+    assert!(modules_named("Error").is_empty());
+}
+
 fn rust_files(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
     let mut out = Vec::new();
     for entry in std::fs::read_dir(dir).expect("listable").flatten() {

@@ -44,20 +44,6 @@ pub struct SourceInfo {
     pub scale: f64,
 }
 
-impl From<&crate::read::Model> for SourceInfo {
-    /// The plan's description of the model as read.
-    fn from(model: &crate::read::Model) -> Self {
-        Self {
-            name: model.name.clone(),
-            triangles: model.triangles.len() as u64,
-            bbox_min: model.bounds.min,
-            bbox_max: model.bounds.max,
-            units: model.units,
-            scale: model.scale,
-        }
-    }
-}
-
 /// Everything the cutting-plan steps start from (the pipeline's `parts` snapshot).
 #[derive(Debug, Clone)]
 pub struct PlanInput {

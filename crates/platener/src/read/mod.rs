@@ -12,11 +12,9 @@ mod threemf;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use glam::DVec3;
 use serde::Serialize;
 
-/// One triangle as three corners, in the order the file gave them (the winding carries the normal).
-pub type Triangle = [DVec3; 3];
+pub use platener_geom::Triangle;
 
 /// The file formats platener reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -59,83 +57,8 @@ pub struct RawMesh {
     pub notes: Vec<String>,
 }
 
-/// Why a model file could not be read. Always the input's fault, never ours; the message says
-/// where the problem is and what to do about it.
-#[derive(Debug, thiserror::Error, Clone, PartialEq)]
-pub enum ReadErrorKind {
-    /// The file has no bytes.
-    #[error("the file is empty (0 bytes); export the model again")]
-    Empty,
-    /// A binary STL with a header but no facets.
-    #[error("binary STL with a header and no triangles (count field {count}); export the model again")]
-    HeaderOnly {
-        /// The count field of the header.
-        count: u32,
-    },
-    /// A binary STL whose size does not match its count field.
-    #[error(
-        "binary STL count field says {count} triangles ({expected} bytes) but the file has {actual} bytes; \
-         the file is truncated or not an STL: download or export it again"
-    )]
-    CountMismatch {
-        /// The count field.
-        count: u32,
-        /// `84 + 50·count`.
-        expected: u64,
-        /// The real size.
-        actual: u64,
-    },
-    /// A binary file too short to hold even the header.
-    #[error("file of {actual} bytes is too short for a binary STL (84-byte header) and is not ASCII STL")]
-    TooShort {
-        /// The real size.
-        actual: u64,
-    },
-    /// A syntax error in an ASCII STL.
-    #[error("line {line}: {message}")]
-    Syntax {
-        /// 1-based line number.
-        line: usize,
-        /// What was wrong, quoting the offending text.
-        message: String,
-    },
-    /// A coordinate that is NaN or infinite.
-    #[error("{location}: coordinate is not a finite number ({value}); repair the model in a mesh editor")]
-    NonFinite {
-        /// `line N` (ASCII) or `triangle N` (binary, 0-based).
-        location: String,
-        /// The value as read.
-        value: String,
-    },
-    /// The file parsed but holds no triangles.
-    #[error("the file holds no triangles")]
-    NoTriangles,
-    /// The extension names no format we read.
-    #[error("unsupported file type {extension:?}: platener reads .stl, .obj and .3mf")]
-    Unsupported {
-        /// The extension found (may be empty).
-        extension: String,
-    },
-    /// An OBJ file tobj could not read.
-    #[error("OBJ: {0}")]
-    Obj(String),
-    /// A 3MF file that could not be read.
-    #[error("3MF: {0}")]
-    ThreeMf(String),
-    /// The file could not be opened or read.
-    #[error("cannot read the file: {0}")]
-    Io(String),
-}
-
-/// A [`ReadErrorKind`] with the file it happened in.
-#[derive(Debug, thiserror::Error, Clone, PartialEq)]
-#[error("{}: {kind}", path.display())]
-pub struct ReadError {
-    /// The file.
-    pub path: PathBuf,
-    /// What went wrong.
-    pub kind: ReadErrorKind,
-}
+// The reader's errors are kernel data (`error`), which imports no step.
+pub use crate::error::{ReadError, ReadErrorKind};
 
 /// Where a model comes from.
 #[derive(Debug, Clone)]
@@ -234,3 +157,19 @@ fn non_empty(format: Format, mesh: RawMesh) -> Result<(Format, RawMesh), ReadErr
 
 mod step;
 pub use step::{Bounds, Model, SUSPICIOUSLY_LARGE, SUSPICIOUSLY_SMALL, run};
+
+/// The plan's description of a model is made here, on the step's side: `plan` is kernel data
+/// and imports no step (docs/architecture.md).
+impl From<&Model> for crate::plan::SourceInfo {
+    /// The plan's description of the model as read.
+    fn from(model: &Model) -> Self {
+        Self {
+            name: model.name.clone(),
+            triangles: model.triangles.len() as u64,
+            bbox_min: model.bounds.min,
+            bbox_max: model.bounds.max,
+            units: model.units,
+            scale: model.scale,
+        }
+    }
+}
