@@ -524,7 +524,7 @@ mod tests {
         let state = state_of(&model.triangles, MethodKind::Classifier);
         let c = state.classify.as_ref().expect("classified");
         let kinds: Vec<_> = c.primitives.iter().map(|p| p.shape.kind()).collect();
-        assert_eq!(kinds, [crate::classify::ShapeKind::Plane; 12]);
+        assert_eq!(kinds, [crate::classify::SurfaceKind::Plane; 12]);
         let steps = steps(&state);
         let classify = steps.iter().find(|s| s.step == "classify").expect("classify");
         assert_eq!((classify.view, classify.view_exact), (Some("primitives"), true));

@@ -3,7 +3,7 @@
 //! bent wrap with two discs; each plan rebuilds its model (verify with the model).
 
 use glam::{DQuat, DVec2, DVec3};
-use platener::classify::ShapeKind;
+use platener::classify::SurfaceKind;
 use platener::convert::{Request, convert, convert_all};
 use platener::method::MethodKind;
 use platener::plan::{JointKind, MarkKind, PartKind, Plan};
@@ -290,7 +290,10 @@ fn a_clean_box_converts_as_the_plate_method_converts_it() {
 fn smooth_tubes_and_cone_shells_become_one_bent_wrap() {
     let tube = samples::tube(128, 50.0, 60.0, 3.0);
     let shade = samples::cone_shell(128, 70.0, 45.0, 60.0, 3.0);
-    for (name, model, kind) in [("tube", tube, ShapeKind::Cylinder), ("shade", shade, ShapeKind::Cone)] {
+    for (name, model, kind) in [
+        ("tube", tube, SurfaceKind::Cylinder),
+        ("shade", shade, SurfaceKind::Cone),
+    ] {
         let state = convert_with(MethodKind::Classifier, model);
         let found = state.classify.as_ref().expect("classified");
         let curved: Vec<_> = found.primitives.iter().filter(|p| p.shape.kind() == kind).collect();
@@ -315,7 +318,7 @@ fn a_small_textured_box_is_still_six_walls() {
     );
     let found = state.classify.as_ref().expect("classified");
     assert!(
-        found.primitives.iter().all(|p| p.shape.kind() == ShapeKind::Plane),
+        found.primitives.iter().all(|p| p.shape.kind() == SurfaceKind::Plane),
         "{:?}",
         found.primitives.iter().map(|p| p.shape.kind()).collect::<Vec<_>>()
     );
@@ -402,7 +405,7 @@ fn a_small_solid_cylinder_becomes_stacked_discs() {
     let peg = found
         .primitives
         .iter()
-        .find(|p| p.shape.kind() == ShapeKind::Cylinder)
+        .find(|p| p.shape.kind() == SurfaceKind::Cylinder)
         .expect("the peg is a cylinder");
     assert!(peg.outward);
     let (plan, v) = checked(&state);

@@ -15,7 +15,7 @@ fn tally(noise: f64) -> (usize, usize, usize) {
         for set in sets {
             assert!(set.mesh.triangles.len() > 10_000, "{} is not a fine mesh", set.name);
             let c = classify::run(&set.mesh, &ClassifySettings::default()).expect("classifies");
-            let s = testsets::score(&set, &c);
+            let s = testsets::accuracy(&set, &c);
             assert!(
                 s.worst_angle_deg <= 0.5 && s.worst_radius_rel <= 0.02,
                 "{}: {s:?}",
@@ -63,13 +63,13 @@ fn noise_0_5_mm() {
 fn score_notices_wrong_answers() {
     let mut set = testsets::standard(0.0, 0).swap_remove(0);
     let c = classify::run(&set.mesh, &ClassifySettings::default()).expect("classifies");
-    assert_eq!(testsets::score(&set, &c).found, 6);
+    assert_eq!(testsets::accuracy(&set, &c).found, 6);
     for t in &mut set.truth {
-        if let classify::Shape::Plane { offset, .. } = t {
+        if let classify::Surface::Plane { offset, .. } = t {
             *offset += 5.0;
         }
     }
-    let s = testsets::score(&set, &c);
+    let s = testsets::accuracy(&set, &c);
     assert_eq!((s.found, s.phantoms), (0, 6));
 }
 
@@ -87,7 +87,7 @@ fn fine_deep_texture_still_gives_the_box() {
         mesh,
         truth,
     };
-    let s = testsets::score(&set, &c);
+    let s = testsets::accuracy(&set, &c);
     assert_eq!((s.found, s.phantoms), (6, 0), "{s:?}");
     assert_eq!(c.primitives.len(), 6);
     assert_eq!(c.volumes.len(), 1);

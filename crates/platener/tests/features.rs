@@ -10,7 +10,7 @@ use platener::convert::convert;
 use platener::glam::{DVec2, DVec3};
 use platener::method::MethodKind;
 use platener::plan::{JointKind, MarkKind, Part, PartKind};
-use platener::plates::{Feature, Relief, Side};
+use platener::plates::{Elevation, Feature, Side};
 use platener::samples::voxels;
 use platener::{Cancel, Features, Settings, Source, State, WarningKind, Weld};
 
@@ -86,7 +86,7 @@ fn a_1mm_pocket_is_a_score_mark_not_a_hole() {
     assert!((lo.y - 15.0).abs() < 1e-6 && (hi.y - 25.0).abs() < 1e-6, "y {lo}..{hi}");
     let f = features(&state);
     assert_eq!(f.len(), 1);
-    assert_eq!(f[0].relief, Relief::Recessed);
+    assert_eq!(f[0].relief, Elevation::Recessed);
     assert!((f[0].area - 150.0).abs() < 1e-6, "area {}", f[0].area);
     // The pocket is in the model's top face (z = 3): the side named is the face there.
     let face_z = if f[0].side == Side::Up { 0.0 } else { p.thickness };
@@ -169,7 +169,7 @@ fn a_standoff_is_scored_and_reported_with_its_size_and_height() {
     assert_eq!(score_marks(floor).len(), 1);
     let f = features(&state);
     assert_eq!(f.len(), 1);
-    assert_eq!(f[0].relief, Relief::Raised);
+    assert_eq!(f[0].relief, Elevation::Raised);
     assert!((f[0].size[0] - 5.0).abs() < 1e-6 && (f[0].size[1] - 5.0).abs() < 1e-6);
     assert_eq!(f[0].height.map(|h| (h * 1e6).round() / 1e6), Some(6.0));
     assert!((f[0].center - DVec3::new(22.5, 17.5, 3.0)).length() < 1e-6);
@@ -317,7 +317,7 @@ fn ipad_base_keeps_its_lettering_as_score_marks_on_its_top() {
     assert!(marks_inside(part), "part {}: marks outside it", part.id);
     assert!(score_marks(part).len() >= fs.len(), "every letter is scored");
     for f in fs {
-        assert_eq!(f.relief, Relief::Recessed, "lettering is engraved");
+        assert_eq!(f.relief, Elevation::Recessed, "lettering is engraved");
         // The lettering is on the base's top face: the side named is the face at the top.
         let z = if f.side == Side::Up { 0.0 } else { part.thickness };
         let face = part.frame.to_model(DVec3::new(0.0, 0.0, z));
@@ -340,7 +340,7 @@ fn xyz_cube_faces_have_no_holes_from_their_letters() {
     let marked = ps.iter().filter(|p| !score_marks(p).is_empty()).count();
     assert!(marked >= 3, "X, Y and Z are scored ({marked} parts marked)");
     assert!(ps.iter().all(marks_inside));
-    assert!(features(&state).iter().all(|f| f.relief == Relief::Recessed));
+    assert!(features(&state).iter().all(|f| f.relief == Elevation::Recessed));
 }
 
 /// The Arduino enclosure's 5.2 mm standoffs (1 mm walls round a 3.2 mm hole) are too small
@@ -372,7 +372,7 @@ fn arduino_floor_has_screw_holes_under_its_standoffs_and_lists_them() {
     assert!(holes.iter().all(|a| (a - 8.0).abs() < 1.0), "{holes:?}");
     let standoffs: Vec<&Feature> = features(&state)
         .iter()
-        .filter(|f| f.relief == Relief::Raised && parts(&state)[f.plate as usize].id == floor.id)
+        .filter(|f| f.relief == Elevation::Raised && parts(&state)[f.plate as usize].id == floor.id)
         .collect();
     assert!(standoffs.len() >= 4, "{} standoffs found", standoffs.len());
     for s in &standoffs {
@@ -430,7 +430,7 @@ fn a_pocket_at_the_edge_is_scored_not_notched() {
     );
     let f = features(&state);
     assert_eq!(f.len(), 1);
-    assert_eq!(f[0].relief, Relief::Recessed);
+    assert_eq!(f[0].relief, Elevation::Recessed);
     assert!((f[0].area - 150.0).abs() < 1e-6, "area {}", f[0].area);
     // A pocket deeper than half the sheet is no material at the mid-plane: a notch.
     let deep = plate_method("deep edge pocket", plate_with_edge_pocket(2.0), Features::Engrave);

@@ -15,7 +15,7 @@ use platener_geom::polygon::{Polygon, total_area};
 use super::find::Candidate;
 use super::grow::{HalfPlane, fits_sheet, laid_flat};
 use super::unfold::{Member, develop};
-use super::zone::Zone;
+use super::zone::BendZone;
 use super::{BentPart, Split, bend_line};
 use crate::plates::Plate;
 
@@ -25,7 +25,7 @@ use crate::plates::Plate;
 pub(crate) fn close_fillet_seams(
     part: &mut BentPart,
     plates: &[Plate],
-    zone_of: &dyn Fn(&Candidate) -> Result<Zone, String>,
+    zone_of: &dyn Fn(&Candidate) -> Result<BendZone, String>,
     sheet: (f64, f64),
 ) -> Result<(), GridError> {
     let mut k = 0;
@@ -51,7 +51,7 @@ pub(crate) fn close_fillet_seams(
 fn closed(
     part: &BentPart,
     k: usize,
-    zone: Zone,
+    zone: BendZone,
     plates: &[Plate],
     sheet: (f64, f64),
 ) -> Result<Option<BentPart>, GridError> {

@@ -8,7 +8,7 @@
 use glam::DVec3;
 
 use super::find::Candidate;
-use super::zone::Zone;
+use super::zone::BendZone;
 use crate::assembly::Inside;
 use crate::plates::Plate;
 
@@ -131,8 +131,8 @@ fn on_arc(plate: &Plate, c: &Candidate, arc: &Arc, t: f64) -> bool {
 /// between the walls), and arcs without a zone go.
 pub(crate) fn prefer_arcs(
     candidates: Vec<Candidate>,
-    zones: Vec<Result<Zone, String>>,
-) -> (Vec<Candidate>, Vec<Result<Zone, String>>) {
+    zones: Vec<Result<BendZone, String>>,
+) -> (Vec<Candidate>, Vec<Result<BendZone, String>>) {
     let arc = |k: usize| candidates[k].gap > 0.0;
     let mut keep: Vec<bool> = (0..candidates.len()).map(|k| !arc(k) || zones[k].is_ok()).collect();
     let arcs: Vec<usize> = (0..candidates.len()).filter(|&k| arc(k) && keep[k]).collect();

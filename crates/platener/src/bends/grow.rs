@@ -13,7 +13,7 @@ use platener_geom::rigid::mirror_y;
 
 use super::find::Candidate;
 use super::unfold::{Member, develop};
-use super::zone::Zone;
+use super::zone::BendZone;
 use crate::plates::Plate;
 
 /// Where a member is cut at a bend line: the half of its mid-plane on the `into` side of the
@@ -65,7 +65,7 @@ impl HalfPlane {
 pub(crate) struct Layout<'a> {
     plates: &'a [Plate],
     candidates: &'a [Candidate],
-    zones: &'a [Result<Zone, String>],
+    zones: &'a [Result<BendZone, String>],
     /// The sheet's sides, to keep every part cuttable.
     sheet: (f64, f64),
     pub members: Vec<Member>,
@@ -103,7 +103,7 @@ impl<'a> Layout<'a> {
     pub fn new(
         plates: &'a [Plate],
         candidates: &'a [Candidate],
-        zones: &'a [Result<Zone, String>],
+        zones: &'a [Result<BendZone, String>],
         sheet: (f64, f64),
     ) -> Self {
         let n = plates.len();
@@ -159,7 +159,7 @@ impl<'a> Layout<'a> {
     }
 
     /// Joins the groups of candidate `ci`'s plates across it, if nothing overlaps.
-    fn join(&mut self, ci: usize, zone: Zone) -> Result<Result<(), String>, GridError> {
+    fn join(&mut self, ci: usize, zone: BendZone) -> Result<Result<(), String>, GridError> {
         let c = &self.candidates[ci];
         let [a, b] = c.plates;
         let (parent, child) = if self.groups[self.group[a]].len() >= self.groups[self.group[b]].len() {
@@ -240,7 +240,7 @@ impl<'a> Layout<'a> {
         parent: usize,
         child: usize,
         c: &Candidate,
-        zone: Zone,
+        zone: BendZone,
     ) -> (Vec<Member>, Vec<Vec<Polygon>>, usize) {
         let t = self.plates[parent].thickness;
         let mut members: Vec<Member> = moving.iter().map(|&p| self.members[p].clone()).collect();

@@ -44,7 +44,7 @@ use crate::settings::{Bending, Settings};
 pub use find::Candidate;
 pub use grow::HalfPlane;
 pub use unfold::Member;
-pub use zone::Zone;
+pub use zone::BendZone;
 
 /// Member `b` laid into `a`'s flat across `c` as a sharp fold (no bend zone): where a flap
 /// on `a`'s edge at the seam `c` lands when folded onto `b`.
@@ -138,7 +138,7 @@ pub struct BendLine {
     /// The angle the plates enclose, degrees.
     pub enclosed_deg: f64,
     /// The bend zone.
-    pub zone: Zone,
+    pub zone: BendZone,
     /// The middle of the zone on the flat part, as far as either plate reaches along it.
     pub line: [DVec2; 2],
     /// Per member: where its flat segment begins (the zone's edge on its side), in the model.
@@ -374,7 +374,7 @@ fn zone_of(
     style: BendStyle,
     material: Material,
     strict: bool,
-) -> Result<Zone, String> {
+) -> Result<BendZone, String> {
     let thickness = plates[c.plates[0]].thickness;
     let depth = c.depth[0].min(c.depth[1]);
     let room = zone::Room {
@@ -452,7 +452,7 @@ fn outward(easiest: &[usize], candidates: &[Candidate], plates: &[Plate]) -> Vec
 }
 
 /// The bent parts of a grown layout: its groups of two plates or more.
-fn parts_of(layout: &grow::Layout, candidates: &[Candidate], zones: &[Result<Zone, String>]) -> Vec<BentPart> {
+fn parts_of(layout: &grow::Layout, candidates: &[Candidate], zones: &[Result<BendZone, String>]) -> Vec<BentPart> {
     let mut parts = Vec::new();
     let mut groups: Vec<Vec<usize>> = layout.groups.iter().filter(|g| g.len() > 1).cloned().collect();
     for g in &mut groups {
@@ -503,7 +503,7 @@ fn parts_of(layout: &grow::Layout, candidates: &[Candidate], zones: &[Result<Zon
 /// The bend of candidate `c` in the flat part: its middle line (the zone starts a setback
 /// from the sharp corner on the `parent`'s side, which the deduction did not move) and where
 /// each side's segment begins.
-fn bend_line(c: &Candidate, zone: Zone, parent: usize, pm: &Member, members: [usize; 2]) -> BendLine {
+fn bend_line(c: &Candidate, zone: BendZone, parent: usize, pm: &Member, members: [usize; 2]) -> BendLine {
     let t_half = |side: usize| HalfPlane {
         point: c.point + c.into[side] * zone.setback(),
         axis: c.axis,

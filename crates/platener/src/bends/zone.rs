@@ -16,12 +16,12 @@ use crate::plan::{BendStyle, Material};
 /// The zone of one bend: its hinge or fold design, the one source of its width and radius.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(transparent)]
-pub struct Zone {
+pub struct BendZone {
     /// The hinge or fold that makes it (links, slits, dashes).
     pub design: BendDesign,
 }
 
-impl Zone {
+impl BendZone {
     /// How the material is made to bend.
     pub fn style(&self) -> BendStyle {
         self.design.style
@@ -114,7 +114,7 @@ pub(crate) fn design(
     room: Room,
     turn: f64,
     strict: bool,
-) -> Result<Zone, String> {
+) -> Result<BendZone, String> {
     let Some(fillet) = room.fillet else {
         return design_corner(style, material, room, turn, strict);
     };
@@ -155,11 +155,17 @@ pub(crate) fn design(
             style.name()
         ));
     }
-    Ok(Zone { design })
+    Ok(BendZone { design })
 }
 
 /// [`design`] at a sharp corner (plates that reach their line).
-fn design_corner(style: BendStyle, material: Material, room: Room, turn: f64, strict: bool) -> Result<Zone, String> {
+fn design_corner(
+    style: BendStyle,
+    material: Material,
+    room: Room,
+    turn: f64,
+    strict: bool,
+) -> Result<BendZone, String> {
     let (thickness, depth, max_width) = (room.thickness, room.depth, room.max_width);
     let lattice = |limit: f64| design_lattice(style, material, thickness, turn, limit);
     let why = match fit(lattice, (thickness, depth), turn, max_width, strict) {
@@ -180,8 +186,8 @@ fn fit(
     turn: f64,
     max_width: f64,
     strict: bool,
-) -> Result<Zone, String> {
-    let zone = |design: BendDesign| Zone { design };
+) -> Result<BendZone, String> {
+    let zone = |design: BendDesign| BendZone { design };
     let narrowest = match attempt(max_width.min(width_for_bulge(turn, thickness, depth))) {
         Ok(design) => return Ok(zone(design)),
         Err(HingeError::TooWide { needed, .. }) => needed,

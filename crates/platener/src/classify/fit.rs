@@ -7,16 +7,16 @@
 use glam::{DMat3, DVec3};
 use platener_geom::plane_fit::symmetric_eigen;
 
-use super::shape::{Shape, basis};
+use super::surface::{Surface, basis};
 
 /// Gauss-Newton steps: the start (a good candidate) is close, so a few steps converge.
 const STEPS: usize = 8;
 
 /// The shape of the same kind fitted to `points` (normals orient planes), or `None` when the
 /// points do not determine one (too few, or degenerate).
-pub fn refit(shape: &Shape, points: &[DVec3], normals: &[DVec3]) -> Option<Shape> {
+pub fn refit(shape: &Surface, points: &[DVec3], normals: &[DVec3]) -> Option<Surface> {
     match shape {
-        Shape::Plane { .. } => plane(points, normals),
+        Surface::Plane { .. } => plane(points, normals),
         _ if points.len() < 8 => None,
         _ => gauss_newton(*shape, points),
     }
@@ -27,13 +27,13 @@ pub fn refit(shape: &Shape, points: &[DVec3], normals: &[DVec3]) -> Option<Shape
 /// the tolerance band. A plane patch is also a piece of a huge cylinder or sphere, a
 /// cylinder one of a very slender cone; without this rule the candidate that happened to
 /// catch a few more noisy points would win.
-pub fn simplest(shape: &Shape, points: &[DVec3], normals: &[DVec3], eps: f64) -> Shape {
-    let rms = |s: &Shape| (cost(s, points) / points.len().max(1) as f64).sqrt();
-    let mut simpler: Vec<Shape> = Vec::new();
-    if !matches!(shape, Shape::Plane { .. }) {
+pub fn simplest(shape: &Surface, points: &[DVec3], normals: &[DVec3], eps: f64) -> Surface {
+    let rms = |s: &Surface| (cost(s, points) / points.len().max(1) as f64).sqrt();
+    let mut simpler: Vec<Surface> = Vec::new();
+    if !matches!(shape, Surface::Plane { .. }) {
         simpler.extend(plane(points, normals));
     }
-    if let Shape::Cone { apex, axis, .. } = *shape
+    if let Surface::Cone { apex, axis, .. } = *shape
         && points.len() >= 8
     {
         let radius = points
@@ -41,7 +41,7 @@ pub fn simplest(shape: &Shape, points: &[DVec3], normals: &[DVec3], eps: f64) ->
             .map(|p| (*p - apex).reject_from_normalized(axis).length())
             .sum::<f64>()
             / points.len() as f64;
-        let start = Shape::Cylinder {
+        let start = Surface::Cylinder {
             axis,
             point: apex - axis * axis.dot(apex),
             radius,
@@ -53,7 +53,7 @@ pub fn simplest(shape: &Shape, points: &[DVec3], normals: &[DVec3], eps: f64) ->
 
 /// The least-squares plane: through the centroid, normal along the covariance's smallest
 /// eigenvector, facing like the sum of the normals.
-fn plane(points: &[DVec3], normals: &[DVec3]) -> Option<Shape> {
+fn plane(points: &[DVec3], normals: &[DVec3]) -> Option<Surface> {
     if points.len() < 3 {
         return None;
     }
@@ -70,7 +70,7 @@ fn plane(points: &[DVec3], normals: &[DVec3]) -> Option<Shape> {
     } else {
         n
     };
-    Some(Shape::Plane {
+    Some(Surface::Plane {
         normal: n,
         offset: n.dot(c),
     })
@@ -79,53 +79,53 @@ fn plane(points: &[DVec3], normals: &[DVec3]) -> Option<Shape> {
 /// The shape `base` moved by the parameter step `x` (mm and radians, in a frame local to
 /// `base`, so no parameter is redundant: the axis turns in two directions, the axis point
 /// moves across the axis).
-fn moved(base: &Shape, x: &[f64]) -> Shape {
+fn moved(base: &Surface, x: &[f64]) -> Surface {
     match *base {
-        Shape::Sphere { center, radius } => Shape::Sphere {
+        Surface::Sphere { center, radius } => Surface::Sphere {
             center: center + DVec3::new(x[0], x[1], x[2]),
             radius: radius + x[3],
         },
-        Shape::Cylinder { axis, point, radius } => {
+        Surface::Cylinder { axis, point, radius } => {
             let (u, v) = basis(axis);
             let a = (axis + u * x[0] + v * x[1]).normalize();
             let p = point + u * x[2] + v * x[3];
-            Shape::Cylinder {
+            Surface::Cylinder {
                 axis: a,
                 point: p - a * a.dot(p),
                 radius: radius + x[4],
             }
         }
-        Shape::Cone { apex, axis, half_angle } => {
+        Surface::Cone { apex, axis, half_angle } => {
             let (u, v) = basis(axis);
             let a = (axis + u * x[0] + v * x[1]).normalize();
-            Shape::Cone {
+            Surface::Cone {
                 apex: apex + DVec3::new(x[2], x[3], x[4]),
                 axis: a,
                 half_angle: half_angle + x[5],
             }
         }
-        Shape::Plane { .. } => *base,
+        Surface::Plane { .. } => *base,
     }
 }
 
 /// Number of free parameters of a curved shape.
-fn dof(shape: &Shape) -> usize {
+fn dof(shape: &Surface) -> usize {
     match shape {
-        Shape::Sphere { .. } => 4,
-        Shape::Cylinder { .. } => 5,
-        Shape::Cone { .. } => 6,
-        Shape::Plane { .. } => 0,
+        Surface::Sphere { .. } => 4,
+        Surface::Cylinder { .. } => 5,
+        Surface::Cone { .. } => 6,
+        Surface::Plane { .. } => 0,
     }
 }
 
 /// Sum of squared signed distances.
-fn cost(shape: &Shape, points: &[DVec3]) -> f64 {
+fn cost(shape: &Surface, points: &[DVec3]) -> f64 {
     points.iter().map(|p| shape.signed_distance(*p).powi(2)).sum()
 }
 
 /// Damped Gauss-Newton with a numeric Jacobian (central differences): steps that do not
 /// lower the cost raise the damping; the result is never worse than the start.
-fn gauss_newton(start: Shape, points: &[DVec3]) -> Option<Shape> {
+fn gauss_newton(start: Surface, points: &[DVec3]) -> Option<Surface> {
     let k = dof(&start);
     let mut cur = start;
     let mut best = cost(&cur, points);
@@ -152,18 +152,18 @@ fn gauss_newton(start: Shape, points: &[DVec3]) -> Option<Shape> {
 }
 
 /// Whether the fitted parameters still describe a proper shape.
-fn valid(shape: &Shape) -> bool {
+fn valid(shape: &Surface) -> bool {
     match *shape {
-        Shape::Sphere { radius, .. } | Shape::Cylinder { radius, .. } => radius.is_finite() && radius > 0.0,
-        Shape::Cone { half_angle, .. } => half_angle > 0.0 && half_angle < std::f64::consts::FRAC_PI_2,
-        Shape::Plane { .. } => true,
+        Surface::Sphere { radius, .. } | Surface::Cylinder { radius, .. } => radius.is_finite() && radius > 0.0,
+        Surface::Cone { half_angle, .. } => half_angle > 0.0 && half_angle < std::f64::consts::FRAC_PI_2,
+        Surface::Plane { .. } => true,
     }
 }
 
 /// JᵀJ and Jᵀr of the signed distances at `shape`.
-fn normal_equations(shape: &Shape, points: &[DVec3], k: usize) -> ([[f64; 6]; 6], [f64; 6]) {
+fn normal_equations(shape: &Surface, points: &[DVec3], k: usize) -> ([[f64; 6]; 6], [f64; 6]) {
     const H: f64 = 1e-6;
-    let mut plus = [Shape::Plane {
+    let mut plus = [Surface::Plane {
         normal: DVec3::Z,
         offset: 0.0,
     }; 6];

@@ -24,7 +24,7 @@ use std::f64::consts::{PI, TAU};
 use glam::DVec3;
 use platener_geom::plane_fit::PlaneFit;
 
-use super::shape::{Shape, basis};
+use super::surface::{Surface, basis};
 use super::{Classification, Primitive};
 use crate::coplanar::{Fixed, PlanarGroup, PlanarGroups};
 use crate::mesh::Mesh;
@@ -100,7 +100,7 @@ pub fn snap_distance(c: &Classification, tolerance: f64) -> f64 {
 /// bending off, never: its facets are
 /// jointed plates as before.
 pub fn stacked_instead(p: &Primitive, settings: &Settings) -> bool {
-    let Shape::Cylinder { radius, .. } = p.shape else {
+    let Surface::Cylinder { radius, .. } = p.shape else {
         return false;
     };
     let material = settings.cut.material;
@@ -130,8 +130,8 @@ pub fn fixed_groups(mesh: &Mesh, c: &Classification, exact: &PlanarGroups, setti
             continue;
         }
         match (&p.shape, sectors[k]) {
-            (Shape::Plane { normal, offset }, _) => groups.push(plane_group(mesh, p, *normal, *offset)),
-            (shape @ (Shape::Cylinder { .. } | Shape::Cone { .. }), Some(s)) => {
+            (Surface::Plane { normal, offset }, _) => groups.push(plane_group(mesh, p, *normal, *offset)),
+            (shape @ (Surface::Cylinder { .. } | Surface::Cone { .. }), Some(s)) => {
                 groups.extend(facet_groups(mesh, p, shape, &s));
             }
             _ => continue,
@@ -264,7 +264,7 @@ fn plane_group(mesh: &Mesh, p: &Primitive, normal: DVec3, offset: f64) -> Planar
 }
 
 /// A curved primitive's triangles split by sector, each sector at its facet's plane.
-fn facet_groups(mesh: &Mesh, p: &Primitive, shape: &Shape, s: &Sectors) -> Vec<PlanarGroup> {
+fn facet_groups(mesh: &Mesh, p: &Primitive, shape: &Surface, s: &Sectors) -> Vec<PlanarGroup> {
     let mut faces: Vec<Vec<u32>> = vec![Vec::new(); s.n];
     let mut areas = vec![0.0; s.n];
     for &f in &p.triangles {
@@ -287,15 +287,15 @@ fn facet_groups(mesh: &Mesh, p: &Primitive, shape: &Shape, s: &Sectors) -> Vec<P
 }
 
 /// The plane of facet `k` of a cylinder or cone, its normal out of the solid.
-fn facet_plane(shape: &Shape, s: &Sectors, k: usize, outward: bool) -> (DVec3, f64) {
+fn facet_plane(shape: &Surface, s: &Sectors, k: usize, outward: bool) -> (DVec3, f64) {
     let d = s.radial(k);
     let side = if outward { 1.0 } else { -1.0 };
     match *shape {
-        Shape::Cylinder { radius, .. } => {
+        Surface::Cylinder { radius, .. } => {
             let at = s.origin + d * facet_distance(radius, s.n);
             (d * side, (d * side).dot(at))
         }
-        Shape::Cone { half_angle, .. } => {
+        Surface::Cone { half_angle, .. } => {
             // The facet holds the apex, the tangent across the sector, and the line up the
             // cone at the facet's distance from the axis.
             let scale = facet_distance(1.0, s.n);
@@ -337,8 +337,8 @@ fn curved_sectors(mesh: &Mesh, prims: &[Primitive], tolerance: f64, eps: f64) ->
 /// cylinder's radius, a cone's at the furthest corner of its triangles.
 fn axis_of(mesh: &Mesh, p: &Primitive) -> Option<(DVec3, DVec3, f64)> {
     match p.shape {
-        Shape::Cylinder { axis, point, radius } => Some((axis, point, radius)),
-        Shape::Cone { apex, axis, .. } => {
+        Surface::Cylinder { axis, point, radius } => Some((axis, point, radius)),
+        Surface::Cone { apex, axis, .. } => {
             let corners = p.triangles.iter().flat_map(|&f| mesh.corners(f as usize));
             let widest = corners
                 .map(|x| {

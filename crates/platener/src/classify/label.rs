@@ -38,7 +38,7 @@ pub fn label_triangles(mesh: &Mesh, samples: &[Sample], primitives: &[Primitive]
                     let s = &primitives[e.1 as usize].shape;
                     let d = s.distance(centroid);
                     let facing =
-                        !matches!(s, super::Shape::Plane { .. }) || s.normal_at(centroid).dot(mesh.normals[f]) > 0.0;
+                        !matches!(s, super::Surface::Plane { .. }) || s.normal_at(centroid).dot(mesh.normals[f]) > 0.0;
                     (d <= th.eps && facing).then_some((d, e.1))
                 })
                 .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))

@@ -21,7 +21,7 @@ pub mod groups;
 pub mod label;
 pub mod ransac;
 pub mod sample;
-pub mod shape;
+pub mod surface;
 pub mod testsets;
 pub mod volumes;
 
@@ -33,7 +33,7 @@ use serde::Serialize;
 
 use crate::mesh::Mesh;
 pub use graph::{Graph, Node, NodeKind};
-pub use shape::{Shape, ShapeKind};
+pub use surface::{Surface, SurfaceKind};
 pub use volumes::{Volume, VolumeKind};
 
 /// What the classifier needs to know besides the mesh.
@@ -128,14 +128,14 @@ impl Thresholds {
     /// Whether a candidate is a shape this model can hold and no simpler shape explains:
     /// radii between ε and [`Thresholds::max_radius`]; cones whose radius changes by more
     /// than ε across the model (else a cylinder) and that bend by more than ε (else a plane).
-    pub fn plausible(&self, s: &Shape) -> bool {
+    pub fn plausible(&self, s: &Surface) -> bool {
         let d = self.diagonal;
         match *s {
-            Shape::Plane { .. } => true,
-            Shape::Cylinder { radius, .. } | Shape::Sphere { radius, .. } => {
+            Surface::Plane { .. } => true,
+            Surface::Cylinder { radius, .. } | Surface::Sphere { radius, .. } => {
                 radius >= self.eps && radius <= self.max_radius
             }
-            Shape::Cone { half_angle, .. } => {
+            Surface::Cone { half_angle, .. } => {
                 let lo = (self.eps / d).min(1.0).asin();
                 half_angle > lo && half_angle < std::f64::consts::FRAC_PI_2 - lo
             }
@@ -147,7 +147,7 @@ impl Thresholds {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Primitive {
     /// The fitted surface.
-    pub shape: Shape,
+    pub shape: Surface,
     /// Whether the solid lies inside it (a cylinder's or sphere's normals point away from
     /// the axis / centre); `false` for bores and cavities. Planes face out by their normal.
     pub outward: bool,

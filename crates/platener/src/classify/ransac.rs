@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use super::bitmap::largest_component;
 use super::fit::{refit, simplest};
 use super::sample::Sample;
-use super::shape::{Oriented, Prepared, Shape, cone_from, cylinder_from, plane_from, sphere_from};
+use super::surface::{Oriented, Prepared, Surface, cone_from, cylinder_from, plane_from, sphere_from};
 use super::{Primitive, Thresholds};
 
 /// The probability (the paper's p_t) that no shape larger than the extracted one, nor any
@@ -35,7 +35,7 @@ const BITS: u32 = 10;
 /// A candidate and its estimated inlier count.
 #[derive(Debug, Clone, Copy)]
 struct Candidate {
-    shape: Shape,
+    shape: Surface,
     /// The estimated inlier count, or once checked the connected inliers counted
     /// ([`Search::best_connected`]): an upper bound either way, as samples only die.
     estimate: f64,
@@ -114,7 +114,7 @@ struct Search<'a> {
     /// only die, so they never grow, and new candidates like them are not scored again. A
     /// model of many coplanar islands (chips, tiles) otherwise proposes its plane in every
     /// batch and checks it at the cost of a full inlier search each time.
-    rejected: Vec<Shape>,
+    rejected: Vec<Surface>,
 }
 
 /// Detects primitives among `samples`, largest first; each keeps its inliers (sample
@@ -294,7 +294,7 @@ impl Search<'_> {
     }
 
     /// Remembers `shape` and its refit to `inliers` as too small (see `rejected`).
-    fn reject(&mut self, shape: &Shape, inliers: &[u32]) {
+    fn reject(&mut self, shape: &Surface, inliers: &[u32]) {
         let (pts, nrm): (Vec<DVec3>, Vec<DVec3>) = inliers
             .iter()
             .map(|&i| (self.samples[i as usize].at.p, self.samples[i as usize].at.n))
@@ -306,13 +306,13 @@ impl Search<'_> {
     }
 
     /// Whether `shape` is one of the rejected ones, within ε and α.
-    fn is_rejected(&self, shape: &Shape) -> bool {
+    fn is_rejected(&self, shape: &Surface) -> bool {
         let (eps, cos) = (self.th.eps, self.th.cos_alpha);
         self.rejected.iter().any(|r| r.same_as(shape, eps, cos))
     }
 
     /// Inliers on the subset, scaled to all live samples.
-    fn estimate(&self, shape: &Shape) -> f64 {
+    fn estimate(&self, shape: &Surface) -> f64 {
         let shape = shape.prepared();
         let hits = self.subset.iter().filter(|&&i| self.accepts(&shape, i)).count();
         hits as f64 * self.live.len() as f64 / self.subset.len().max(1) as f64
@@ -323,7 +323,7 @@ impl Search<'_> {
     }
 
     /// The live inliers of `shape` in their largest connected piece (ascending).
-    fn inliers(&self, shape: &Shape) -> Vec<u32> {
+    fn inliers(&self, shape: &Surface) -> Vec<u32> {
         let prepared = shape.prepared();
         let all: Vec<u32> = self
             .live
@@ -346,7 +346,7 @@ impl Search<'_> {
 
     /// Refits `shape` to its connected `inliers`, collects them again, and removes them when
     /// enough remain; `None` (nothing removed) when the candidate was smaller than it looked.
-    fn extract(&mut self, shape: &Shape, mut inliers: Vec<u32>) -> Option<Primitive> {
+    fn extract(&mut self, shape: &Surface, mut inliers: Vec<u32>) -> Option<Primitive> {
         let mut fitted = *shape;
         // Two rounds: the candidate's inliers give a close fit, whose inliers give the
         // final one (a candidate from three noisy points may be a degree off).

@@ -12,7 +12,7 @@ use platener_geom::plane_fit::symmetric_eigen;
 use platener_geom::rng::SplitMix64;
 use rayon::prelude::*;
 
-use super::shape::Oriented;
+use super::surface::Oriented;
 use crate::mesh::Mesh;
 
 /// How a sample's normal is fitted to its neighbours (see [`with_normals`]), mm.

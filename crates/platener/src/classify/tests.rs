@@ -5,7 +5,7 @@ use proptest::prelude::*;
 
 use super::fit::{refit, simplest};
 use super::sample::sample_surface;
-use super::shape::{Oriented, Shape, cone_from, cylinder_from, plane_from, sphere_from};
+use super::surface::{Oriented, Surface, cone_from, cylinder_from, plane_from, sphere_from};
 use super::testsets::{self, TestSet};
 use super::*;
 use crate::samples;
@@ -22,24 +22,24 @@ fn mesh_of(soup: &[crate::read::Triangle]) -> Mesh {
 }
 
 /// A point of `s` with its normal at surface parameters (a, b) in [0, 1)².
-fn on(s: &Shape, a: f64, b: f64) -> Oriented {
+fn on(s: &Surface, a: f64, b: f64) -> Oriented {
     let turn = a * std::f64::consts::TAU;
     let p = match *s {
-        Shape::Cylinder { axis, point, radius } => {
-            let (u, v) = shape::basis(axis);
+        Surface::Cylinder { axis, point, radius } => {
+            let (u, v) = surface::basis(axis);
             point + (u * turn.cos() + v * turn.sin()) * radius + axis * (b * 100.0 - 50.0)
         }
-        Shape::Sphere { center, radius } => {
+        Surface::Sphere { center, radius } => {
             let lat = (b - 0.5) * 2.8;
             center + DVec3::new(lat.cos() * turn.cos(), lat.cos() * turn.sin(), lat.sin()) * radius
         }
-        Shape::Cone { apex, axis, half_angle } => {
-            let (u, v) = shape::basis(axis);
+        Surface::Cone { apex, axis, half_angle } => {
+            let (u, v) = surface::basis(axis);
             let s = 10.0 + b * 80.0;
             apex + (axis * half_angle.cos() + (u * turn.cos() + v * turn.sin()) * half_angle.sin()) * s
         }
-        Shape::Plane { normal, offset } => {
-            let (u, v) = shape::basis(normal);
+        Surface::Plane { normal, offset } => {
+            let (u, v) = surface::basis(normal);
             normal * offset + u * (a * 100.0) + v * (b * 100.0)
         }
     };
@@ -62,27 +62,27 @@ proptest! {
         let c = DVec3::from(c);
         // Points of a minimal set a clear distance apart round the surface.
         let spread = |i: usize| (a[i] / 3.0 + i as f64 / 3.0, b[i]);
-        let cyl = Shape::Cylinder { axis, point: c - axis * axis.dot(c), radius: r };
+        let cyl = Surface::Cylinder { axis, point: c - axis * axis.dot(c), radius: r };
         let q: Vec<Oriented> = (0..3).map(|i| { let (x, y) = spread(i); on(&cyl, x, y) }).collect();
-        let Some(Shape::Cylinder { axis: a2, point, radius }) = cylinder_from(&q[0], &q[1]) else { panic!("no cylinder") };
+        let Some(Surface::Cylinder { axis: a2, point, radius }) = cylinder_from(&q[0], &q[1]) else { panic!("no cylinder") };
         prop_assert!(a2.cross(axis).length() < 1e-6);
         prop_assert!((radius - r).abs() < 1e-6 * r);
         prop_assert!((point - c).reject_from_normalized(axis).length() < 1e-6 * r);
 
-        let sph = Shape::Sphere { center: c, radius: r };
+        let sph = Surface::Sphere { center: c, radius: r };
         let q: Vec<Oriented> = (0..2).map(|i| { let (x, y) = spread(i); on(&sph, x, y) }).collect();
-        let Some(Shape::Sphere { center, radius }) = sphere_from(&q[0], &q[1]) else { panic!("no sphere") };
+        let Some(Surface::Sphere { center, radius }) = sphere_from(&q[0], &q[1]) else { panic!("no sphere") };
         prop_assert!((center - c).length() < 1e-6 * r && (radius - r).abs() < 1e-6 * r);
 
-        let cone = Shape::Cone { apex: c, axis, half_angle: h };
+        let cone = Surface::Cone { apex: c, axis, half_angle: h };
         let q: Vec<Oriented> = (0..3).map(|i| { let (x, y) = spread(i); on(&cone, x, y) }).collect();
-        let Some(Shape::Cone { apex, axis: a3, half_angle }) = cone_from(&[q[0], q[1], q[2]]) else { panic!("no cone") };
+        let Some(Surface::Cone { apex, axis: a3, half_angle }) = cone_from(&[q[0], q[1], q[2]]) else { panic!("no cone") };
         prop_assert!((apex - c).length() < 1e-5 * r.max(1.0), "apex {apex} vs {c}");
         prop_assert!(a3.dot(axis) > 1.0 - 1e-9 && (half_angle - h).abs() < 1e-6);
 
-        let pl = Shape::Plane { normal: axis, offset: r };
+        let pl = Surface::Plane { normal: axis, offset: r };
         let q: Vec<Oriented> = (0..3).map(|i| on(&pl, a[i], b[i])).collect();
-        if let Some(Shape::Plane { normal, offset }) = plane_from(&[q[0], q[1], q[2]]) {
+        if let Some(Surface::Plane { normal, offset }) = plane_from(&[q[0], q[1], q[2]]) {
             prop_assert!(normal.dot(axis) > 1.0 - 1e-9 && (offset - r).abs() < 1e-6);
         }
         // Every point of each shape is at distance 0 and accepted.
@@ -98,16 +98,16 @@ proptest! {
         let axis = dir(t, p);
         let d = DVec3::from(d);
         for truth in [
-            Shape::Cylinder { axis, point: DVec3::ZERO, radius: r },
-            Shape::Sphere { center: DVec3::ONE, radius: r },
-            Shape::Cone { apex: DVec3::ONE, axis, half_angle: 0.5 },
+            Surface::Cylinder { axis, point: DVec3::ZERO, radius: r },
+            Surface::Sphere { center: DVec3::ONE, radius: r },
+            Surface::Cone { apex: DVec3::ONE, axis, half_angle: 0.5 },
         ] {
             let pts: Vec<DVec3> = (0..400).map(|i| on(&truth, (i % 20) as f64 / 20.0 + 0.01, (i / 20) as f64 / 20.0).p).collect();
             let start = match truth {
-                Shape::Cylinder { axis, point, radius } => Shape::Cylinder { axis: (axis + d * 0.02).normalize(), point: point + d, radius: radius + 1.0 },
-                Shape::Sphere { center, radius } => Shape::Sphere { center: center + d, radius: radius - 1.0 },
-                Shape::Cone { apex, axis, half_angle } => Shape::Cone { apex: apex + d, axis: (axis + d * 0.02).normalize(), half_angle: half_angle + 0.02 },
-                Shape::Plane { .. } => truth,
+                Surface::Cylinder { axis, point, radius } => Surface::Cylinder { axis: (axis + d * 0.02).normalize(), point: point + d, radius: radius + 1.0 },
+                Surface::Sphere { center, radius } => Surface::Sphere { center: center + d, radius: radius - 1.0 },
+                Surface::Cone { apex, axis, half_angle } => Surface::Cone { apex: apex + d, axis: (axis + d * 0.02).normalize(), half_angle: half_angle + 0.02 },
+                Surface::Plane { .. } => truth,
             };
             let fitted = refit(&start, &pts, &[]).expect("a fit");
             let worst = pts.iter().map(|q| fitted.distance(*q)).fold(0.0, f64::max);
@@ -122,18 +122,18 @@ fn a_plane_patch_is_not_a_huge_cylinder() {
         .map(|i| DVec3::new((i % 10) as f64 * 10.0, (i / 10) as f64 * 10.0, 0.0))
         .collect();
     let normals = vec![DVec3::Z; pts.len()];
-    let huge = Shape::Cylinder {
+    let huge = Surface::Cylinder {
         axis: DVec3::X,
         point: DVec3::new(0.0, 50.0, -5000.0),
         radius: 5000.0,
     };
     let s = simplest(&huge, &pts, &normals, 1.0);
-    let Shape::Plane { normal, offset } = s else {
+    let Surface::Plane { normal, offset } = s else {
         panic!("{s:?}")
     };
     assert!(normal.dot(DVec3::Z) > 1.0 - 1e-12 && offset.abs() < 1e-9);
     // A real cylinder stays one.
-    let cyl = Shape::Cylinder {
+    let cyl = Surface::Cylinder {
         axis: DVec3::Z,
         point: DVec3::ZERO,
         radius: 20.0,
@@ -226,7 +226,7 @@ fn a_hollow_box_finds_its_outside_as_a_box() {
     assert_eq!(
         c.primitives
             .iter()
-            .filter(|p| p.shape.kind() == ShapeKind::Plane)
+            .filter(|p| p.shape.kind() == SurfaceKind::Plane)
             .count(),
         12
     );
@@ -236,7 +236,7 @@ fn a_hollow_box_finds_its_outside_as_a_box() {
     // The outer box: its planes are the ones facing away from the centre at the outside.
     let centre = DVec3::new(50.0, 40.0, 30.0);
     for &k in &boxes[0].primitives {
-        let Shape::Plane { normal, offset } = c.primitives[k as usize].shape else {
+        let Surface::Plane { normal, offset } = c.primitives[k as usize].shape else {
             panic!()
         };
         let out = offset - normal.dot(centre);
@@ -259,7 +259,7 @@ fn tube_is_one_cylinder_volume_with_caps_and_bore() {
     let bores = c
         .primitives
         .iter()
-        .filter(|p| matches!(p.shape, Shape::Cylinder { .. }) && !p.outward)
+        .filter(|p| matches!(p.shape, Surface::Cylinder { .. }) && !p.outward)
         .count();
     assert_eq!(bores, 1);
 }
@@ -326,7 +326,7 @@ fn measure_accuracy() {
         for seed in 0..5 {
             for set in testsets::standard(noise, seed) {
                 let c = classify(&set);
-                let s = testsets::score(&set, &c);
+                let s = testsets::accuracy(&set, &c);
                 (found, total, phantoms) = (found + s.found, total + s.total, phantoms + s.phantoms);
                 worst_share = worst_share.max(s.worst_unmatched_share);
                 worst_deg = worst_deg.max(s.worst_angle_deg);

@@ -9,7 +9,7 @@ use platener_geom::rng::SplitMix64;
 use serde::Serialize;
 
 use super::Classification;
-use super::shape::Shape;
+use super::surface::Surface;
 use crate::mesh::Mesh;
 use crate::read::Triangle;
 
@@ -21,13 +21,13 @@ pub struct TestSet {
     /// The roughened, moved mesh.
     pub mesh: Mesh,
     /// Its primitives (moved like the mesh).
-    pub truth: Vec<Shape>,
+    pub truth: Vec<Surface>,
 }
 
 pub use crate::samples::patch;
 
 /// A closed box `size` with faces cut into squares of about `cell`, normals out.
-pub fn fine_box(size: DVec3, cell: f64) -> (Vec<Triangle>, Vec<Shape>) {
+pub fn fine_box(size: DVec3, cell: f64) -> (Vec<Triangle>, Vec<Surface>) {
     let mut tris = Vec::new();
     let mut truth = Vec::new();
     for axis in 0..3 {
@@ -48,7 +48,7 @@ pub fn fine_box(size: DVec3, cell: f64) -> (Vec<Triangle>, Vec<Shape>) {
             );
             let mut n = DVec3::ZERO;
             n[axis] = if side > 0.5 { 1.0 } else { -1.0 };
-            truth.push(Shape::Plane {
+            truth.push(Surface::Plane {
                 normal: n,
                 offset: side * size[axis],
             });
@@ -128,29 +128,29 @@ fn motion(rng: &mut SplitMix64) -> (DQuat, DVec3) {
 }
 
 /// `s` moved by the rigid motion `x ↦ rot·x + shift`.
-pub fn moved(s: &Shape, rot: DQuat, shift: DVec3) -> Shape {
+pub fn moved(s: &Surface, rot: DQuat, shift: DVec3) -> Surface {
     match *s {
-        Shape::Plane { normal, offset } => {
+        Surface::Plane { normal, offset } => {
             let n = rot * normal;
-            Shape::Plane {
+            Surface::Plane {
                 normal: n,
                 offset: offset + n.dot(shift),
             }
         }
-        Shape::Cylinder { axis, point, radius } => {
+        Surface::Cylinder { axis, point, radius } => {
             let a = rot * axis;
             let p = rot * point + shift;
-            Shape::Cylinder {
+            Surface::Cylinder {
                 axis: a,
                 point: p - a * a.dot(p),
                 radius,
             }
         }
-        Shape::Sphere { center, radius } => Shape::Sphere {
+        Surface::Sphere { center, radius } => Surface::Sphere {
             center: rot * center + shift,
             radius,
         },
-        Shape::Cone { apex, axis, half_angle } => Shape::Cone {
+        Surface::Cone { apex, axis, half_angle } => Surface::Cone {
             apex: rot * apex + shift,
             axis: rot * axis,
             half_angle,
@@ -163,21 +163,21 @@ pub fn moved(s: &Shape, rot: DQuat, shift: DVec3) -> Shape {
 /// meshes of about 2 mm.
 pub fn standard(noise: f64, seed: u64) -> Vec<TestSet> {
     let z = DVec3::Z;
-    let plane = |n: DVec3, d: f64| Shape::Plane { normal: n, offset: d };
+    let plane = |n: DVec3, d: f64| Surface::Plane { normal: n, offset: d };
     let (box_tris, box_truth) = fine_box(DVec3::new(100.0, 80.0, 60.0), 2.0);
     let slope = (25.0f64 / 50.0).atan();
-    let raw: Vec<(&str, Vec<Triangle>, Vec<Shape>)> = vec![
+    let raw: Vec<(&str, Vec<Triangle>, Vec<Surface>)> = vec![
         ("box", box_tris, box_truth),
         (
             "tube",
             revolved(30.0, 30.0, 20.0, 60.0, 96, 2.0),
             vec![
-                Shape::Cylinder {
+                Surface::Cylinder {
                     axis: z,
                     point: DVec3::ZERO,
                     radius: 30.0,
                 },
-                Shape::Cylinder {
+                Surface::Cylinder {
                     axis: z,
                     point: DVec3::ZERO,
                     radius: 20.0,
@@ -189,7 +189,7 @@ pub fn standard(noise: f64, seed: u64) -> Vec<TestSet> {
         (
             "sphere",
             crate::samples::sphere(DVec3::ZERO, 40.0, 128, 64),
-            vec![Shape::Sphere {
+            vec![Surface::Sphere {
                 center: DVec3::ZERO,
                 radius: 40.0,
             }],
@@ -198,7 +198,7 @@ pub fn standard(noise: f64, seed: u64) -> Vec<TestSet> {
             "cone",
             revolved(40.0, 15.0, 0.0, 50.0, 112, 2.0),
             vec![
-                Shape::Cone {
+                Surface::Cone {
                     apex: DVec3::new(0.0, 0.0, 80.0),
                     axis: -z,
                     half_angle: slope,
@@ -223,7 +223,7 @@ pub fn standard(noise: f64, seed: u64) -> Vec<TestSet> {
 
 /// How a classification did on a test set.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
-pub struct Score {
+pub struct Accuracy {
     /// Primitives of the truth.
     pub total: usize,
     /// Found with parameters within tolerance.
@@ -242,20 +242,20 @@ pub struct Score {
 /// within ε (planes) or 2 % of the radius (axes, centres); a cone's axis and half-angle
 /// within 0.5°, its apex within 2ε (a 2 % radius error moves the apex of the test cone by
 /// about 1.6 mm).
-pub fn matches(truth: &Shape, got: &Shape, eps: f64) -> Option<(f64, f64)> {
+pub fn matches(truth: &Surface, got: &Surface, eps: f64) -> Option<(f64, f64)> {
     let angle = |a: DVec3, b: DVec3| a.dot(b).abs().clamp(0.0, 1.0).acos().to_degrees();
     let (deg, rel, ok) = match (*truth, *got) {
-        (Shape::Plane { normal: n, offset: d }, Shape::Plane { normal: m, offset: e }) => {
+        (Surface::Plane { normal: n, offset: d }, Surface::Plane { normal: m, offset: e }) => {
             let deg = n.dot(m).clamp(-1.0, 1.0).acos().to_degrees();
             (deg, 0.0, deg <= 0.5 && (d - e).abs() <= eps)
         }
         (
-            Shape::Cylinder {
+            Surface::Cylinder {
                 axis: a,
                 point: p,
                 radius: r,
             },
-            Shape::Cylinder {
+            Surface::Cylinder {
                 axis: b,
                 point: q,
                 radius: s,
@@ -268,17 +268,17 @@ pub fn matches(truth: &Shape, got: &Shape, eps: f64) -> Option<(f64, f64)> {
                 deg <= 0.5 && rel <= 0.02 && (q - p).reject_from_normalized(a).length() <= 0.02 * r,
             )
         }
-        (Shape::Sphere { center: c, radius: r }, Shape::Sphere { center: d, radius: s }) => {
+        (Surface::Sphere { center: c, radius: r }, Surface::Sphere { center: d, radius: s }) => {
             let rel = (r - s).abs() / r;
             (0.0, rel, rel <= 0.02 && (c - d).length() <= 0.02 * r)
         }
         (
-            Shape::Cone {
+            Surface::Cone {
                 apex: p,
                 axis: a,
                 half_angle: h,
             },
-            Shape::Cone {
+            Surface::Cone {
                 apex: q,
                 axis: b,
                 half_angle: k,
@@ -297,12 +297,12 @@ pub fn matches(truth: &Shape, got: &Shape, eps: f64) -> Option<(f64, f64)> {
     ok.then_some((deg, rel))
 }
 
-/// Scores `c` against the truth of `set`.
-pub fn score(set: &TestSet, c: &Classification) -> Score {
+/// How `c` did against the truth of `set`.
+pub fn accuracy(set: &TestSet, c: &Classification) -> Accuracy {
     let eps = c.thresholds.eps;
-    let mut s = Score {
+    let mut s = Accuracy {
         total: set.truth.len(),
-        ..Score::default()
+        ..Accuracy::default()
     };
     for t in &set.truth {
         let best = c

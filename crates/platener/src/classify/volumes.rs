@@ -14,7 +14,7 @@ use serde::Serialize;
 
 use super::graph::for_each_neighbour;
 use super::sample::Sample;
-use super::shape::{Shape, basis};
+use super::surface::{Surface, basis};
 use super::{Primitive, Thresholds};
 use crate::mesh::Mesh;
 
@@ -70,7 +70,7 @@ impl Ctx<'_> {
 
     fn plane(&self, k: u32) -> Option<(DVec3, f64)> {
         match self.prims[k as usize].shape {
-            Shape::Plane { normal, offset } => Some((normal, offset)),
+            Surface::Plane { normal, offset } => Some((normal, offset)),
             _ => None,
         }
     }
@@ -254,7 +254,7 @@ fn prisms(cx: &Ctx<'_>, pairs: &[Pair], used: &mut [bool]) -> Vec<Volume> {
         let planes = lateral.iter().filter(|&&k| cx.plane(k).is_some()).count();
         let round = lateral
             .iter()
-            .all(|&k| matches!(cx.prims[k as usize].shape, Shape::Cylinder { .. }));
+            .all(|&k| matches!(cx.prims[k as usize].shape, Surface::Cylinder { .. }));
         let kind = match (planes, round) {
             (4, _) if lateral.len() == 4 => VolumeKind::Box,
             (_, true) => VolumeKind::Cylinder,
@@ -307,8 +307,8 @@ fn lateral(cx: &Ctx<'_>, p: &Pair) -> Option<Vec<u32>> {
     }
     let sin_tol = cx.th.parallel_deg.to_radians().sin();
     let parallel = |k: &u32| match cx.prims[*k as usize].shape {
-        Shape::Plane { normal, .. } => normal.dot(n).abs() <= sin_tol,
-        Shape::Cylinder { axis, .. } => axis.cross(n).length() <= sin_tol,
+        Surface::Plane { normal, .. } => normal.dot(n).abs() <= sin_tol,
+        Surface::Cylinder { axis, .. } => axis.cross(n).length() <= sin_tol,
         _ => false,
     };
     (reached && !prims.is_empty() && prims.iter().all(parallel)).then(|| prims.into_iter().collect())
@@ -324,10 +324,10 @@ fn round(cx: &Ctx<'_>, used: &mut [bool]) -> Vec<Volume> {
             continue;
         }
         match prim.shape {
-            Shape::Sphere { .. } => {
+            Surface::Sphere { .. } => {
                 out.push(claim(used, vec![k as u32], VolumeKind::Sphere, None, None));
             }
-            Shape::Cylinder { axis, point, .. } => {
+            Surface::Cylinder { axis, point, .. } => {
                 let caps: Vec<u32> = (0..cx.prims.len() as u32)
                     .filter(|&c| {
                         !used[c as usize]
@@ -335,8 +335,8 @@ fn round(cx: &Ctx<'_>, used: &mut [bool]) -> Vec<Volume> {
                             && cx.plane(c).is_some_and(|(n, _)| n.cross(axis).length() <= sin_tol)
                     })
                     .collect();
-                let coaxial = |s: &Shape| {
-                    matches!(*s, Shape::Cylinder { axis: a, point: p, .. }
+                let coaxial = |s: &Surface| {
+                    matches!(*s, Surface::Cylinder { axis: a, point: p, .. }
                     if a.cross(axis).length() <= sin_tol && (p - point).reject_from_normalized(axis).length() <= cx.th.eps)
                 };
                 let bores: Vec<u32> = (0..cx.prims.len() as u32)

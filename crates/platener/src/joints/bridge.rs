@@ -7,7 +7,7 @@ use platener_geom::offset::offset;
 use platener_geom::polygon::total_area;
 use platener_geom::{GridError, Polygon};
 
-use super::connect::Raw;
+use super::connect::Overlap;
 use crate::plates::Plate;
 
 /// Which joints in `raw` bridge a third plate: the two plates do not reach their joint region
@@ -15,7 +15,7 @@ use crate::plates::Plate;
 /// parallel line apart from theirs (more than `near`), over the same region. That third plate
 /// is a bevel or chamfer between them (the 12.7 mm plate's chamfered rim). A filleted corner
 /// has no such plate, and a "Y" of three plates is one line.
-pub(super) fn bridging(plates: &[Plate], raw: &[Raw], near: f64) -> Result<Vec<bool>, GridError> {
+pub(super) fn bridging(plates: &[Plate], raw: &[Overlap], near: f64) -> Result<Vec<bool>, GridError> {
     let cos_max = 1f64.to_radians().cos();
     let mut of_plate: Vec<Vec<usize>> = vec![Vec::new(); plates.len()];
     for (k, r) in raw.iter().enumerate() {

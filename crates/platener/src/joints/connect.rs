@@ -15,7 +15,7 @@ use super::{along, bridge, cap};
 use crate::plates::Plate;
 
 /// A shared volume of two grown plates, before it is trimmed along the joint line.
-pub(super) struct Raw {
+pub(super) struct Overlap {
     pub a: usize,
     pub b: usize,
     pub in_a: Polygon,
@@ -25,12 +25,12 @@ pub(super) struct Raw {
     pub line: Option<usize>,
     /// Where both plates run along the line (positions along `axis`); `in_a` and `in_b` span
     /// it, or more where a corner is closed ([`close_corners`]).
-    pub real: (f64, f64),
-    /// `in_a` and `in_b` before they were cut to `real`.
-    pub whole: (Polygon, Polygon),
+    pub shared_span: (f64, f64),
+    /// `in_a` and `in_b` before they were cut to `shared_span`.
+    pub uncut: (Polygon, Polygon),
 }
 
-impl Raw {
+impl Overlap {
     /// A point on its line: the middle of its region in plate a, at mid-thickness.
     pub fn centre(&self, plates: &[Plate]) -> DVec3 {
         let (lo, hi) = self.in_a.bounds();
@@ -56,7 +56,7 @@ impl Raw {
 
 /// How far plate `p` reaches along `axis` at its joint with `other`: its own outline, and the
 /// regions of its connections to third plates across that axis (a box corner).
-fn reach_along(plates: &[Plate], raw: &[Raw], p: usize, other: usize, axis: DVec3) -> (f64, f64) {
+fn reach_along(plates: &[Plate], raw: &[Overlap], p: usize, other: usize, axis: DVec3) -> (f64, f64) {
     let plate = &plates[p];
     let mut r = extent(plate, &plate.polygon, axis);
     for x in raw {
@@ -290,7 +290,7 @@ fn shared(
     b: usize,
     keep_out_a: &[Polygon],
     keep_out_b: &[Polygon],
-) -> Result<Vec<Raw>, GridError> {
+) -> Result<Vec<Overlap>, GridError> {
     let (pa, pb) = (&plates[a], &plates[b]);
     let grown = |p: &Plate, by: f64, keep_out: &[Polygon]| -> Result<Vec<Slab>, GridError> {
         let mut g = offset(std::slice::from_ref(&p.polygon), by)?;
@@ -345,15 +345,15 @@ fn shared(
         ) else {
             continue;
         };
-        out.push(Raw {
+        out.push(Overlap {
             a,
             b,
             in_a,
             in_b,
             axis,
             line: None,
-            real,
-            whole: (ra.clone(), rb.clone()),
+            shared_span: real,
+            uncut: (ra.clone(), rb.clone()),
         });
     }
     Ok(out)
@@ -361,8 +361,8 @@ fn shared(
 
 /// The joints of `a` and of `b` with the same third plate across the end of their line (a box
 /// corner: plate finding leaves the corner's cube to one of the three, or to none).
-fn corner_plates<'r>(raw: &'r [Raw], r: &Raw) -> Vec<(&'r Raw, &'r Raw)> {
-    let steep = |x: &Raw| x.axis.dot(r.axis).abs() <= 0.5;
+fn corner_plates<'r>(raw: &'r [Overlap], r: &Overlap) -> Vec<(&'r Overlap, &'r Overlap)> {
+    let steep = |x: &Overlap| x.axis.dot(r.axis).abs() <= 0.5;
     let mut out = Vec::new();
     for x in raw.iter().filter(|x| steep(x)) {
         let Some(c) = x.other(r.a).filter(|&c| c != r.b) else {
@@ -380,32 +380,32 @@ fn corner_plates<'r>(raw: &'r [Raw], r: &Raw) -> Vec<(&'r Raw, &'r Raw)> {
 /// Elsewhere a joint ends where one of its plates does: on a low-poly ball four facets meet
 /// at a vertex and only neighbours along an edge are joined, so a joint running on would
 /// reach into a facet it has no joint with.
-fn close_corners(plates: &[Plate], raw: &mut [Raw]) -> Result<(), GridError> {
+fn close_corners(plates: &[Plate], raw: &mut [Overlap]) -> Result<(), GridError> {
     let mut ends = Vec::with_capacity(raw.len());
     for r in raw.iter() {
         let t = plates[r.a].thickness.max(plates[r.b].thickness);
-        let (mut s0, mut s1) = r.real;
+        let (mut s0, mut s1) = r.shared_span;
         for (x, y) in corner_plates(raw, r) {
             let ea = extent(&plates[r.a], x.in_plate(r.a), r.axis);
             let eb = extent(&plates[r.b], y.in_plate(r.b), r.axis);
             let e = (ea.0.min(eb.0), ea.1.max(eb.1));
-            if e.0 <= r.real.0 + t && e.1 >= r.real.0 - t {
+            if e.0 <= r.shared_span.0 + t && e.1 >= r.shared_span.0 - t {
                 s0 = s0.min(e.0);
             }
-            if e.0 <= r.real.1 + t && e.1 >= r.real.1 - t {
+            if e.0 <= r.shared_span.1 + t && e.1 >= r.shared_span.1 - t {
                 s1 = s1.max(e.1);
             }
         }
         ends.push((s0, s1));
     }
     for (r, (s0, s1)) in raw.iter_mut().zip(ends) {
-        if (s0, s1) == r.real {
+        if (s0, s1) == r.shared_span {
             continue;
         }
         let (pa, pb) = (&plates[r.a], &plates[r.b]);
         if let (Some(a), Some(b)) = (
-            largest(band(pa, &r.whole.0, r.axis, s0, s1)?),
-            largest(band(pb, &r.whole.1, r.axis, s0, s1)?),
+            largest(band(pa, &r.uncut.0, r.axis, s0, s1)?),
+            largest(band(pb, &r.uncut.1, r.axis, s0, s1)?),
         ) {
             (r.in_a, r.in_b) = (a, b);
         }
@@ -450,7 +450,7 @@ struct Finding<'a> {
     /// How far each plate reaches a joint.
     reaching: Vec<Reaching>,
     /// The shared volumes found.
-    raw: Vec<Raw>,
+    raw: Vec<Overlap>,
     /// Pairs of plates near each other that share no volume on the first pass.
     unreached: Vec<(usize, usize)>,
     /// How many of `raw` were found pair by pair (the rest through other joints).
@@ -595,7 +595,7 @@ impl<'a> Finding<'a> {
             .retain(|r| !redone.iter().any(|(a, b, _, _)| (*a, *b) == (r.a, r.b)));
         for (_, _, stretches, id) in redone {
             self.raw
-                .extend(stretches.into_iter().map(|r| Raw { line: Some(id), ..r }));
+                .extend(stretches.into_iter().map(|r| Overlap { line: Some(id), ..r }));
         }
         Ok(())
     }
@@ -603,7 +603,7 @@ impl<'a> Finding<'a> {
     /// The joint region of the shared volume `r`: trimmed to where both plates run along
     /// the line, its kind, angle and how far each plate grows into it. `None` when less than
     /// half the thickest sheet's thickness of it is left.
-    fn region(&self, r: &Raw) -> Result<Option<Region>, GridError> {
+    fn region(&self, r: &Overlap) -> Result<Option<Region>, GridError> {
         let (plates, raw) = (self.plates, &self.raw);
         let (pa, pb) = (&plates[r.a], &plates[r.b]);
         // Growing in every direction also lengthened the joint past the plates' ends; along the
@@ -774,7 +774,7 @@ struct Halving {
 /// lies within the other's, the longer one's slot runs from its nearer end (the part of it
 /// beyond the shorter plate is left open; a T would cut the shorter plate in two).
 fn halving(
-    r: &Raw,
+    r: &Overlap,
     (pa, ra): (&Plate, &Polygon),
     (pb, rb): (&Plate, &Polygon),
     range: (f64, f64),
@@ -840,7 +840,7 @@ fn passes_notched(p: &Plate, region: &Polygon, axis: DVec3) -> Result<bool, Grid
 /// How the plates of `r` meet, from whether each one's region lies within its outline (a
 /// plate passing through) or not (a plate ending there); for a T, the plate passing through.
 fn kind_of(
-    r: &Raw,
+    r: &Overlap,
     (pa, ra): (&Plate, &Polygon),
     (pb, rb): (&Plate, &Polygon),
 ) -> Result<(ConnectionKind, Option<usize>), GridError> {

@@ -105,7 +105,7 @@ fn joined(pieces: &[Polygon]) -> Result<Vec<Polygon>, GridError> {
 
 /// How one connection is cut.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Plan {
+struct FingerLayout {
     /// Fingers of both plates (2 for a halved joint).
     segments: usize,
     /// The joint's shorter fingers ([`Region::short`]), because the full ones would cut a
@@ -119,7 +119,7 @@ struct Plan {
     b_first: bool,
 }
 
-impl Plan {
+impl FingerLayout {
     /// Full fingers, `segments` of them, owned in turn from plate a.
     fn of(segments: usize) -> Self {
         Self {
@@ -181,7 +181,7 @@ fn min_feature(t: f64) -> f64 {
 }
 
 /// The plan of a connection before any plate is found to fall apart.
-fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: JointStyle) -> Plan {
+fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: JointStyle) -> FingerLayout {
     if let Some(j) = &r.junction {
         // One row of fingers for the whole line, the same for each of its connections.
         let t = j.plates.iter().map(|&p| plates[p].thickness).fold(0.0, f64::max);
@@ -190,7 +190,7 @@ fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: Joi
         if segments < j.plates.len() && len / j.plates.len() as f64 >= narrowest {
             segments = j.plates.len();
         }
-        return Plan::of(segments);
+        return FingerLayout::of(segments);
     }
     let t = plates[r.a].thickness.max(plates[r.b].thickness);
     let narrowest = match style {
@@ -201,11 +201,11 @@ fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: Joi
         ConnectionKind::Cross => 2,
         _ => segment_count(r.range.1 - r.range.0, settings.finger_factor * t, narrowest),
     };
-    Plan::of(segments)
+    FingerLayout::of(segments)
 }
 
 /// The plate that owns segment `s` of connection `r` under `plan` (the other gives it up).
-fn segment_owner(r: &Region, plan: Plan, s: usize) -> usize {
+fn segment_owner(r: &Region, plan: FingerLayout, s: usize) -> usize {
     match (&r.junction, r.kind) {
         (Some(j), _) => j.owner(s, r.a, r.b),
         (None, ConnectionKind::Corner) => [r.a, r.b][(s + plan.b_first as usize) % 2],
@@ -223,7 +223,7 @@ fn segment_owner(r: &Region, plan: Plan, s: usize) -> usize {
 }
 
 /// The fingers, tabs and slots of one connection under `plan`.
-fn cut(plates: &[Plate], r: &Region, plan: Plan, style: JointStyle) -> Result<Cut, GridError> {
+fn cut(plates: &[Plate], r: &Region, plan: FingerLayout, style: JointStyle) -> Result<Cut, GridError> {
     let (pa, pb) = (&plates[r.a], &plates[r.b]);
     let mut out = Cut::default();
     if let Some(keeper) = plan.keeper {
@@ -386,7 +386,7 @@ fn gathered(cuts: &[Cut], touching: &[(usize, usize)]) -> (Vec<Polygon>, Vec<Pol
 }
 
 /// The joint `r` as `plan` cuts it: with its shorter fingers if the plan says so.
-fn variant(r: &Region, plan: Plan) -> Region {
+fn variant(r: &Region, plan: FingerLayout) -> Region {
     match (plan.short, r.shortened()) {
         (true, Some(short)) => short,
         _ => r.clone(),
@@ -440,7 +440,7 @@ struct Cutting<'a> {
     /// Each plate grown into its joint regions (each joint as its current variant).
     outlines: Vec<Vec<Polygon>>,
     /// How each connection is cut now.
-    plans: Vec<Plan>,
+    plans: Vec<FingerLayout>,
     /// What each connection takes from and adds to its plates under its plan.
     cuts: Vec<Cut>,
     /// The plate each connection last adapted for, if it did.
@@ -469,7 +469,7 @@ impl<'a> Cutting<'a> {
             .zip(&touching)
             .map(|(p, mine)| outline(p, &used, mine))
             .collect::<Result<_, _>>()?;
-        let plans: Vec<Plan> = regions.iter().map(|r| first_plan(plates, r, settings, style)).collect();
+        let plans: Vec<FingerLayout> = regions.iter().map(|r| first_plan(plates, r, settings, style)).collect();
         let cuts: Vec<Cut> = regions
             .iter()
             .zip(&plans)
@@ -586,24 +586,24 @@ impl<'a> Cutting<'a> {
     /// What joint `k` may become for plate `i`, in the order tried (all from its plan before
     /// the first try): shorter fingers, three wider ones, a lap either way round, and plate
     /// `i` keeping the whole region.
-    fn candidates(&self, i: usize, k: usize) -> [Option<Plan>; 5] {
+    fn candidates(&self, i: usize, k: usize) -> [Option<FingerLayout>; 5] {
         let (r, now) = (&self.regions[k], self.plans[k]);
         // A junction's row of fingers is shared by its connections: it cannot widen for one.
         let wider = now.segments > 3 && r.kind != ConnectionKind::Cross && r.junction.is_none();
-        let shorter = (r.short.is_some() && !now.short).then_some(Plan { short: true, ..now });
-        let fewer = wider.then_some(Plan { segments: 3, ..now });
+        let shorter = (r.short.is_some() && !now.short).then_some(FingerLayout { short: true, ..now });
+        let fewer = wider.then_some(FingerLayout { segments: 3, ..now });
         // At a shallow angle a butt joint meets its partner along a line only (two ends cut
         // square to plates far from square to each other). A lap (one finger each, the plate
         // keeping either end in turn) interlocks and meets it over the whole cross-section.
         let lap = |b_first| {
             let shallow = r.kind == ConnectionKind::Corner && r.angle_deg > BUTT_MAX_DEG;
-            (shallow && r.junction.is_none() && now.segments > 2).then_some(Plan {
+            (shallow && r.junction.is_none() && now.segments > 2).then_some(FingerLayout {
                 segments: 2,
                 b_first,
                 ..now
             })
         };
-        let keep = Some(Plan { keeper: Some(i), ..now });
+        let keep = Some(FingerLayout { keeper: Some(i), ..now });
         [shorter, fewer, lap(false), lap(true), keep]
     }
 
@@ -632,7 +632,7 @@ impl<'a> Cutting<'a> {
         &mut self,
         i: usize,
         k: usize,
-        mut plan: Plan,
+        mut plan: FingerLayout,
         (pieces, other, other_loss): (&[Polygon], usize, (usize, i64)),
     ) -> Result<Option<Vec<Polygon>>, GridError> {
         // Wider fingers and keeping the region build on shorter fingers taken before.
@@ -800,7 +800,7 @@ impl<'a> Cutting<'a> {
 }
 
 /// The warning for a connection whose joint adapted so that plate `i` stays whole.
-fn adapted(n: u32, r: &Region, plan: Plan, widened: bool, i: usize) -> String {
+fn adapted(n: u32, r: &Region, plan: FingerLayout, widened: bool, i: usize) -> String {
     let plate = i + 1;
     let other = if i == r.a { r.b } else { r.a } + 1;
     match (plan.keeper, r.kind) {

@@ -14,7 +14,7 @@
 use glam::{DVec2, DVec3};
 use platener_geom::Polygon;
 
-use super::connect::{Raw, at, extent, into_plate};
+use super::connect::{Overlap, at, extent, into_plate};
 use crate::assembly::UnionFind;
 use crate::plates::Plate;
 
@@ -54,7 +54,7 @@ pub(super) struct Line {
 
 /// Groups the raw stretches that run along one line (parallel axes, less than `near` apart,
 /// overlapping extents) and keeps the groups of three or more plates that all meet each other.
-pub(super) fn lines(plates: &[Plate], raw: &[Raw], near: f64) -> Vec<Line> {
+pub(super) fn lines(plates: &[Plate], raw: &[Overlap], near: f64) -> Vec<Line> {
     let cos_max = 1f64.to_radians().cos();
     let centres: Vec<DVec3> = raw.iter().map(|r| r.centre(plates)).collect();
     let ranges: Vec<(f64, f64)> = raw.iter().map(|r| extent(&plates[r.a], &r.in_a, r.axis)).collect();

@@ -14,7 +14,7 @@ use crate::plates::Plate;
 /// Joints computed for some plates, settings and bends, with the warnings they raised.
 #[derive(Debug, Clone)]
 pub struct Computed {
-    made_for: Key,
+    made_for: CacheKey,
     /// The joints.
     pub joints: Joints,
     /// The warnings computing them raised, for the step that reports them.
@@ -25,13 +25,13 @@ pub struct Computed {
 /// plates snapshot they come from is never changed, only replaced), the settings, and the
 /// plate pairs left without a joint.
 #[derive(Debug, Clone, PartialEq)]
-struct Key {
+struct CacheKey {
     plates: Vec<(u64, u64)>,
     settings: JointSettings,
     unjointed: BTreeSet<(u32, u32)>,
 }
 
-impl Key {
+impl CacheKey {
     fn new(plates: &[Plate], settings: &JointSettings, unjointed: &BTreeSet<(u32, u32)>) -> Self {
         Self {
             plates: plates
@@ -53,7 +53,7 @@ impl Computed {
     ) -> Result<Self, GridError> {
         let (joints, warnings) = compute_except(plates, settings, unjointed)?;
         Ok(Self {
-            made_for: Key::new(plates, settings, unjointed),
+            made_for: CacheKey::new(plates, settings, unjointed),
             joints,
             warnings,
         })
@@ -61,6 +61,6 @@ impl Computed {
 
     /// Whether these are the joints [`compute_except`] gives for these arguments.
     pub fn made_for(&self, plates: &[Plate], settings: &JointSettings, unjointed: &BTreeSet<(u32, u32)>) -> bool {
-        self.made_for == Key::new(plates, settings, unjointed)
+        self.made_for == CacheKey::new(plates, settings, unjointed)
     }
 }

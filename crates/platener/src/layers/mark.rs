@@ -8,7 +8,7 @@
 
 use glam::DVec3;
 
-use crate::classify::ShapeKind;
+use crate::classify::SurfaceKind;
 use crate::classify::groups::stacked_instead;
 use crate::coplanar::PlanarGroups;
 use crate::mesh::Mesh;
@@ -48,7 +48,7 @@ pub(crate) fn marked(on: &Surface<'_>, settings: &Settings) -> Marked {
     let stacked: Vec<bool> = found
         .primitives
         .iter()
-        .map(|p| p.shape.kind() == ShapeKind::Sphere || stacked_instead(p, settings))
+        .map(|p| p.shape.kind() == SurfaceKind::Sphere || stacked_instead(p, settings))
         .collect();
     let faces: Vec<bool> = (0..mesh.triangles.len())
         .map(|f| {

@@ -19,7 +19,7 @@ use platener_geom::{Frame, Polygon};
 use crate::cuttable::Rule;
 use crate::joints::Joints;
 use crate::plan::{Glue, Joint, JointKind, Part};
-use crate::plates::{Feature, Plates, Relief, Side};
+use crate::plates::{Elevation, Feature, Plates, Side};
 
 /// How far a detail's height may be from the sheet it is cut from: a tenth of the sheet,
 /// at least 0.1 mm (the height is measured at the mesh's vertices, the sheet is nominal).
@@ -221,7 +221,7 @@ pub(super) fn glue(
 
 /// The offered sheet thinner than the plate that a raised feature stands as tall as.
 fn sheet_for(f: &Feature, plate: f64, offered: &[f64]) -> Option<f64> {
-    let height = f.height.filter(|_| f.relief == Relief::Raised)?;
+    let height = f.height.filter(|_| f.relief == Elevation::Raised)?;
     offered
         .iter()
         .copied()

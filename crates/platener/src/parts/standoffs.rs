@@ -30,7 +30,7 @@ use platener_geom::{Frame, GridError, Polygon};
 
 use crate::cuttable::{PEG_MIN_WALL, Rule};
 use crate::plan::{Joint, JointKind, Part, PartKind};
-use crate::plates::{Feature, Plates, Relief, Side};
+use crate::plates::{Elevation, Feature, Plates, Side};
 
 /// The narrowest screw hole a stack is held by, mm across (an M1.6 screw's clearance).
 pub const MIN_SCREW: f64 = 1.5;
@@ -88,7 +88,7 @@ pub(super) fn find(plates: &Plates, offered: &[f64], min_area: f64) -> Result<Ve
     for f in &plates.features {
         let base = &plates.plates[f.plate as usize];
         let tall = f.height.is_none_or(|h| h > base.thickness + 1e-6);
-        if f.relief != Relief::Raised || !tall || crate::plates::builder(f, &slabs).is_some() {
+        if f.relief != Elevation::Raised || !tall || crate::plates::builder(f, &slabs).is_some() {
             continue;
         }
         let make = match f.height {

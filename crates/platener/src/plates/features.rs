@@ -68,7 +68,7 @@ pub enum Side {
 /// Whether a feature stands out of its face or is sunk into it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum Relief {
+pub enum Elevation {
     /// Engraved text, a pocket: below the face.
     Recessed,
     /// Embossed text, a boss, a standoff: above the face.
@@ -83,7 +83,7 @@ pub struct Feature {
     /// Which face.
     pub side: Side,
     /// Raised or recessed.
-    pub relief: Relief,
+    pub relief: Elevation,
     /// Its footprint on the face, in the plate's 2D frame (plan.json has it as score marks).
     #[serde(skip)]
     pub region: Polygon,
@@ -182,7 +182,7 @@ impl<'a> Sections<'a> {
                     true => self.height(frame, face.z, out, &region, &mut budget)?,
                     false => None,
                 };
-                let relief = if raised { Relief::Raised } else { Relief::Recessed };
+                let relief = if raised { Elevation::Raised } else { Elevation::Recessed };
                 features.push(feature(region, frame, t, (face.side, face.z), relief, height));
             }
         }
@@ -307,7 +307,7 @@ fn feature(
     frame: &Frame,
     t: f64,
     (side, z): (Side, f64),
-    relief: Relief,
+    relief: Elevation,
     height: Option<f64>,
 ) -> Feature {
     let (lo, hi) = region.bounds();
@@ -445,7 +445,7 @@ fn plate_warnings(plate: u32, fs: &[Feature], slabs: &[Slab]) -> Vec<String> {
     let sheet = slabs.get(plate as usize).map_or(f64::INFINITY, |s| s.thickness);
     let low: Vec<&Feature> = fs
         .iter()
-        .filter(|f| f.relief == Relief::Raised && f.height.is_some_and(|h| h <= sheet + 1e-6))
+        .filter(|f| f.relief == Elevation::Raised && f.height.is_some_and(|h| h <= sheet + 1e-6))
         .filter(|f| !built_by_plates(f, slabs))
         .collect();
     if !low.is_empty() {

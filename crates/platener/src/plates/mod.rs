@@ -38,7 +38,7 @@ use crate::shapes::Shapes;
 
 pub use coverage::{Coverage, Rejection, ShapeUse, ThicknessShare};
 pub(crate) use features::builder;
-pub use features::{Feature, Relief, Side};
+pub use features::{Elevation, Feature, Side};
 
 /// How a plate was found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

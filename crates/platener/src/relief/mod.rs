@@ -14,7 +14,7 @@ use glam::DVec3;
 use platener_geom::{GridError, Polygon, boolean};
 use serde::Serialize;
 
-use crate::classify::{Classification, Shape};
+use crate::classify::{Classification, Surface};
 use crate::context::StepContext;
 use crate::error::{Error, ModelProblem, Result};
 use crate::mesh::Mesh;
@@ -74,7 +74,7 @@ pub fn run(
     for &k in &found.replaced {
         cx.check_cancel()?;
         let p = &found.primitives[k as usize];
-        let Shape::Plane { normal, offset } = p.shape else {
+        let Surface::Plane { normal, offset } = p.shape else {
             continue;
         };
         let Some((at, side)) = face_on(&out.parts, normal, offset) else {

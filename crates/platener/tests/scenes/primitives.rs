@@ -143,7 +143,7 @@ fn the_primitives_view_draws_each_primitive_its_triangles_and_inliers() {
     let knurled_glb = check_primitives(&knurled, &["cylinder", "plane", "plane"]);
     let c = knurled.classify.as_deref().expect("classified");
     let cylinder = c.primitives.iter().find_map(|p| match p.shape {
-        platener::classify::Shape::Cylinder { radius, .. } => Some(radius),
+        platener::classify::Surface::Cylinder { radius, .. } => Some(radius),
         _ => None,
     });
     assert!(cylinder.is_some_and(|r| (49.0..=50.0).contains(&r)), "{cylinder:?}");

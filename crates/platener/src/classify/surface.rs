@@ -9,7 +9,7 @@ use serde::Serialize;
 /// A primitive surface in model coordinates (mm).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
-pub enum Shape {
+pub enum Surface {
     /// Points `p` with `normal · p = offset`; `normal` points out of the solid.
     Plane {
         /// Unit normal.
@@ -44,28 +44,28 @@ pub enum Shape {
     },
 }
 
-/// Which primitive a [`Shape`] is (for counts and comparisons).
+/// Which primitive a [`Surface`] is (for counts and comparisons).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
-pub enum ShapeKind {
-    /// [`Shape::Plane`].
+pub enum SurfaceKind {
+    /// [`Surface::Plane`].
     Plane,
-    /// [`Shape::Cylinder`].
+    /// [`Surface::Cylinder`].
     Cylinder,
-    /// [`Shape::Sphere`].
+    /// [`Surface::Sphere`].
     Sphere,
-    /// [`Shape::Cone`].
+    /// [`Surface::Cone`].
     Cone,
 }
 
-impl ShapeKind {
+impl SurfaceKind {
     /// The kind's name as its JSON has it (`plane`, `cylinder`, …), for names a viewer shows.
     pub fn name(self) -> &'static str {
         match self {
-            ShapeKind::Plane => "plane",
-            ShapeKind::Cylinder => "cylinder",
-            ShapeKind::Sphere => "sphere",
-            ShapeKind::Cone => "cone",
+            SurfaceKind::Plane => "plane",
+            SurfaceKind::Cylinder => "cylinder",
+            SurfaceKind::Sphere => "sphere",
+            SurfaceKind::Cone => "cone",
         }
     }
 }
@@ -86,41 +86,41 @@ pub fn basis(a: DVec3) -> (DVec3, DVec3) {
     (u, a.cross(u))
 }
 
-impl Shape {
+impl Surface {
     /// Whether `other` is the same surface within `eps` (positions, radii) and the angle
     /// whose cosine is `cos_alpha` (directions): what RANSAC treats as one candidate.
-    pub fn same_as(&self, other: &Shape, eps: f64, cos_alpha: f64) -> bool {
+    pub fn same_as(&self, other: &Surface, eps: f64, cos_alpha: f64) -> bool {
         let line_gap = |p: DVec3, a: DVec3, q: DVec3| {
             let d = q - p;
             (d - a * d.dot(a)).length()
         };
         match (*self, *other) {
-            (Shape::Plane { normal: n, offset: o }, Shape::Plane { normal: m, offset: p }) => {
+            (Surface::Plane { normal: n, offset: o }, Surface::Plane { normal: m, offset: p }) => {
                 let dot = n.dot(m);
                 dot.abs() >= cos_alpha && (o - p * dot.signum()).abs() <= eps
             }
             (
-                Shape::Cylinder {
+                Surface::Cylinder {
                     axis: a,
                     point: p,
                     radius: r,
                 },
-                Shape::Cylinder {
+                Surface::Cylinder {
                     axis: b,
                     point: q,
                     radius: s,
                 },
             ) => a.dot(b).abs() >= cos_alpha && (r - s).abs() <= eps && line_gap(p, a, q) <= eps,
-            (Shape::Sphere { center: c, radius: r }, Shape::Sphere { center: d, radius: s }) => {
+            (Surface::Sphere { center: c, radius: r }, Surface::Sphere { center: d, radius: s }) => {
                 (c - d).length() <= eps && (r - s).abs() <= eps
             }
             (
-                Shape::Cone {
+                Surface::Cone {
                     apex: p,
                     axis: a,
                     half_angle: h,
                 },
-                Shape::Cone {
+                Surface::Cone {
                     apex: q,
                     axis: b,
                     half_angle: k,
@@ -131,12 +131,12 @@ impl Shape {
     }
 
     /// Which primitive this is.
-    pub fn kind(&self) -> ShapeKind {
+    pub fn kind(&self) -> SurfaceKind {
         match self {
-            Shape::Plane { .. } => ShapeKind::Plane,
-            Shape::Cylinder { .. } => ShapeKind::Cylinder,
-            Shape::Sphere { .. } => ShapeKind::Sphere,
-            Shape::Cone { .. } => ShapeKind::Cone,
+            Surface::Plane { .. } => SurfaceKind::Plane,
+            Surface::Cylinder { .. } => SurfaceKind::Cylinder,
+            Surface::Sphere { .. } => SurfaceKind::Sphere,
+            Surface::Cone { .. } => SurfaceKind::Cone,
         }
     }
 
@@ -169,7 +169,7 @@ impl Shape {
     /// on thousands of samples, and the two were a sixth of its time on a model of cones.
     pub fn prepared(&self) -> Prepared {
         let sin_cos = match *self {
-            Shape::Cone { half_angle, .. } => half_angle.sin_cos(),
+            Surface::Cone { half_angle, .. } => half_angle.sin_cos(),
             _ => (0.0, 1.0),
         };
         Prepared { shape: *self, sin_cos }
@@ -181,20 +181,20 @@ impl Shape {
     /// unrolled at `ref_radius` (their mean radius), cylinders at their radius.
     pub fn parameters(&self, p: DVec3, ref_radius: f64) -> (DVec2, Option<f64>) {
         match *self {
-            Shape::Plane { normal, .. } => {
+            Surface::Plane { normal, .. } => {
                 let (u, v) = basis(normal);
                 (DVec2::new(u.dot(p), v.dot(p)), None)
             }
-            Shape::Cylinder { axis, point, radius } => {
+            Surface::Cylinder { axis, point, radius } => {
                 let (a, h) = angle_height(p - point, axis);
                 (DVec2::new(a * radius, h), Some(std::f64::consts::TAU * radius))
             }
-            Shape::Sphere { center, radius } => {
+            Surface::Sphere { center, radius } => {
                 let (a, _) = angle_height(p - center, DVec3::Z);
                 let z = ((p - center).normalize_or(DVec3::Z).z).clamp(-1.0, 1.0);
                 (DVec2::new(a * radius, z * radius), Some(std::f64::consts::TAU * radius))
             }
-            Shape::Cone { apex, axis, .. } => {
+            Surface::Cone { apex, axis, .. } => {
                 let (a, _) = angle_height(p - apex, axis);
                 let s = (p - apex).length();
                 (DVec2::new(a * ref_radius, s), Some(std::f64::consts::TAU * ref_radius))
@@ -205,7 +205,7 @@ impl Shape {
     /// The radius the parameter map of a cone uses for `points`: their mean distance from the
     /// axis (other shapes ignore it).
     pub fn reference_radius(&self, points: impl Iterator<Item = DVec3>) -> f64 {
-        let Shape::Cone { apex, axis, .. } = *self else {
+        let Surface::Cone { apex, axis, .. } = *self else {
             return 0.0;
         };
         let (sum, n) = points.fold((0.0, 0usize), |(s, n), p| {
@@ -215,22 +215,22 @@ impl Shape {
     }
 }
 
-/// A [`Shape`] ready to test many points ([`Shape::prepared`]).
+/// A [`Surface`] ready to test many points ([`Surface::prepared`]).
 #[derive(Debug, Clone, Copy)]
 pub struct Prepared {
-    shape: Shape,
+    shape: Surface,
     /// A cone's half angle's sine and cosine.
     sin_cos: (f64, f64),
 }
 
 impl Prepared {
-    /// See [`Shape::signed_distance`].
+    /// See [`Surface::signed_distance`].
     pub fn signed_distance(&self, p: DVec3) -> f64 {
         match self.shape {
-            Shape::Plane { normal, offset } => normal.dot(p) - offset,
-            Shape::Cylinder { axis, point, radius } => (p - point).reject_from_normalized(axis).length() - radius,
-            Shape::Sphere { center, radius } => (p - center).length() - radius,
-            Shape::Cone { apex, axis, .. } => {
+            Surface::Plane { normal, offset } => normal.dot(p) - offset,
+            Surface::Cylinder { axis, point, radius } => (p - point).reject_from_normalized(axis).length() - radius,
+            Surface::Sphere { center, radius } => (p - center).length() - radius,
+            Surface::Cone { apex, axis, .. } => {
                 let v = p - apex;
                 let h = v.dot(axis);
                 let rho = v.reject_from_normalized(axis).length();
@@ -244,27 +244,27 @@ impl Prepared {
         }
     }
 
-    /// See [`Shape::normal_at`].
+    /// See [`Surface::normal_at`].
     pub fn normal_at(&self, p: DVec3) -> DVec3 {
         match self.shape {
-            Shape::Plane { normal, .. } => normal,
-            Shape::Cylinder { axis, point, .. } => radial(p - point, axis),
-            Shape::Sphere { center, .. } => (p - center).normalize_or(DVec3::Z),
-            Shape::Cone { apex, axis, .. } => {
+            Surface::Plane { normal, .. } => normal,
+            Surface::Cylinder { axis, point, .. } => radial(p - point, axis),
+            Surface::Sphere { center, .. } => (p - center).normalize_or(DVec3::Z),
+            Surface::Cone { apex, axis, .. } => {
                 let (s, c) = self.sin_cos;
                 radial(p - apex, axis) * c - axis * s
             }
         }
     }
 
-    /// See [`Shape::accepts`].
+    /// See [`Surface::accepts`].
     pub fn accepts(&self, q: &Oriented, eps: f64, cos_alpha: f64) -> bool {
         if self.signed_distance(q.p).abs() > eps {
             return false;
         }
         let d = self.normal_at(q.p).dot(q.n);
         match self.shape {
-            Shape::Plane { .. } => d >= cos_alpha,
+            Surface::Plane { .. } => d >= cos_alpha,
             _ => d.abs() >= cos_alpha,
         }
     }
@@ -283,10 +283,10 @@ fn angle_height(v: DVec3, axis: DVec3) -> (f64, f64) {
 }
 
 /// The plane through three points, facing like the first point's normal.
-pub fn plane_from(q: &[Oriented; 3]) -> Option<Shape> {
+pub fn plane_from(q: &[Oriented; 3]) -> Option<Surface> {
     let n = (q[1].p - q[0].p).cross(q[2].p - q[0].p).try_normalize()?;
     let n = if n.dot(q[0].n) < 0.0 { -n } else { n };
-    Some(Shape::Plane {
+    Some(Surface::Plane {
         normal: n,
         offset: n.dot(q[0].p),
     })
@@ -294,7 +294,7 @@ pub fn plane_from(q: &[Oriented; 3]) -> Option<Shape> {
 
 /// The cylinder through two points with normals: the axis is perpendicular to both normals,
 /// the centre where the normal lines cross in the plane across the axis.
-pub fn cylinder_from(a: &Oriented, b: &Oriented) -> Option<Shape> {
+pub fn cylinder_from(a: &Oriented, b: &Oriented) -> Option<Surface> {
     let axis = a.n.cross(b.n);
     if axis.length() < 1e-3 {
         return None;
@@ -305,7 +305,7 @@ pub fn cylinder_from(a: &Oriented, b: &Oriented) -> Option<Shape> {
     let point = c - axis * axis.dot(c);
     let ra = (a.p - point).reject_from_normalized(axis).length();
     let rb = (b.p - point).reject_from_normalized(axis).length();
-    Some(Shape::Cylinder {
+    Some(Surface::Cylinder {
         axis,
         point,
         radius: 0.5 * (ra + rb),
@@ -314,17 +314,17 @@ pub fn cylinder_from(a: &Oriented, b: &Oriented) -> Option<Shape> {
 
 /// The sphere through two points with normals: centre midway between the closest points
 /// of the two normal lines.
-pub fn sphere_from(a: &Oriented, b: &Oriented) -> Option<Shape> {
+pub fn sphere_from(a: &Oriented, b: &Oriented) -> Option<Surface> {
     let (t, s) = closest_on_lines(a.p, a.n, b.p, b.n)?;
     let center = 0.5 * (a.p + a.n * t + b.p + b.n * s);
     let radius = 0.5 * ((a.p - center).length() + (b.p - center).length());
-    Some(Shape::Sphere { center, radius })
+    Some(Surface::Sphere { center, radius })
 }
 
 /// The cone through three points with normals: the apex is the common point of the three
 /// tangent planes, the axis the normal of the plane through the unit directions from the
 /// apex to the points.
-pub fn cone_from(q: &[Oriented; 3]) -> Option<Shape> {
+pub fn cone_from(q: &[Oriented; 3]) -> Option<Surface> {
     let m = DMat3::from_cols(q[0].n, q[1].n, q[2].n).transpose();
     if m.determinant().abs() < 1e-6 {
         return None;
@@ -335,7 +335,7 @@ pub fn cone_from(q: &[Oriented; 3]) -> Option<Shape> {
     let axis = (d[1] - d[0]).cross(d[2] - d[0]).try_normalize()?;
     let axis = if axis.dot(d[0]) < 0.0 { -axis } else { axis };
     let half_angle = d.iter().map(|v| v.dot(axis).clamp(-1.0, 1.0).acos()).sum::<f64>() / 3.0;
-    Some(Shape::Cone { apex, axis, half_angle })
+    Some(Surface::Cone { apex, axis, half_angle })
 }
 
 /// Parameters (t, s) of the closest points of the lines `p + t·u` and `q + s·v`; `None` for
