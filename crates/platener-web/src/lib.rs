@@ -19,6 +19,7 @@ pub mod results;
 pub mod server;
 pub mod settings;
 pub mod sniff;
+pub mod summary;
 pub mod worker;
 
 pub use server::{ServeConfig, ServeError, serve};

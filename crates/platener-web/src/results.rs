@@ -12,6 +12,7 @@ use platener::{Error, State};
 use serde_json::{Value, json};
 
 use crate::db::{Finished, ResultFile};
+use crate::summary::{MethodLine, ModelLine, StepLine, Summary};
 
 /// The `method` of result files that belong to no method: the model as read, one scene for
 /// every method, stored once as soon as the shared steps have read it.
@@ -68,7 +69,7 @@ pub fn finished(all: &Conversions, debug: bool, landed: &Landed) -> Finished {
     Finished {
         status: status.into(),
         error: error.map(|e| labelled(e.to_string())),
-        summary: labelled(summary.to_string()),
+        summary: labelled(summary.to_json()),
         files,
         event: labelled(event.to_string()),
     }
@@ -105,53 +106,56 @@ fn error_of(all: &Conversions) -> Value {
     }
 }
 
-/// The summary JSON: the model, the shared steps, every method and the best.
-pub fn summary(all: &Conversions) -> Value {
-    let model = all.shared.as_ref().map_or(Value::Null, model_json);
-    let steps: Vec<Value> = all.shared.as_ref().map_or_else(Vec::new, steps_json);
-    let methods: Vec<Value> = all.methods.iter().map(method_json).collect();
-    json!({
-        "model": model,
-        "steps": steps,
-        "methods": methods,
-        "best": all.best.map(|b| b.name()),
-        "seconds": all.seconds,
-    })
+/// The summary: the model, the shared steps, every method and the best.
+pub fn summary(all: &Conversions) -> Summary {
+    Summary {
+        model: all.shared.as_ref().and_then(model_line),
+        steps: all.shared.as_ref().map_or_else(Vec::new, step_lines),
+        methods: all.methods.iter().map(method_line).collect(),
+        best: all.best.map(|b| b.name().to_string()),
+        seconds: Some(all.seconds),
+    }
 }
 
-/// The model as read: `{"triangles", "bbox_mm"}`, or null before (or without) `read`.
-pub fn model_json(state: &State) -> Value {
-    state.read.as_ref().map_or(Value::Null, |m| {
+/// The model as read; `None` before (or without) `read`.
+pub fn model_line(state: &State) -> Option<ModelLine> {
+    state.read.as_ref().map(|m| {
         let size = m.bounds.max - m.bounds.min;
-        json!({"triangles": m.triangles.len(), "bbox_mm": [size.x, size.y, size.z]})
+        ModelLine {
+            triangles: m.triangles.len(),
+            bbox_mm: [size.x, size.y, size.z],
+        }
     })
 }
 
 /// The records of the steps a state ran, as the summary lists them.
-pub fn steps_json(state: &State) -> Vec<Value> {
+pub fn step_lines(state: &State) -> Vec<StepLine> {
     state
         .records
         .iter()
-        .map(|r| json!({"name": r.name, "ms": r.millis, "warnings": r.warnings}))
+        .map(|r| StepLine {
+            name: r.name.to_string(),
+            ms: r.millis,
+            warnings: r.warnings.iter().map(|w| json!(w)).collect(),
+        })
         .collect()
 }
 
 /// A method's line of the summary.
-pub fn method_json(m: &MethodResult) -> Value {
+pub fn method_line(m: &MethodResult) -> MethodLine {
     let plan = m.bundle().map(|b| &b.plan);
-    let warnings: Vec<&platener::Warning> = m.warnings().collect();
-    json!({
-        "method": m.method.name(),
-        "status": status_name(m.status),
-        "score": m.score.as_ref().map(|s| s.total),
-        "parts": plan.map(|p| p.parts.len()),
-        "sheets": plan.map(|p| p.sheets.len()),
-        "glue": plan.map(platener::plan::Plan::glue_note),
-        "verified": m.verification.as_ref().map(|v| v.passed()),
-        "seconds": m.seconds,
-        "warnings": warnings,
-        "error": m.error.as_ref().map(ToString::to_string),
-    })
+    MethodLine {
+        method: m.method.name().to_string(),
+        status: status_name(m.status).to_string(),
+        score: m.score.as_ref().map(|s| s.total),
+        parts: plan.map(|p| p.parts.len()),
+        sheets: plan.map(|p| p.sheets.len()),
+        glue: plan.map(platener::plan::Plan::glue_note),
+        verified: m.verification.as_ref().map(|v| v.passed()),
+        seconds: m.seconds,
+        warnings: Some(m.warnings().map(|w| json!(w)).collect()),
+        error: m.error.as_ref().map(ToString::to_string),
+    }
 }
 
 /// The API's name of a method status: `done` for a plan, else the library's word.
@@ -168,12 +172,11 @@ pub fn status_name(status: Status) -> &'static str {
 
 /// The data of a `method` event (written when the method's files are stored): its line of
 /// the summary without the warnings, which the conversion JSON lists.
-pub fn method_event(m: &MethodResult) -> Value {
-    let mut line = method_json(m);
-    if let Some(fields) = line.as_object_mut() {
-        fields.remove("warnings");
+pub fn method_event(m: &MethodResult) -> MethodLine {
+    MethodLine {
+        warnings: None,
+        ..method_line(m)
     }
-    line
 }
 
 /// The model scene, decimated for viewing like every scene (`scene::TRIANGLE_LIMIT`), under

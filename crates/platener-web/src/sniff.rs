@@ -3,28 +3,6 @@
 //! header promises more triangles than the server takes is refused without allocating for it.
 //! The reading itself (`server::inspect`) follows, with the library's reader.
 
-/// A model format, as far as the first bytes tell.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Kind {
-    /// STL, binary or ASCII.
-    Stl,
-    /// Wavefront OBJ.
-    Obj,
-    /// 3MF (a ZIP).
-    ThreeMf,
-}
-
-impl Kind {
-    /// The file extension the library's reader goes by.
-    pub fn extension(self) -> &'static str {
-        match self {
-            Kind::Stl => "stl",
-            Kind::Obj => "obj",
-            Kind::ThreeMf => "3mf",
-        }
-    }
-}
-
 /// Why an upload is refused before it is queued.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Refusal {
@@ -36,66 +14,29 @@ pub enum Refusal {
     TooLarge(String),
 }
 
-/// What the sniff found: the format and, for binary STL, the triangle count.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Sniffed {
-    /// The format.
-    pub kind: Kind,
-    /// Triangles, when the header says (binary STL).
-    pub triangles: Option<u64>,
-}
+pub use platener::read::Sniffed;
 
-/// How many bytes of text are looked at for ASCII STL and OBJ keywords.
-const TEXT_WINDOW: usize = 64 * 1024;
-
-/// The format of `bytes`, refusing an empty file, a binary STL without triangles and one whose
-/// count exceeds `max_triangles` (before anything is allocated for them).
+/// The format of `bytes` by the library's rule (`platener::read::sniff`), refusing an empty
+/// file, a format platener does not read, a binary STL without triangles and one whose count
+/// exceeds `max_triangles` (before anything is allocated for them).
 pub fn sniff(bytes: &[u8], max_triangles: u64) -> Result<Sniffed, Refusal> {
     if bytes.is_empty() {
         return Err(Refusal::Unreadable(
             "the file is empty (0 bytes); export the model again".into(),
         ));
     }
-    if bytes.starts_with(b"PK\x03\x04") {
-        return Ok(Sniffed {
-            kind: Kind::ThreeMf,
-            triangles: None,
-        });
+    let sniffed = platener::read::sniff(bytes).ok_or_else(|| {
+        Refusal::Unsupported(
+            "the file is not an STL, OBJ or 3MF model (judged by its content); export it as one of these".into(),
+        )
+    })?;
+    match sniffed.triangles {
+        Some(0) => Err(Refusal::Unreadable(
+            "binary STL with a header and no triangles; export the model again".into(),
+        )),
+        Some(count) => within_triangles(count, max_triangles).map(|()| sniffed),
+        None => Ok(sniffed),
     }
-    if let Some(count) = binary_stl_count(bytes) {
-        if count == 0 {
-            return Err(Refusal::Unreadable(
-                "binary STL with a header and no triangles; export the model again".into(),
-            ));
-        }
-        within_triangles(count, max_triangles)?;
-        return Ok(Sniffed {
-            kind: Kind::Stl,
-            triangles: Some(count),
-        });
-    }
-    let window = &bytes[..bytes.len().min(TEXT_WINDOW)];
-    let text = String::from_utf8_lossy(window);
-    if text.trim_start().to_ascii_lowercase().starts_with("solid") {
-        return Ok(Sniffed {
-            kind: Kind::Stl,
-            triangles: None,
-        });
-    }
-    let obj_lines = text
-        .lines()
-        .map(str::trim_start)
-        .filter(|l| l.starts_with("v ") || l.starts_with("f ") || l.starts_with("vn ") || l.starts_with("o "))
-        .count();
-    if obj_lines > 0 && !window.contains(&0) {
-        return Ok(Sniffed {
-            kind: Kind::Obj,
-            triangles: None,
-        });
-    }
-    Err(Refusal::Unsupported(
-        "the file is not an STL, OBJ or 3MF model (judged by its content); export it as one of these".into(),
-    ))
 }
 
 /// Refuses a model of more than `max_triangles` triangles (`413`), whichever way it was counted
@@ -136,20 +77,10 @@ fn shown_as_is(c: char) -> bool {
     !(c.is_control() || invisible || matches!(c, '<' | '>' | '&' | '"' | '`' | '\\'))
 }
 
-/// The triangle count of a binary STL: 80-byte header, a count, 50 bytes per triangle. The
-/// size must match the count (up to one triangle of trailing bytes, which the reader notes
-/// and ignores), whatever the header's first word says.
-fn binary_stl_count(bytes: &[u8]) -> Option<u64> {
-    let count_bytes: [u8; 4] = bytes.get(80..84)?.try_into().ok()?;
-    let count = u64::from(u32::from_le_bytes(count_bytes));
-    let expected = 84 + 50 * count;
-    let len = bytes.len() as u64;
-    (len >= expected && len - expected < 50).then_some(count)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use platener::read::Format;
 
     fn binary(count: u32, extra: usize) -> Vec<u8> {
         let mut b = vec![0u8; 80];
@@ -161,19 +92,19 @@ mod tests {
     #[test]
     fn formats_by_content() {
         let s = sniff(&binary(12, 0), 100).expect("binary STL");
-        assert_eq!((s.kind, s.triangles), (Kind::Stl, Some(12)));
+        assert_eq!((s.format, s.triangles), (Format::StlBinary, Some(12)));
         assert_eq!(sniff(&binary(12, 1), 100).expect("trailing byte").triangles, Some(12));
         assert_eq!(
-            sniff(b"solid x\nfacet normal 0 0 1\n", 100).expect("ascii").kind,
-            Kind::Stl
+            sniff(b"solid x\nfacet normal 0 0 1\n", 100).expect("ascii").format,
+            Format::StlAscii
         );
         assert_eq!(
             sniff(b"# cube\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", 100)
                 .expect("obj")
-                .kind,
-            Kind::Obj
+                .format,
+            Format::Obj
         );
-        assert_eq!(sniff(b"PK\x03\x04rest", 100).expect("3mf").kind, Kind::ThreeMf);
+        assert_eq!(sniff(b"PK\x03\x04rest", 100).expect("3mf").format, Format::ThreeMf);
         assert!(matches!(sniff(b"<html><script>", 100), Err(Refusal::Unsupported(_))));
         assert!(matches!(sniff(b"\x89PNG\r\n\x1a\n", 100), Err(Refusal::Unsupported(_))));
     }

@@ -131,7 +131,7 @@ async fn enqueue(
         SettingsError::Unknown(m) => ApiError::bad_request(m),
         SettingsError::OutOfRange(m) => ApiError::invalid_setting(m),
     })?;
-    let name = format!("{}.{}", safe_stem(name.as_deref()), sniffed.kind.extension());
+    let name = format!("{}.{}", safe_stem(name.as_deref()), sniffed.format.extension());
     let limits = inspect::ReadLimits {
         max_triangles: app.config.max_triangles,
         max_unpacked: (app.config.max_upload_bytes() as u64).saturating_mul(inspect::UNPACK_FACTOR),

@@ -16,12 +16,8 @@ use crate::results::{MODEL_SCENE, SHARED, SVG, ZIP};
 
 /// The best method of a finished job, from its summary.
 fn best_of(row: &JobRow) -> ApiResult<String> {
-    let summary: serde_json::Value = row
-        .summary
-        .as_deref()
-        .and_then(|s| serde_json::from_str(s).ok())
-        .unwrap_or_default();
-    match summary["best"].as_str() {
+    let summary = crate::summary::Summary::parse(row.summary.as_deref());
+    match summary.best.as_deref() {
         Some(b) => Ok(b.to_string()),
         None if matches!(row.status.as_str(), "queued" | "running") => Err(ApiError::not_ready(
             "the conversion has not finished yet, so no best plan is chosen; follow its events \

@@ -16,6 +16,7 @@ use serde_json::{Value, json};
 
 use super::App;
 use super::error::{ApiError, ApiResult};
+use crate::summary::Summary;
 
 /// Counters the server keeps in memory (the rest of /metrics comes from the database).
 #[derive(Debug, Default)]
@@ -73,23 +74,17 @@ pub async fn gallery_page(app: &App, page: i64) -> ApiResult<Value> {
         .iter()
         .take(usize::try_from(GALLERY_PAGE).unwrap_or(20))
         .map(|r| {
-            let summary: Value = r
-                .summary
-                .as_deref()
-                .and_then(|s| serde_json::from_str(s).ok())
-                .unwrap_or_default();
-            let best = summary["best"].as_str();
-            let method = summary["methods"]
-                .as_array()
-                .and_then(|ms| ms.iter().find(|m| m["method"].as_str() == best));
+            let summary = Summary::parse(r.summary.as_deref());
+            let best = summary.best.as_deref();
+            let method = summary.best_line();
             let base = format!("/api/conversions/{}", r.id);
             json!({
                 "id": r.id,
                 "name": r.name,
                 "status": r.status,
                 "best": best,
-                "parts": method.map(|m| m["parts"].clone()),
-                "score": method.map(|m| m["score"].clone()),
+                "parts": method.and_then(|m| m.parts),
+                "score": method.and_then(|m| m.score),
                 "thumbnail": best.map(|b| format!("{base}/methods/{b}/thumbnail.png")),
                 "published": super::view::iso_time(r.published),
                 "links": {"self": base},

@@ -7,6 +7,7 @@ use serde_json::{Value, json};
 
 use crate::db::JobRow;
 use crate::results::{MODEL_SCENE, SHARED};
+use crate::summary::Summary;
 
 /// An ISO 8601 UTC time of milliseconds since 1970 (`2026-11-23T18:00:00Z`).
 pub fn iso_time(ms: i64) -> String {
@@ -36,22 +37,15 @@ fn civil_from_days(z: i64) -> (i64, i64, i64) {
 
 /// The conversion JSON; `files` are the (method, file) names of its results.
 pub fn conversion(row: &JobRow, files: &[(String, String)]) -> Value {
-    let summary: Value = row
-        .summary
-        .as_deref()
-        .and_then(|s| serde_json::from_str(s).ok())
-        .unwrap_or(Value::Null);
+    let summary = Summary::parse(row.summary.as_deref());
     let settings: Value = serde_json::from_str(&row.settings).unwrap_or(Value::Null);
     let error: Value = row
         .error
         .as_deref()
         .and_then(|s| serde_json::from_str(s).ok())
         .unwrap_or(Value::Null);
-    let model_summary = &summary["model"];
-    let triangles = model_summary["triangles"]
-        .as_u64()
-        .map_or_else(|| json!(row.triangles), |t| json!(t));
-    let best = summary["best"].as_str().map(str::to_string);
+    let triangles = summary.model.map(|m| m.triangles as i64).or(row.triangles);
+    let best = summary.best.clone();
     json!({
         "id": row.id,
         "status": row.status,
@@ -65,11 +59,11 @@ pub fn conversion(row: &JobRow, files: &[(String, String)]) -> Value {
             "name": row.name,
             "bytes": row.model_bytes,
             "triangles": triangles,
-            "bbox_mm": model_summary["bbox_mm"],
+            "bbox_mm": summary.model.map(|m| m.bbox_mm),
         },
         "settings": settings,
-        "steps": summary.get("steps").cloned().unwrap_or_else(|| json!([])),
-        "methods": summary.get("methods").cloned().unwrap_or_else(|| json!([])),
+        "steps": summary.steps,
+        "methods": summary.methods,
         "best": best,
         "error": error,
         "links": links(&row.id, best.as_deref(), files),

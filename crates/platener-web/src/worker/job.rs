@@ -15,6 +15,7 @@ use super::{WorkerConfig, WorkerError, hooks};
 use crate::db::{Claimed, Db, Finished, Hold};
 use crate::results;
 use crate::settings::JobSettings;
+use crate::summary::Summary;
 
 /// How long past the time limit the worker waits for `convert_all` to return before it gives
 /// the thread up: `convert_all` itself returns about 2 s after the limit (its cancel grace),
@@ -118,11 +119,11 @@ fn parse_settings(job: &Claimed) -> Result<(Request, bool), String> {
 
 /// A job failed with `error` and no results but those its `summary` lists (landed while it
 /// ran), as [`Db::finish`] stores it.
-fn failed(error: &Value, summary: Value) -> Finished {
+fn failed(error: &Value, summary: Summary) -> Finished {
     Finished {
         status: "failed".into(),
         error: Some(error.to_string()),
-        summary: summary.to_string(),
+        summary: summary.to_json(),
         files: Vec::new(),
         event: json!({"status": "failed", "error": error}).to_string(),
     }
@@ -137,7 +138,7 @@ fn bad_settings(message: &str) -> Finished {
 
 /// The failure of a conversion whose thread did not return after its time limit; the
 /// methods that landed before stay.
-fn overran(timeout: Option<Duration>, summary: Value) -> Finished {
+fn overran(timeout: Option<Duration>, summary: Summary) -> Finished {
     let limit = timeout.map_or(0.0, |t| t.as_secs_f64());
     let error = json!({
         "code": "timed_out",

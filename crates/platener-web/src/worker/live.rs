@@ -21,6 +21,7 @@ use tokio::task::JoinHandle;
 
 use crate::db::{Db, DbError, Hold, ResultFile};
 use crate::results::{self, Landed};
+use crate::summary::{MethodLine, ModelLine, StepLine, Summary};
 
 /// What the conversion's observer hands the writer, in the order it happened.
 pub(super) enum Note {
@@ -79,8 +80,8 @@ pub(super) fn step_json(method: Option<MethodKind>, event: StepEvent<'_>) -> Val
 pub(super) struct Landing {
     /// Whose: the model (`None`) or a method.
     method: Option<MethodKind>,
-    /// `{"model", "steps"}` of the shared steps, or the method's line of the summary.
-    part: Value,
+    /// Its part of the summary.
+    part: Part,
     files: Vec<ResultFile>,
     /// The SSE event's kind and data.
     event: (&'static str, Value),
@@ -90,13 +91,15 @@ impl Landing {
     /// The model scene and a `model` event with the model's size.
     fn model(state: &State) -> Landing {
         let files = results::model_files(state);
-        let model = results::model_json(state);
+        let model = results::model_line(state);
         let event = json!({
-            "triangles": model["triangles"], "bbox_mm": model["bbox_mm"], "scene": !files.is_empty(),
+            "triangles": model.map(|m| m.triangles),
+            "bbox_mm": model.map(|m| m.bbox_mm),
+            "scene": !files.is_empty(),
         });
         Landing {
             method: None,
-            part: json!({"model": model, "steps": results::steps_json(state)}),
+            part: Part::Model(model, results::step_lines(state)),
             files,
             event: ("model", event),
         }
@@ -106,20 +109,28 @@ impl Landing {
     fn method(m: &MethodResult) -> Landing {
         Landing {
             method: Some(m.method),
-            part: results::method_json(m),
+            part: Part::Method(results::method_line(m)),
             files: results::method_files(m),
-            event: ("method", results::method_event(m)),
+            event: ("method", json!(results::method_event(m))),
         }
     }
+}
+
+/// A landing's part of the summary.
+pub(super) enum Part {
+    /// The model as read and the shared steps.
+    Model(Option<ModelLine>, Vec<StepLine>),
+    /// A method's line.
+    Method(MethodLine),
 }
 
 /// The summary of a running job: the model and shared steps once read, the methods landed
 /// so far in the order asked for, and no best yet (chosen at the end, as before).
 #[derive(Debug, Clone, Default)]
 pub(super) struct Partial {
-    model: Value,
-    steps: Vec<Value>,
-    methods: Vec<(MethodKind, Value)>,
+    model: Option<ModelLine>,
+    steps: Vec<StepLine>,
+    methods: Vec<(MethodKind, MethodLine)>,
     /// What is stored, so the end stores only the rest.
     pub(super) landed: Landed,
 }
@@ -128,26 +139,32 @@ impl Partial {
     /// This summary with `landing` in it.
     fn with(&self, landing: &Landing, order: &[MethodKind]) -> Partial {
         let mut next = self.clone();
-        match landing.method {
-            None => {
-                next.model = landing.part["model"].clone();
-                next.steps = landing.part["steps"].as_array().cloned().unwrap_or_default();
+        match (&landing.part, landing.method) {
+            (Part::Model(model, steps), _) => {
+                next.model = *model;
+                next.steps.clone_from(steps);
                 next.landed.model = !landing.files.is_empty();
             }
-            Some(method) => {
+            (Part::Method(line), Some(method)) => {
                 next.methods.retain(|(m, _)| *m != method);
-                next.methods.push((method, landing.part.clone()));
+                next.methods.push((method, line.clone()));
                 next.methods.sort_by_key(|(m, _)| order.iter().position(|o| o == m));
                 next.landed.methods.push(method);
             }
+            (Part::Method(_), None) => {}
         }
         next
     }
 
-    /// The summary JSON as the conversion JSON reads it.
-    pub(super) fn summary(&self) -> Value {
-        let methods: Vec<&Value> = self.methods.iter().map(|(_, v)| v).collect();
-        json!({"model": self.model, "steps": self.steps, "methods": methods, "best": null})
+    /// The summary as the conversion JSON reads it.
+    pub(super) fn summary(&self) -> Summary {
+        Summary {
+            model: self.model,
+            steps: self.steps.clone(),
+            methods: self.methods.iter().map(|(_, line)| line.clone()).collect(),
+            best: None,
+            seconds: None,
+        }
     }
 }
 
@@ -203,7 +220,7 @@ impl Writer {
         };
         let next = lock(&self.partial).with(&landing, &self.order);
         // Library messages name settings in backticks; the page shows them by their labels.
-        let summary = crate::settings::labelled(&next.summary().to_string());
+        let summary = crate::settings::labelled(&next.summary().to_json());
         let (kind, data) = (landing.event.0, crate::settings::labelled(&landing.event.1.to_string()));
         let held = self
             .db
@@ -236,9 +253,21 @@ mod tests {
     #[test]
     fn the_partial_summary_lists_landed_methods_in_the_order_asked() {
         let order = [MethodKind::Plate, MethodKind::Stacked, MethodKind::Classifier];
+        let line = |m: MethodKind| MethodLine {
+            method: m.name().to_string(),
+            status: "done".into(),
+            score: None,
+            parts: None,
+            sheets: None,
+            glue: None,
+            verified: None,
+            seconds: 0.0,
+            warnings: Some(Vec::new()),
+            error: None,
+        };
         let landing = |m: MethodKind| Landing {
             method: Some(m),
-            part: json!({"method": m.name()}),
+            part: Part::Method(line(m)),
             files: Vec::new(),
             event: ("method", json!({})),
         };
@@ -246,8 +275,9 @@ mod tests {
             .with(&landing(MethodKind::Stacked), &order)
             .with(&landing(MethodKind::Plate), &order);
         let summary = partial.summary();
-        assert_eq!(summary["methods"], json!([{"method": "plate"}, {"method": "stacked"}]));
-        assert_eq!(summary["best"], Value::Null, "the best is chosen at the end");
+        let names: Vec<&str> = summary.methods.iter().map(|m| m.method.as_str()).collect();
+        assert_eq!(names, ["plate", "stacked"]);
+        assert_eq!(summary.best, None, "the best is chosen at the end");
         assert_eq!(partial.landed.methods, [MethodKind::Stacked, MethodKind::Plate]);
         assert!(!partial.landed.model);
     }

@@ -40,6 +40,15 @@ impl Format {
             Format::ThreeMf => "3MF",
         }
     }
+
+    /// The file extension whose reader reads it (`read_bytes` goes by the name).
+    pub fn extension(self) -> &'static str {
+        match self {
+            Format::StlBinary | Format::StlAscii => "stl",
+            Format::Obj => "obj",
+            Format::ThreeMf => "3mf",
+        }
+    }
 }
 
 /// What a reader returns: the triangles exactly as stored (file units), plus what it noticed.
@@ -155,7 +164,9 @@ fn non_empty(format: Format, mesh: RawMesh) -> Result<(Format, RawMesh), ReadErr
     Ok((format, mesh))
 }
 
+mod sniff;
 mod step;
+pub use sniff::{Sniffed, sniff};
 pub use step::{Bounds, Model, SUSPICIOUSLY_LARGE, SUSPICIOUSLY_SMALL, run};
 
 /// The plan's description of a model is made here, on the step's side: `plan` is kernel data

@@ -25,9 +25,9 @@ use glam::DVec3;
 use super::{Format, RawMesh, ReadErrorKind, Triangle};
 
 /// Bytes before the first binary facet: an 80-byte header and the u32 facet count.
-const HEADER_BYTES: usize = 84;
+pub(super) const HEADER_BYTES: usize = 84;
 /// Bytes per binary facet.
-const FACET_BYTES: usize = 50;
+pub(super) const FACET_BYTES: usize = 50;
 
 /// Reads an STL file, streaming it; binary when `84 + 50·n == size`, ASCII otherwise.
 pub fn read_path(path: &Path) -> Result<(Format, RawMesh), ReadErrorKind> {
@@ -176,7 +176,7 @@ fn binary_size(count: u32) -> u64 {
 }
 
 /// Whether the file starts like ASCII STL: `solid`, after an optional UTF-8 BOM and blanks.
-fn looks_ascii(head: &[u8]) -> bool {
+pub(super) fn looks_ascii(head: &[u8]) -> bool {
     let head = head.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(head);
     let head = head.trim_ascii_start();
     head.get(..5).is_some_and(|word| word.eq_ignore_ascii_case(b"solid"))
