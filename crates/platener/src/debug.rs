@@ -233,9 +233,12 @@ fn summary(state: &State, step: StepId) -> Value {
         StepId::Plates => plates_summary(state),
         StepId::Bends => bends_summary(state),
         StepId::Joints => joints_summary(state),
-        StepId::Parts | StepId::Stacked | StepId::Interlocked | StepId::Relief | StepId::Layers => {
-            state.parts.as_deref().map_or(Value::Null, parts_summary)
-        }
+        // Each step's own parts; `relief` and `layers` made none when they changed nothing.
+        StepId::Parts => state.parts.as_deref().map_or(Value::Null, parts_summary),
+        StepId::Stacked => state.stacked_parts.as_deref().map_or(Value::Null, parts_summary),
+        StepId::Interlocked => state.interlocked_parts.as_deref().map_or(Value::Null, parts_summary),
+        StepId::Relief => state.relief_parts.as_deref().map_or(Value::Null, parts_summary),
+        StepId::Layers => state.layers_parts.as_deref().map_or(Value::Null, parts_summary),
         StepId::Kerf | StepId::Labels | StepId::Sheets | StepId::Export => cutting_summary(state),
     }
 }
@@ -340,7 +343,7 @@ fn listed<T>(items: &[T], entry: impl Fn(usize, &T) -> Value) -> Vec<Value> {
 /// Counts of the cutting plan so far.
 fn cutting_summary(state: &State) -> Value {
     json!({
-        "parts": state.parts.as_ref().map(|p| p.parts.len()),
+        "parts": state.final_parts().as_ref().map(|p| p.parts.len()),
         "sheets": state.sheets.as_ref().map(|s| s.sheets.len()),
         "files": state.export.as_ref().map(|e| e.files.len()),
     })

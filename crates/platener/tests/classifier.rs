@@ -87,7 +87,7 @@ fn a_textured_hollow_box_becomes_its_six_walls_with_finger_joints() {
     // height on average, 0.125 mm over the outer faces).
     let walls = SIZE.element_product() - (SIZE - DVec3::splat(6.0)).element_product();
     let area: f64 = state
-        .parts
+        .final_parts()
         .as_ref()
         .expect("parts")
         .parts
@@ -110,7 +110,7 @@ fn the_texture_is_engraved_on_the_walls_it_was_on() {
     let mut bumps: Vec<usize> = relief.textures.iter().map(|t| t.regions).collect();
     bumps.sort_unstable();
     assert_eq!(bumps, [63, 63, 84, 84, 108, 108]);
-    let parts = &state.parts.as_ref().expect("parts").parts;
+    let parts = &state.final_parts().as_ref().expect("parts").parts;
     for t in &relief.textures {
         // Bumps 0.5 mm high over a plane at their mean height (an eighth of the bump's square
         // of sines, about 0.125 mm): they stand out up to about 0.375 mm.
@@ -145,7 +145,7 @@ fn the_texture_is_engraved_on_the_walls_it_was_on() {
     );
     let plain = plain.expect("converts");
     assert!(plain.relief.as_ref().expect("ran").textures.is_empty());
-    let parts = &plain.parts.as_ref().expect("parts").parts;
+    let parts = &plain.final_parts().as_ref().expect("parts").parts;
     assert!(parts.iter().flat_map(|p| &p.marks).all(|m| m.kind != MarkKind::Score));
 }
 

@@ -133,7 +133,7 @@ fn faults(name: &str, state: &State, verification: &platener::verify::Verificati
     }
     let labels = state.labels.as_ref().expect("labelled");
     let on_neighbour: BTreeSet<u64> = state
-        .parts
+        .final_parts()
         .as_ref()
         .and_then(|p| p.method_report.as_ref())
         .and_then(|r| r["numbers"]["on_neighbour"].as_array().cloned())

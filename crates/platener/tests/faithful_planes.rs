@@ -29,7 +29,7 @@ fn plate_parts(source: Source, settings: Settings) -> State {
 }
 
 fn parts(state: &State) -> &PlanInput {
-    state.parts.as_deref().expect("parts")
+    state.final_parts().as_deref().expect("parts")
 }
 
 fn joint_angles(state: &State) -> Vec<f64> {

@@ -31,7 +31,7 @@ fn plate_method(name: &str, triangles: Vec<platener::read::Triangle>, features: 
 }
 
 fn parts(state: &State) -> &[Part] {
-    &state.parts.as_ref().expect("parts").parts
+    &state.final_parts().as_ref().expect("parts").parts
 }
 
 fn features(state: &State) -> &[Feature] {

@@ -19,7 +19,7 @@ fn stacked(name: &str, model: Vec<platener::read::Triangle>) -> State {
 }
 
 fn parts(state: &State) -> &[Part] {
-    &state.parts.as_ref().expect("parts").parts
+    &state.final_parts().as_ref().expect("parts").parts
 }
 
 /// The area a closed ring encloses (shoelace, unsigned).

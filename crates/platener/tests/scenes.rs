@@ -138,7 +138,7 @@ fn plate_views() -> impl Iterator<Item = View> {
 }
 
 fn parts_of(state: &State) -> &[Part] {
-    state.parts.as_ref().map_or(&[], |p| &p.parts)
+    state.final_parts().as_ref().map_or(&[], |p| &p.parts)
 }
 
 #[test]

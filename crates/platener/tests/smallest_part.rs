@@ -19,12 +19,12 @@ fn converted(method: MethodKind, name: &str, triangles: Vec<platener::read::Tria
 }
 
 fn parts(state: &State) -> &[Part] {
-    &state.parts.as_ref().expect("parts").parts
+    &state.final_parts().as_ref().expect("parts").parts
 }
 
 /// Every plate, bent part and layer of `state` (joint pieces left out) keeps to the rule.
 fn assert_none_too_small(what: &str, state: &State) {
-    let input = state.parts.as_ref().expect("parts");
+    let input = state.final_parts().as_ref().expect("parts");
     let keys = dovetail_keys(input.joints.iter().map(|j| (j.kind, j.parts)));
     for part in input
         .parts

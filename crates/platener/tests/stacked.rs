@@ -215,7 +215,7 @@ fn assert_slots_match(c: &Conversion) {
     // A layer too thin for its number beside its slot (a peg's) carries it on a tab, which adds
     // at most the tab's size (tabs.rs), less what the slot keeps clear.
     let numbers = c
-        .parts
+        .final_parts()
         .as_ref()
         .and_then(|p| p.method_report.clone())
         .expect("a report");

@@ -66,7 +66,7 @@ fn numbered_on_neighbour(c: &State) -> Vec<[u32; 2]> {
 /// `[part, carrier]` pairs of report.json's `method_report.numbers.{key}`.
 fn numbers(c: &State, key: &str) -> Vec<[u32; 2]> {
     let report = c
-        .parts
+        .final_parts()
         .as_ref()
         .expect("parts")
         .method_report
@@ -79,7 +79,7 @@ fn numbers(c: &State, key: &str) -> Vec<[u32; 2]> {
 /// plan.json, or (a rib with no room even for a tab) engraved on a part of an adjacent layer it
 /// rests on. Returns (numbers on a tab, numbers on a neighbour).
 fn assert_every_part_numbered(name: &str, c: &State) -> (usize, usize) {
-    let input = c.parts.as_ref().expect("parts");
+    let input = c.final_parts().as_ref().expect("parts");
     let labels = c.labels.as_ref().expect("labels");
     let plan = plan(c);
     let on_neighbour = numbered_on_neighbour(c);
@@ -168,7 +168,7 @@ fn assert_neighbour_reference(name: &str, c: &State, id: u32, on: u32) {
 
 /// Part `id` of the `parts` snapshot.
 fn part_of(c: &State, id: u32) -> &platener::plan::Part {
-    c.parts
+    c.final_parts()
         .as_ref()
         .expect("parts")
         .parts
@@ -236,7 +236,7 @@ fn svg_group(svg: &str, id: &str) -> Option<(Paths, Paths)> {
 /// sheet and outside every part's cut outline (the box around the text meets no part).
 fn assert_sheet_legends(name: &str, c: &State) {
     let bundle = c.export.as_ref().expect("exported");
-    let report = c.parts.as_ref().expect("parts").method_report.clone();
+    let report = c.final_parts().as_ref().expect("parts").method_report.clone();
     for sheet in &bundle.plan.sheets {
         let mut on_sheet: Vec<u32> = bundle
             .plan
@@ -392,7 +392,7 @@ fn the_bird_feeder_cups_thin_rings_carry_their_numbers_on_tabs() {
     assert_eq!(with_legend, sheets.len());
     assert_sheet_legends("bird_water_feeder_cup", &c);
     let kerf = plan(&c).settings.cut.kerf.expect("recorded");
-    let input = c.parts.as_ref().expect("parts");
+    let input = c.final_parts().as_ref().expect("parts");
     for island in stack(&c).layers.iter().flat_map(|l| &l.islands) {
         let part = input.parts.iter().find(|p| p.id == island.part).expect("part");
         let added = part.polygon.area() - island.polygon.area();

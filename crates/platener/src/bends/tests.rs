@@ -39,7 +39,7 @@ fn a_hexagonal_tube_is_one_bent_part_with_five_bends_and_a_seam_when_hinges_are_
     assert_eq!(part.members.len(), 6);
     assert_eq!(part.bends.len(), 5);
     assert_eq!(part.seams.len(), 1);
-    let parts = &state.parts.as_ref().expect("the step ran").parts;
+    let parts = &state.final_parts().as_ref().expect("the step ran").parts;
     assert_eq!(parts.len(), 1);
     assert_eq!(parts[0].segments.len(), 6);
     // Chosen by material, the hexagon's 60° corners stay finger joints: the hinge would
@@ -69,7 +69,7 @@ fn folding_the_tube_back_puts_every_plate_where_it_was() {
     let state = run_plate(tube(n, radius, 60.0, wall), Settings::default());
     let plates = &state.plates.as_ref().expect("the step ran").plates;
     let bent = &state.bends.as_ref().expect("the step ran").parts[0];
-    let part = &state.parts.as_ref().expect("the step ran").parts[0];
+    let part = &state.final_parts().as_ref().expect("the step ran").parts[0];
     for (i, m) in bent.members.iter().enumerate() {
         let plate = &plates[m.plate as usize];
         let seg = &part.segments[i];
@@ -128,7 +128,11 @@ fn tubes_of_6_12_and_24_sides_and_a_cone_in_card_bend_into_one_part() {
         assert_eq!(b.parts.len(), 1, "{n} sides: {:#?}", b.refused);
         assert_eq!(b.parts[0].bends.len(), n - 1, "{n} sides");
         assert_eq!(b.parts[0].seams.len(), 1, "{n} sides");
-        assert_eq!(state.parts.as_ref().expect("the step ran").parts.len(), 1, "{n} sides");
+        assert_eq!(
+            state.final_parts().as_ref().expect("the step ran").parts.len(),
+            1,
+            "{n} sides"
+        );
     }
 }
 
@@ -140,14 +144,14 @@ fn no_bending_keeps_every_plate_a_part() {
     };
     let state = run_plate(tube(12, 50.0, 60.0, 3.0), settings);
     assert!(state.bends.as_ref().expect("the step ran").parts.is_empty());
-    assert_eq!(state.parts.as_ref().expect("the step ran").parts.len(), 12);
+    assert_eq!(state.final_parts().as_ref().expect("the step ran").parts.len(), 12);
 }
 
 #[test]
 fn a_box_keeps_its_finger_joints() {
     let state = run_plate(crate::samples::closed_box(100.0, 80.0, 60.0, 3.0), Settings::default());
     assert!(state.bends.as_ref().expect("the step ran").parts.is_empty());
-    assert_eq!(state.parts.as_ref().expect("the step ran").parts.len(), 6);
+    assert_eq!(state.final_parts().as_ref().expect("the step ran").parts.len(), 6);
 }
 
 mod chains {

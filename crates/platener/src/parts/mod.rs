@@ -34,12 +34,13 @@ use crate::read::Model;
 use crate::settings::Settings;
 use crate::weld::Welded;
 
-/// Step `parts` of the plate method: the plates with their joints as parts to cut.
+/// Step `parts` of the plate method: the plates with their joints as parts to cut; with
+/// `standoffs`, the bosses standing on them as stacked discs too.
 pub fn run(
     model: &Model,
     plates: &Plates,
     (joints, bends): (Option<&Joints>, Option<&Bends>),
-    welded: &Welded,
+    (welded, standoffs): (&Welded, bool),
     settings: &Settings,
     cx: &mut StepContext<'_>,
 ) -> Result<PlanInput> {
@@ -69,8 +70,9 @@ pub fn run(
     for note in raised::glue(&details, plates, &ids, made) {
         cx.warn(WarningKind::Features, note);
     }
-    // Bosses taller than a sheet are stacked discs on a peg or a screw (`standoffs`).
-    if settings.features != crate::settings::Features::Cut {
+    // Bosses taller than a sheet are stacked discs on a peg or a screw (`standoffs`), unless
+    // a later step builds them (the classifier's `layers`).
+    if standoffs && settings.features != crate::settings::Features::Cut {
         let name = cx.model();
         let off_grid = |e| Error::model(name, ModelProblem::OffGrid(e));
         let found =

@@ -96,6 +96,11 @@ pub(super) fn find(plates: &Plates, offered: &[f64], min_area: f64) -> Result<Ve
                 why: "their height was not measured".into(),
                 hole: None,
             },
+            // A dome or a cone is no stack of equal discs: the stacked method slices it.
+            Some(_) if !f.prism => Make::Listed {
+                why: "they do not stand straight up (the stacked method slices such shapes)".into(),
+                hole: None,
+            },
             Some(h) => plan_stack(&f.region, reach(f, base.thickness, h), offered, min_area)?,
         };
         out.push(Standoff {

@@ -64,8 +64,18 @@ pub struct State {
     pub relief: Option<Arc<relief::Relief>>,
     /// Step `layers`: the classifier's spheres and freeforms as layers among its plates.
     pub layers: Option<Arc<layers::Layers>>,
-    /// Input of the cutting-plan steps: the parts a method made, with the cutting settings.
+    /// Step `parts`: the plate method's parts with the cutting settings (the classifier's
+    /// plates, before `relief` and `layers` add to them). The cutting-plan steps read
+    /// [`State::final_parts`].
     pub parts: Option<Arc<plan::PlanInput>>,
+    /// Step `stacked`'s parts: its layers and shafts.
+    pub stacked_parts: Option<Arc<plan::PlanInput>>,
+    /// Step `interlocked`'s parts: its slices.
+    pub interlocked_parts: Option<Arc<plan::PlanInput>>,
+    /// Step `relief`'s parts: `parts` with the textures engraved, when it engraved any.
+    pub relief_parts: Option<Arc<plan::PlanInput>>,
+    /// Step `layers`' parts: the parts before it with the layers added, when it cut any.
+    pub layers_parts: Option<Arc<plan::PlanInput>>,
     /// Step `kerf`.
     pub kerf: Option<Arc<kerf::CutPaths>>,
     /// Step `labels`.
@@ -98,11 +108,30 @@ impl State {
             relief: None,
             layers: None,
             parts: None,
+            stacked_parts: None,
+            interlocked_parts: None,
+            relief_parts: None,
+            layers_parts: None,
             kerf: None,
             labels: None,
             sheets: None,
             export: None,
         }
+    }
+
+    /// The method's parts as the cutting-plan steps take them: those of the last step that
+    /// made or changed parts (`layers`, `relief`, `stacked`, `interlocked`, else `parts`).
+    /// Each step writes only its own snapshot; this is the one choice among them.
+    pub fn final_parts(&self) -> &Option<Arc<plan::PlanInput>> {
+        [
+            &self.layers_parts,
+            &self.relief_parts,
+            &self.stacked_parts,
+            &self.interlocked_parts,
+        ]
+        .into_iter()
+        .find(|p| p.is_some())
+        .unwrap_or(&self.parts)
     }
 
     /// A state that starts from parts made elsewhere (tests, benchmarks, programs with their
@@ -141,10 +170,22 @@ impl State {
             StepId::Bends => self.bends = None,
             StepId::Joints => self.joints = None,
             StepId::Parts => self.parts = None,
-            StepId::Stacked => self.stacked = None,
-            StepId::Interlocked => self.interlocked = None,
-            StepId::Relief => self.relief = None,
-            StepId::Layers => self.layers = None,
+            StepId::Stacked => {
+                self.stacked = None;
+                self.stacked_parts = None;
+            }
+            StepId::Interlocked => {
+                self.interlocked = None;
+                self.interlocked_parts = None;
+            }
+            StepId::Relief => {
+                self.relief = None;
+                self.relief_parts = None;
+            }
+            StepId::Layers => {
+                self.layers = None;
+                self.layers_parts = None;
+            }
             StepId::Kerf => self.kerf = None,
             StepId::Labels => self.labels = None,
             StepId::Sheets => self.sheets = None,

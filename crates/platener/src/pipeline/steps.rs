@@ -237,7 +237,9 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
             let (model, plates) = (need(&state.read, name, "read")?, need(&state.plates, name, "plates")?);
             let welded = need(&state.weld, name, "weld")?;
             let made = (state.joints.as_deref(), state.bends.as_deref());
-            let input = parts::run(model, plates, made, welded, &s, cx)?;
+            // The classifier's `layers` step builds the solids standing on its plates.
+            let standoffs = state.classify.is_none();
+            let input = parts::run(model, plates, made, (welded, standoffs), &s, cx)?;
             state.parts = Some(Arc::new(input));
         }
         StepId::Stacked | StepId::Interlocked => sliced_step(step, state, &s, cx)?,
@@ -248,19 +250,23 @@ pub(super) fn apply(step: StepId, state: &mut State, cx: &mut StepContext<'_>) -
             );
             let (made, input) = relief::run(mesh, found, need(&state.parts, name, "parts")?, &s, cx)?;
             state.relief = Some(Arc::new(made));
-            if let Some(input) = input {
-                state.parts = Some(Arc::new(input));
-            }
+            state.relief_parts = input.map(Arc::new);
         }
         StepId::Layers => layers_step(state, &s, cx)?,
-        StepId::Kerf => state.kerf = Some(Arc::new(kerf::run(need(&state.parts, name, "parts")?, cx)?)),
-        StepId::Labels => state.labels = Some(Arc::new(labels::run(need(&state.parts, name, "parts")?, cx))),
+        StepId::Kerf => state.kerf = Some(Arc::new(kerf::run(need(state.final_parts(), name, "parts")?, cx)?)),
+        StepId::Labels => state.labels = Some(Arc::new(labels::run(need(state.final_parts(), name, "parts")?, cx))),
         StepId::Sheets => {
-            let (input, cut) = (need(&state.parts, name, "parts")?, need(&state.kerf, name, "kerf")?);
+            let (input, cut) = (
+                need(state.final_parts(), name, "parts")?,
+                need(&state.kerf, name, "kerf")?,
+            );
             state.sheets = Some(Arc::new(sheets::run(input, cut, cx)?));
         }
         StepId::Export => {
-            let (input, cut) = (need(&state.parts, name, "parts")?, need(&state.kerf, name, "kerf")?);
+            let (input, cut) = (
+                need(state.final_parts(), name, "parts")?,
+                need(&state.kerf, name, "kerf")?,
+            );
             let (labels, nesting) = (
                 need(&state.labels, name, "labels")?,
                 need(&state.sheets, name, "sheets")?,
@@ -310,13 +316,11 @@ fn layers_step(state: &mut State, s: &crate::settings::Settings, cx: &mut StepCo
         groups: need(&state.coplanar, name, "classify")?,
         shapes: need(&state.shapes, name, "shapes")?,
         plates: need(&state.plates, name, "plates")?,
-        parts: need(&state.parts, name, "parts")?,
+        parts: need(state.final_parts(), name, "parts")?,
     };
     let (made, input) = layers::run(&inputs, s, cx)?;
     state.layers = Some(Arc::new(made));
-    if let Some(input) = input {
-        state.parts = Some(Arc::new(input));
-    }
+    state.layers_parts = input.map(Arc::new);
     Ok(())
 }
 
@@ -325,15 +329,14 @@ fn sliced_step(step: StepId, state: &mut State, s: &crate::Settings, cx: &mut St
     let name = step.name();
     let (model, cleaned) = (need(&state.read, name, "read")?, need(&state.cleanup, name, "cleanup")?);
     let mesh = need(&state.mesh, name, "mesh")?;
-    let input = if step == StepId::Stacked {
+    if step == StepId::Stacked {
         let (stack, input) = stacked::run(model, cleaned, mesh, state.coplanar.as_deref(), s, cx)?;
         state.stacked = Some(Arc::new(stack));
-        input
+        state.stacked_parts = Some(Arc::new(input));
     } else {
         let (slices, input) = interlocked::run(model, cleaned, mesh, s, cx)?;
         state.interlocked = Some(Arc::new(slices));
-        input
-    };
-    state.parts = Some(Arc::new(input));
+        state.interlocked_parts = Some(Arc::new(input));
+    }
     Ok(())
 }

@@ -28,7 +28,7 @@ impl State {
                 self.plates.as_ref().ok_or_else(|| need("plates"))?,
                 self.bends.as_deref(),
             ),
-            View::Final => scene::assembly(&self.parts.as_ref().ok_or_else(|| need("parts"))?.parts),
+            View::Final => scene::assembly(&self.final_parts().as_ref().ok_or_else(|| need("parts"))?.parts),
         }
     }
 }

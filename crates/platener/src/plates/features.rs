@@ -41,6 +41,9 @@ const MIN_WIDTH: f64 = 0.2;
 /// How far outside a face (mm, at most a tenth of the sheet) the section that tells raised from
 /// recessed features is taken.
 const PROBE: f64 = 0.1;
+/// The share of a raised feature's footprint every section up to its height must cover for it
+/// to stand straight up (the model's facets and the grid leave a few per cent).
+pub const PRISM: f64 = 0.9;
 /// Sections spent per plate measuring how tall its raised features are; past it, heights are
 /// not measured (a plate covered in embossed text would otherwise cost one section per glyph
 /// and height).
@@ -96,6 +99,10 @@ pub struct Feature {
     /// How far a raised feature stands out of the face, mm; `None` when recessed or not
     /// measured.
     pub height: Option<f64>,
+    /// A raised feature that stands straight up: every section up to its height covers at
+    /// least [`PRISM`] of its footprint (a standoff, a boss; not a dome).
+    #[serde(skip)]
+    pub prism: bool,
     /// The frame it was found in (the plate's once assigned).
     #[serde(skip)]
     pub frame: Frame,
@@ -178,12 +185,13 @@ impl<'a> Sections<'a> {
             for region in on_face {
                 let raised =
                     polygon::total_area(&intersection(std::slice::from_ref(&region), &probe)?) > 0.5 * region.area();
-                let height = match raised {
+                let rise = match raised {
                     true => self.height(frame, face.z, out, &region, &mut budget)?,
                     false => None,
                 };
                 let relief = if raised { Elevation::Raised } else { Elevation::Recessed };
-                features.push(feature(region, frame, t, (face.side, face.z), relief, height));
+                let (height, prism) = (rise.map(|r| r.0), rise.is_some_and(|r| r.1));
+                features.push(feature(region, frame, t, (face.side, face.z), relief, (height, prism)));
             }
         }
         Ok((solid, features))
@@ -222,8 +230,9 @@ impl<'a> Sections<'a> {
 
     /// How far the material over `region` reaches out of the face at height `z` (direction
     /// `out`): the material ends at a vertex height, so the sections are taken between
-    /// consecutive vertex heights above the footprint until one is empty over it. `None` when
-    /// the budget of sections runs out first.
+    /// consecutive vertex heights above the footprint until one is empty over it, and whether
+    /// every section below covers at least [`PRISM`] of the footprint (a standoff stands
+    /// straight up; a dome narrows). `None` when the budget of sections runs out first.
     fn height(
         &self,
         frame: &Frame,
@@ -231,7 +240,7 @@ impl<'a> Sections<'a> {
         out: f64,
         region: &Polygon,
         budget: &mut usize,
-    ) -> Result<Option<f64>, GridError> {
+    ) -> Result<Option<(f64, bool)>, GridError> {
         let (lo, hi) = region.bounds();
         let near = |q: DVec2| q.x >= lo.x - 1e-3 && q.y >= lo.y - 1e-3 && q.x <= hi.x + 1e-3 && q.y <= hi.y + 1e-3;
         let mut heights: Vec<f64> = self
@@ -245,6 +254,7 @@ impl<'a> Sections<'a> {
             .collect();
         heights.sort_by(f64::total_cmp);
         heights.dedup_by(|a, b| *a - *b < 1e-4);
+        let mut prism = true;
         for (k, &h) in heights.iter().enumerate() {
             if *budget == 0 {
                 return Ok(None);
@@ -254,8 +264,9 @@ impl<'a> Sections<'a> {
             let above = self.at(frame, z + out * (h + next) / 2.0)?;
             let left = polygon::total_area(&intersection(std::slice::from_ref(region), &above)?);
             if left < 0.1 * region.area() {
-                return Ok(Some(h));
+                return Ok(Some((h, prism)));
             }
+            prism &= left >= PRISM * region.area();
         }
         Ok(None)
     }
@@ -308,7 +319,7 @@ fn feature(
     t: f64,
     (side, z): (Side, f64),
     relief: Elevation,
-    height: Option<f64>,
+    (height, prism): (Option<f64>, bool),
 ) -> Feature {
     let (lo, hi) = region.bounds();
     let mid = (lo + hi) / 2.0;
@@ -320,6 +331,7 @@ fn feature(
         size: [hi.x - lo.x, hi.y - lo.y],
         center: frame.to_model(mid.extend(z)),
         height,
+        prism,
         region,
         frame: *frame,
         thickness: t,
@@ -350,7 +362,8 @@ pub(super) fn assign(found: &[Feature], plates: &[Plate]) -> Result<Vec<Feature>
                 };
                 // The face keeps its height in the model (a 4 mm wall's face is outside a 3 mm plate).
                 let z = plate.frame.to_local(f.center).z;
-                let mut g = feature(region, &plate.frame, plate.thickness, (side, z), f.relief, f.height);
+                let rise = (f.height, f.prism);
+                let mut g = feature(region, &plate.frame, plate.thickness, (side, z), f.relief, rise);
                 g.plate = i as u32;
                 out.push(g);
             }

@@ -11,7 +11,7 @@ use crate::settings::Settings;
 fn box_assembly() -> Assembly {
     let state = crate::bends::tests::run_plate(closed_box(100.0, 80.0, 60.0, 3.0), Settings::default());
     assert!(state.records.iter().any(|r| r.name == StepId::Parts.name()));
-    let parts = &state.parts.as_ref().expect("parts").parts;
+    let parts = &state.final_parts().as_ref().expect("parts").parts;
     assert_eq!(parts.len(), 6, "a box of six plates");
     Assembly::new(parts).expect("draws")
 }
