@@ -4,8 +4,8 @@ use std::fmt::Write as _;
 
 use anyhow::Context as _;
 use platener::hinge::BendDesign;
-use platener::hinge::swatch::{Swatch, hinge_swatch};
 use platener::plan::BendStyle;
+use platener::swatches::hinge::{Swatch, hinge_swatch};
 
 use crate::args::HingeTestArgs;
 

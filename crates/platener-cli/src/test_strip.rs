@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 
 use anyhow::Context as _;
-use platener::kerf::strip::{KERF_STEP, SPIKE_WIDTH, TestStrip, test_strip};
+use platener::swatches::strip::{KERF_STEP, SPIKE_WIDTH, TestStrip, test_strip};
 
 use crate::args::TestStripArgs;
 

@@ -56,6 +56,7 @@ pub mod convert;
 pub mod coplanar;
 pub mod cuttable;
 pub mod debug;
+pub mod draw;
 pub mod error;
 pub mod export;
 pub mod hinge;
@@ -81,6 +82,7 @@ pub mod settings;
 pub mod shapes;
 pub mod sheets;
 pub mod stacked;
+pub mod swatches;
 pub mod verify;
 pub mod weld;
 

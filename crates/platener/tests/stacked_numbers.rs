@@ -9,9 +9,9 @@
 use std::path::PathBuf;
 
 use platener::convert;
+use platener::draw::font;
 use platener::export::legend;
 use platener::glam::DVec2;
-use platener::labels::font;
 use platener::method::MethodKind;
 use platener::plan::{MarkKind, PartKind, Plan};
 use platener::stacked::Stack;

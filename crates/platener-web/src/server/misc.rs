@@ -9,8 +9,8 @@ use axum::extract::{Query, Request, State};
 use axum::http::{StatusCode, header};
 use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
-use platener::kerf::strip::test_strip_marking;
 use platener::plan::Material;
+use platener::swatches::strip::test_strip_marking;
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -109,7 +109,7 @@ pub struct StripQuery {
 
 fn strip(
     query: Result<Query<StripQuery>, axum::extract::rejection::QueryRejection>,
-) -> ApiResult<(platener::kerf::strip::TestStrip, Material, f64)> {
+) -> ApiResult<(platener::swatches::strip::TestStrip, Material, f64)> {
     let Query(q) = query.map_err(|_| ApiError::bad_request("thickness and kerf must be numbers of mm"))?;
     let thickness = q.thickness.unwrap_or(3.0);
     let material = match q.material.as_deref().unwrap_or("wood") {

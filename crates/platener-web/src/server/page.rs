@@ -40,7 +40,7 @@ fn index_html() -> String {
 
 /// `text` with `& < > " '` escaped for HTML: the library's one escaping.
 pub fn escape_html(text: &str) -> String {
-    platener::export::svg::xml_escape(text)
+    platener::draw::svg::xml_escape(text)
 }
 
 /// `GET /`.

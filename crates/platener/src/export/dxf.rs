@@ -13,7 +13,7 @@ use dxf::tables::Layer;
 use dxf::{Color, Drawing, LwPolylineVertex};
 use glam::DVec2;
 
-use super::svg::SvgGroup;
+use crate::draw::svg::SvgGroup;
 use crate::plan::PlanError;
 
 /// Layer of cut paths.

@@ -18,8 +18,8 @@
 use glam::DVec2;
 use serde::Deserialize;
 
-use super::svg::SvgGroup;
-use crate::labels::font;
+use crate::draw::font;
+use crate::draw::svg::SvgGroup;
 use crate::plan::SheetLegend;
 
 /// Cap height of the legend's text, mm.

@@ -19,7 +19,7 @@ use std::fmt::Write as _;
 
 use glam::DVec2;
 
-use super::svg::{SvgGroup, num};
+use crate::draw::svg::{SvgGroup, num};
 use crate::plan::{CutSettings, Material};
 
 /// LightBurn's layer of an operation: its index (which also picks the layer's colour in
@@ -110,7 +110,7 @@ pub fn sheet_lbrn2(width: f64, height: f64, groups: &[SvgGroup], settings: &CutS
     let _ = writeln!(
         s,
         "    <Notes ShowOnLoad=\"0\" Notes=\"{}\"/>",
-        super::svg::xml_escape(stock)
+        crate::draw::svg::xml_escape(stock)
     );
     s.push_str("</LightBurnProject>\n");
     s

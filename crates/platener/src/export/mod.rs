@@ -15,7 +15,6 @@ pub mod order;
 pub mod plan_json;
 pub mod png;
 pub mod report;
-pub mod svg;
 pub mod thumbnail;
 
 use std::collections::BTreeMap;
@@ -33,7 +32,7 @@ use crate::sheets::Nesting;
 use report::{Report, ReportStep};
 /// The cutting-plan steps before `export`, whose warnings report.json lists with their parts.
 pub const CUTTING_PLAN_STEPS: [&str; 3] = ["kerf", "labels", "sheets"];
-use svg::{SvgStyle, sheet_svg};
+use crate::draw::svg::{self, SvgStyle, sheet_svg};
 
 /// Stroke widths of the PNG previews, mm: visible at 1200 pixels across a 600 mm sheet.
 const PREVIEW_STYLE: SvgStyle = SvgStyle {

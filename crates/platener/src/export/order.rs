@@ -18,7 +18,7 @@ use glam::DVec2;
 use platener_geom::polygon::ring_contains;
 use serde::Serialize;
 
-use super::svg::SvgGroup;
+use crate::draw::svg::SvgGroup;
 
 /// A vertex where a ring turns by at least this much is a corner to start a cut at.
 pub const CORNER_TURN_DEG: f64 = 20.0;

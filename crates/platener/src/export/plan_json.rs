@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use glam::DVec2;
 
 use super::legend::Legend;
-use super::svg::{SvgGroup, num};
+use crate::draw::svg::{SvgGroup, num};
 use platener_geom::Polygon;
 
 use crate::kerf::{CutPaths, open_ring};

@@ -28,7 +28,7 @@ pub fn render_png(svg: &str, file: &str) -> Result<Vec<u8>, PlanError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::export::svg::{SvgGroup, SvgStyle, sheet_svg};
+    use crate::draw::svg::{SvgGroup, SvgStyle, sheet_svg};
     use glam::DVec2;
 
     #[test]

@@ -7,8 +7,8 @@
 use serde::Serialize;
 
 use super::order::CutPath;
-use super::svg::SvgGroup;
 use crate::context::Warning;
+use crate::draw::svg::SvgGroup;
 use crate::plan::{Method, PlanSettings};
 use crate::sheets::Nesting;
 

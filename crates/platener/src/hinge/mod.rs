@@ -9,7 +9,6 @@
 
 mod pattern;
 mod physics;
-pub mod swatch;
 
 #[cfg(test)]
 mod tests;

@@ -8,9 +8,9 @@ use platener_geom::polygon::rect;
 use proptest::prelude::*;
 
 use super::pattern::clip_segment;
-use super::swatch::hinge_swatch;
 use super::*;
 use crate::plan::{BendStyle, HingePattern, Mark, MarkKind, Material};
+use crate::swatches::hinge::hinge_swatch;
 
 /// The design of a right-angle bend with no limit on its width.
 fn unlimited(style: BendStyle, material: Material, t: f64) -> BendDesign {
@@ -307,8 +307,8 @@ fn the_swatch_is_at_true_size_with_red_slits() {
     assert!((bottom - top - 5.0).abs() < 1e-9);
     assert!((s.height - s.strips[1].strip.bounds().1.y - 5.0).abs() < 1e-9);
     let svg = s.svg();
-    let w = crate::export::svg::num(s.width);
-    let h = crate::export::svg::num(s.height);
+    let w = crate::draw::svg::num(s.width);
+    let h = crate::draw::svg::num(s.height);
     assert!(svg.contains(&format!("width=\"{w}mm\" height=\"{h}mm\" viewBox=\"0 0 {w} {h}\"")));
     let marks: usize = s.strips.iter().map(|st| st.marks.len()).sum();
     assert_eq!(svg.matches("#ff0000").count(), 2 + marks);

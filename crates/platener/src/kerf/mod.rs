@@ -14,8 +14,6 @@
 //! merges the touching holes into one hole and opens a pinched notch, and a warning names the
 //! part.
 
-pub mod strip;
-
 use glam::DVec2;
 use platener_geom::clean::clean;
 use platener_geom::validity::Problem;

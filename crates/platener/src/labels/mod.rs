@@ -9,7 +9,6 @@
 //! it is skipped with a warning. Labels are engraved (blue) with the built-in stroke [`font`],
 //! so no font is needed on the user's machine.
 
-pub mod font;
 mod place;
 
 use glam::DVec2;
@@ -20,6 +19,7 @@ pub use place::{MIN_SIZE, TextBox, clearance};
 use place::{Room, up_of};
 
 use crate::context::{StepContext, Warning, WarningKind};
+use crate::draw::font;
 use platener_geom::Polygon;
 
 use crate::plan::{Bend, EdgeLabel, LabelMode, Mark, MarkKind, Part, PlanInput};

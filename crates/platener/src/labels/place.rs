@@ -10,7 +10,7 @@ use platener_geom::polygon::Polygon;
 use platener_geom::tolerance::GRID_NOISE_AREA;
 use platener_geom::{Ring, boolean, offset};
 
-use super::font::text_width;
+use crate::draw::font::text_width;
 
 /// Most points [`Room::inner_points`] samples per piece of the inset part.
 const INNER_POINTS: usize = 256;

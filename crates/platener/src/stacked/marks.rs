@@ -11,7 +11,7 @@
 use glam::DVec2;
 use platener_geom::{GridError, Polygon, boolean, offset};
 
-use crate::labels::font::{place_text, text_width};
+use crate::draw::font::{place_text, text_width};
 use crate::plan::{Mark, MarkKind};
 
 /// Text sizes tried, mm, largest first.

@@ -23,7 +23,8 @@ use glam::DVec2;
 use platener_geom::{GridError, Polygon, boolean};
 
 use super::shafts::boxes_meet;
-use crate::labels::{self, clearance, font};
+use crate::draw::font;
+use crate::labels::{self, clearance};
 use crate::plan::{CutSettings, LabelMode, Mark, MarkKind, Part};
 
 /// Cap height of the number on a tab, mm: readable, and small enough for a neat tab.

@@ -5,10 +5,10 @@ use std::process::Command;
 
 use platener::glam::DVec2;
 use platener::kerf::cut_paths;
-use platener::kerf::strip::{HOLE_COUNT, SPIKE_WIDTH, hole_kerf, test_strip};
 use platener::plan::samples::{l_shape, rectangle, window};
 use platener::plan::{CutSettings, Material, Part, SheetSize};
 use platener::sheets::nest;
+use platener::swatches::strip::{HOLE_COUNT, SPIKE_WIDTH, hole_kerf, test_strip};
 use platener_geom::{Polygon, boolean};
 use proptest::prelude::*;
 

@@ -2,7 +2,7 @@
 //! bends as designed before cutting a whole part.
 //!
 //! A strip with two flat ends and the designed bend zone between them, the bend's marks
-//! ([`super::marks`]) across it and an engraved legend (style, angle, pattern, links, link
+//! ([`crate::hinge::marks`]) across it and an engraved legend (style, angle, pattern, links, link
 //! size, zone width, radius) on the left end; a living hinge in wood gets a strip per pattern
 //! (the lattice and the straight flex), each at the radius it promises, so the maker sees
 //! which one the stock takes. Sheet coordinates, mm, y down, as the kerf test strip.
@@ -11,9 +11,9 @@ use glam::DVec2;
 use platener_geom::Polygon;
 use platener_geom::polygon::rect;
 
-use super::{BendDesign, HingeError, design, design_pattern, marks};
-use crate::export::svg::{SvgGroup, SvgStyle, num, sheet_svg};
-use crate::labels::font::{place_text, text_width};
+use crate::draw::font::{place_text, text_width};
+use crate::draw::svg::{SvgGroup, SvgStyle, num, sheet_svg};
+use crate::hinge::{BendDesign, HingeError, design, design_pattern, marks};
 use crate::plan::{BendStyle, HingePattern, Mark, MarkKind, Material};
 
 /// Border between the sheet edge and the strip, mm.

@@ -15,8 +15,8 @@
 use glam::DVec2;
 use platener_geom::Polygon;
 
-use crate::export::svg::{SvgGroup, SvgStyle, num, sheet_svg};
-use crate::labels::font::{place_text, text_width};
+use crate::draw::font::{place_text, text_width};
+use crate::draw::svg::{SvgGroup, SvgStyle, num, sheet_svg};
 use crate::plan::{MAX_KERF, Material, PlanError};
 
 /// Width of the spike's tip, mm (the "known width").
