@@ -22,7 +22,13 @@
 //! | `layers` | [`layers`] | what no plate builds among the classifier's plates, as stacked layers |
 //! | `kerf`, `labels`, `sheets`, `export` | [`kerf`] … [`export`] | the cutting plan and its ZIP |
 //!
-//! Each method runs the steps it needs in this order ([`method`]).
+//! Each method runs the steps it needs in this order ([`method`]); the cutting plan reads the
+//! parts of its last step that made some ([`State::final_parts`]).
+//!
+//! Below the steps: [`context`], [`settings`], [`error`], [`plan`], [`cuttable`] (the
+//! smallest part), [`draw`] (SVG and the stroke font) and [`samples`]; beside them the helpers
+//! [`assembly`], [`hinge`], [`repair`], [`score`], [`verify`]; above them [`mod@convert`],
+//! [`options`] (every setting's one definition) and [`swatches`] (`test-strip`, `hinge-test`).
 //!
 //! [`inspect`] runs these and summarises them (`platener inspect`); [`scene`] draws any
 //! snapshot as a 3D scene (glTF binary) for viewers; [`debug`] gives every snapshot of a run as
@@ -75,6 +81,7 @@ pub mod plan;
 pub mod plates;
 pub mod read;
 pub mod relief;
+pub mod repair;
 pub mod samples;
 pub mod scene;
 pub mod score;

@@ -263,8 +263,8 @@ fn every_corpus_model_at_every_thickness_converts_or_fails_with_a_reason() {
 /// part with its joint, naming it.
 #[test]
 fn a_slot_corner_on_the_layer_edge_is_repaired_where_parts_are_made() {
-    use platener::parts::clean::clean_parts;
     use platener::plan::{Joint, JointKind, Part};
+    use platener::repair::clean_parts;
     use platener_geom::polygon::rect;
     use platener_geom::{Frame, Polygon};
 

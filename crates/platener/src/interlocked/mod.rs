@@ -153,7 +153,7 @@ pub fn run(
             ),
         );
     }
-    crate::parts::clean::clean_input(&mut input, cx);
+    crate::repair::clean_input(&mut input, cx);
     Ok((interlocked, input))
 }
 

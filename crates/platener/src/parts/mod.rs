@@ -3,14 +3,13 @@
 //! Each plate is one part, numbered from 1 in plate order, with the outline the `joints` step
 //! gave it (fingers, tabs, slots) and its connections as plan.json joints; dovetail keys follow
 //! as parts of their own. Plates no joint holds are named in warnings, and small ones left out
-//! ([`loose`]). Outlines that joints left invalid are repaired ([`clean`]); parts the joints
+//! ([`loose`]). Outlines that joints left invalid are repaired ([`crate::repair`]); parts the joints
 //! left smaller than the smallest part are left out ([`small`]); necks the joints left
 //! narrower than twice the thickness are reported ([`necks`]). Raised details are glued on
 //! from a thinner sheet ([`raised`]); standoffs taller than a sheet become stacked discs
 //! ([`standoffs`]).
 
 pub(crate) mod bent;
-pub mod clean;
 mod loose;
 pub mod necks;
 mod raised;
@@ -27,7 +26,8 @@ use platener_geom::Polygon;
 use platener_geom::boolean::intersection;
 
 use crate::plan::{
-    BendStyle, EdgeLabel, Joint, JointKind, Mark, MarkKind, MarkSide, Method, Part, PlanInput, SettingValue, SourceInfo,
+    BendStyle, EdgeLabel, Joint, JointKind, Mark, MarkSide, Method, Part, PlanInput, SettingValue, SourceInfo,
+    score_rings,
 };
 use crate::plates::{Feature, Plates, Side};
 use crate::read::Model;
@@ -112,7 +112,7 @@ pub fn run(
         "connections": joints.map(|j| &j.connections),
     }))
     .ok();
-    clean::clean_input(&mut input, cx);
+    crate::repair::clean_input(&mut input, cx);
     small::leave_out_small(&mut input, settings.plates.min_area, cx);
     let plate_of: BTreeMap<u32, usize> = ids.iter().enumerate().filter_map(|(i, id)| Some(((*id)?, i))).collect();
     necks::warn_necks(&input.parts, plates, &plate_of, cx);
@@ -255,20 +255,6 @@ fn feature_marks(features: &[Feature], plate: u32, outline: &Polygon) -> Vec<Mar
         marks.extend(score_rings(&clipped, mark_side));
     }
     marks
-}
-
-/// A closed `score` mark on `side` along every ring of `regions` (one-sided features, the
-/// classifier's engraved textures).
-pub(crate) fn score_rings(regions: &[Polygon], side: MarkSide) -> impl Iterator<Item = Mark> + '_ {
-    regions
-        .iter()
-        .flat_map(|p| std::iter::once(&p.outer).chain(&p.holes))
-        .filter(|r| r.len() >= 3)
-        .map(move |r| Mark {
-            kind: MarkKind::Score,
-            path: r.iter().copied().chain(r.first().copied()).collect(),
-            side: Some(side),
-        })
 }
 
 /// A connection as plan.json's joint.

@@ -24,6 +24,7 @@ pub use format::{
 };
 pub use part::{
     Bend, BendStyle, EdgeLabel, HingePattern, Joint, JointKind, Mark, MarkKind, MarkSide, Part, PartKind, Segment,
+    score_rings,
 };
 pub use settings::{CutSettings, LabelMode, MAX_KERF, MAX_MARGIN, Material, SPACING_RANGE, SettingValue, SheetSize};
 

@@ -247,3 +247,17 @@ pub struct Joint {
     /// The connection number engraved next to the edge on both parts.
     pub label: u32,
 }
+
+/// A closed `score` mark on `side` along every ring of `regions` (one-sided features, the
+/// classifier's engraved textures).
+pub fn score_rings(regions: &[Polygon], side: MarkSide) -> impl Iterator<Item = Mark> + '_ {
+    regions
+        .iter()
+        .flat_map(|p| std::iter::once(&p.outer).chain(&p.holes))
+        .filter(|r| r.len() >= 3)
+        .map(move |r| Mark {
+            kind: MarkKind::Score,
+            path: r.iter().copied().chain(r.first().copied()).collect(),
+            side: Some(side),
+        })
+}

@@ -18,7 +18,7 @@ use crate::classify::{Classification, Surface};
 use crate::context::StepContext;
 use crate::error::{Error, ModelProblem, Result};
 use crate::mesh::Mesh;
-use crate::parts::score_rings;
+use crate::plan::score_rings;
 use crate::plan::{MarkSide, Part, PartKind, PlanInput};
 use crate::settings::{Features, Settings};
 

@@ -260,7 +260,7 @@ pub(crate) fn parts_of(
     for w in number_warnings(&numbers) {
         cx.warn(WarningKind::CuttingPlan, w);
     }
-    crate::parts::clean::clean_input(&mut input, cx);
+    crate::repair::clean_input(&mut input, cx);
     Ok(input)
 }
 

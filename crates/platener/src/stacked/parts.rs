@@ -77,7 +77,7 @@ fn layer_parts(
             for r in stack.raised.iter().filter(|r| (r.layer, r.island) == (k, i)) {
                 // Slots cut after the detail was found: the marks stay on the material.
                 let on = boolean::intersection(&r.regions, std::slice::from_ref(&island.polygon)).map_err(geometry)?;
-                marks.extend(crate::parts::score_rings(&on, r.side));
+                marks.extend(crate::plan::score_rings(&on, r.side));
             }
             marks.extend(glue_marks(stack, &glue, island.part, &island_of).map_err(geometry)?);
             let mut part = Part {
@@ -153,7 +153,7 @@ fn glue_marks(
         } else {
             crate::plan::MarkSide::Top
         };
-        marks.extend(crate::parts::score_rings(&shared, side));
+        marks.extend(crate::plan::score_rings(&shared, side));
     }
     Ok(marks)
 }

@@ -1,6 +1,6 @@
 //! Whether a part's outline is one a laser can cut: the kernel's validity check
 //! ([`platener_geom::validity`]) on the part's outline and holes, as messages naming the ring
-//! and the place. The same check repairs outlines where parts are made (`parts::clean`), so a
+//! and the place. The same check repairs outlines where parts are made (`repair`), so a
 //! plan platener wrote passes it; a plan edited by hand or written by an older version may not.
 
 use platener_geom::{Polygon, Problem, RingId, validate};
