@@ -17,7 +17,7 @@ use super::{App, inspect, view};
 use crate::db::{JobRow, NewJob, now_ms};
 use crate::ids;
 use crate::settings::{JobSettings, SettingsError};
-use crate::sniff::{self, Refusal};
+use crate::sniff;
 
 /// Bytes a multipart form may have beyond the model (boundaries, headers, settings fields).
 pub const FORM_SLACK: usize = 64 * 1024;
@@ -126,7 +126,7 @@ async fn enqueue(
     settings: JobSettings,
     parent: Option<String>,
 ) -> ApiResult<Response> {
-    let sniffed = sniff::sniff(&model, app.config.max_triangles).map_err(refusal)?;
+    let sniffed = sniff::sniff(&model, app.config.max_triangles).map_err(ApiError::from)?;
     let (library, _) = settings.to_library().map_err(|e| match e {
         SettingsError::Unknown(m) => ApiError::bad_request(m),
         SettingsError::OutOfRange(m) => ApiError::invalid_setting(m),
@@ -179,15 +179,6 @@ fn accepted(job: &NewJob) -> JobRow {
         delete_token_hash: job.delete_token_hash.clone(),
         published: job.published,
         parent: job.parent.clone(),
-    }
-}
-
-/// The API error of a refused upload.
-pub(super) fn refusal(refusal: Refusal) -> ApiError {
-    match refusal {
-        Refusal::Unsupported(m) => ApiError::unsupported_format(m),
-        Refusal::Unreadable(m) => ApiError::unreadable_model(m),
-        Refusal::TooLarge(m) => ApiError::too_large(m),
     }
 }
 
@@ -280,4 +271,19 @@ pub async fn recut(
         .await?
         .ok_or_else(|| ApiError::not_found("conversion"))?;
     enqueue(&app, model, Some(row.name.clone()), settings, Some(row.id)).await
+}
+
+/// The routes of the conversions resource: upload, read, delete, recut, publish and cancel
+/// (its files are `files`', its events `events`', its debug view `debug`'s).
+pub fn routes() -> axum::Router<std::sync::Arc<super::App>> {
+    use axum::routing::{get, post};
+    axum::Router::new()
+        .route("/api/conversions", post(create))
+        .route("/api/conversions/{id}", get(show).delete(delete))
+        .route("/api/conversions/{id}/recut", post(recut))
+        .route(
+            "/api/conversions/{id}/publish",
+            post(super::publish::publish).delete(super::publish::unpublish),
+        )
+        .route("/api/conversions/{id}/cancel", post(super::cancel::cancel))
 }

@@ -126,3 +126,13 @@ pub async fn model(Path(file): Path<String>) -> ApiResult<Response> {
         .insert(header::CONTENT_TYPE, HeaderValue::from_static("model/stl"));
     Ok(response)
 }
+
+/// The routes of the debug view: a conversion's step snapshots and the sample models.
+pub fn routes() -> axum::Router<std::sync::Arc<super::App>> {
+    use axum::routing::get;
+    axum::Router::new()
+        .route("/api/conversions/{id}/debug", get(index))
+        .route("/api/conversions/{id}/debug/{method}/{file}", get(step))
+        .route("/api/debug/models", get(models))
+        .route("/api/debug/models/{file}", get(model))
+}

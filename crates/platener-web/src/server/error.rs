@@ -128,3 +128,20 @@ impl IntoResponse for ApiError {
 
 /// A handler's result.
 pub type ApiResult<T> = Result<T, ApiError>;
+
+/// Anything not routed.
+pub async fn not_found() -> ApiError {
+    ApiError::not_found("page")
+}
+
+impl From<crate::sniff::Refusal> for ApiError {
+    /// An upload refused by its first bytes: `415`, `422` or `413`.
+    fn from(refusal: crate::sniff::Refusal) -> Self {
+        use crate::sniff::Refusal;
+        match refusal {
+            Refusal::Unsupported(m) => ApiError::unsupported_format(m),
+            Refusal::Unreadable(m) => ApiError::unreadable_model(m),
+            Refusal::TooLarge(m) => ApiError::too_large(m),
+        }
+    }
+}

@@ -158,3 +158,13 @@ pub async fn scene(
     };
     serve_file(&app, &row, &method, &format!("scenes/{view}.glb")).await
 }
+
+/// The routes of a conversion's files: the best plan, each method's files and sheets, scenes.
+pub fn routes() -> axum::Router<std::sync::Arc<super::App>> {
+    use axum::routing::get;
+    axum::Router::new()
+        .route("/api/conversions/{id}/plan.zip", get(best_plan))
+        .route("/api/conversions/{id}/methods/{method}/{file}", get(method_file))
+        .route("/api/conversions/{id}/methods/{method}/sheets/{file}", get(sheet))
+        .route("/api/conversions/{id}/scenes/{file}", get(scene))
+}

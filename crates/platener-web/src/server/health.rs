@@ -94,6 +94,14 @@ fn stalled(workers: usize, census: &Census, stats: &QueueStats, waited: Option<D
         .then(|| format!("the oldest job has waited {secs} s and no worker is converting anything"))
 }
 
+/// The routes of the service's own state: health and the settings it takes.
+pub fn routes() -> axum::Router<std::sync::Arc<super::App>> {
+    use axum::routing::get;
+    axum::Router::new()
+        .route("/api/health", get(health))
+        .route("/api/settings", get(super::settings::schema))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

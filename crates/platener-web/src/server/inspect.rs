@@ -72,7 +72,7 @@ pub async fn read(
     })
     .await
     .map_err(|_| ApiError::internal())?;
-    Ok((model, outcome.map_err(super::api::refusal)?))
+    Ok((model, outcome?))
 }
 
 /// Reads a model as the worker's `read` step will: the same reader, units and scale.

@@ -14,13 +14,15 @@ mod error;
 mod events;
 mod examples;
 mod files;
+mod gallery;
 mod health;
 mod inspect;
 mod limits;
-mod misc;
+mod metrics;
 mod page;
 mod publish;
 mod settings;
+mod strip;
 mod view;
 mod workers;
 
@@ -33,7 +35,7 @@ use std::time::Duration;
 use axum::Router;
 use axum::extract::DefaultBodyLimit;
 use axum::http::{HeaderName, HeaderValue};
-use axum::routing::{get, post};
+use axum::routing::get;
 use tokio::sync::watch;
 use tower_http::set_header::SetResponseHeaderLayer;
 use tower_http::timeout::TimeoutLayer;
@@ -134,7 +136,7 @@ pub(crate) struct App {
     /// What each of this server's workers is doing.
     pub roster: workers::Roster,
     pub limiter: limits::RateLimiter,
-    pub metrics: misc::Metrics,
+    pub metrics: metrics::Metrics,
     /// Becomes true when the server stops: event streams end.
     pub stopping: watch::Receiver<bool>,
     /// The one reader of new events, feeding every event stream of this process.
@@ -166,7 +168,7 @@ async fn run(config: ServeConfig, on_listening: impl FnOnce(SocketAddr) + Send +
         draining: AtomicBool::new(false),
         roster: workers::Roster::default(),
         limiter: limits::RateLimiter::new(config.rate_limit),
-        metrics: misc::Metrics::default(),
+        metrics: metrics::Metrics::default(),
         stopping: stop_rx.clone(),
         config,
     });
@@ -211,34 +213,16 @@ async fn wait_for_signal() {
 /// `nosniff` and no referrer.
 fn router(app: Arc<App>) -> Router {
     let body_limit = app.config.max_upload_bytes() + api::FORM_SLACK;
+    // A router per resource; every one but the event streams under the request timeout.
     let timed = Router::new()
-        .route("/", get(page::index))
-        .route("/assets/{*path}", get(assets::asset))
-        .route("/api/conversions", post(api::create))
-        .route("/api/conversions/{id}", get(api::show).delete(api::delete))
-        .route("/api/conversions/{id}/recut", post(api::recut))
-        .route(
-            "/api/conversions/{id}/publish",
-            post(publish::publish).delete(publish::unpublish),
-        )
-        .route("/api/conversions/{id}/cancel", post(cancel::cancel))
-        .route("/api/conversions/{id}/plan.zip", get(files::best_plan))
-        .route("/api/conversions/{id}/methods/{method}/{file}", get(files::method_file))
-        .route(
-            "/api/conversions/{id}/methods/{method}/sheets/{file}",
-            get(files::sheet),
-        )
-        .route("/api/conversions/{id}/scenes/{file}", get(files::scene))
-        .route("/api/conversions/{id}/debug", get(debug::index))
-        .route("/api/conversions/{id}/debug/{method}/{file}", get(debug::step))
-        .route("/api/debug/models", get(debug::models))
-        .route("/api/debug/models/{file}", get(debug::model))
-        .route("/api/gallery", get(misc::gallery))
-        .route("/api/test-strip.svg", get(misc::test_strip_svg))
-        .route("/api/test-strip.json", get(misc::test_strip_json))
-        .route("/api/health", get(health::health))
-        .route("/api/settings", get(settings::schema))
-        .route("/metrics", get(misc::metrics))
+        .merge(page::routes())
+        .merge(api::routes())
+        .merge(files::routes())
+        .merge(debug::routes())
+        .merge(gallery::routes())
+        .merge(strip::routes())
+        .merge(health::routes())
+        .merge(metrics::routes())
         .layer(TimeoutLayer::with_status_code(
             axum::http::StatusCode::REQUEST_TIMEOUT,
             Duration::from_secs(60),
@@ -246,9 +230,12 @@ fn router(app: Arc<App>) -> Router {
     Router::new()
         .route("/api/conversions/{id}/events", get(events::events))
         .merge(timed)
-        .fallback(misc::not_found)
+        .fallback(error::not_found)
         .layer(DefaultBodyLimit::max(body_limit))
-        .layer(axum::middleware::from_fn_with_state(app.clone(), misc::count_requests))
+        .layer(axum::middleware::from_fn_with_state(
+            app.clone(),
+            metrics::count_requests,
+        ))
         .layer(SetResponseHeaderLayer::overriding(
             HeaderName::from_static("x-content-type-options"),
             HeaderValue::from_static("nosniff"),

@@ -49,7 +49,7 @@ pub async fn index(State(app): State<Arc<App>>) -> ApiResult<Response> {
     if html.is_empty() {
         return Err(ApiError::internal());
     }
-    let gallery = super::misc::gallery_page(&app, 1).await?;
+    let gallery = super::gallery::gallery_page(&app, 1).await?;
     let mut list = String::from("<ul>");
     for item in gallery["items"].as_array().into_iter().flatten() {
         let name = escape_html(item["name"].as_str().unwrap_or_default());
@@ -66,6 +66,14 @@ pub async fn index(State(app): State<Arc<App>>) -> ApiResult<Response> {
         html.replacen(NOSCRIPT_MARK, &list, 1),
     )
         .into_response())
+}
+
+/// The routes of the page: itself and its assets.
+pub fn routes() -> axum::Router<std::sync::Arc<super::App>> {
+    use axum::routing::get;
+    axum::Router::new()
+        .route("/", get(index))
+        .route("/assets/{*path}", get(super::assets::asset))
 }
 
 #[cfg(test)]
