@@ -529,18 +529,9 @@ fn raised_details_as_tall_as_an_offered_sheet_are_cut_from_it_and_glued() {
         let part = plan.parts.iter().find(|p| p.id == j.parts[1]).expect("the detail");
         assert!((part.thickness - 1.25).abs() < 1e-9);
         // On the tag's upper face, over its footprint: its volume spans z 2.5–3.75.
-        let frame = platener::plan::bent::frame_from_matrix(&part.transform);
-        let zs: Vec<f64> = [0.0, part.thickness]
-            .iter()
-            .map(|&z| frame.to_model(part.outline[0].extend(z)).z)
-            .collect();
-        let (lo, hi) = (zs[0].min(zs[1]), zs[0].max(zs[1]));
-        assert!((lo - 2.5).abs() < 1e-6 && (hi - 3.75).abs() < 1e-6, "{zs:?}");
-        let polygon = platener_geom::Polygon {
-            outer: part.outline.clone(),
-            holes: part.holes.clone(),
-        };
-        areas.push(polygon.area());
+        let (lo, hi) = z_range(part);
+        assert!((lo - 2.5).abs() < 1e-6 && (hi - 3.75).abs() < 1e-6, "{lo}–{hi}");
+        areas.push(plan_area(part));
     }
     areas.sort_by(f64::total_cmp);
     assert!(
@@ -601,13 +592,20 @@ fn z_range(part: &platener::plan::PlanPart) -> (f64, f64) {
 /// The model-space box of a plan part (every outline vertex, both faces).
 fn model_box(part: &platener::plan::PlanPart) -> (DVec3, DVec3) {
     let frame = platener::plan::bent::frame_from_matrix(&part.transform);
-    let points = part
-        .outline
-        .iter()
-        .flat_map(|p| [0.0, part.thickness].map(|z| frame.to_model(p.extend(z))));
-    points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
-        (lo.min(p), hi.max(p))
-    })
+    platener_geom::boxes::bounds3(
+        part.outline
+            .iter()
+            .flat_map(|p| [0.0, part.thickness].map(|z| frame.to_model(p.extend(z)))),
+    )
+}
+
+/// The area of a plan part's outline less its holes, mm².
+fn plan_area(part: &platener::plan::PlanPart) -> f64 {
+    platener_geom::Polygon {
+        outer: part.outline.clone(),
+        holes: part.holes.clone(),
+    }
+    .area()
 }
 
 /// Issue 32: standoffs taller than a sheet become stacked discs held glue-free by a peg, or
@@ -617,13 +615,7 @@ fn model_box(part: &platener::plan::PlanPart) -> (DVec3, DVec3) {
 fn standoffs_become_stacked_discs_on_a_peg_or_a_screw() {
     let state = plate_method("standoffs", platener::samples::standoff_floor(), Features::Engrave);
     let plan = &state.export.as_ref().expect("exported").plan;
-    let area = |p: &platener::plan::PlanPart| {
-        platener_geom::Polygon {
-            outer: p.outline.clone(),
-            holes: p.holes.clone(),
-        }
-        .area()
-    };
+    let area = plan_area;
     let floor = plan
         .parts
         .iter()

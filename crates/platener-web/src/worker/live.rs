@@ -78,8 +78,6 @@ pub(super) fn step_json(method: Option<MethodKind>, event: StepEvent<'_>) -> Val
 
 /// What one landing stores: files, its part of the summary and its event.
 pub(super) struct Landing {
-    /// Whose: the model (`None`) or a method.
-    method: Option<MethodKind>,
     /// Its part of the summary.
     part: Part,
     files: Vec<ResultFile>,
@@ -98,7 +96,6 @@ impl Landing {
             "scene": !files.is_empty(),
         });
         Landing {
-            method: None,
             part: Part::Model(model, results::step_lines(state)),
             files,
             event: ("model", event),
@@ -108,8 +105,7 @@ impl Landing {
     /// A method's files and its `method` event.
     fn method(m: &MethodResult) -> Landing {
         Landing {
-            method: Some(m.method),
-            part: Part::Method(results::method_line(m)),
+            part: Part::Method(m.method, results::method_line(m)),
             files: results::method_files(m),
             event: ("method", json!(results::method_event(m))),
         }
@@ -120,8 +116,8 @@ impl Landing {
 pub(super) enum Part {
     /// The model as read and the shared steps.
     Model(Option<ModelLine>, Vec<StepLine>),
-    /// A method's line.
-    Method(MethodLine),
+    /// A method and its line.
+    Method(MethodKind, MethodLine),
 }
 
 /// The summary of a running job: the model and shared steps once read, the methods landed
@@ -139,19 +135,19 @@ impl Partial {
     /// This summary with `landing` in it.
     fn with(&self, landing: &Landing, order: &[MethodKind]) -> Partial {
         let mut next = self.clone();
-        match (&landing.part, landing.method) {
-            (Part::Model(model, steps), _) => {
+        match &landing.part {
+            Part::Model(model, steps) => {
                 next.model = *model;
                 next.steps.clone_from(steps);
                 next.landed.model = !landing.files.is_empty();
             }
-            (Part::Method(line), Some(method)) => {
+            Part::Method(method, line) => {
+                let method = *method;
                 next.methods.retain(|(m, _)| *m != method);
                 next.methods.push((method, line.clone()));
                 next.methods.sort_by_key(|(m, _)| order.iter().position(|o| o == m));
                 next.landed.methods.push(method);
             }
-            (Part::Method(_), None) => {}
         }
         next
     }
@@ -266,8 +262,7 @@ mod tests {
             error: None,
         };
         let landing = |m: MethodKind| Landing {
-            method: Some(m),
-            part: Part::Method(line(m)),
+            part: Part::Method(m, line(m)),
             files: Vec::new(),
             event: ("method", json!({})),
         };

@@ -51,8 +51,8 @@ pub(super) struct Standoff {
     region: Polygon,
     /// The face it stands on.
     side: Side,
-    /// How tall it stands, mm.
-    height: f64,
+    /// How tall it stands, mm, when measured.
+    height: Option<f64>,
     /// Its size and place, for the report.
     size: [f64; 2],
     center: DVec3,
@@ -107,7 +107,7 @@ pub(super) fn find(plates: &Plates, offered: &[f64], min_area: f64) -> Result<Ve
             base: f.plate as usize,
             region: f.region.clone(),
             side: f.side,
-            height: f.height.unwrap_or(f64::NAN),
+            height: f.height,
             size: f.size,
             center: f.center,
             make,
@@ -367,11 +367,9 @@ fn across(hole: &Polygon) -> f64 {
 
 /// A standoff's size, height and place, for the report.
 fn describe(st: &Standoff) -> String {
-    let tall = if st.height.is_finite() {
-        format!("{:.1} mm tall", st.height)
-    } else {
-        "height not measured".to_string()
-    };
+    let tall = st
+        .height
+        .map_or_else(|| "height not measured".to_string(), |h| format!("{h:.1} mm tall"));
     let c = st.center;
     format!(
         "{:.1} × {:.1} mm, {tall}, at ({:.1}, {:.1}, {:.1})",
