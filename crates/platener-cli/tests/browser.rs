@@ -1367,7 +1367,10 @@ fn settings_form_cli_and_api_agree_and_a_metre_model_is_fixed_by_its_advice() {
     let metres = dir.path().join("box-in-metres.stl");
     std::fs::write(
         &metres,
-        platener::samples::to_binary_stl(&platener::samples::closed_box(0.12, 0.09, 0.07, 0.003), "box in metres"),
+        platener_fixtures::samples::to_binary_stl(
+            &platener_fixtures::samples::closed_box(0.12, 0.09, 0.07, 0.003),
+            "box in metres",
+        ),
     )
     .expect("write");
     upload_by_button(&page, &metres);
@@ -1707,7 +1710,7 @@ fn measure_results_as_they_come() {
         return;
     };
     let mut models = vec![example("box-3mm.stl")];
-    match platener::samples::shared_corpus() {
+    match platener_fixtures::samples::shared_corpus() {
         Ok(dir) => {
             for name in [
                 "plates/arduino_uno_enclosure.stl",

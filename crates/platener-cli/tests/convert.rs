@@ -448,7 +448,9 @@ fn help_completions_and_version() {
 
 /// The shared corpus, or `None` (with a message) when it is absent.
 fn corpus() -> Option<PathBuf> {
-    platener::samples::shared_corpus().map_err(|m| eprintln!("{m}")).ok()
+    platener_fixtures::samples::shared_corpus()
+        .map_err(|m| eprintln!("{m}"))
+        .ok()
 }
 
 #[test]

@@ -86,7 +86,7 @@ struct Job {
 /// the corpus is absent and not required).
 fn models() -> Vec<(String, Vec<u8>, bool)> {
     let box_stl = example_box();
-    let corpus: Vec<(String, Vec<u8>)> = match platener::samples::shared_corpus() {
+    let corpus: Vec<(String, Vec<u8>)> = match platener_fixtures::samples::shared_corpus() {
         Ok(dir) => CORPUS_MODELS
             .iter()
             .map(|f| {

@@ -7,12 +7,14 @@
 //! Run: `cargo bench -p platener --bench classify`. Figures go in docs/classifier.md.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use platener::classify::{self, ClassifySettings, testsets};
+use platener::classify::{self, ClassifySettings};
 use platener::glam::DVec3;
 use platener::mesh::Mesh;
 use platener::method::MethodKind;
 use platener::pipeline::{self, StepId};
-use platener::{Cancel, Settings, Source, State, samples};
+use platener::{Cancel, Settings, Source, State};
+use platener_fixtures::samples;
+use platener_fixtures::testsets;
 
 /// Quad sizes (mm) giving about 10k, 100k and 1M triangles on a 100 × 80 × 60 box.
 const CELLS: [f64; 3] = [2.75, 0.87, 0.275];

@@ -10,7 +10,8 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use platener::convert::{Request, Status, convert_all, no_progress};
 use platener::glam::DVec3;
 use platener::method::MethodKind;
-use platener::{Cancel, Settings, Source, samples};
+use platener::{Cancel, Settings, Source};
+use platener_fixtures::samples;
 
 fn request(bytes: &Arc<[u8]>, methods: Vec<MethodKind>) -> Request {
     let source = Source::Bytes {

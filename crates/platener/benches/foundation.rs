@@ -8,7 +8,8 @@ use std::sync::Arc;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use platener::glam::DVec3;
 use platener::inspect::run_foundation;
-use platener::{Cancel, Settings, Source, Weld, samples};
+use platener::{Cancel, Settings, Source, Weld};
+use platener_fixtures::samples;
 
 /// Grid sizes per face: 12·n² triangles ≈ 10k, 100k, 1M.
 const SIZES: [usize; 3] = [29, 91, 289];

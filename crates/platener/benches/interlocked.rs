@@ -6,7 +6,8 @@
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use platener::method::MethodKind;
 use platener::pipeline::{self, Cancel, Source, State, StepId};
-use platener::{Settings, convert, samples};
+use platener::{Settings, convert};
+use platener_fixtures::samples;
 
 fn interlocked(c: &mut Criterion) {
     let mut group = c.benchmark_group("interlocked");

@@ -6,7 +6,8 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use platener::joints::{JointSettings, JointStyle, compute};
-use platener::{Cancel, Settings, Source, samples};
+use platener::{Cancel, Settings, Source};
+use platener_fixtures::samples;
 
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("joints");

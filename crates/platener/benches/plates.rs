@@ -5,7 +5,8 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use platener::inspect::run_foundation;
 use platener::plates::find_plates;
-use platener::{Cancel, Settings, Source, samples};
+use platener::{Cancel, Settings, Source};
+use platener_fixtures::samples;
 
 fn bench(c: &mut Criterion) {
     // 29 × 29 boxes × 120 triangles = 100 920 triangles.

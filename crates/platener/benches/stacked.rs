@@ -7,6 +7,7 @@
 //! Run: `cargo bench -p platener --bench stacked`. Figures go in docs/stacked.md.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use platener::Settings;
 use platener::glam::DVec3;
 use platener::mesh::Mesh;
 use platener::pipeline::{self, Cancel, Source, State};
@@ -14,7 +15,7 @@ use platener::pipeline::{FOUNDATION, StepId};
 use platener::settings::{StackAxis, StackedSettings};
 use platener::stacked::{AxisChoice, SlicePlan, island_rule, islands_of, slice};
 use platener::weld::weld_soup;
-use platener::{Settings, samples};
+use platener_fixtures::samples;
 
 /// Grid sizes per face: 12·n² triangles ≈ 100k and 1M.
 const SIZES: [usize; 2] = [91, 289];

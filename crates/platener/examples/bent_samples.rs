@@ -1,4 +1,4 @@
-//! Writes the bent-plate samples of issue 19 (`platener::samples::bent_samples`) and the CAD
+//! Writes the bent-plate samples of issue 19 (`platener_fixtures::samples::bent_samples`) and the CAD
 //! detail samples of issue 32 (`cad_detail_samples`) and the organic samples of issue 31
 //! (`organic_samples`) as binary STL into a folder, for
 //! converting them by hand: the before/after figures.
@@ -7,7 +7,7 @@
 
 use std::path::PathBuf;
 
-use platener::samples;
+use platener_fixtures::samples;
 
 fn main() -> std::io::Result<()> {
     let dir = std::env::args_os()

@@ -1,11 +1,11 @@
-//! Writes the models shipped in `examples/` from the generators in `platener::samples`.
+//! Writes the models shipped in `examples/` from the generators in `platener_fixtures::samples`.
 //!
 //! Run `cargo run -p platener --example make_examples` after changing a generator; a test
 //! checks the shipped files still match.
 
 use std::path::Path;
 
-use platener::samples;
+use platener_fixtures::samples;
 
 fn main() -> std::io::Result<()> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");

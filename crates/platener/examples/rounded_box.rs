@@ -3,7 +3,7 @@
 //! `cargo run --release -p platener --example rounded_box -- N OUT.stl` writes 12·N² triangles.
 
 use platener::glam::DVec3;
-use platener::samples;
+use platener_fixtures::samples;
 
 fn main() -> std::io::Result<()> {
     let mut args = std::env::args().skip(1);

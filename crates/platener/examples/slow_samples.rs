@@ -6,7 +6,7 @@
 
 use std::path::PathBuf;
 
-use platener::samples;
+use platener_fixtures::samples;
 
 fn main() -> std::io::Result<()> {
     let dir = std::env::args_os()

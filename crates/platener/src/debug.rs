@@ -127,78 +127,6 @@ fn snapshot(state: &State, step: StepId) -> Option<Value> {
     }
 }
 
-/// One model of the debug view's test set.
-#[derive(Debug, Clone)]
-pub struct TestModel {
-    /// A name for URLs and files (letters, digits, `-`).
-    pub name: &'static str,
-    /// What it is and what it exercises.
-    pub label: &'static str,
-    /// Its triangles, in mm.
-    pub triangles: Vec<crate::read::Triangle>,
-}
-
-/// Small labelled models from [`crate::samples`], each exercising one part of the pipeline,
-/// for the debug view's isolated steps (the shipped examples come on top of these).
-pub fn test_set() -> Vec<TestModel> {
-    use crate::samples as s;
-    let model = |name, label, triangles| TestModel { name, label, triangles };
-    vec![
-        model(
-            "closed-box",
-            "closed box 100x80x60, 3 mm walls: 6 plates, 12 corner joints",
-            s::closed_box(100.0, 80.0, 60.0, 3.0),
-        ),
-        model(
-            "tray",
-            "open tray 120x80x40, 3 mm walls: 5 plates",
-            s::open_box(120.0, 80.0, 40.0, 3.0),
-        ),
-        model(
-            "shelf",
-            "shelf (H profile): tee joints, tabs and slots",
-            s::shelf(80.0, 120.0, 50.0, 60.0, 3.0),
-        ),
-        model(
-            "crossing-plates",
-            "two plates crossing: a halved joint",
-            s::crossing_plates(100.0, 3.0),
-        ),
-        model(
-            "roof",
-            "gable roof at 40 degrees: a mitred ridge",
-            s::roof(50.0, 40.0, 80.0, 3.0),
-        ),
-        model("star", "three arms meeting on one line", s::star(3, 40.0, 3.0, 50.0)),
-        model(
-            "table",
-            "table: a top on two leg panels",
-            s::table(120.0, 60.0, 70.0, 10.0, 3.0),
-        ),
-        model("phone-stand", "phone stand, back at 65 degrees", s::phone_stand()),
-        model(
-            "solid-block",
-            "solid block 60x40x30: extruded plates only (empty with inherent only)",
-            s::cuboid(glam::DVec3::ZERO, glam::DVec3::new(60.0, 40.0, 30.0)),
-        ),
-        model(
-            "rounded-box",
-            "rounded box: curved faces for weld and coplanar",
-            s::rounded_box(glam::DVec3::new(60.0, 40.0, 30.0), 5.0, 8),
-        ),
-        model(
-            "two-bodies",
-            "sphere and torus: the stacked method's layers",
-            s::two_bodies(10.0),
-        ),
-        model(
-            "textured-box",
-            "hollow box 60x40x30, 3 mm walls, 0.5 mm bumps outside: the classifier's 12 planes",
-            s::textured_box(glam::DVec3::new(60.0, 40.0, 30.0), 3.0, 0.5, 10.0),
-        ),
-    ]
-}
-
 /// What [`StepDebug::summary`] holds for `step`.
 fn summary(state: &State, step: StepId) -> Value {
     match step {
@@ -356,7 +284,8 @@ mod tests {
     use super::*;
     use crate::convert::{Request, convert_all, no_progress};
     use crate::method::MethodKind;
-    use crate::{Cancel, Settings, Source, samples};
+    use crate::{Cancel, Settings, Source};
+    use platener_fixtures::samples;
 
     fn box_state(method: MethodKind) -> State {
         state_of(&samples::closed_box(100.0, 80.0, 60.0, 3.0), method)
@@ -505,7 +434,7 @@ mod tests {
 
     #[test]
     fn the_test_set_has_unique_url_names_and_closed_models() {
-        let set = test_set();
+        let set = platener_fixtures::test_set::test_set();
         let mut names: Vec<&str> = set.iter().map(|m| m.name).collect();
         names.sort_unstable();
         names.dedup();
@@ -520,7 +449,7 @@ mod tests {
     /// the cavity) are planes, and the primitives view draws the classify step.
     #[test]
     fn the_test_sets_textured_box_is_twelve_planes_in_the_primitives_view() {
-        let model = test_set()
+        let model = platener_fixtures::test_set::test_set()
             .into_iter()
             .find(|m| m.name == "textured-box")
             .expect("in the set");

@@ -26,7 +26,7 @@
 //! parts of its last step that made some ([`State::final_parts`]).
 //!
 //! Below the steps: [`context`], [`settings`], [`error`], [`plan`], [`cuttable`] (the
-//! smallest part), [`draw`] (SVG and the stroke font) and [`samples`]; beside them the helpers
+//! smallest part) and [`draw`] (SVG and the stroke font); beside them the helpers
 //! [`assembly`], [`hinge`], [`repair`], [`score`], [`verify`]; above them [`mod@convert`],
 //! [`options`] (every setting's one definition) and [`swatches`] (`test-strip`, `hinge-test`).
 //!
@@ -35,14 +35,16 @@
 //! bounded JSON (the web service's debug view).
 //!
 //! Programs convert a model in one call, [`convert_all`]: every method, each with its plan,
-//! ZIP, score and warnings or error, and the best named. An upload never touches the disk:
+//! ZIP, score and warnings or error, and the best named. An upload never touches the disk
+//! (the models made in code for tests are in the `platener-fixtures` crate):
 //!
 //! ```
 //! use std::sync::Arc;
 //! use platener::convert::{Request, Status, convert_all, no_progress};
 //! use platener::{Cancel, Settings, Source};
 //!
-//! let bytes = platener::samples::to_binary_stl(&platener::samples::closed_box(100.0, 80.0, 60.0, 3.0), "box");
+//! # let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/box-3mm.stl");
+//! let bytes = std::fs::read(path).expect("the shipped example box");
 //! let source = Source::Bytes { name: "box.stl".into(), bytes: Arc::from(bytes) };
 //! let all = convert_all(Request::new(source, Settings::default()), &Cancel::default(), no_progress());
 //! let best = all.best().expect("a method converted the box");
@@ -82,7 +84,6 @@ pub mod plates;
 pub mod read;
 pub mod relief;
 pub mod repair;
-pub mod samples;
 pub mod scene;
 pub mod score;
 pub mod settings;

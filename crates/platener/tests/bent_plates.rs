@@ -4,7 +4,8 @@
 use platener::plan::{BendStyle, JointKind, MarkKind, Material, PartKind, Plan};
 use platener::read::Triangle;
 use platener::verify::{Verification, verify};
-use platener::{Bending, State, samples};
+use platener::{Bending, State};
+use platener_fixtures::samples;
 
 mod support;
 

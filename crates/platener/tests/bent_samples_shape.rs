@@ -7,7 +7,7 @@ use std::f64::consts::PI;
 
 use platener::glam::{DVec2, DVec3};
 use platener::read::Triangle;
-use platener::samples::{bent_samples, cone_shell, cup, rounded_tray, tube};
+use platener_fixtures::samples::{bent_samples, cone_shell, cup, rounded_tray, tube};
 use proptest::prelude::*;
 
 /// An exact key for a vertex: the samples share corners bit for bit.

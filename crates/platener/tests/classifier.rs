@@ -9,7 +9,8 @@ use platener::method::MethodKind;
 use platener::plan::{JointKind, MarkKind, PartKind, Plan};
 use platener::read::Triangle;
 use platener::verify::{Verification, verify};
-use platener::{Cancel, Settings, Source, State, samples};
+use platener::{Cancel, Settings, Source, State};
+use platener_fixtures::samples;
 
 fn convert_with(method: MethodKind, model: Vec<Triangle>) -> State {
     let settings = Settings {

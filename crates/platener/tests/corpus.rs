@@ -12,7 +12,9 @@ use platener_geom::polygon::perimeter;
 
 /// The corpus, or `None` after saying why these tests skip (CI fails instead).
 fn corpus() -> Option<PathBuf> {
-    platener::samples::shared_corpus().map_err(|m| eprintln!("{m}")).ok()
+    platener_fixtures::samples::shared_corpus()
+        .map_err(|m| eprintln!("{m}"))
+        .ok()
 }
 
 /// Files that must fail, with a piece of the message they must give.
@@ -50,7 +52,7 @@ const WARNS: &[(&str, WarningKind)] = &[
 #[test]
 fn every_corpus_file_converts_or_fails_with_its_message() {
     let Some(dir) = corpus() else { return };
-    let files = platener::samples::stl_files(&dir);
+    let files = platener_fixtures::samples::stl_files(&dir);
     assert!(files.len() >= 50, "expected the 53-file corpus, found {}", files.len());
     let mut converted = 0;
     for path in &files {
@@ -98,7 +100,7 @@ fn shapes_cover_the_surface_of_closed_models() {
         ..Settings::default()
     };
     let (mut checked, mut open) = (0, 0);
-    for path in platener::samples::stl_files(&dir) {
+    for path in platener_fixtures::samples::stl_files(&dir) {
         let name = path.file_name().and_then(|n| n.to_str()).expect("utf-8 name");
         let source = Source::File(path.clone());
         let state = match platener::inspect::run_foundation(source, settings.clone(), &Cancel::default()) {

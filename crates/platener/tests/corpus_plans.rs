@@ -15,7 +15,8 @@ use platener::cuttable::{MIN_AREA, Rule, dovetail_keys};
 use platener::method::MethodKind;
 use platener::plan::PartKind;
 use platener::verify::Check;
-use platener::{Cancel, Settings, Source, State, samples};
+use platener::{Cancel, Settings, Source, State};
+use platener_fixtures::samples;
 use platener_geom::{Polygon, validate};
 
 /// The plans `platener verify` passes (model stem / method), measured when issue 15's parts

@@ -14,7 +14,9 @@ use proptest::prelude::*;
 
 /// A corpus model, or `None` after saying why the test skips (CI fails instead).
 fn corpus_model(rel: &str) -> Option<PathBuf> {
-    let dir = platener::samples::shared_corpus().map_err(|m| eprintln!("{m}")).ok()?;
+    let dir = platener_fixtures::samples::shared_corpus()
+        .map_err(|m| eprintln!("{m}"))
+        .ok()?;
     let path = dir.join(rel);
     assert!(path.is_file(), "{} is missing from the corpus", path.display());
     Some(path)
@@ -294,7 +296,7 @@ fn a_wall_as_thick_as_the_sheet_cuts_the_weld_without_a_warning() {
     // The shipped 3 mm box: its walls are the sheet, so the automatic weld is cut below them
     // quietly (the weld record keeps the figures); only a thinner wall is news to the maker.
     let state = plate_parts(
-        Source::triangles("box", platener::samples::closed_box(100.0, 80.0, 60.0, 3.0)),
+        Source::triangles("box", platener_fixtures::samples::closed_box(100.0, 80.0, 60.0, 3.0)),
         Settings::default(),
     );
     let welded = state.weld.as_deref().expect("weld");

@@ -11,8 +11,8 @@ use platener::glam::{DVec2, DVec3};
 use platener::method::MethodKind;
 use platener::plan::{JointKind, MarkKind, Part, PartKind};
 use platener::plates::{Elevation, Feature, Side};
-use platener::samples::voxels;
 use platener::{Cancel, Features, Settings, Source, State, WarningKind, Weld};
+use platener_fixtures::samples::voxels;
 
 /// Converts `triangles` with the plate method, no weld, and `features`.
 fn plate_method(name: &str, triangles: Vec<platener::read::Triangle>, features: Features) -> State {
@@ -185,7 +185,11 @@ fn a_standoff_is_scored_and_reported_with_its_size_and_height() {
 /// plan; "left out" is said only of what no plate builds.
 #[test]
 fn legs_built_as_plates_are_not_reported_as_bosses_left_out() {
-    let state = plate_method("table", platener::samples::table_square_legs(), Features::Engrave);
+    let state = plate_method(
+        "table",
+        platener_fixtures::samples::table_square_legs(),
+        Features::Engrave,
+    );
     let tall = parts(&state)
         .iter()
         .filter(|p| {
@@ -208,7 +212,11 @@ fn legs_built_as_plates_are_not_reported_as_bosses_left_out() {
 /// letters' outlines) and scores below the engraved tag, which keeps them all.
 #[test]
 fn raised_letters_are_said_engraved_and_a_blank_tag_scores_lower() {
-    let engraved = plate_method("keychain", platener::samples::keychain_tag(), Features::Engrave);
+    let engraved = plate_method(
+        "keychain",
+        platener_fixtures::samples::keychain_tag(),
+        Features::Engrave,
+    );
     let said: Vec<&str> = engraved.warnings().map(|w| w.message.as_str()).collect();
     assert!(
         said.iter()
@@ -216,7 +224,7 @@ fn raised_letters_are_said_engraved_and_a_blank_tag_scores_lower() {
         "{said:?}"
     );
     assert!(!said.iter().any(|m| m.contains("left out")), "{said:?}");
-    let blank = plate_method("keychain", platener::samples::keychain_tag(), Features::Ignore);
+    let blank = plate_method("keychain", platener_fixtures::samples::keychain_tag(), Features::Ignore);
     let score = |state: &State| {
         let bundle = state.export.as_ref().expect("exported");
         let mesh = state.mesh.as_deref().expect("mesh");
@@ -244,7 +252,9 @@ fn plan_json_has_the_marks_as_score() {
 /// Converts a corpus model with the plate method and default settings but `features`; `None`
 /// (after saying why) when the corpus is absent.
 fn corpus_plan(file: &str, features: Features) -> Option<State> {
-    let dir = platener::samples::shared_corpus().map_err(|m| eprintln!("{m}")).ok()?;
+    let dir = platener_fixtures::samples::shared_corpus()
+        .map_err(|m| eprintln!("{m}"))
+        .ok()?;
     let settings = Settings {
         features,
         ..Settings::default()
@@ -493,7 +503,7 @@ fn plan_json(state: &State) -> serde_json::Value {
 #[test]
 fn raised_details_as_tall_as_an_offered_sheet_are_cut_from_it_and_glued() {
     // The block, the ring as four strokes round its hole, the thin stroke.
-    let triangles = platener::samples::tag_with_raised(&[
+    let triangles = platener_fixtures::samples::tag_with_raised(&[
         (10.0, 2.5, 20.0, 10.5),
         (25.0, 2.5, 35.0, 5.5),
         (25.0, 7.5, 35.0, 10.5),
@@ -613,7 +623,11 @@ fn plan_area(part: &platener::plan::PlanPart) -> f64 {
 /// through the floor.
 #[test]
 fn standoffs_become_stacked_discs_on_a_peg_or_a_screw() {
-    let state = plate_method("standoffs", platener::samples::standoff_floor(), Features::Engrave);
+    let state = plate_method(
+        "standoffs",
+        platener_fixtures::samples::standoff_floor(),
+        Features::Engrave,
+    );
     let plan = &state.export.as_ref().expect("exported").plan;
     let area = plan_area;
     let floor = plan
@@ -689,7 +703,7 @@ fn standoffs_become_stacked_discs_on_a_peg_or_a_screw() {
 /// downwards from the floor's lower face and the peg runs through them and the floor.
 #[test]
 fn standoffs_under_a_plate_stack_downwards() {
-    let flipped: Vec<platener::read::Triangle> = platener::samples::standoff_floor()
+    let flipped: Vec<platener::read::Triangle> = platener_fixtures::samples::standoff_floor()
         .into_iter()
         .map(|[a, b, c]| [a, c, b].map(|p| DVec3::new(p.x, p.y, -p.z)))
         .collect();

@@ -11,7 +11,8 @@ use platener::method::MethodKind;
 use platener::plan::{JointKind, Method, PartKind, Plan};
 use platener::read::Triangle;
 use platener::verify::verify;
-use platener::{Cancel, Settings, Source, State, samples};
+use platener::{Cancel, Settings, Source, State};
+use platener_fixtures::samples;
 
 fn interlocked(name: &str, source: Source) -> State {
     let mut s = Settings::default();

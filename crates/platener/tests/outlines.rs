@@ -9,8 +9,8 @@ use std::time::{Duration, Instant};
 use glam::DVec3;
 use platener::convert::{MethodResult, Status, no_progress};
 use platener::method::MethodKind;
-use platener::samples;
 use platener::{Cancel, Error, Request, Settings, Source, convert_all};
+use platener_fixtures::samples;
 use platener_geom::validate;
 use rayon::prelude::*;
 

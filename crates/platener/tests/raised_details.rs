@@ -6,7 +6,8 @@
 use platener::glam::{DVec2, DVec3};
 use platener::method::MethodKind;
 use platener::plan::{MarkKind, MarkSide, Part};
-use platener::{Cancel, Settings, Source, State, convert, samples};
+use platener::{Cancel, Settings, Source, State, convert};
+use platener_fixtures::samples;
 
 fn stacked(name: &str, model: Vec<platener::read::Triangle>) -> State {
     convert(

@@ -34,7 +34,9 @@ fn examples() -> Vec<PathBuf> {
 
 /// The corpus, or `None` after saying why these tests skip (CI fails instead).
 fn corpus_dir() -> Option<PathBuf> {
-    platener::samples::shared_corpus().map_err(|m| eprintln!("{m}")).ok()
+    platener_fixtures::samples::shared_corpus()
+        .map_err(|m| eprintln!("{m}"))
+        .ok()
 }
 
 fn run(method: MethodKind, path: &Path) -> platener::Result<State> {
@@ -217,7 +219,7 @@ fn every_view_of_every_corpus_model() {
     let start = Instant::now();
     let out = tempfile::tempdir().expect("temp dir");
     let (mut files, mut full, mut partial, mut unreadable) = (Vec::new(), 0, 0, 0);
-    for path in platener::samples::stl_files(&dir) {
+    for path in platener_fixtures::samples::stl_files(&dir) {
         let result = plate_result(&path);
         let name = path.file_stem().expect("stem").to_string_lossy().into_owned();
         let Some(state) = result.state.as_ref().filter(|s| s.read.is_some()) else {
@@ -261,7 +263,7 @@ fn every_view_of_every_corpus_model() {
 fn planar_shapes_of_the_corpus_triangulate_to_their_area() {
     let Some(dir) = corpus_dir() else { return };
     let (mut models, mut shapes) = (0, 0);
-    for path in platener::samples::stl_files(&dir) {
+    for path in platener_fixtures::samples::stl_files(&dir) {
         let Ok((state, _)) =
             platener::inspect::run_foundation(Source::File(path.clone()), Settings::default(), &Cancel::default())
         else {
@@ -413,7 +415,7 @@ fn materials(glb: &[u8]) -> Vec<(String, Option<usize>)> {
 fn the_bent_view_colours_a_tube_as_one_part_and_a_box_plate_by_plate() {
     let tube = Source::Triangles {
         name: "tube".into(),
-        triangles: std::sync::Arc::new(platener::samples::tube(12, 50.0, 60.0, 3.0)),
+        triangles: std::sync::Arc::new(platener_fixtures::samples::tube(12, 50.0, 60.0, 3.0)),
     };
     let state = convert(MethodKind::Plate, tube, Settings::default(), &Cancel::default()).expect("tube");
     let nodes = materials(&view(&state, View::Bent).glb);

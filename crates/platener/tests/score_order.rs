@@ -12,7 +12,8 @@ use platener::pipeline::State;
 use platener::plan::Plan;
 use platener::score::{Score, score};
 use platener::verify::{Check, verify};
-use platener::{Cancel, Settings, Source, Weld, convert, samples};
+use platener::{Cancel, Settings, Source, Weld, convert};
+use platener_fixtures::samples;
 
 /// A model of the shared corpus, or `None` after saying why the test skips.
 fn corpus_model(relative: &str) -> Option<PathBuf> {

@@ -7,7 +7,8 @@
 use platener::cuttable::{MIN_AREA, Rule, dovetail_keys};
 use platener::method::MethodKind;
 use platener::plan::{Part, PartKind};
-use platener::{Cancel, Settings, Source, State, convert, samples};
+use platener::{Cancel, Settings, Source, State, convert};
+use platener_fixtures::samples;
 
 fn converted(method: MethodKind, name: &str, triangles: Vec<platener::read::Triangle>, t: f64) -> State {
     let settings = Settings {

@@ -19,7 +19,8 @@ use platener::pipeline::StepId;
 type Conversion = platener::State;
 use platener::plan::{JointKind, PartKind, Plan, PlanPart};
 use platener::settings::StackAxis;
-use platener::{Cancel, Settings, Source, samples};
+use platener::{Cancel, Settings, Source};
+use platener_fixtures::samples;
 use platener_geom::polygon::total_area;
 use platener_geom::slab::Slab;
 use platener_geom::{Frame, Polygon, boolean};
@@ -409,7 +410,7 @@ fn the_output_is_the_same_every_time() {
 
 /// The corpus' organic models, or `None` after saying why this test skips (CI fails instead).
 fn corpus_organic() -> Option<PathBuf> {
-    platener::samples::shared_corpus()
+    platener_fixtures::samples::shared_corpus()
         .map(|d| d.join("organic"))
         .map_err(|m| eprintln!("{m}"))
         .ok()

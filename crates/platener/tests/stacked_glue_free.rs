@@ -11,7 +11,8 @@ use platener::method::MethodKind;
 use platener::read::Triangle;
 use platener::stacked::{PEG_MIN_WALL, Stack};
 use platener::verify::verify;
-use platener::{Cancel, Settings, Source, samples};
+use platener::{Cancel, Settings, Source};
+use platener_fixtures::samples;
 use platener_geom::polygon::total_area;
 use platener_geom::{Polygon, boolean};
 

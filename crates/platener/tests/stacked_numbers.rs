@@ -15,7 +15,8 @@ use platener::glam::DVec2;
 use platener::method::MethodKind;
 use platener::plan::{MarkKind, PartKind, Plan};
 use platener::stacked::Stack;
-use platener::{Cancel, Settings, Source, State, samples};
+use platener::{Cancel, Settings, Source, State};
+use platener_fixtures::samples;
 use platener_geom::polygon::total_area;
 use platener_geom::{Polygon, boolean};
 

@@ -12,7 +12,8 @@ use platener::method::MethodKind;
 use platener::plan::{MarkKind, MarkSide};
 use platener::stacked::{PEG_MIN_WALL, Stack};
 use platener::verify::verify;
-use platener::{Cancel, Settings, Source, State, samples};
+use platener::{Cancel, Settings, Source, State};
+use platener_fixtures::samples;
 use platener_geom::polygon::total_area;
 use platener_geom::{Polygon, boolean, offset};
 

@@ -3,7 +3,8 @@
 //! with 3 mm walls is not.
 
 use platener::method::MethodKind;
-use platener::{Cancel, Settings, Source, State, WarningKind, convert, samples};
+use platener::{Cancel, Settings, Source, State, WarningKind, convert};
+use platener_fixtures::samples;
 
 fn plate_method(wall: f64) -> State {
     let model = samples::open_box(120.0, 80.0, 40.0, wall);

@@ -233,7 +233,7 @@ pub fn rate_limit_and_full_queue_are_429_and_503(backend: Backend) {
 /// The corpus' broken files: the six the reader refuses are `422` at upload with the reader's
 /// line or problem; one it reads despite a quirk is accepted with its triangles.
 pub fn broken_corpus_files_give_the_readers_message(backend: Backend) {
-    let corpus = match platener::samples::shared_corpus() {
+    let corpus = match platener_fixtures::samples::shared_corpus() {
         Ok(dir) => dir,
         Err(message) => {
             eprintln!("skipping: {message}");

@@ -85,7 +85,7 @@ pub async fn step(
 /// `GET /api/debug/models`: the test set, samples first, then the examples, and the steps
 /// each method runs (the step list of the isolated mode before anything ran).
 pub async fn models() -> Json<Value> {
-    let samples = platener::debug::test_set().into_iter().map(|m| {
+    let samples = platener_fixtures::test_set::test_set().into_iter().map(|m| {
         json!({"name": m.name, "label": m.label, "kind": "sample",
                "triangles": m.triangles.len(), "url": format!("/api/debug/models/{}.stl", m.name)})
     });
@@ -112,8 +112,11 @@ pub async fn model(Path(file): Path<String>) -> ApiResult<Response> {
     let name = file
         .strip_suffix(".stl")
         .ok_or_else(|| ApiError::not_found("test model"))?;
-    let bytes = match platener::debug::test_set().into_iter().find(|m| m.name == name) {
-        Some(m) => platener::samples::to_binary_stl(&m.triangles, m.name),
+    let bytes = match platener_fixtures::test_set::test_set()
+        .into_iter()
+        .find(|m| m.name == name)
+    {
+        Some(m) => platener_fixtures::samples::to_binary_stl(&m.triangles, m.name),
         None => EXAMPLES
             .iter()
             .find(|(f, _)| f.trim_end_matches(".stl") == name)

@@ -216,7 +216,7 @@ impl<'a> Inside<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::samples::cuboid;
+    use platener_fixtures::samples::cuboid;
 
     fn indexed(tris: &[crate::read::Triangle]) -> (Vec<DVec3>, Vec<[u32; 3]>) {
         let vertices: Vec<DVec3> = tris.iter().flatten().copied().collect();

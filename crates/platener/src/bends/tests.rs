@@ -5,8 +5,8 @@ use glam::{DVec2, DVec3};
 
 use crate::pipeline::{self, State, StepId};
 use crate::read::Triangle;
-use crate::samples::tube;
 use crate::settings::Settings;
+use platener_fixtures::samples::tube;
 
 pub(crate) fn run_plate(triangles: Vec<Triangle>, settings: Settings) -> State {
     let mut state = State::new(
@@ -149,7 +149,10 @@ fn no_bending_keeps_every_plate_a_part() {
 
 #[test]
 fn a_box_keeps_its_finger_joints() {
-    let state = run_plate(crate::samples::closed_box(100.0, 80.0, 60.0, 3.0), Settings::default());
+    let state = run_plate(
+        platener_fixtures::samples::closed_box(100.0, 80.0, 60.0, 3.0),
+        Settings::default(),
+    );
     assert!(state.bends.as_ref().expect("the step ran").parts.is_empty());
     assert_eq!(state.final_parts().as_ref().expect("the step ran").parts.len(), 6);
 }

@@ -22,7 +22,6 @@ pub mod label;
 pub mod ransac;
 pub mod sample;
 pub mod surface;
-pub mod testsets;
 pub mod volumes;
 
 #[cfg(test)]

@@ -6,14 +6,8 @@ use proptest::prelude::*;
 use super::fit::{refit, simplest};
 use super::sample::sample_surface;
 use super::surface::{Oriented, Surface, cone_from, cylinder_from, plane_from, sphere_from};
-use super::testsets::{self, TestSet};
 use super::*;
-use crate::samples;
-
-/// Classifies a test set with default settings.
-fn classify(set: &TestSet) -> Classification {
-    run(&set.mesh, &ClassifySettings::default()).expect("the test set classifies")
-}
+use platener_fixtures::samples;
 
 /// The welded mesh of a triangle soup.
 fn mesh_of(soup: &[crate::read::Triangle]) -> Mesh {
@@ -174,31 +168,6 @@ fn samples_follow_area_and_seed() {
 }
 
 #[test]
-fn a_box_is_six_planes_and_a_box_volume() {
-    let (soup, truth) = testsets::fine_box(DVec3::new(100.0, 80.0, 60.0), 5.0);
-    let m = mesh_of(&soup);
-    let c = run(&m, &ClassifySettings::default()).expect("classified");
-    assert_eq!(c.primitives.len(), 6);
-    for t in &truth {
-        assert!(
-            c.primitives
-                .iter()
-                .any(|p| testsets::matches(t, &p.shape, c.thresholds.eps).is_some()),
-            "{t:?} missing"
-        );
-    }
-    // Every triangle explained; the labelled areas add up to the surface.
-    assert!(c.labels.iter().all(Option::is_some));
-    let labelled: f64 = c.primitives.iter().map(|p| p.area).sum();
-    assert!((labelled - 2.0 * (100.0 * 80.0 + 100.0 * 60.0 + 80.0 * 60.0)).abs() < 1e-6);
-    assert_eq!(c.volumes.len(), 1);
-    assert_eq!(c.volumes[0].kind, VolumeKind::Box);
-    assert_eq!(c.volumes[0].primitives, vec![0, 1, 2, 3, 4, 5]);
-    assert_eq!(c.graph.nodes.len(), 1);
-    assert!(c.graph.edges.is_empty());
-}
-
-#[test]
 fn an_l_extrusion_is_a_prism() {
     let l = [
         (0.0, 0.0),
@@ -250,47 +219,6 @@ fn a_hollow_box_finds_its_outside_as_a_box() {
 }
 
 #[test]
-fn tube_is_one_cylinder_volume_with_caps_and_bore() {
-    let m = mesh_of(&testsets::revolved(30.0, 30.0, 20.0, 60.0, 96, 2.0));
-    let c = run(&m, &ClassifySettings::default()).expect("classified");
-    assert_eq!(c.volumes.len(), 1, "{:?}", c.volumes);
-    assert_eq!(c.volumes[0].kind, VolumeKind::Cylinder);
-    assert_eq!(c.volumes[0].primitives.len(), 4);
-    let bores = c
-        .primitives
-        .iter()
-        .filter(|p| matches!(p.shape, Surface::Cylinder { .. }) && !p.outward)
-        .count();
-    assert_eq!(bores, 1);
-}
-
-#[test]
-fn graph_covers_every_triangle_once() {
-    // A torus no primitive explains in full, a box beside it: every triangle is in exactly
-    // one node, node areas add up, edges name real nodes.
-    let mut soup = samples::torus(DVec3::new(200.0, 0.0, 0.0), DVec3::Z, 40.0, 12.0, 64, 24);
-    soup.extend(testsets::fine_box(DVec3::new(50.0, 50.0, 50.0), 5.0).0);
-    let m = mesh_of(&soup);
-    let c = run(&m, &ClassifySettings::default()).expect("classified");
-    let g = &c.graph;
-    assert_eq!(g.node_of_triangle.len(), m.triangles.len());
-    assert_eq!(g.nodes.iter().map(|n| n.triangles).sum::<usize>(), m.triangles.len());
-    let area: f64 = g.nodes.iter().map(|n| n.area).sum();
-    assert!((area - c.surface_area).abs() < 1e-6 * c.surface_area);
-    assert!(g.edges.iter().all(|e| e[0] < e[1] && (e[1] as usize) < g.nodes.len()));
-    assert!(g.nodes.iter().any(|n| n.volume == Some(VolumeKind::Box)));
-}
-
-#[test]
-fn same_seed_same_result() {
-    let set = &testsets::standard(0.25, 3)[1];
-    let a = serde_json::to_string(&classify(set)).expect("json");
-    let b = serde_json::to_string(&classify(set)).expect("json");
-    assert_eq!(a, b);
-    assert!(a.contains("\"cylinder\""));
-}
-
-#[test]
 fn bad_input_is_an_error() {
     let m = mesh_of(&samples::cuboid(DVec3::ZERO, DVec3::ONE));
     let bad = ClassifySettings {
@@ -314,38 +242,4 @@ fn bad_input_is_an_error() {
         run(&empty, &ClassifySettings::default()).err(),
         Some(ClassifyError::NoSurface)
     );
-}
-
-#[test]
-#[ignore = "measurement: prints the per-noise-level figures for docs/classifier.md"]
-fn measure_accuracy() {
-    let levels = std::env::var("NOISE").map_or(vec![0.0, 0.1, 0.25, 0.5], |v| vec![v.parse().expect("a number")]);
-    for noise in levels {
-        let (mut found, mut total, mut phantoms, mut worst_share, mut worst_deg, mut worst_rel) =
-            (0, 0, 0, 0.0f64, 0.0f64, 0.0f64);
-        for seed in 0..5 {
-            for set in testsets::standard(noise, seed) {
-                let c = classify(&set);
-                let s = testsets::accuracy(&set, &c);
-                (found, total, phantoms) = (found + s.found, total + s.total, phantoms + s.phantoms);
-                worst_share = worst_share.max(s.worst_unmatched_share);
-                worst_deg = worst_deg.max(s.worst_angle_deg);
-                worst_rel = worst_rel.max(s.worst_radius_rel);
-                if s.found < s.total {
-                    eprintln!(
-                        "  {} missed: {:?}",
-                        set.name,
-                        c.primitives
-                            .iter()
-                            .map(|p| (p.area / c.surface_area, p.shape))
-                            .collect::<Vec<_>>()
-                    );
-                }
-            }
-        }
-        eprintln!(
-            "noise {noise}: found {found}/{total}, phantoms {phantoms}, worst unmatched share {worst_share:.4}, worst angle {worst_deg:.3}°, worst radius {:.3} %",
-            worst_rel * 100.0
-        );
-    }
 }

@@ -2,8 +2,8 @@ use std::io::Read;
 use std::sync::Arc;
 
 use super::*;
-use crate::samples;
 use crate::verify::plan_from_zip;
+use platener_fixtures::samples;
 
 #[test]
 fn the_box_becomes_a_zip_with_six_parts_on_sheets() {

@@ -12,8 +12,8 @@ use super::place::{self, Family, families, sections};
 use super::*;
 use crate::cuttable::Rule;
 use crate::read::Triangle;
-use crate::samples::{ellipsoid, sphere, torus};
 use crate::weld::weld_soup;
+use platener_fixtures::samples::{ellipsoid, sphere, torus};
 
 /// Heights closer than this count as equal (the booleans' 1 µm grid, with room).
 const EPS: f64 = 1e-3;
@@ -146,7 +146,7 @@ fn a_torus_lying_flat_gives_two_pieces_per_slice_through_its_hole() {
 fn a_piece_no_slice_of_the_other_family_meets_is_left_out_and_said() {
     // A 60 mm ball and, 24 mm away along x, an 8 × 6 mm rod standing between two B planes.
     let mut tris = sphere(DVec3::ZERO, 30.0, 48, 24);
-    tris.extend(crate::samples::cuboid(
+    tris.extend(platener_fixtures::samples::cuboid(
         DVec3::new(54.0, -3.0, -20.0),
         DVec3::new(62.0, 3.0, 20.0),
     ));
@@ -181,7 +181,11 @@ fn a_hollow_box_is_sliced_solid_and_a_standing_torus_keeps_its_middle() {
     // A closed 100 × 80 × 60 box with 3 mm walls: its slices' holes are the box's hollow,
     // enclosed along the slices' normals, so each slice is the whole 80 × 60 (A) or
     // 100 × 60 (B) rectangle less its slots, not a ring of walls.
-    let (_, boxed) = made(&crate::samples::closed_box(100.0, 80.0, 60.0, 3.0), 3.0, 10.0);
+    let (_, boxed) = made(
+        &platener_fixtures::samples::closed_box(100.0, 80.0, 60.0, 3.0),
+        3.0,
+        10.0,
+    );
     // Each slot is 3 mm wide and half the 60 mm height.
     for p in &boxed.pieces {
         let full = if p.family == 0 { 80.0 * 60.0 } else { 100.0 * 60.0 };

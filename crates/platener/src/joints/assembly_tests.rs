@@ -11,7 +11,7 @@ use super::tests::{
 };
 use super::*;
 use crate::assembly::Inside;
-use crate::samples;
+use platener_fixtures::samples;
 
 /// Distance from `p` to the part (a prism): `sqrt(dz² + d2²)`, where `dz` is how far the local
 /// z lies outside `[0, thickness]` and `d2` is 0 inside the outline, else the distance to its

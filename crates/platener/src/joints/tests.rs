@@ -3,7 +3,7 @@ use platener_geom::slab::Slab;
 
 use super::*;
 use crate::read::Triangle;
-use crate::samples;
+use platener_fixtures::samples;
 
 fn plates_of(triangles: Vec<Triangle>) -> Vec<Plate> {
     plates_with(triangles, 3.0)

@@ -1,8 +1,8 @@
 use glam::DVec3;
 
 use super::*;
-use crate::samples::cuboid;
 use crate::weld::weld_soup;
+use platener_fixtures::samples::cuboid;
 
 fn build(soup: &[[DVec3; 3]]) -> Mesh {
     let w = weld_soup(soup, 0.0);
@@ -73,7 +73,7 @@ fn three_faces_on_one_edge_are_non_manifold() {
 
 #[test]
 fn a_cavity_keeps_its_normals_pointing_into_the_void() {
-    let soup = crate::samples::closed_box(100.0, 80.0, 60.0, 3.0);
+    let soup = platener_fixtures::samples::closed_box(100.0, 80.0, 60.0, 3.0);
     let want = 100.0 * 80.0 * 60.0 - 94.0 * 74.0 * 54.0;
     let m = build(&soup);
     assert_eq!((m.health.components, m.health.flipped_faces), (2, 0));

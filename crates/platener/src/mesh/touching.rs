@@ -147,7 +147,7 @@ mod tests {
         let (mut v, mut t, mut bodies) = (Vec::new(), Vec::new(), Vec::new());
         for &(min, size) in boxes {
             let first = t.len() as u32;
-            for tri in crate::samples::cuboid(min, min + size) {
+            for tri in platener_fixtures::samples::cuboid(min, min + size) {
                 let base = v.len() as u32;
                 v.extend(tri);
                 t.push([base, base + 1, base + 2]);

@@ -259,7 +259,7 @@ fn l_model() -> crate::mesh::Mesh {
         profile.push(centre + DVec2::new(a.cos(), a.sin()) * (r - T / 2.0));
     }
     profile.push(DVec2::new(0.0, T));
-    let w = crate::weld::weld_soup(&crate::samples::prism(&profile, WIDE), 0.0);
+    let w = crate::weld::weld_soup(&platener_fixtures::samples::prism(&profile, WIDE), 0.0);
     crate::mesh::Mesh::build(w.vertices, &w.triangles, 1e-9)
 }
 

@@ -6,8 +6,8 @@ use proptest::prelude::*;
 use super::{PlateKind, Plates, Rejection};
 use crate::pipeline::{self, Cancel, Source, State};
 use crate::read::Triangle;
-use crate::samples;
 use crate::settings::{PlateMode, Settings};
+use platener_fixtures::samples;
 
 fn plates_of(triangles: Vec<Triangle>, settings: Settings) -> Arc<Plates> {
     let source = Source::triangles("test", triangles);

@@ -167,7 +167,7 @@ fn view_names_parse_back() {
 /// limit, the note says so, and every k-th inlier keeps the points under their limit.
 #[test]
 fn a_classification_over_the_limits_is_drawn_decimated_and_thinned() {
-    let soup = crate::samples::textured_box(DVec3::new(120.0, 90.0, 70.0), 3.0, 0.3, 2.5);
+    let soup = platener_fixtures::samples::textured_box(DVec3::new(120.0, 90.0, 70.0), 3.0, 0.3, 2.5);
     let welded = crate::weld::weld_soup(&soup, 1e-6);
     let mesh = crate::mesh::Mesh::build(welded.vertices, &welded.triangles, 1e-9);
     assert!(mesh.triangles.len() > TRIANGLE_LIMIT);

@@ -6,7 +6,8 @@ use crate::method::MethodKind;
 use crate::pipeline::State;
 use crate::plan::{JointKind, PlanJoint};
 use crate::read::Triangle;
-use crate::{Cancel, Settings, Source, samples};
+use crate::{Cancel, Settings, Source};
+use platener_fixtures::samples;
 
 /// The score of a converted state.
 fn score_of(c: &State) -> Score {

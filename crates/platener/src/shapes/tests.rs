@@ -6,8 +6,8 @@ use proptest::prelude::*;
 use crate::inspect::run_foundation;
 use crate::pipeline::{Cancel, Source};
 use crate::read::Triangle;
-use crate::samples::{cuboid, open_box, voxels};
 use crate::settings::Settings;
+use platener_fixtures::samples::{cuboid, open_box, voxels};
 
 use platener_geom::grid::STEP;
 use platener_geom::polygon::perimeter;
@@ -132,7 +132,7 @@ fn welding_removes_chamfers_so_faces_meet_again() {
         p(0.0, s - c),
         p(0.0, c),
     ];
-    let model = crate::samples::prism(&profile, s);
+    let model = platener_fixtures::samples::prism(&profile, s);
     let unwelded = {
         let source = Source::triangles("chamfered", model.clone());
         let settings = Settings {
@@ -159,7 +159,7 @@ fn welding_removes_chamfers_so_faces_meet_again() {
 
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
-    let model = crate::samples::rounded_box(DVec3::new(60.0, 40.0, 30.0), 5.0, 24);
+    let model = platener_fixtures::samples::rounded_box(DVec3::new(60.0, 40.0, 30.0), 5.0, 24);
     let run_with = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)

@@ -99,9 +99,9 @@ mod tests {
     use super::super::shafts::place;
     use super::super::{AxisChoice, SlicePlan, Stack, islands_of, slice};
     use crate::mesh::Mesh;
-    use crate::samples::two_bodies;
     use crate::settings::StackedSettings;
     use crate::weld::weld_soup;
+    use platener_fixtures::samples::two_bodies;
 
     /// The stack of two separate bodies (a sphere and a torus), 3 mm layers along z.
     fn two_stacks() -> Stack {

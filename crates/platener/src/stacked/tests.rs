@@ -12,9 +12,9 @@ use super::shafts::place;
 use super::*;
 use crate::mesh::Mesh;
 use crate::read::Triangle;
-use crate::samples::{cuboid, sphere, torus, two_bodies, voxels};
 use crate::settings::{StackAxis, StackedSettings};
 use crate::weld::weld_soup;
+use platener_fixtures::samples::{cuboid, sphere, torus, two_bodies, voxels};
 
 fn mesh(tris: &[Triangle]) -> Mesh {
     let w = weld_soup(tris, 0.0);
@@ -110,7 +110,7 @@ fn overlapping_bodies_unite_and_cavities_become_holes() {
         assert!((a - 150.0).abs() < 1e-4, "{areas:?}");
     }
     // A closed box of 3 mm walls is a shell with a cavity shell inside.
-    let hollow = crate::samples::closed_box(100.0, 80.0, 60.0, 3.0);
+    let hollow = platener_fixtures::samples::closed_box(100.0, 80.0, 60.0, 3.0);
     let (_, areas) = layer_areas(&hollow, DVec3::Z, 3.0);
     assert_eq!(areas.len(), 20);
     for a in &areas[1..19] {
@@ -123,7 +123,7 @@ fn overlapping_bodies_unite_and_cavities_become_holes() {
 fn the_largest_flat_face_is_laid_down() {
     // A wedge whose largest face is its sloped top: the stack's up is into that face.
     let profile = [DVec2::new(0.0, 0.0), DVec2::new(80.0, 0.0), DVec2::new(0.0, 60.0)];
-    let tris = crate::samples::prism(&profile, 100.0);
+    let tris = platener_fixtures::samples::prism(&profile, 100.0);
     let m = mesh(&tris);
     let groups = crate::coplanar::group_faces(&m, 1f64.to_radians());
     let (up, choice) = choose_up(&m, Some(&groups), StackAxis::Auto);

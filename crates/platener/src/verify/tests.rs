@@ -2,8 +2,8 @@ use super::*;
 use crate::convert::convert;
 use crate::method::MethodKind;
 use crate::pipeline::{Cancel, Source};
-use crate::samples;
 use crate::settings::Settings;
+use platener_fixtures::samples;
 
 fn check(model: Vec<crate::read::Triangle>) -> Verification {
     let source = Source::triangles("m", model);

@@ -38,7 +38,7 @@ fn bevel_collapses_into_a_sharp_edge() {
 fn welding_never_closes_a_small_hole() {
     // A 60 × 60 × 3 plate with a 1.5 mm square hole: welding at 1.8 mm would close it.
     let xs = [0.0, 29.25, 30.75, 60.0];
-    let plate = crate::samples::voxels(&xs, &xs, &[0.0, 3.0], |i, j, _| !(i == 1 && j == 1));
+    let plate = platener_fixtures::samples::voxels(&xs, &xs, &[0.0, 3.0], |i, j, _| !(i == 1 && j == 1));
     let exact = ExactSoup::new(&plate);
     assert_eq!(exact.counts.euler, 0, "a plate with one hole is a torus");
     assert_eq!(
@@ -54,15 +54,15 @@ fn welding_never_closes_a_small_hole() {
 
 #[test]
 fn euler_characteristic_of_simple_solids() {
-    let cube = crate::samples::cuboid(DVec3::ZERO, DVec3::ONE);
+    let cube = platener_fixtures::samples::cuboid(DVec3::ZERO, DVec3::ONE);
     assert_eq!(ExactSoup::new(&cube).counts.euler, 2);
-    let hollow = crate::samples::closed_box(10.0, 10.0, 10.0, 2.0);
+    let hollow = platener_fixtures::samples::closed_box(10.0, 10.0, 10.0, 2.0);
     assert_eq!(ExactSoup::new(&hollow).counts.euler, 4, "two closed shells");
 }
 
 #[test]
 fn thinnest_wall_is_measured_between_opposite_faces() {
-    use crate::samples::{closed_box, cuboid, open_box, rounded_box};
+    use platener_fixtures::samples::{closed_box, cuboid, open_box, rounded_box};
     let wall = |tris: &[[DVec3; 3]]| walls::thinnest_wall(tris).map(|w| (w * 1e6).round() / 1e6);
     // A board: its thickness.
     assert_eq!(wall(&cuboid(DVec3::ZERO, DVec3::new(120.0, 80.0, 1.6))), Some(1.6));

@@ -11,7 +11,8 @@ use platener::convert::{Request, convert_all, no_progress};
 use platener::method::MethodKind;
 use platener::read::Triangle;
 use platener::scene::{POINT_LIMIT, SceneError, View};
-use platener::{Cancel, Settings, Source, State, samples};
+use platener::{Cancel, Settings, Source, State};
+use platener_fixtures::samples;
 use serde_json::Value;
 
 use super::check::{Node, assert_root, load};

@@ -108,7 +108,7 @@ fn check_special(name: &str, result: &Result<(Format, RawMesh), ReadErrorKind>) 
 
 #[test]
 fn corpus_files_read_as_stated() {
-    let dir = match platener::samples::shared_corpus() {
+    let dir = match platener_fixtures::samples::shared_corpus() {
         Ok(dir) => dir,
         Err(skip) => return eprintln!("{skip}"),
     };

@@ -4,8 +4,8 @@ use resvg::tiny_skia::Pixmap;
 
 use super::*;
 use crate::pipeline::StepId;
-use crate::samples::closed_box;
 use crate::settings::Settings;
+use platener_fixtures::samples::closed_box;
 
 /// The parts of the plate method for a closed 100 × 80 × 60 mm box of 3 mm walls.
 fn box_assembly() -> Assembly {

@@ -150,7 +150,7 @@ fn nul_padding_after_endsolid_is_noted() {
 #[test]
 fn a_whole_facet_too_many_is_a_count_mismatch_not_a_guess() {
     let tri = [glam::DVec3::ZERO, glam::DVec3::X, glam::DVec3::Y];
-    let mut bytes = crate::samples::to_binary_stl(&[tri, tri], "padded");
+    let mut bytes = platener_fixtures::samples::to_binary_stl(&[tri, tri], "padded");
     bytes[80..84].copy_from_slice(&1u32.to_le_bytes());
     assert!(matches!(
         parse_bytes(&bytes),

@@ -8,10 +8,9 @@ use glam::{DQuat, DVec3};
 use platener_geom::rng::SplitMix64;
 use serde::Serialize;
 
-use super::Classification;
-use super::surface::Surface;
-use crate::mesh::Mesh;
-use crate::read::Triangle;
+use platener::classify::{Classification, Surface};
+use platener::mesh::Mesh;
+use platener_geom::Triangle;
 
 /// A labelled mesh: what it is made of.
 #[derive(Debug, Clone)]
@@ -94,7 +93,7 @@ pub fn revolved(r0: f64, r1: f64, bore: f64, h: f64, seg: usize, cell: f64) -> V
 /// seeded uniform amount in [−`amplitude`, `amplitude`] mm, then moves the whole by a
 /// seeded rigid motion; the mesh and the motion.
 pub fn roughen_and_move(soup: &[Triangle], amplitude: f64, seed: u64) -> (Mesh, DQuat, DVec3) {
-    let w = crate::weld::weld_soup(soup, 1e-6);
+    let w = platener::weld::weld_soup(soup, 1e-6);
     let mut normals = vec![DVec3::ZERO; w.vertices.len()];
     for t in &w.triangles {
         let [a, b, c] = t.map(|i| w.vertices[i as usize]);
