@@ -241,7 +241,15 @@ fn joints_summary(state: &State) -> Value {
         &j.regions,
         |_, r| json!({"label": r.label, "plates": [r.plates[0] + 1, r.plates[1] + 1], "claimed_by": r.claimed_by + 1}),
     );
-    json!({"connections": connections, "count": j.connections.len(), "keys": j.keys.len(), "claims": claims})
+    // Which of the bends step's bent parts hold together once jointed (1-based, as listed
+    // there), and why the others stay jointed plates.
+    let held: Vec<usize> = j.held_bends.iter().map(|k| k + 1).collect();
+    let refused = listed(
+        &j.refused_bends,
+        |_, r| json!({"plates": [r.plates[0] + 1, r.plates[1] + 1], "reason": r.reason}),
+    );
+    json!({"connections": connections, "count": j.connections.len(), "keys": j.keys.len(), "claims": claims,
+           "bent_parts_held": held, "bent_parts_refused": refused})
 }
 
 /// Parts (ids as engraved and as the final scene's `part-ID` nodes) and their joints.

@@ -89,6 +89,7 @@ pub mod score;
 pub mod settings;
 pub mod shapes;
 pub mod sheets;
+pub mod slicing;
 pub mod stacked;
 pub mod swatches;
 pub mod verify;

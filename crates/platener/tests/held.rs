@@ -5,7 +5,7 @@
 use platener::glam::{DVec2, DVec3};
 use platener::joints::ConnectionKind;
 use platener::method::MethodKind;
-use platener::plan::Material;
+use platener::plan::{Material, PartKind};
 use platener::read::Triangle;
 use platener::verify::verify;
 use platener::{Cancel, Settings, Source, State, convert};
@@ -376,4 +376,30 @@ fn geo_lamp_lists_no_joint_whose_parts_do_not_meet() {
     // Before: 5 groups and 3 joints (7, 50, 71) listed whose parts did not meet; the same
     // groups now, with those joints named as left out.
     assert!(v.groups <= 5, "{:?}", v.group_parts);
+    // The `joints` step decides which proposed bent parts hold (issue 33): of the bends
+    // step's 18, 6 would fall apart once jointed; their plates are jointed to each other
+    // again, and only the 12 that hold are cut as bent parts.
+    let (bends, joints) = (
+        state.bends.as_ref().expect("bends"),
+        state.joints.as_ref().expect("joints"),
+    );
+    assert_eq!(
+        (bends.parts.len(), joints.held_bends.len(), joints.refused_bends.len()),
+        (18, 12, 6)
+    );
+    let bent_parts = bundle.plan.parts.iter().filter(|p| p.kind == PartKind::Bent).count();
+    assert_eq!(bent_parts, 12);
+    for (k, part) in bends
+        .parts
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| !joints.held_bends.contains(k))
+    {
+        let plates = part.plates();
+        let inside = |c: &&platener::joints::Connection| plates.contains(&c.plates[0]) && plates.contains(&c.plates[1]);
+        assert!(
+            joints.connections.iter().any(|c| inside(&c)),
+            "refused bent part {k} (plates {plates:?}): no joint among its plates"
+        );
+    }
 }

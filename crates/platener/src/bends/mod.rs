@@ -14,13 +14,15 @@
 //! 3. [`remove`]: where a plate already added blocks others from joining, the layout is grown
 //!    again without it (a bounded number of times), and kept when it is better.
 //!
-//! The snapshot says which plates form each bent part, where each lies on the flat, its bend
-//! lines and seams; the `joints` step leaves bends (and glued seams) without fingers and
-//! the `parts` step merges the jointed plates into one part.
+//! The snapshot proposes which plates form each bent part, where each lies on the flat, its
+//! bend lines and seams. The `joints` step leaves bends (and glued seams) without fingers
+//! and decides which proposed parts hold together once jointed ([`flat`] lays one out); the
+//! `parts` step merges the jointed plates of those into one part.
 
 mod close;
 mod fillet;
 mod find;
+pub mod flat;
 mod grow;
 mod remove;
 #[cfg(test)]
@@ -71,10 +73,6 @@ pub struct Bends {
     pub candidates: usize,
     /// Candidates that stayed joints, and why.
     pub refused: Vec<Refusal>,
-    /// The joints of these bent parts, computed to check each holds together, for the
-    /// `joints` step to take (the joints snapshot shows them).
-    #[serde(skip)]
-    pub joints: Option<std::sync::Arc<crate::joints::reuse::Computed>>,
     /// How many plates there were (the pairs [`Bends::unjointed`] names reach them all).
     #[serde(skip)]
     pub plate_count: usize,
@@ -187,6 +185,17 @@ impl Bends {
             .collect()
     }
 
+    /// These bends with only the bent parts `held` names (indices into [`Bends::parts`], the
+    /// ones the `joints` step found to hold together once jointed); the plates of the others
+    /// are plates again.
+    pub fn keeping(&self, held: &[usize]) -> Bends {
+        Bends {
+            parts: held.iter().filter_map(|&k| self.parts.get(k).cloned()).collect(),
+            refused: Vec::new(),
+            ..self.clone()
+        }
+    }
+
     /// The plate pairs (lower first) that need no joint: the bends, with paper and card
     /// the seams (a glue flap closes them), and every pair with a plate an arc zone replaced.
     pub fn unjointed(&self) -> std::collections::BTreeSet<(u32, u32)> {
@@ -240,69 +249,41 @@ pub fn run(plates: &Plates, mesh: &Mesh, settings: &Settings, cx: &mut StepConte
         );
     }
     let off_grid = |e| Error::model(cx.model(), ModelProblem::OffGrid(e));
-    let mut bends = compute(&plates.plates, Some(mesh), settings.bending, material, sheet).map_err(off_grid)?;
-    keep_sound(&mut bends, plates, settings).map_err(off_grid)?;
-    for (k, part) in bends.parts.iter().enumerate() {
-        let t = plates.plates[part.members[0].plate as usize].thickness;
-        let round = part.bends.iter().map(BendLine::rounding).fold(0.0, f64::max);
-        if round > t {
-            cx.warn(
-                WarningKind::Joints,
-                format!(
-                    "bent part {} (of plates {}): its bends round the model's corners by up to {round:.1} mm",
-                    k + 1,
-                    plate_list(part)
-                ),
-            );
-        }
-    }
-    if !bends.parts.is_empty() {
-        let merged: usize = bends.parts.iter().map(|p| p.plates().len()).sum();
-        cx.warn(
-            WarningKind::Joints,
-            format!(
-                "{merged} plates are merged into {} bent part(s) ({}); `bend` none keeps them as jointed plates",
-                bends.parts.len(),
-                bends.style.map_or("", BendStyle::name)
-            ),
-        );
-    }
+    let bends = compute(&plates.plates, Some(mesh), settings.bending, material, sheet).map_err(off_grid)?;
     Ok(bends)
 }
 
-/// Drops the bent parts that would not hold together once their plates carry their joints
-/// (a joint's slot or shortened fingers cutting a plate apart next to a bend, a small facet
-/// left all joint): their plates stay plates, which the `joints` step then joins as usual.
-/// When every part holds, the joints computed here are the final ones: they are kept for
-/// the `joints` step.
-fn keep_sound(bends: &mut Bends, plates: &Plates, settings: &Settings) -> std::result::Result<(), GridError> {
-    let Some(style) = bends.style.filter(|_| !bends.parts.is_empty()) else {
-        return Ok(());
-    };
-    let joint_settings = crate::joints::settings_for(settings);
-    let computed = crate::joints::reuse::Computed::compute(&plates.plates, &joint_settings, &bends.unjointed())?;
-    let (sound, unsound): (Vec<BentPart>, Vec<BentPart>) = std::mem::take(&mut bends.parts)
-        .into_iter()
-        .partition(|p| crate::parts::bent::holds_together(p, plates, &computed.joints, style));
-    bends.parts = sound;
-    if unsound.is_empty() {
-        bends.joints = Some(std::sync::Arc::new(computed));
+impl Bends {
+    /// What the maker should know about these bent parts (the ones that hold, as the
+    /// `joints` step keeps them): bends that round the model's corners by more than a
+    /// thickness, and how many plates are merged into how many parts.
+    pub fn notes(&self, plates: &Plates) -> Vec<String> {
+        let mut notes = Vec::new();
+        for (k, part) in self.parts.iter().enumerate() {
+            let t = plates.plates[part.members[0].plate as usize].thickness;
+            let round = part.bends.iter().map(BendLine::rounding).fold(0.0, f64::max);
+            if round > t {
+                notes.push(format!(
+                    "bent part {} (of plates {}): its bends round the model's corners by up to {round:.1} mm",
+                    k + 1,
+                    plate_list(part)
+                ));
+            }
+        }
+        if !self.parts.is_empty() {
+            let merged: usize = self.parts.iter().map(|p| p.plates().len()).sum();
+            notes.push(format!(
+                "{merged} plates are merged into {} bent part(s) ({}); `bend` none keeps them as jointed plates",
+                self.parts.len(),
+                self.style.map_or("", BendStyle::name)
+            ));
+        }
+        notes
     }
-    for part in unsound {
-        let first = &part.members[0];
-        bends.refused.push(Refusal {
-            plates: [first.plate, part.members.get(1).map_or(first.plate, |m| m.plate)],
-            reason: format!(
-                "the bent part of plates {} would not hold together once jointed; they stay jointed plates",
-                plate_list(&part)
-            ),
-        });
-    }
-    Ok(())
 }
 
 /// The plates of a bent part, numbered as in the plates step, for messages.
-fn plate_list(part: &BentPart) -> String {
+pub fn plate_list(part: &BentPart) -> String {
     let ids: Vec<String> = part.plates().iter().map(|p| (p + 1).to_string()).collect();
     ids.join(", ")
 }
@@ -360,7 +341,6 @@ pub fn compute(
                 reason: reason.clone(),
             })
             .collect(),
-        joints: None,
         plate_count: plates.len(),
     })
 }

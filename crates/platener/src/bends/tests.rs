@@ -286,25 +286,31 @@ fn a_style_the_material_cannot_take_is_named_in_a_warning() {
 }
 
 #[test]
-fn the_joints_step_takes_the_joints_the_bends_step_computed_when_every_part_holds() {
+fn the_joints_step_holds_a_sound_bent_part_and_leaves_its_bends_without_fingers() {
     let state = run_plate(tube(12, 50.0, 60.0, 3.0), Settings::default());
     let plates = &state.plates.as_ref().expect("the step ran").plates;
     let bends = state.bends.as_ref().expect("the step ran");
     assert_eq!(bends.parts.len(), 1);
-    let kept = bends.joints.as_ref().expect("every part holds: its joints are kept");
-    let settings = crate::joints::settings_for(&state.settings);
-    assert!(kept.made_for(plates, &settings, &bends.unjointed()));
-    assert!(
-        !kept.made_for(plates, &settings, &Default::default()),
-        "bends leave no fingers"
-    );
-    // The joints step's outlines are the ones computed afresh: 12 plates, 11 bends without
-    // fingers and one seam with them.
-    let (fresh, _) = crate::joints::compute_except(plates, &settings, &bends.unjointed()).expect("on the grid");
     let joints = state.joints.as_ref().expect("the step ran");
+    assert_eq!(joints.held_bends, [0], "{:?}", joints.refused_bends);
+    assert!(joints.refused_bends.is_empty());
+    // The joints step's outlines are the ones computed with the bends left without fingers:
+    // 12 plates, 11 bends without fingers and one seam with them.
+    let settings = crate::joints::settings_for(&state.settings);
+    let (fresh, _) = crate::joints::compute_except(plates, &settings, &bends.unjointed()).expect("on the grid");
     assert_eq!(joints.outlines, fresh.outlines);
     assert_eq!(joints.connections.len(), 1);
     assert_eq!(joints.connections[0].plates, fresh.connections[0].plates);
+    let (all, _) = crate::joints::compute_except(plates, &settings, &Default::default()).expect("on the grid");
+    assert_eq!(
+        all.connections.len(),
+        12,
+        "without the bends every edge of the ring is jointed"
+    );
+    // The parts step merged the held part: one bent part of 12 segments.
+    let parts = &state.parts.as_ref().expect("the step ran").parts;
+    assert_eq!(parts.len(), 1);
+    assert_eq!(parts[0].segments.len(), 12);
 }
 
 mod orders {

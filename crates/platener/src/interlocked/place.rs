@@ -18,7 +18,8 @@ use serde::Serialize;
 use crate::assembly::Inside;
 use crate::cuttable::Rule;
 use crate::mesh::Mesh;
-use crate::stacked::{AxisChoice, SlicePlan, Sliced, fill, keep_cuttable, slice};
+use crate::slicing::{AxisChoice, SlicePlan, Sliced, fill, slice};
+use crate::stacked::keep_cuttable;
 
 /// Slices along the longest horizontal extent by default.
 pub const SLICES_ALONG_LONGEST: f64 = 10.0;

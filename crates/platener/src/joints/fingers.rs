@@ -705,6 +705,8 @@ impl<'a> Cutting<'a> {
             edges,
             keys: self.keys(&labels),
             regions: self.regions(&labels),
+            held_bends: Vec::new(),
+            refused_bends: Vec::new(),
         };
         Ok((joints, warnings))
     }

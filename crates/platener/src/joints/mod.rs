@@ -21,13 +21,13 @@
 mod along;
 #[cfg(test)]
 mod assembly_tests;
+mod bent;
 mod bridge;
 mod cap;
 mod claims;
 mod connect;
 mod fingers;
 mod junction;
-pub mod reuse;
 #[cfg(test)]
 mod tests;
 
@@ -87,6 +87,11 @@ pub struct Joints {
     /// Per labelled connection, where its joint lies on each plate and who kept the ends: a
     /// record for the debug view only (the plan and its report do not read it).
     pub regions: Vec<JointRegion>,
+    /// The bent parts of the `bends` step that hold together once jointed (indices into its
+    /// parts): the `parts` step merges these; the plates of the others are jointed plates.
+    pub held_bends: Vec<usize>,
+    /// The bent parts that would not hold together, and why.
+    pub refused_bends: Vec<crate::bends::Refusal>,
 }
 
 /// Where one connection's fingers, tabs or slots go on its two plates, and which plate
@@ -217,8 +222,9 @@ pub(crate) fn settings_for(settings: &Settings) -> JointSettings {
 }
 
 /// Step `joints`: the plate graph and the joints along it, in the style the user chose or
-/// the one that holds in the material; bends of bent parts get none. The joints the `bends`
-/// step already computed for the same plates and bends are taken as they are.
+/// the one that holds in the material; bends of bent parts get none. It decides which of
+/// the bent parts the `bends` step proposed hold together once their plates carry their
+/// joints; the plates of any that do not are joined as plates.
 pub fn run(
     plates: &Plates,
     bends: Option<&crate::bends::Bends>,
@@ -227,17 +233,32 @@ pub fn run(
 ) -> Result<Joints> {
     cx.check_cancel()?;
     let joint_settings = settings_for(settings);
+    let off_grid = |e| Error::model(cx.model(), ModelProblem::OffGrid(e));
     let unjointed = bends.map(crate::bends::Bends::unjointed).unwrap_or_default();
-    let computed = bends
-        .and_then(|b| b.joints.as_deref())
-        .filter(|c| c.made_for(&plates.plates, &joint_settings, &unjointed));
-    let (joints, warnings) = match computed {
-        Some(c) => (c.joints.clone(), c.warnings.clone()),
-        None => compute_except(&plates.plates, &joint_settings, &unjointed)
-            .map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?,
-    };
+    let (mut joints, mut warnings) = compute_except(&plates.plates, &joint_settings, &unjointed).map_err(off_grid)?;
+    let (mut held, mut refused) = (Vec::new(), Vec::new());
+    if let Some(b) = bends
+        && let Some(style) = b.style
+    {
+        for (k, part) in b.parts.iter().enumerate() {
+            if bent::holds_together(part, plates, &joints, style) {
+                held.push(k);
+            } else {
+                refused.push(bent::refusal(part));
+            }
+        }
+        let kept = b.keeping(&held);
+        if !refused.is_empty() {
+            (joints, warnings) =
+                compute_except(&plates.plates, &joint_settings, &kept.unjointed()).map_err(off_grid)?;
+        }
+        // What was bent is said once it is decided (the refused parts are in the snapshot).
+        warnings.extend(kept.notes(plates));
+    }
     for w in warnings {
         cx.warn(WarningKind::Joints, w);
     }
+    joints.held_bends = held;
+    joints.refused_bends = refused;
     Ok(joints)
 }

@@ -339,7 +339,7 @@ fn layer_material(loops: &[Vec<SliceLoop>], plan: &SlicePlan, parts: &PlanInput)
             if kept.is_empty() {
                 return Ok(Vec::new());
             }
-            let material = stacked::fill(&kept).map_err(grid)?;
+            let material = crate::slicing::fill(&kept).map_err(grid)?;
             let (z0, z1) = (plan.bottom(k), plan.bottom(k + 1));
             let near: Vec<&Slab> = (0..pieces.len())
                 .filter(|&i| heights[i].0 < z1 && heights[i].1 > z0)

@@ -9,7 +9,6 @@
 //! from a thinner sheet ([`raised`]); standoffs taller than a sheet become stacked discs
 //! ([`standoffs`]).
 
-pub(crate) mod bent;
 mod loose;
 pub mod necks;
 mod raised;
@@ -44,6 +43,9 @@ pub fn run(
     settings: &Settings,
     cx: &mut StepContext<'_>,
 ) -> Result<PlanInput> {
+    // The bent parts the `joints` step found to hold together.
+    let held = bends.map(|b| joints.map_or_else(|| b.clone(), |j| b.keeping(&j.held_bends)));
+    let bends = held.as_ref();
     // Raised details as tall as a thinner offered sheet are glued on (`raised`).
     let details = if settings.features == crate::settings::Features::Engrave {
         raised::details(
@@ -150,7 +152,7 @@ fn bent_parts(
             .map(|m| joints.map_or(Vec::new(), |j| j.edges[m.plate as usize].clone()))
             .collect();
         let marks_of = |plate: u32, outline: &Polygon| feature_marks(&plates.features, plate, outline);
-        let (part, notes) = bent::part(id, b, plates, &outlines, &labels, &marks_of, style)
+        let (part, notes) = crate::bends::flat::flat_part(id, b, plates, &outlines, &labels, &marks_of, style)
             .map_err(|e| Error::model(cx.model(), ModelProblem::OffGrid(e)))?;
         for note in notes {
             cx.warn_part(WarningKind::Joints, Some(id), note);

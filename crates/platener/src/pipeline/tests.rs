@@ -189,6 +189,47 @@ fn kernel_data_imports_no_step() {
     assert!(checked >= DATA.len(), "checked only {checked} files");
 }
 
+/// Layer 2 of docs/architecture.md: a step imports only earlier steps, never a later one,
+/// except the pairs architecture.md lists with their reason; test modules may use anything.
+/// The order is [`StepId::ALL`]'s with the sliced methods' steps before the classifier's
+/// `relief` and `layers`: the methods run apart, and `layers` builds with `stacked`'s code.
+#[test]
+fn no_step_imports_a_later_step() {
+    /// (step, later step it uses): `stacked` numbers its layers with the `labels` step's own
+    /// placement, so a tab grows exactly where the label will land.
+    const LISTED: [(&str, &str); 1] = [("stacked", "labels")];
+    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let sliced = [StepId::Stacked, StepId::Interlocked];
+    let mut order: Vec<&str> = StepId::ALL
+        .iter()
+        .filter(|s| !sliced.contains(s))
+        .map(|s| s.name())
+        .collect();
+    let at = order.iter().position(|s| *s == "relief").expect("relief is a step");
+    order.splice(at..at, sliced.iter().map(|s| s.name()));
+    let mut found = Vec::new();
+    for (k, step) in order.iter().enumerate() {
+        for file in rust_files(&src.join(step)) {
+            let name = file.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            if name.ends_with("tests.rs") {
+                continue;
+            }
+            let text = std::fs::read_to_string(&file).expect("readable");
+            let text = text.split("#[cfg(test)]").next().unwrap_or("");
+            for (at, _) in text.match_indices("crate::") {
+                for used in modules_named(&text[at + 7..]) {
+                    let later = order[k + 1..].contains(&used.as_str());
+                    if later && !LISTED.contains(&(*step, used.as_str())) {
+                        found.push(format!("{} (step {step}) uses crate::{used}", file.display()));
+                    }
+                }
+            }
+        }
+    }
+    found.dedup();
+    assert!(found.is_empty(), "steps importing later steps:\n{}", found.join("\n"));
+}
+
 /// The crate's modules a path after `crate::` names: `read` in `read::Model`, `a` and `b` in
 /// `{a::X, b}` (the braces' top level; `self` and type names are not modules).
 fn modules_named(rest: &str) -> Vec<String> {

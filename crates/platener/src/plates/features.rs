@@ -134,7 +134,7 @@ impl<'a> Sections<'a> {
 
     /// The material at local height `z` of `frame`.
     fn at(&self, frame: &Frame, z: f64) -> Result<Vec<Polygon>, GridError> {
-        crate::stacked::section(self.mesh, frame, z, SECTION_TOLERANCE)
+        crate::slicing::section(self.mesh, frame, z, SECTION_TOLERANCE)
     }
 
     /// The plate `piece` (a region both faces share, in `frame`'s plane, `t` thick) makes:

@@ -13,11 +13,11 @@ use platener_geom::polygon::remove_straight_vertices;
 use platener_geom::{Frame, GridError, Polygon, Ring};
 
 use super::islands::LayerIslands;
-use super::loops::LoopStats;
 use super::notch::cut_slots;
-use super::orient::SlicePlan;
 use super::shafts::{Placed, PlacedShaft};
 use super::{Island, Layer, Shaft, Stack};
+use crate::slicing::LoopStats;
+use crate::slicing::SlicePlan;
 
 /// Builds the [`Stack`]: part ids go to layers bottom up (islands in order), then to shafts.
 pub(crate) fn assemble(

@@ -15,9 +15,9 @@ use platener_geom::{GridError, Polygon, boolean};
 use serde::Serialize;
 
 use super::Stack;
-use super::slice::section;
 use crate::mesh::Mesh;
 use crate::plan::MarkSide;
+use crate::slicing::section;
 
 /// Probes per layer thickness.
 const STEPS_PER_LAYER: f64 = 8.0;

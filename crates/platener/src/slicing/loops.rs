@@ -12,7 +12,7 @@ use std::ops::AddAssign;
 use platener_geom::Ring;
 use serde::Serialize;
 
-use super::slice::Segment;
+use super::Segment;
 
 /// How the loops of a slice closed.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]

@@ -1,13 +1,14 @@
-//! Bent parts: the jointed outlines of a bent part's plates laid out flat (as the `bends`
-//! step placed them) and united into one part, with its segments, bend lines and bend marks,
-//! and for paper and card a glue flap on each seam.
+//! A bent part made flat: the jointed outlines of its plates laid out as the `bends` step
+//! placed them and united into one part, with its segments, bend lines and bend marks, and
+//! for paper and card a glue flap on each seam. The `joints` step builds it to decide which
+//! bent parts hold together once jointed; the `parts` step builds it to cut.
 
 use glam::DVec2;
 use platener_geom::GridError;
 use platener_geom::boolean::{difference, union, union_all};
 use platener_geom::polygon::Polygon;
 
-use crate::bends::{BentPart, HalfPlane, Member, Seam};
+use super::{BentPart, HalfPlane, Member, Seam};
 use crate::plan::{Bend, BendStyle, EdgeLabel, Mark, Part, PartKind, Segment};
 use crate::plates::Plates;
 
@@ -16,7 +17,7 @@ use crate::plates::Plates;
 /// (features) in its frame. Also says what went wrong on the way: the flat shape falling
 /// into pieces (joints cutting a plate apart near a bend), a bend whose marks could not be
 /// drawn.
-pub(super) fn part(
+pub fn flat_part(
     id: u32,
     bent: &BentPart,
     plates: &Plates,
@@ -234,7 +235,7 @@ fn flap(seam: &Seam, members: &[Member], t: f64) -> (Polygon, Segment) {
     ]);
     polygon.normalize_orientation();
     // The flap folds like a sharp bend onto b's plane, then steps a thickness to its inside.
-    let folded = crate::bends::fold_sharp(a, b, c, t);
+    let folded = super::fold_sharp(a, b, c, t);
     let inside = c.into[0].dot(folded.frame.n);
     let frame = folded.flat_frame().shifted(if inside >= 0.0 { t } else { -t });
     let segment = Segment {
@@ -242,78 +243,4 @@ fn flap(seam: &Seam, members: &[Member], t: f64) -> (Polygon, Segment) {
         frame,
     };
     (polygon, segment)
-}
-
-/// Whether bent part `bent` still makes one sound part once its plates carry their joints
-/// (`joints`, computed without fingers along its bends): its flat shape one piece, every bend
-/// drawn, and its segments and zones rebuilding it. The `bends` step keeps only such parts.
-pub(crate) fn holds_together(
-    bent: &BentPart,
-    plates: &Plates,
-    joints: &crate::joints::Joints,
-    style: BendStyle,
-) -> bool {
-    let outlines: Vec<&Polygon> = bent
-        .members
-        .iter()
-        .map(|m| &joints.outlines[m.plate as usize])
-        .collect();
-    if loses_joints(bent, plates, &outlines).unwrap_or(true) {
-        return false;
-    }
-    let labels: Vec<Vec<(u32, [DVec2; 2])>> = vec![Vec::new(); bent.members.len()];
-    let no_marks = |_: u32, _: &Polygon| Vec::new();
-    match part(1, bent, plates, &outlines, &labels, &no_marks, style) {
-        Ok((part, notes)) => {
-            notes.is_empty()
-                && part.segments.iter().all(|s| s.polygon.area() > 0.0)
-                && part
-                    .pieces()
-                    .is_ok_and(|pieces| joints_still_meet(bent, plates, joints, &pieces))
-        }
-        Err(_) => false,
-    }
-}
-
-/// Whether cutting the members at their bend lines takes away joint material: fingers or
-/// tabs of another connection that reach past a bend line (at a corner where a third plate
-/// meets both) would be lost, and that joint would no longer meet.
-fn loses_joints(bent: &BentPart, plates: &Plates, outlines: &[&Polygon]) -> Result<bool, GridError> {
-    for (i, m) in bent.members.iter().enumerate() {
-        let plate = &plates.plates[m.plate as usize];
-        let t = plate.thickness;
-        let lost = |shape: Polygon| -> Result<f64, GridError> {
-            let whole = shape.area();
-            let mut kept = vec![shape];
-            for h in &bent.cuts[i] {
-                kept = h.cut(m, t, &kept)?;
-            }
-            Ok(whole - platener_geom::polygon::total_area(&kept))
-        };
-        if lost(m.local(outlines[i]))? - lost(m.local(&plate.polygon))? > 0.5 * t * t {
-            return Ok(true);
-        }
-    }
-    Ok(false)
-}
-
-/// Whether every joint between a member and a plate outside the part still meets with the
-/// part bent: fingers inside a bend zone move with its arc, off their partner's.
-fn joints_still_meet(
-    bent: &BentPart,
-    plates: &Plates,
-    joints: &crate::joints::Joints,
-    pieces: &[platener_geom::slab::Slab],
-) -> bool {
-    let inside = |p: u32| bent.members.iter().any(|m| m.plate == p);
-    joints.connections.iter().all(|c| {
-        let [a, b] = c.plates;
-        let other = match (inside(a), inside(b)) {
-            (true, false) => b,
-            (false, true) => a,
-            _ => return true,
-        } as usize;
-        let slab = plates.plates[other].slab_of(joints.outlines[other].clone());
-        pieces.iter().any(|p| crate::assembly::slabs_meet(p, &slab))
-    })
 }

@@ -1,5 +1,6 @@
 //! Cross-sections of the indexed mesh at every layer's mid-plane, in one pass over the
-//! triangles.
+//! triangles: a helper below the steps (issue 33) that the stacked, interlocked and layers
+//! steps slice with and the plates step sections raised details with.
 //!
 //! Each triangle is intersected only with the planes its height range spans: the first such
 //! plane follows from its lowest corner by one division, and the planes above it are visited
@@ -23,8 +24,15 @@ use platener_geom::polygon::{remove_straight_vertices, signed_area2};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::loops::{self, LoopStats, Marked, OpenChain};
-use super::orient::SlicePlan;
+mod fill;
+pub(crate) mod loops;
+mod plan;
+
+pub use fill::fill;
+pub use loops::LoopStats;
+use loops::{Marked, OpenChain};
+pub use plan::{AxisChoice, SlicePlan};
+
 use crate::mesh::Mesh;
 
 /// One triangle's cut by one plane: from the crossing of edge `from` (where the surface goes
@@ -285,8 +293,8 @@ pub(crate) fn section(
         frame: frame.shifted(z - 0.5),
         thickness: 1.0,
         count: 1,
-        choice: super::orient::AxisChoice::Given,
+        choice: AxisChoice::Given,
     };
     let sliced = slice(mesh, &plan, tolerance);
-    super::islands::fill(&sliced.loops[0])
+    fill(&sliced.loops[0])
 }
