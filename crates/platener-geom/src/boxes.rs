@@ -28,6 +28,11 @@ pub fn bounds3(points: impl IntoIterator<Item = DVec3>) -> Box3 {
     )
 }
 
+/// The smallest rectangle holding every one of `boxes`; `None` when there are none.
+pub fn enclosing2(boxes: impl IntoIterator<Item = Box2>) -> Option<Box2> {
+    boxes.into_iter().reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
+}
+
 /// Whether boxes `a` and `b` come within `gap` of each other on every axis.
 pub fn near(a: Box3, b: Box3, gap: f64) -> bool {
     (a.0 - DVec3::splat(gap)).cmple(b.1).all() && (b.0 - DVec3::splat(gap)).cmple(a.1).all()
@@ -62,6 +67,10 @@ mod tests {
         assert_eq!((lo, hi), (DVec2::new(-2.0, 3.0), DVec2::new(1.0, 5.0)));
         let (lo, hi) = bounds3(std::iter::empty());
         assert!(lo.x > hi.x, "empty");
+        let a = (DVec2::new(0.0, 1.0), DVec2::new(2.0, 3.0));
+        let b = (DVec2::new(-1.0, 2.0), DVec2::new(1.0, 5.0));
+        assert_eq!(enclosing2([a, b]), Some((DVec2::new(-1.0, 1.0), DVec2::new(2.0, 5.0))));
+        assert_eq!(enclosing2(std::iter::empty()), None);
     }
 
     fn cube(x: f64) -> Box3 {

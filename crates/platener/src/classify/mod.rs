@@ -27,7 +27,6 @@ pub mod volumes;
 #[cfg(test)]
 mod tests;
 
-use glam::DVec3;
 use serde::Serialize;
 
 use crate::mesh::Mesh;
@@ -191,10 +190,7 @@ pub fn run(mesh: &Mesh, settings: &ClassifySettings) -> Result<Classification, C
     if mesh.triangles.is_empty() || area.is_nan() || area <= 0.0 {
         return Err(ClassifyError::NoSurface);
     }
-    let (lo, hi) = mesh
-        .vertices
-        .iter()
-        .fold((DVec3::MAX, DVec3::MIN), |(lo, hi), v| (lo.min(*v), hi.max(*v)));
+    let (lo, hi) = platener_geom::boxes::bounds3(mesh.vertices.iter().copied());
     let th = Thresholds::derive(area, (hi - lo).length(), settings);
     let points = sample::sample_surface(mesh, settings.samples, settings.seed);
     let fit = sample::NormalFit {

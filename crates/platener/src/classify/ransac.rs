@@ -53,9 +53,7 @@ struct Octree {
 
 impl Octree {
     fn new(samples: &[Sample], levels: usize) -> Self {
-        let (lo, hi) = samples
-            .iter()
-            .fold((DVec3::MAX, DVec3::MIN), |(lo, hi), s| (lo.min(s.at.p), hi.max(s.at.p)));
+        let (lo, hi) = platener_geom::boxes::bounds3(samples.iter().map(|s| s.at.p));
         let size = (hi - lo).max_element().max(1e-9);
         let scale = ((1u64 << BITS) - 1) as f64 / size;
         let code_of: Vec<u64> = samples.iter().map(|s| morton((s.at.p - lo) * scale)).collect();

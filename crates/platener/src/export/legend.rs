@@ -140,7 +140,7 @@ type Bounds = (DVec2, DVec2);
 /// travel there and a smaller real sheet would lose the legend. Ties keep the first spot, so
 /// the choice is deterministic.
 fn free_spot(size: DVec2, sheet: DVec2, boxes: &[Bounds]) -> Option<DVec2> {
-    let used = boxes.iter().copied().reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))?;
+    let used = platener_geom::boxes::enclosing2(boxes.iter().copied())?;
     let (lo, hi) = (DVec2::splat(GAP), sheet - size - DVec2::splat(GAP));
     let step = 2.0 * GAP;
     let (u0, u1) = used;
@@ -293,11 +293,7 @@ mod tests {
         let legend = Legend::place(lines.clone(), 600.0, 600.0, &parts).expect("lines");
         let g = legend.group().expect("room beside the column");
         let (lo, hi) = text_box(&g);
-        let used = parts
-            .iter()
-            .filter_map(|p| bounds(&p.cut))
-            .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
-            .expect("parts");
+        let used = platener_geom::boxes::enclosing2(parts.iter().filter_map(|p| bounds(&p.cut))).expect("parts");
         assert!(used.1.x < 62.0, "the column is narrow: {used:?}");
         let margin = legend.size.x.max(legend.size.y) + 2.0 * GAP + 1e-9;
         assert!(

@@ -91,10 +91,7 @@ pub(super) fn shared(a: &[[f64; 2]], b: &[[f64; 2]]) -> Option<[f64; 2]> {
 }
 
 fn bounds(material: &[Polygon]) -> Option<(DVec2, DVec2)> {
-    material
-        .iter()
-        .map(Polygon::bounds)
-        .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
+    platener_geom::boxes::enclosing2(material.iter().map(Polygon::bounds))
 }
 
 /// Every slice's material after its slots, and the crossings.
