@@ -166,22 +166,13 @@ fn kernel_data_imports_no_step() {
         } else {
             vec![src.join(format!("{module}.rs"))]
         };
-        for file in files {
-            let name = file.file_name().and_then(|n| n.to_str()).unwrap_or("");
-            if name.ends_with("tests.rs") {
-                continue;
-            }
-            let text = std::fs::read_to_string(&file).expect("readable");
-            // What `#[cfg(test)]` guards comes last in these files.
-            let text = text.split("#[cfg(test)]").next().unwrap_or("");
-            for (at, _) in text.match_indices("crate::") {
-                for used in modules_named(&text[at + 7..]) {
-                    assert!(
-                        DATA.contains(&used.as_str()),
-                        "{} (kernel data) uses crate::{used}: kernel data imports no step",
-                        file.display()
-                    );
-                }
+        for file in files.iter().filter(|f| !is_test_file(f)) {
+            for used in crate_imports(file) {
+                assert!(
+                    DATA.contains(&used.as_str()),
+                    "{} (kernel data) uses crate::{used}: kernel data imports no step",
+                    file.display()
+                );
             }
             checked += 1;
         }
@@ -209,25 +200,34 @@ fn no_step_imports_a_later_step() {
     order.splice(at..at, sliced.iter().map(|s| s.name()));
     let mut found = Vec::new();
     for (k, step) in order.iter().enumerate() {
-        for file in rust_files(&src.join(step)) {
-            let name = file.file_name().and_then(|n| n.to_str()).unwrap_or("");
-            if name.ends_with("tests.rs") {
-                continue;
-            }
-            let text = std::fs::read_to_string(&file).expect("readable");
-            let text = text.split("#[cfg(test)]").next().unwrap_or("");
-            for (at, _) in text.match_indices("crate::") {
-                for used in modules_named(&text[at + 7..]) {
-                    let later = order[k + 1..].contains(&used.as_str());
-                    if later && !LISTED.contains(&(*step, used.as_str())) {
-                        found.push(format!("{} (step {step}) uses crate::{used}", file.display()));
-                    }
+        for file in rust_files(&src.join(step)).iter().filter(|f| !is_test_file(f)) {
+            for used in crate_imports(file) {
+                let later = order[k + 1..].contains(&used.as_str());
+                if later && !LISTED.contains(&(*step, used.as_str())) {
+                    found.push(format!("{} (step {step}) uses crate::{used}", file.display()));
                 }
             }
         }
     }
     found.dedup();
     assert!(found.is_empty(), "steps importing later steps:\n{}", found.join("\n"));
+}
+
+/// Whether `file` holds only tests (`tests.rs`, `*_tests.rs`).
+fn is_test_file(file: &std::path::Path) -> bool {
+    file.file_name()
+        .and_then(|n| n.to_str())
+        .is_some_and(|n| n.ends_with("tests.rs"))
+}
+
+/// The crate's modules `file` names after `crate::`, outside its test module (what
+/// `#[cfg(test)]` guards comes last in our files).
+fn crate_imports(file: &std::path::Path) -> Vec<String> {
+    let text = std::fs::read_to_string(file).expect("readable");
+    let text = text.split("#[cfg(test)]").next().unwrap_or("");
+    text.match_indices("crate::")
+        .flat_map(|(at, _)| modules_named(&text[at + 7..]))
+        .collect()
 }
 
 /// The crate's modules a path after `crate::` names: `read` in `read::Model`, `a` and `b` in
