@@ -24,12 +24,12 @@ impl Subset for Every {
 }
 
 /// `scene`: every setting but those of the cutting plan alone (kerf, sheet, margin, spacing,
-/// labels).
+/// line colours, labels).
 #[derive(Debug, Clone, Copy)]
 pub struct ForScene;
 impl Subset for ForScene {
     fn includes(def: &Def) -> bool {
-        !matches!(def.name, "kerf" | "sheet" | "margin" | "spacing" | "labels")
+        !matches!(def.name, "kerf" | "sheet" | "margin" | "spacing" | "colors" | "labels")
     }
 }
 

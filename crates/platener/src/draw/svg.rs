@@ -1,5 +1,6 @@
 //! SVG sheets at true size: red hairline cut paths, blue engraving, one `<g id="part-N">` per
-//! part (the spec's conventions; Inkscape and LightBurn import `mm` sizes at scale 1).
+//! part (the spec's conventions; Inkscape and LightBurn import `mm` sizes at scale 1); or the
+//! colours and widths of another laser program's convention ([`Palette`]).
 //!
 //! Numbers are written with 4 decimals (0.1 µm, far below a laser's resolution), trailing zeros
 //! trimmed and no `-0`, so the same geometry always gives the same bytes.
@@ -8,12 +9,83 @@ use std::fmt::Write as _;
 
 use glam::DVec2;
 
+use crate::plan::ColorProfile;
+
 /// Cut colour: laser software maps pure red to "cut".
 pub const CUT_COLOR: &str = "#ff0000";
 /// Engrave colour: pure blue, "score / engrave".
 pub const ENGRAVE_COLOR: &str = "#0000ff";
 /// Hairline width, mm (0.001 in, what Epilog, Trotec and LightBurn treat as a vector line).
 pub const HAIRLINE: f64 = 0.0254;
+
+/// One operation's stroke: colour (`#rrggbb`) and width, mm.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Stroke {
+    /// The colour, `#rrggbb` in lower case.
+    pub color: &'static str,
+    /// The width, in 0.1 µm (so the palette is `Eq` and its numbers exact), see [`Stroke::width`].
+    pub width_um10: u32,
+}
+
+impl Stroke {
+    /// The width, mm.
+    pub fn width(self) -> f64 {
+        f64::from(self.width_um10) / 10_000.0
+    }
+}
+
+/// The stroke of each operation on a sheet. Laser programs tell operations apart by colour;
+/// holes and slits have a colour of their own where a program orders operations by colour,
+/// so every inner cut runs before the outline that frees a part.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Palette {
+    /// Numbers and text (the `labels` step, the sheet's legend).
+    pub label: Stroke,
+    /// Score lines: bend lines, features' outlines, a layer's outline on the one below.
+    pub score: Stroke,
+    /// Holes and slits.
+    pub cut_inner: Stroke,
+    /// A part's outline.
+    pub cut_outer: Stroke,
+}
+
+impl Palette {
+    /// The palette of `profile` (docs/cutting-plans.md, "Colour profiles", gives the sources).
+    pub const fn of(profile: ColorProfile) -> Palette {
+        const fn stroke(color: &'static str, width_um10: u32) -> Stroke {
+            Stroke { color, width_um10 }
+        }
+        const HAIR: u32 = 254;
+        match profile {
+            ColorProfile::Classic => Palette {
+                label: stroke(ENGRAVE_COLOR, HAIR),
+                score: stroke(ENGRAVE_COLOR, HAIR),
+                cut_inner: stroke(CUT_COLOR, HAIR),
+                cut_outer: stroke(CUT_COLOR, HAIR),
+            },
+            // LightBurn's palette: C00 black, C01 blue, C03 green, C02 red.
+            ColorProfile::LightBurn => Palette {
+                label: stroke("#000000", HAIR),
+                score: stroke("#0000ff", HAIR),
+                cut_inner: stroke("#00e000", HAIR),
+                cut_outer: stroke("#ff0000", HAIR),
+            },
+            // Ascending colour value in run order: black < blue < green < red.
+            ColorProfile::Glowforge | ColorProfile::Xtool => Palette {
+                label: stroke("#000000", 1000),
+                score: stroke("#0000ff", 1000),
+                cut_inner: stroke("#00ff00", 1000),
+                cut_outer: stroke("#ff0000", 1000),
+            },
+            ColorProfile::Ponoko => Palette {
+                label: stroke("#ff0000", 100),
+                score: stroke("#ff0000", 100),
+                cut_inner: stroke("#0000ff", 100),
+                cut_outer: stroke("#0000ff", 100),
+            },
+        }
+    }
+}
 
 /// What one group (one part) draws.
 #[derive(Debug, Clone, Default)]
@@ -25,29 +97,55 @@ pub struct SvgGroup {
     /// Open polylines to cut (the part's `cut` marks: hinge slits, perforation dashes), sheet
     /// coordinates; drawn like the rings, red hairlines, but not closed.
     pub slits: Vec<Vec<DVec2>>,
-    /// Open polylines to engrave, sheet coordinates.
+    /// Open polylines to score (engraved lines that are not text), sheet coordinates.
     pub engrave: Vec<Vec<DVec2>>,
+    /// Open polylines of text to engrave (part and edge numbers, legends), sheet coordinates.
+    pub labels: Vec<Vec<DVec2>>,
 }
 
 /// How the sheet is drawn: the cut file, or a preview for the PNG.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SvgStyle {
-    /// Cut stroke width, mm.
-    pub cut_width: f64,
-    /// Engrave stroke width, mm.
-    pub engrave_width: f64,
+    /// Each operation's stroke.
+    pub palette: Palette,
     /// Draw a white sheet with a grey border and fill parts (previews only; a cut file has
     /// nothing but the parts' paths).
     pub preview: bool,
 }
 
 impl SvgStyle {
-    /// The cut file: hairlines only.
-    pub const CUT: SvgStyle = SvgStyle {
-        cut_width: HAIRLINE,
-        engrave_width: HAIRLINE,
-        preview: false,
-    };
+    /// The cut file, in the classic colours: hairlines only.
+    pub const CUT: SvgStyle = SvgStyle::cut(ColorProfile::Classic);
+
+    /// A preview in the classic colours, cut paths `cut_width` and engraving `engrave_width`
+    /// mm wide (to be seen at a preview's size, not cut).
+    pub const fn preview(cut_width: f64, engrave_width: f64) -> SvgStyle {
+        let cut = Stroke {
+            color: CUT_COLOR,
+            width_um10: (cut_width * 10_000.0) as u32,
+        };
+        let engrave = Stroke {
+            color: ENGRAVE_COLOR,
+            width_um10: (engrave_width * 10_000.0) as u32,
+        };
+        SvgStyle {
+            palette: Palette {
+                label: engrave,
+                score: engrave,
+                cut_inner: cut,
+                cut_outer: cut,
+            },
+            preview: true,
+        }
+    }
+
+    /// The cut file in `profile`'s colours.
+    pub const fn cut(profile: ColorProfile) -> SvgStyle {
+        SvgStyle {
+            palette: Palette::of(profile),
+            preview: false,
+        }
+    }
 }
 
 /// A number as written in our SVG and JSON-free text: 4 decimals, trimmed, never `-0`.
@@ -108,6 +206,7 @@ fn path_data(points: &[DVec2], closed: bool) -> String {
 /// The SVG document of one sheet of `width` × `height` mm holding `groups`.
 pub fn sheet_svg(width: f64, height: f64, groups: &[SvgGroup], style: &SvgStyle) -> String {
     let (w, h) = (num(width), num(height));
+    let p = &style.palette;
     let mut s = String::new();
     s.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     let _ = writeln!(
@@ -118,7 +217,7 @@ pub fn sheet_svg(width: f64, height: f64, groups: &[SvgGroup], style: &SvgStyle)
         let _ = writeln!(
             s,
             "<rect x=\"0\" y=\"0\" width=\"{w}\" height=\"{h}\" fill=\"#ffffff\" stroke=\"#808080\" stroke-width=\"{}\"/>",
-            num(style.cut_width)
+            num(p.cut_outer.width())
         );
     }
     for g in groups {
@@ -131,23 +230,35 @@ pub fn sheet_svg(width: f64, height: f64, groups: &[SvgGroup], style: &SvgStyle)
                 d.join(" ")
             );
         }
-        // Cut order (`export::order`): engraving, then slits, then rings (holes before the
-        // outline, as the rings are ordered).
-        for line in &g.engrave {
+        // Cut order (`export::order`): scores, text, then slits, then rings (holes before
+        // the outline, which comes last).
+        let engraved = g
+            .engrave
+            .iter()
+            .map(|l| (l, p.score))
+            .chain(g.labels.iter().map(|l| (l, p.label)));
+        for (line, stroke) in engraved {
             let _ = writeln!(
                 s,
-                "<path d=\"{}\" fill=\"none\" stroke=\"{ENGRAVE_COLOR}\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>",
+                "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>",
                 path_data(line, false),
-                num(style.engrave_width)
+                stroke.color,
+                num(stroke.width())
             );
         }
-        let slits = g.slits.iter().map(|l| (l, false));
-        for (path, closed) in slits.chain(g.cut.iter().map(|r| (r, true))) {
+        let outline = g.cut.len().checked_sub(1);
+        let slits = g.slits.iter().map(|l| (l, false, p.cut_inner));
+        let rings = g.cut.iter().enumerate().map(|(k, r)| {
+            let stroke = if Some(k) == outline { p.cut_outer } else { p.cut_inner };
+            (r, true, stroke)
+        });
+        for (path, closed, stroke) in slits.chain(rings) {
             let _ = writeln!(
                 s,
-                "<path d=\"{}\" fill=\"none\" stroke=\"{CUT_COLOR}\" stroke-width=\"{}\"/>",
+                "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"/>",
                 path_data(path, closed),
-                num(style.cut_width)
+                stroke.color,
+                num(stroke.width())
             );
         }
         s.push_str("</g>\n");
@@ -168,6 +279,67 @@ mod tests {
         assert_eq!(num(-2.5), "-2.5");
     }
 
+    /// Every profile strokes each operation with its own palette entry: a part with a score
+    /// line, a label, a slit, a hole and its outline, read back as XML.
+    #[test]
+    fn each_profile_strokes_each_operation_with_its_colour_and_width() {
+        let square = |x: f64, s: f64| {
+            vec![
+                DVec2::splat(x),
+                DVec2::new(x + s, x),
+                DVec2::splat(x + s),
+                DVec2::new(x, x + s),
+            ]
+        };
+        let g = SvgGroup {
+            id: "part-1".into(),
+            cut: vec![square(4.0, 2.0), square(0.0, 20.0)],
+            slits: vec![vec![DVec2::new(10.0, 2.0), DVec2::new(10.0, 8.0)]],
+            engrave: vec![vec![DVec2::new(2.0, 12.0), DVec2::new(18.0, 12.0)]],
+            labels: vec![vec![DVec2::new(2.0, 16.0), DVec2::new(3.0, 18.0)]],
+        };
+        let mut palettes = Vec::new();
+        for profile in ColorProfile::ALL {
+            let p = Palette::of(profile);
+            let svg = sheet_svg(30.0, 30.0, std::slice::from_ref(&g), &SvgStyle::cut(profile));
+            let doc = roxmltree::Document::parse(&svg).expect("well-formed");
+            let strokes: Vec<(&str, &str)> = doc
+                .descendants()
+                .filter(|n| n.has_tag_name("path"))
+                .map(|n| {
+                    (
+                        n.attribute("stroke").unwrap_or(""),
+                        n.attribute("stroke-width").unwrap_or(""),
+                    )
+                })
+                .collect();
+            // In file order: score, label, slit, hole, outline.
+            let expected: Vec<(String, String)> = [p.score, p.label, p.cut_inner, p.cut_inner, p.cut_outer]
+                .iter()
+                .map(|s| (s.color.to_string(), num(s.width())))
+                .collect();
+            let got: Vec<(String, String)> = strokes.iter().map(|(c, w)| (c.to_string(), w.to_string())).collect();
+            assert_eq!(got, expected, "{profile:?}");
+            palettes.push(p);
+        }
+        // LightBurn's palette tells every operation apart; the Glowforge order is ascending
+        // colour value from text to outlines; Ponoko cuts blue and engraves red.
+        let lb = Palette::of(ColorProfile::LightBurn);
+        let mut colors = vec![lb.label.color, lb.score.color, lb.cut_inner.color, lb.cut_outer.color];
+        colors.dedup();
+        assert_eq!(colors.len(), 4);
+        let gf = Palette::of(ColorProfile::Glowforge);
+        let value = |s: Stroke| u32::from_str_radix(&s.color[1..], 16).expect("hex");
+        assert!(value(gf.label) < value(gf.score) && value(gf.score) < value(gf.cut_inner));
+        assert!(value(gf.cut_inner) < value(gf.cut_outer));
+        let ponoko = Palette::of(ColorProfile::Ponoko);
+        assert_eq!(
+            (ponoko.cut_outer.color, ponoko.score.color, ponoko.cut_outer.width()),
+            ("#0000ff", "#ff0000", 0.01)
+        );
+        assert_eq!(palettes[0], Palette::of(ColorProfile::Classic));
+    }
+
     #[test]
     fn a_sheet_has_true_size_and_only_part_paths_are_red() {
         let g = SvgGroup {
@@ -175,6 +347,7 @@ mod tests {
             cut: vec![vec![DVec2::ZERO, DVec2::X, DVec2::ONE]],
             slits: Vec::new(),
             engrave: vec![vec![DVec2::ZERO, DVec2::Y]],
+            labels: Vec::new(),
         };
         let svg = sheet_svg(600.0, 400.0, &[g], &SvgStyle::CUT);
         assert!(svg.contains("width=\"600mm\" height=\"400mm\" viewBox=\"0 0 600 400\""));
@@ -189,6 +362,7 @@ mod tests {
             cut: vec![vec![DVec2::ZERO, DVec2::new(10.0, 0.0), DVec2::splat(10.0)]],
             slits: vec![vec![DVec2::new(2.0, 1.0), DVec2::new(2.0, 5.5)]],
             engrave: Vec::new(),
+            labels: Vec::new(),
         };
         let svg = sheet_svg(600.0, 400.0, &[g], &SvgStyle::CUT);
         let red = format!("<path d=\"M2 1 L2 5.5\" fill=\"none\" stroke=\"{CUT_COLOR}\" stroke-width=\"0.0254\"/>");

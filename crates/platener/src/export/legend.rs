@@ -101,7 +101,7 @@ impl Legend {
     /// The engrave-only group of the legend, when it is on the sheet.
     pub fn group(&self) -> Option<SvgGroup> {
         let top_left = self.top_left?;
-        let engrave = self
+        let labels = self
             .lines
             .iter()
             .enumerate()
@@ -114,7 +114,8 @@ impl Legend {
             id: LEGEND_ID.into(),
             cut: Vec::new(),
             slits: Vec::new(),
-            engrave,
+            engrave: Vec::new(),
+            labels,
         })
     }
 
@@ -212,6 +213,7 @@ mod tests {
             ]],
             slits: Vec::new(),
             engrave: Vec::new(),
+            labels: Vec::new(),
         }
     }
 
@@ -229,7 +231,7 @@ mod tests {
     /// box lies within the parts' box grown by `margin`.
     fn text_box(g: &SvgGroup) -> Bounds {
         assert!(g.cut.is_empty() && g.slits.is_empty(), "the legend is engraved only");
-        bounds(&g.engrave).expect("text")
+        bounds(&g.labels).expect("text")
     }
 
     fn near(a: Bounds, b: Bounds, margin: f64) -> bool {
@@ -250,6 +252,7 @@ mod tests {
             cut: vec![ring],
             slits: Vec::new(),
             engrave: Vec::new(),
+            labels: Vec::new(),
         }
     }
 

@@ -35,11 +35,7 @@ pub const CUTTING_PLAN_STEPS: [&str; 3] = ["kerf", "labels", "sheets"];
 use crate::draw::svg::{self, SvgStyle, sheet_svg};
 
 /// Stroke widths of the PNG previews, mm: visible at 1200 pixels across a 600 mm sheet.
-const PREVIEW_STYLE: SvgStyle = SvgStyle {
-    cut_width: 0.8,
-    engrave_width: 0.4,
-    preview: true,
-};
+const PREVIEW_STYLE: SvgStyle = SvgStyle::preview(0.8, 0.4);
 
 /// The snapshot of step `export`: the plan, the report, every file, and the ZIP of them.
 #[derive(Debug, Clone, Serialize)]
@@ -118,7 +114,8 @@ fn sheet_files(
                 svg::num(sheet.width),
                 svg::num(sheet.height)
             );
-            let svg = svg::titled(&sheet_svg(sheet.width, sheet.height, g, &SvgStyle::CUT), &stock);
+            let style = SvgStyle::cut(settings.colors);
+            let svg = svg::titled(&sheet_svg(sheet.width, sheet.height, g, &style), &stock);
             let dxf_name = format!("{stem}.dxf");
             let dxf = dxf::sheet_dxf(sheet.height, g, &dxf_name)?;
             let lightburn = lightburn::sheet_lbrn2(sheet.width, sheet.height, g, settings, &stock);

@@ -67,7 +67,7 @@ fn part_sequence(groups: &[SvgGroup]) -> Vec<usize> {
 
 /// Where a part is, for ordering the parts: the middle of its paths' bounds.
 fn anchor(g: &SvgGroup) -> DVec2 {
-    let paths = g.cut.iter().chain(&g.slits).chain(&g.engrave);
+    let paths = g.cut.iter().chain(&g.slits).chain(&g.engrave).chain(&g.labels);
     let (lo, hi) = platener_geom::boxes::bounds2(paths.flatten().copied());
     if lo.x.is_finite() { (lo + hi) / 2.0 } else { DVec2::ZERO }
 }
@@ -171,10 +171,11 @@ fn two_opt(sequence: &mut [usize], anchors: &[DVec2], before: &[Vec<usize>]) {
     }
 }
 
-/// Orders one part's paths (engraving, slits, holes, outline), each starting nearest the
-/// head, and adds them to `path`.
+/// Orders one part's paths (score lines, text, slits, holes, outline), each starting nearest
+/// the head, and adds them to `path`.
 fn order_group(g: &mut SvgGroup, head: &mut DVec2, path: &mut CutPath) {
     g.engrave = order_open(std::mem::take(&mut g.engrave), head, path, false);
+    g.labels = order_open(std::mem::take(&mut g.labels), head, path, false);
     g.slits = order_open(std::mem::take(&mut g.slits), head, path, true);
     let mut rings = std::mem::take(&mut g.cut);
     let outline = (!rings.is_empty()).then(|| rings.remove(0));
@@ -285,6 +286,7 @@ mod tests {
             cut: rings,
             slits: Vec::new(),
             engrave,
+            labels: Vec::new(),
         }
     }
 

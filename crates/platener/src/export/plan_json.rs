@@ -185,14 +185,14 @@ pub fn sheet_groups(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting:
     for (i, part) in input.parts.iter().enumerate() {
         let p = &nesting.placements[i];
         let c = &cut.parts[i];
-        // Cut marks come from the kerf step's slits (red); every other mark is engraved.
-        let engrave = part
-            .marks
-            .iter()
-            .chain(&labels.parts[i].marks)
-            .filter(|m| m.kind != MarkKind::Cut)
-            .map(|m| moved(&m.path, p))
-            .collect();
+        // Cut marks come from the kerf step's slits; every other mark is engraved, text apart.
+        let marks = || part.marks.iter().chain(&labels.parts[i].marks);
+        let engraved = |label: bool| {
+            marks()
+                .filter(|m| m.kind != MarkKind::Cut && (m.kind == MarkKind::Label) == label)
+                .map(|m| moved(&m.path, p))
+                .collect()
+        };
         let g = SvgGroup {
             id: format!("part-{}", part.id),
             cut: std::iter::once(&c.cut.outer)
@@ -200,7 +200,8 @@ pub fn sheet_groups(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting:
                 .map(|r| moved(r, p))
                 .collect(),
             slits: c.slits.iter().map(|l| moved(l, p)).collect(),
-            engrave,
+            engrave: engraved(false),
+            labels: engraved(true),
         };
         groups[p.index as usize].push((part.id, g));
     }

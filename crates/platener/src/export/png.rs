@@ -33,11 +33,7 @@ mod tests {
 
     #[test]
     fn a_preview_is_a_png_of_the_right_shape() {
-        let style = SvgStyle {
-            cut_width: 1.0,
-            engrave_width: 0.5,
-            preview: true,
-        };
+        let style = SvgStyle::preview(1.0, 0.5);
         let g = SvgGroup {
             id: "part-1".into(),
             cut: vec![vec![
@@ -47,6 +43,7 @@ mod tests {
             ]],
             slits: vec![],
             engrave: vec![],
+            labels: Vec::new(),
         };
         let png = render_png(&sheet_svg(600.0, 400.0, &[g], &style), "p.png").expect("renders");
         assert_eq!(&png[1..4], b"PNG");
@@ -58,11 +55,7 @@ mod tests {
 
     #[test]
     fn a_slit_is_drawn_red_in_the_preview() {
-        let style = SvgStyle {
-            cut_width: 2.0,
-            engrave_width: 0.5,
-            preview: true,
-        };
+        let style = SvgStyle::preview(2.0, 0.5);
         // A vertical slit at x = 300 mm in a part spanning 100..500 mm: 2 pixels per mm.
         let g = SvgGroup {
             id: "part-1".into(),
@@ -74,6 +67,7 @@ mod tests {
             ]],
             slits: vec![vec![DVec2::new(300.0, 150.0), DVec2::new(300.0, 250.0)]],
             engrave: vec![],
+            labels: Vec::new(),
         };
         let png = render_png(&sheet_svg(600.0, 400.0, &[g], &style), "p.png").expect("renders");
         let pixmap = resvg::tiny_skia::Pixmap::decode_png(&png).expect("decodes");

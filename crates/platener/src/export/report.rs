@@ -109,7 +109,10 @@ pub fn lengths(groups: &[Vec<SvgGroup>]) -> (f64, f64) {
     let rings: f64 = all.clone().flat_map(|g| &g.cut).map(|r| length(r, true)).sum();
     let slits: f64 = all.clone().flat_map(|g| &g.slits).map(|l| length(l, false)).sum();
     let cut = rings + slits;
-    let engrave = all.flat_map(|g| &g.engrave).map(|l| length(l, false)).sum();
+    let engrave = all
+        .flat_map(|g| g.engrave.iter().chain(&g.labels))
+        .map(|l| length(l, false))
+        .sum();
     (cut, engrave)
 }
 

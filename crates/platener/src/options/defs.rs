@@ -5,7 +5,7 @@ use serde_json::{Value, json};
 use super::{Choice, Chosen, Def, Group, Kind};
 use crate::joints::JointStyle;
 use crate::method::MethodKind;
-use crate::plan::{LabelMode, MAX_KERF, MAX_MARGIN, Material, SPACING_RANGE, SheetSize};
+use crate::plan::{ColorProfile, LabelMode, MAX_KERF, MAX_MARGIN, Material, SPACING_RANGE, SheetSize};
 use crate::settings::{
     Bending, Features, MAX_SHEET_SIDE, MAX_THICKNESS, MAX_THICKNESSES, MAX_WELD, MIN_THICKNESS, PlateMode, SCALE_RANGE,
     SLICE_SPACING_RANGE, StackAxis, Units, Weld,
@@ -177,6 +177,27 @@ pub static DEFS: &[Def] = &[
               behind the other part; dovetails are wedged by small keys cut from the same sheet.",
         set: set_joint,
         get: |c| json!(c.settings.joints.style.map_or("auto", joint_name)),
+    },
+    Def {
+        name: "colors",
+        key: "colors",
+        short: None,
+        label: "Line colours",
+        group: Group::Sheets,
+        kind: Kind::Choice { choices: COLORS },
+        help: "The SVG sheets' line colours and widths per operation, as your laser software expects them.",
+        doc: "Laser programs tell cutting from engraving by colour. Each profile gives text, score lines, \
+              inner cuts (holes, slits) and outlines the colours its program maps to its own operations; \
+              the DXF and LightBurn files name their layers and do not change.",
+        set: |c, v| {
+            let name = one(v)?;
+            c.settings.cut.colors = ColorProfile::ALL
+                .into_iter()
+                .find(|p| p.name() == name)
+                .ok_or_else(|| choices_message(COLORS))?;
+            Ok(())
+        },
+        get: |c| json!(c.settings.cut.colors.name()),
     },
     Def {
         name: "labels",
@@ -413,6 +434,34 @@ const JOINTS: &[Choice] = &[
         value: "dovetail",
         label: "Dovetail",
         help: "Dovetails wedged tight by small keys.",
+    },
+];
+
+const COLORS: &[Choice] = &[
+    Choice {
+        value: "classic",
+        label: "Classic",
+        help: "Red hairline cuts, blue hairline engraving: what most laser software reads as cut and engrave.",
+    },
+    Choice {
+        value: "lightburn",
+        label: "LightBurn",
+        help: "LightBurn's own palette colours, one layer per operation: text black, scores blue, holes green, outlines red.",
+    },
+    Choice {
+        value: "glowforge",
+        label: "Glowforge",
+        help: "One pure colour per operation, in the order they should run: text black, scores blue, holes green, outlines red.",
+    },
+    Choice {
+        value: "xtool",
+        label: "xTool",
+        help: "As Glowforge: xTool Creative Space makes one layer per colour.",
+    },
+    Choice {
+        value: "ponoko",
+        label: "Ponoko",
+        help: "Ponoko's convention: blue cuts, red engraving, 0.01 mm lines.",
     },
 ];
 

@@ -26,7 +26,9 @@ pub use part::{
     Bend, BendStyle, EdgeLabel, HingePattern, Joint, JointKind, Mark, MarkKind, MarkSide, Part, PartKind, Segment,
     score_rings,
 };
-pub use settings::{CutSettings, LabelMode, MAX_KERF, MAX_MARGIN, Material, SPACING_RANGE, SettingValue, SheetSize};
+pub use settings::{
+    ColorProfile, CutSettings, LabelMode, MAX_KERF, MAX_MARGIN, Material, SPACING_RANGE, SettingValue, SheetSize,
+};
 
 /// The model the parts were made from, for plan.json's `source`.
 #[derive(Debug, Clone, PartialEq, Serialize)]

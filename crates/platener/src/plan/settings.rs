@@ -59,6 +59,51 @@ pub enum LabelMode {
     None,
 }
 
+/// The stroke colours and widths the SVG sheets use for each operation, as one laser program
+/// or service expects them (docs/cutting-plans.md has the table and its sources).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum ColorProfile {
+    /// Red cuts, blue engraving, hairlines: what most laser software reads as cut and engrave.
+    #[default]
+    Classic,
+    /// Exact colours of LightBurn's palette, one layer per operation.
+    LightBurn,
+    /// One pure colour per operation, in ascending colour value in the order they should run.
+    Glowforge,
+    /// As Glowforge: xTool Creative Space makes one layer per colour.
+    Xtool,
+    /// Ponoko's convention: blue cuts, red vector engraving, 0.01 mm lines.
+    Ponoko,
+}
+
+impl ColorProfile {
+    /// Every profile, in the order the settings list them.
+    pub const ALL: [ColorProfile; 5] = [
+        ColorProfile::Classic,
+        ColorProfile::LightBurn,
+        ColorProfile::Glowforge,
+        ColorProfile::Xtool,
+        ColorProfile::Ponoko,
+    ];
+
+    /// The profile's name, as the setting takes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            ColorProfile::Classic => "classic",
+            ColorProfile::LightBurn => "lightburn",
+            ColorProfile::Glowforge => "glowforge",
+            ColorProfile::Xtool => "xtool",
+            ColorProfile::Ponoko => "ponoko",
+        }
+    }
+
+    /// Whether this is the default profile (plan.json then leaves the key out).
+    pub fn is_classic(&self) -> bool {
+        *self == ColorProfile::Classic
+    }
+}
+
 /// The sheets parts are nested on.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -136,6 +181,9 @@ pub struct CutSettings {
     pub cut_speed: f64,
     /// Vector-engraving speed for the time estimate, mm/s.
     pub engrave_speed: f64,
+    /// The SVG sheets' stroke colours per operation (plan.json leaves the default out).
+    #[serde(default, skip_serializing_if = "ColorProfile::is_classic")]
+    pub colors: ColorProfile,
     /// Write step timings into report.json. Off by default, because timings differ from run to
     /// run and the ZIP must be byte-identical for the same input and settings.
     pub report_timings: bool,
@@ -156,6 +204,7 @@ impl Default for CutSettings {
             fill_holes: true,
             cut_speed: 10.0,
             engrave_speed: 100.0,
+            colors: ColorProfile::Classic,
             report_timings: false,
         }
     }

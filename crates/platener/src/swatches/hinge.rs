@@ -170,16 +170,12 @@ impl Swatch {
                     .map(|m| m.path.clone())
                     .collect(),
                 engrave: s
-                    .legend
+                    .marks
                     .iter()
-                    .cloned()
-                    .chain(
-                        s.marks
-                            .iter()
-                            .filter(|m| m.kind != MarkKind::Cut)
-                            .map(|m| m.path.clone()),
-                    )
+                    .filter(|m| m.kind != MarkKind::Cut)
+                    .map(|m| m.path.clone())
                     .collect(),
+                labels: s.legend.clone(),
             })
             .collect();
         sheet_svg(self.width, self.height, &groups, &SvgStyle::CUT)

@@ -208,8 +208,11 @@ impl TestStrip {
     /// The sheet as SVG: the strip is `part-1`, the spike `part-2`.
     pub fn svg(&self) -> String {
         let rings = |p: &Polygon| {
-            std::iter::once(p.outer.clone())
-                .chain(p.holes.iter().cloned())
+            // Holes first, the outline last, as in every sheet ([`crate::export::order`]).
+            p.holes
+                .iter()
+                .cloned()
+                .chain(std::iter::once(p.outer.clone()))
                 .collect()
         };
         let groups = [
@@ -217,13 +220,15 @@ impl TestStrip {
                 id: "part-1".into(),
                 cut: rings(&self.strip),
                 slits: Vec::new(),
-                engrave: self.strip_engrave.clone(),
+                engrave: Vec::new(),
+                labels: self.strip_engrave.clone(),
             },
             SvgGroup {
                 id: "part-2".into(),
                 cut: rings(&self.spike),
                 slits: Vec::new(),
-                engrave: self.spike_engrave.clone(),
+                engrave: Vec::new(),
+                labels: self.spike_engrave.clone(),
             },
         ];
         sheet_svg(self.width, self.height, &groups, &SvgStyle::CUT)

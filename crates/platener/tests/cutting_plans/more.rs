@@ -28,7 +28,8 @@ fn the_test_strip_holes_and_spike_have_the_stated_widths() {
     for (t, material) in [(3.0, Material::Wood), (6.0, Material::Acrylic)] {
         let svg = svg_read::parse(&test_strip(t, material).expect("strip").svg());
         let strip = &svg.groups["part-1"];
-        let mut holes: Vec<(f64, f64)> = strip.cut[1..].iter().map(|r| x_extent(r)).collect();
+        // Holes first, the outline last (cut order).
+        let mut holes: Vec<(f64, f64)> = strip.cut[..strip.cut.len() - 1].iter().map(|r| x_extent(r)).collect();
         assert_eq!(holes.len(), HOLE_COUNT as usize);
         // Numbered left to right.
         holes.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -343,4 +344,70 @@ fn the_lightburn_project_has_the_svgs_shapes_on_their_layers() {
             assert_eq!(*lines, if p.closed { verts.len() } else { verts.len() - 1 });
         }
     }
+}
+
+/// `colors` = LightBurn (issue 34): in every sheet of a mixed plan, each part's outline is its
+/// last path, red (LightBurn's C02) and its largest ring; its holes are green (C03) before it;
+/// its numbers black (C00). plan.json names the profile; the classic plan leaves it out.
+#[test]
+fn a_lightburn_plan_strokes_each_operation_in_its_colour() {
+    use platener::plan::ColorProfile;
+    let settings = CutSettings {
+        colors: ColorProfile::LightBurn,
+        ..CutSettings::default()
+    };
+    let (_, plan) = run(mixed_parts(), settings);
+    let (mut outlines, mut holes, mut labels) = (0, 0, 0);
+    for (name, bytes) in plan.bundle.files.iter().filter(|(n, _)| n.ends_with(".svg")) {
+        let text = std::str::from_utf8(bytes).expect("utf-8");
+        let doc = roxmltree::Document::parse(text).expect("well-formed");
+        for g in doc
+            .descendants()
+            .filter(|n| n.attribute("id").is_some_and(|id| id.starts_with("part-")))
+        {
+            let paths: Vec<(&str, bool, f64)> = g
+                .children()
+                .filter(|n| n.has_tag_name("path"))
+                .map(|n| {
+                    let d = n.attribute("d").expect("d");
+                    let ring = svg_read::path_points(d).0;
+                    (
+                        n.attribute("stroke").expect("stroke"),
+                        d.ends_with('Z'),
+                        Polygon::new(ring).area().abs(),
+                    )
+                })
+                .collect();
+            let (last, rest) = paths.split_last().expect("a part has paths");
+            assert_eq!(
+                (last.0, last.1),
+                ("#ff0000", true),
+                "{name}: the outline comes last, red"
+            );
+            outlines += 1;
+            for (stroke, closed, area) in rest {
+                match (*stroke, *closed) {
+                    ("#00e000", true) => {
+                        assert!(*area < last.2, "{name}: a hole is smaller than its outline");
+                        holes += 1;
+                    }
+                    ("#000000", false) => labels += 1,
+                    other => panic!("{name}: unexpected path {other:?}"),
+                }
+            }
+        }
+    }
+    assert_eq!(outlines, mixed_parts().len());
+    assert!(
+        holes >= 1 && labels >= mixed_parts().len(),
+        "{holes} holes, {labels} label strokes"
+    );
+    let json = String::from_utf8(plan.bundle.files["plan.json"].clone()).expect("utf-8");
+    assert!(
+        json.contains("\"colors\": \"lightburn\""),
+        "plan.json names the profile"
+    );
+    let (_, classic) = run(mixed_parts(), CutSettings::default());
+    let json = String::from_utf8(classic.bundle.files["plan.json"].clone()).expect("utf-8");
+    assert!(!json.contains("\"colors\""), "the default profile is not written");
 }

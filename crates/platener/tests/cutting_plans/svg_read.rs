@@ -30,7 +30,7 @@ fn attr<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
     Some(&tag[start..end])
 }
 
-fn path_points(d: &str) -> (Vec<DVec2>, bool) {
+pub fn path_points(d: &str) -> (Vec<DVec2>, bool) {
     let mut pts = Vec::new();
     let mut nums = Vec::new();
     let mut closed = false;
