@@ -24,12 +24,15 @@ impl Subset for Every {
 }
 
 /// `scene`: every setting but those of the cutting plan alone (kerf, sheet, margin, spacing,
-/// line colours, labels).
+/// line colours, reference square, labels).
 #[derive(Debug, Clone, Copy)]
 pub struct ForScene;
 impl Subset for ForScene {
     fn includes(def: &Def) -> bool {
-        !matches!(def.name, "kerf" | "sheet" | "margin" | "spacing" | "colors" | "labels")
+        !matches!(
+            def.name,
+            "kerf" | "sheet" | "margin" | "spacing" | "colors" | "reference-square" | "labels"
+        )
     }
 }
 

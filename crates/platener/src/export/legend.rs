@@ -140,7 +140,7 @@ type Bounds = (DVec2, DVec2);
 /// it) grow it by the legend alone. The sheet's far corners are never tried: the laser would
 /// travel there and a smaller real sheet would lose the legend. Ties keep the first spot, so
 /// the choice is deterministic.
-fn free_spot(size: DVec2, sheet: DVec2, boxes: &[Bounds]) -> Option<DVec2> {
+pub(super) fn free_spot(size: DVec2, sheet: DVec2, boxes: &[Bounds]) -> Option<DVec2> {
     let used = platener_geom::boxes::enclosing2(boxes.iter().copied())?;
     let (lo, hi) = (DVec2::splat(GAP), sheet - size - DVec2::splat(GAP));
     let step = 2.0 * GAP;

@@ -14,6 +14,7 @@ pub mod lightburn;
 pub mod order;
 pub mod plan_json;
 pub mod png;
+pub mod reference;
 pub mod report;
 pub mod thumbnail;
 
@@ -69,9 +70,10 @@ pub fn run(
     for (g, legend) in groups.iter_mut().zip(&legends) {
         g.extend(legend.as_ref().and_then(legend::Legend::group));
     }
+    let squares = reference_squares(input, nesting, &mut groups);
     let (groups, paths): (Vec<Vec<svg::SvgGroup>>, Vec<order::CutPath>) =
         groups.into_iter().map(order::order_sheet).unzip();
-    let plan = plan_json::build_plan(input, cut, labels, nesting, &stems, &legends);
+    let plan = plan_json::build_plan(input, cut, labels, nesting, &stems, (&legends, &squares));
     // The sheets' files (the PNG previews above all) and the rest (report, 3D assembly,
     // thumbnail) do not depend on each other: made side by side, the plan is ready sooner. The
     // files are keyed by name, so the ZIP is the same whichever finishes first.
@@ -178,6 +180,28 @@ fn sheet_legends(input: &PlanInput, nesting: &Nesting, groups: &[Vec<svg::SvgGro
         .zip(groups)
         .enumerate()
         .map(|(index, (sheet, g))| legend::Legend::place(lines_of(index), sheet.width, sheet.height, g))
+        .collect()
+}
+
+/// With `reference-square` on, each sheet's reference square added to its groups where
+/// there is room ([`reference`]); its corners per sheet.
+fn reference_squares(
+    input: &PlanInput,
+    nesting: &Nesting,
+    groups: &mut [Vec<svg::SvgGroup>],
+) -> Vec<Option<[glam::DVec2; 2]>> {
+    if !input.settings.reference_square {
+        return vec![None; nesting.sheets.len()];
+    }
+    nesting
+        .sheets
+        .iter()
+        .zip(groups)
+        .map(|(sheet, g)| {
+            let (square, corners) = reference::place(sheet.width, sheet.height, g).unzip();
+            g.extend(square);
+            corners
+        })
         .collect()
 }
 

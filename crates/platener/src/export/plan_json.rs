@@ -68,14 +68,14 @@ pub fn plan_settings(input: &PlanInput) -> PlanSettings {
 }
 
 /// plan.json for the given snapshots (parts in ascending id order).
-/// `legends` are the sheets' legends, in the sheets' order.
+/// `extras` are the sheets' legends and reference squares' corners, in the sheets' order.
 pub fn build_plan(
     input: &PlanInput,
     cut: &CutPaths,
     labels: &Labels,
     nesting: &Nesting,
     stems: &[String],
-    legends: &[Option<Legend>],
+    (legends, squares): (&[Option<Legend>], &[Option<[glam::DVec2; 2]>]),
 ) -> Plan {
     let mut order: Vec<usize> = (0..input.parts.len()).collect();
     order.sort_by_key(|&i| input.parts[i].id);
@@ -123,6 +123,7 @@ pub fn build_plan(
             height: s.height,
             file: format!("{stem}.svg"),
             legend: legends.get(i).and_then(Option::as_ref).map(Legend::plan),
+            reference_square: squares.get(i).copied().flatten().map(|c| c.map(|p| [p.x, p.y])),
         })
         .collect();
     let src = &input.source;

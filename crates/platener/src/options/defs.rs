@@ -200,6 +200,26 @@ pub static DEFS: &[Def] = &[
         get: |c| json!(c.settings.cut.colors.name()),
     },
     Def {
+        name: "reference-square",
+        key: "reference_square",
+        short: None,
+        label: "Reference square",
+        group: Group::Sheets,
+        kind: Kind::Choice { choices: YES_NO },
+        help: "Score a 100 mm square on each sheet, beside the parts, to check the scale after import.",
+        doc: "A laser program that imports a file at the wrong scale shows the square at another size: \
+              measure it before cutting. Sheets without room beside the parts get none.",
+        set: |c, v| {
+            c.settings.cut.reference_square = match one(v)? {
+                "yes" => true,
+                "no" => false,
+                _ => return Err(choices_message(YES_NO)),
+            };
+            Ok(())
+        },
+        get: |c| json!(if c.settings.cut.reference_square { "yes" } else { "no" }),
+    },
+    Def {
         name: "labels",
         key: "labels",
         short: None,
@@ -462,6 +482,19 @@ const COLORS: &[Choice] = &[
         value: "ponoko",
         label: "Ponoko",
         help: "Ponoko's convention: blue cuts, red engraving, 0.01 mm lines.",
+    },
+];
+
+const YES_NO: &[Choice] = &[
+    Choice {
+        value: "no",
+        label: "No",
+        help: "Nothing but the parts on the sheets.",
+    },
+    Choice {
+        value: "yes",
+        label: "Yes",
+        help: "A scored 100 mm square with \"100 MM\" in it, beside the parts.",
     },
 ];
 

@@ -231,6 +231,7 @@ fn plan_of(mut part: Part, extra: &[PlanJoint]) -> Plan {
         parts: vec![plan_part(&part)],
         joints,
         sheets: vec![PlanSheet {
+            reference_square: None,
             index: 0,
             thickness: T,
             width: 600.0,

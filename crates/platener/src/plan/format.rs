@@ -217,6 +217,10 @@ pub struct PlanSheet {
     /// spec, docs/cutting-plans.md); omitted when every number is on its own part.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub legend: Option<SheetLegend>,
+    /// The 100 mm reference square's smallest and largest corner on the sheet, mm (an
+    /// extension: with `reference-square` on, when the sheet had room for it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference_square: Option<[[f64; 2]; 2]>,
 }
 
 /// `sheets[].legend`: the legend's lines and, when it is engraved on the sheet, its box.

@@ -184,6 +184,10 @@ pub struct CutSettings {
     /// The SVG sheets' stroke colours per operation (plan.json leaves the default out).
     #[serde(default, skip_serializing_if = "ColorProfile::is_classic")]
     pub colors: ColorProfile,
+    /// Score a 100 mm square with "100 MM" on each sheet where there is room, to check the
+    /// scale after import (plan.json leaves the default, off, out).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub reference_square: bool,
     /// Write step timings into report.json. Off by default, because timings differ from run to
     /// run and the ZIP must be byte-identical for the same input and settings.
     pub report_timings: bool,
@@ -205,6 +209,7 @@ impl Default for CutSettings {
             cut_speed: 10.0,
             engrave_speed: 100.0,
             colors: ColorProfile::Classic,
+            reference_square: false,
             report_timings: false,
         }
     }

@@ -411,3 +411,63 @@ fn a_lightburn_plan_strokes_each_operation_in_its_colour() {
     let json = String::from_utf8(classic.bundle.files["plan.json"].clone()).expect("utf-8");
     assert!(!json.contains("\"colors\""), "the default profile is not written");
 }
+
+/// `reference-square` on (issue 34): every sheet of a mixed plan with room gets a scored
+/// 100 × 100 mm square clear of every part, in its SVG (`<g id="reference-square">`, score
+/// colour) and its DXF (ENGRAVE layer), and plan.json gives its corners; off, nothing of it.
+#[test]
+fn the_reference_square_is_100_mm_beside_the_parts_in_svg_dxf_and_plan() {
+    use platener::export::dxf::read_polylines;
+    use platener::export::reference::REFERENCE_ID;
+    let settings = CutSettings {
+        sheet: SheetSize::Fixed {
+            width: 800.0,
+            height: 600.0,
+        },
+        reference_square: true,
+        ..CutSettings::default()
+    };
+    let (_, plan) = run(mixed_parts(), settings);
+    let bundle = &plan.bundle;
+    assert!(!bundle.plan.sheets.is_empty());
+    for sheet in &bundle.plan.sheets {
+        let [lo, hi] = sheet.reference_square.expect("room on an 800 × 600 sheet");
+        assert!((hi[0] - lo[0] - 100.0).abs() < 1e-9 && (hi[1] - lo[1] - 100.0).abs() < 1e-9);
+        assert!(lo[0] >= 0.0 && lo[1] >= 0.0 && hi[0] <= sheet.width && hi[1] <= sheet.height);
+        for part in bundle.plan.parts.iter().filter(|p| p.sheet.index == sheet.index) {
+            let inside = |q: &[f64; 2]| q[0] > lo[0] && q[0] < hi[0] && q[1] > lo[1] && q[1] < hi[1];
+            let on_sheet = part.outline.iter().map(|q| part.sheet.apply(*q));
+            assert!(
+                !on_sheet.map(|q| [q.x, q.y]).any(|q| inside(&q)),
+                "part {} reaches into the square",
+                part.id
+            );
+        }
+        let svg = std::str::from_utf8(&bundle.files[&sheet.file]).expect("utf-8");
+        let doc = roxmltree::Document::parse(svg).expect("well-formed");
+        let g = doc
+            .descendants()
+            .find(|n| n.attribute("id") == Some(REFERENCE_ID))
+            .expect("the square's group");
+        let square = g.children().find(|n| n.has_tag_name("path")).expect("the square");
+        assert_eq!(square.attribute("stroke"), Some("#0000ff"), "scored, not cut");
+        let dxf_name = sheet.file.replace(".svg", ".dxf");
+        let lines = read_polylines(&bundle.files[&dxf_name], sheet.height).expect("reads");
+        let found = lines.iter().any(|l| {
+            l.layer == "ENGRAVE"
+                && l.points.len() == 5
+                && l.points
+                    .iter()
+                    .all(|p| (p.x - lo[0]).abs() < 1e-6 || (p.x - hi[0]).abs() < 1e-6)
+        });
+        assert!(found, "the DXF scores the square");
+    }
+    let (_, off) = run(mixed_parts(), CutSettings::default());
+    assert!(off.bundle.plan.sheets.iter().all(|s| s.reference_square.is_none()));
+    assert!(
+        !off.bundle
+            .files
+            .values()
+            .any(|f| f.windows(REFERENCE_ID.len()).any(|w| w == REFERENCE_ID.as_bytes()))
+    );
+}
