@@ -97,10 +97,43 @@ pub struct SvgGroup {
     /// Open polylines to cut (the part's `cut` marks: hinge slits, perforation dashes), sheet
     /// coordinates; drawn like the rings, red hairlines, but not closed.
     pub slits: Vec<Vec<DVec2>>,
-    /// Open polylines to score (engraved lines that are not text), sheet coordinates.
-    pub engrave: Vec<Vec<DVec2>>,
-    /// Open polylines of text to engrave (part and edge numbers, legends), sheet coordinates.
-    pub labels: Vec<Vec<DVec2>>,
+    /// Open polylines to engrave, sheet coordinates: score lines and text, one sequence so
+    /// the cut order can interleave them along the shortest path.
+    pub engrave: Vec<Engraved>,
+}
+
+/// One engraved polyline and whether it is text (labels, legends) or a score line (bend lines,
+/// features' outlines, a layer's outline on the one below): colour profiles stroke them apart.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Engraved {
+    /// The polyline, sheet coordinates.
+    pub path: Vec<DVec2>,
+    /// Text rather than a score line.
+    pub text: bool,
+}
+
+impl AsRef<Vec<DVec2>> for Engraved {
+    fn as_ref(&self) -> &Vec<DVec2> {
+        &self.path
+    }
+}
+
+impl AsMut<Vec<DVec2>> for Engraved {
+    fn as_mut(&mut self) -> &mut Vec<DVec2> {
+        &mut self.path
+    }
+}
+
+impl Engraved {
+    /// A score line.
+    pub fn score(path: Vec<DVec2>) -> Engraved {
+        Engraved { path, text: false }
+    }
+
+    /// A stroke of text.
+    pub fn text(path: Vec<DVec2>) -> Engraved {
+        Engraved { path, text: true }
+    }
 }
 
 /// How the sheet is drawn: the cut file, or a preview for the PNG.
@@ -230,18 +263,14 @@ pub fn sheet_svg(width: f64, height: f64, groups: &[SvgGroup], style: &SvgStyle)
                 d.join(" ")
             );
         }
-        // Cut order (`export::order`): scores, text, then slits, then rings (holes before
-        // the outline, which comes last).
-        let engraved = g
-            .engrave
-            .iter()
-            .map(|l| (l, p.score))
-            .chain(g.labels.iter().map(|l| (l, p.label)));
-        for (line, stroke) in engraved {
+        // Cut order (`export::order`): engraving, then slits, then rings (holes before the
+        // outline, which comes last).
+        for e in &g.engrave {
+            let stroke = if e.text { p.label } else { p.score };
             let _ = writeln!(
                 s,
                 "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>",
-                path_data(line, false),
+                path_data(&e.path, false),
                 stroke.color,
                 num(stroke.width())
             );
@@ -295,8 +324,10 @@ mod tests {
             id: "part-1".into(),
             cut: vec![square(4.0, 2.0), square(0.0, 20.0)],
             slits: vec![vec![DVec2::new(10.0, 2.0), DVec2::new(10.0, 8.0)]],
-            engrave: vec![vec![DVec2::new(2.0, 12.0), DVec2::new(18.0, 12.0)]],
-            labels: vec![vec![DVec2::new(2.0, 16.0), DVec2::new(3.0, 18.0)]],
+            engrave: vec![
+                Engraved::score(vec![DVec2::new(2.0, 12.0), DVec2::new(18.0, 12.0)]),
+                Engraved::text(vec![DVec2::new(2.0, 16.0), DVec2::new(3.0, 18.0)]),
+            ],
         };
         let mut palettes = Vec::new();
         for profile in ColorProfile::ALL {
@@ -346,8 +377,7 @@ mod tests {
             id: "part-1".into(),
             cut: vec![vec![DVec2::ZERO, DVec2::X, DVec2::ONE]],
             slits: Vec::new(),
-            engrave: vec![vec![DVec2::ZERO, DVec2::Y]],
-            labels: Vec::new(),
+            engrave: vec![Engraved::score(vec![DVec2::ZERO, DVec2::Y])],
         };
         let svg = sheet_svg(600.0, 400.0, &[g], &SvgStyle::CUT);
         assert!(svg.contains("width=\"600mm\" height=\"400mm\" viewBox=\"0 0 600 400\""));
@@ -362,7 +392,6 @@ mod tests {
             cut: vec![vec![DVec2::ZERO, DVec2::new(10.0, 0.0), DVec2::splat(10.0)]],
             slits: vec![vec![DVec2::new(2.0, 1.0), DVec2::new(2.0, 5.5)]],
             engrave: Vec::new(),
-            labels: Vec::new(),
         };
         let svg = sheet_svg(600.0, 400.0, &[g], &SvgStyle::CUT);
         let red = format!("<path d=\"M2 1 L2 5.5\" fill=\"none\" stroke=\"{CUT_COLOR}\" stroke-width=\"0.0254\"/>");

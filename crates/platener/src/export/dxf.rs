@@ -72,7 +72,7 @@ pub fn sheet_dxf(height: f64, groups: &[SvgGroup], file: &str) -> Result<Vec<u8>
     // In cut order (`export::order`): each part's engraving, slits, then rings (holes before
     // the outline, as they are ordered).
     for g in groups {
-        for line in g.engrave.iter().chain(&g.labels) {
+        for line in g.engrave.iter().map(|e| &e.path) {
             drawing.add_entity(polyline(line, false, ENGRAVE_LAYER, height));
         }
         for slit in &g.slits {
@@ -125,8 +125,10 @@ mod tests {
             id: "part-1".into(),
             cut: vec![vec![DVec2::new(1.0, 1.0), DVec2::new(11.0, 1.0), DVec2::new(11.0, 6.0)]],
             slits: vec![vec![DVec2::new(4.0, 2.0), DVec2::new(4.0, 5.0)]],
-            engrave: vec![vec![DVec2::new(2.0, 2.0), DVec2::new(3.0, 3.0)]],
-            labels: Vec::new(),
+            engrave: vec![crate::draw::svg::Engraved::score(vec![
+                DVec2::new(2.0, 2.0),
+                DVec2::new(3.0, 3.0),
+            ])],
         };
         let a = sheet_dxf(400.0, std::slice::from_ref(&g), "t.dxf").expect("writes");
         let b = sheet_dxf(400.0, std::slice::from_ref(&g), "t.dxf").expect("writes");

@@ -19,7 +19,7 @@ use glam::DVec2;
 use serde::Deserialize;
 
 use crate::draw::font;
-use crate::draw::svg::SvgGroup;
+use crate::draw::svg::{Engraved, SvgGroup};
 use crate::plan::SheetLegend;
 
 /// Cap height of the legend's text, mm.
@@ -101,7 +101,7 @@ impl Legend {
     /// The engrave-only group of the legend, when it is on the sheet.
     pub fn group(&self) -> Option<SvgGroup> {
         let top_left = self.top_left?;
-        let labels = self
+        let labels: Vec<Vec<DVec2>> = self
             .lines
             .iter()
             .enumerate()
@@ -114,8 +114,7 @@ impl Legend {
             id: LEGEND_ID.into(),
             cut: Vec::new(),
             slits: Vec::new(),
-            engrave: Vec::new(),
-            labels,
+            engrave: labels.into_iter().map(Engraved::text).collect(),
         })
     }
 
@@ -213,7 +212,6 @@ mod tests {
             ]],
             slits: Vec::new(),
             engrave: Vec::new(),
-            labels: Vec::new(),
         }
     }
 
@@ -231,7 +229,7 @@ mod tests {
     /// box lies within the parts' box grown by `margin`.
     fn text_box(g: &SvgGroup) -> Bounds {
         assert!(g.cut.is_empty() && g.slits.is_empty(), "the legend is engraved only");
-        bounds(&g.labels).expect("text")
+        bounds(&g.engrave.iter().map(|e| e.path.clone()).collect::<Vec<_>>()).expect("text")
     }
 
     fn near(a: Bounds, b: Bounds, margin: f64) -> bool {
@@ -252,7 +250,6 @@ mod tests {
             cut: vec![ring],
             slits: Vec::new(),
             engrave: Vec::new(),
-            labels: Vec::new(),
         }
     }
 

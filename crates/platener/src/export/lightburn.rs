@@ -94,7 +94,7 @@ pub fn sheet_lbrn2(width: f64, height: f64, groups: &[SvgGroup], settings: &CutS
     ];
     shape(&mut s, SHEET, &flip(&sheet), true);
     for g in groups {
-        for line in g.engrave.iter().chain(&g.labels) {
+        for line in g.engrave.iter().map(|e| &e.path) {
             shape(&mut s, ENGRAVE, &flip(line), false);
         }
         for slit in &g.slits {
@@ -179,8 +179,10 @@ mod tests {
                 ],
             ],
             slits: vec![vec![DVec2::new(8.0, 2.0), DVec2::new(8.0, 5.0)]],
-            engrave: vec![vec![DVec2::new(2.0, 2.0), DVec2::new(3.0, 3.0)]],
-            labels: Vec::new(),
+            engrave: vec![crate::draw::svg::Engraved::score(vec![
+                DVec2::new(2.0, 2.0),
+                DVec2::new(3.0, 3.0),
+            ])],
         };
         let text = sheet_lbrn2(
             200.0,

@@ -67,7 +67,7 @@ fn part_sequence(groups: &[SvgGroup]) -> Vec<usize> {
 
 /// Where a part is, for ordering the parts: the middle of its paths' bounds.
 fn anchor(g: &SvgGroup) -> DVec2 {
-    let paths = g.cut.iter().chain(&g.slits).chain(&g.engrave).chain(&g.labels);
+    let paths = g.cut.iter().chain(&g.slits).chain(g.engrave.iter().map(|e| &e.path));
     let (lo, hi) = platener_geom::boxes::bounds2(paths.flatten().copied());
     if lo.x.is_finite() { (lo + hi) / 2.0 } else { DVec2::ZERO }
 }
@@ -171,11 +171,10 @@ fn two_opt(sequence: &mut [usize], anchors: &[DVec2], before: &[Vec<usize>]) {
     }
 }
 
-/// Orders one part's paths (score lines, text, slits, holes, outline), each starting nearest
-/// the head, and adds them to `path`.
+/// Orders one part's paths (engraving, slits, holes, outline), each starting nearest the
+/// head, and adds them to `path`.
 fn order_group(g: &mut SvgGroup, head: &mut DVec2, path: &mut CutPath) {
     g.engrave = order_open(std::mem::take(&mut g.engrave), head, path, false);
-    g.labels = order_open(std::mem::take(&mut g.labels), head, path, false);
     g.slits = order_open(std::mem::take(&mut g.slits), head, path, true);
     let mut rings = std::mem::take(&mut g.cut);
     let outline = (!rings.is_empty()).then(|| rings.remove(0));
@@ -186,11 +185,16 @@ fn order_group(g: &mut SvgGroup, head: &mut DVec2, path: &mut CutPath) {
     g.cut = ordered;
 }
 
-/// Open polylines, nearest first, each from its nearer end.
-fn order_open(mut lines: Vec<Vec<DVec2>>, head: &mut DVec2, path: &mut CutPath, cut: bool) -> Vec<Vec<DVec2>> {
+/// Open polylines (slits, or engraving of either kind), nearest first, each from its nearer
+/// end.
+fn order_open<P>(mut lines: Vec<P>, head: &mut DVec2, path: &mut CutPath, cut: bool) -> Vec<P>
+where
+    P: AsRef<Vec<DVec2>> + AsMut<Vec<DVec2>>,
+{
     let mut out = Vec::with_capacity(lines.len());
     while !lines.is_empty() {
-        let end_distance = |l: &Vec<DVec2>| {
+        let end_distance = |l: &P| {
+            let l = l.as_ref();
             let (a, b) = (l.first().copied().unwrap_or(*head), l.last().copied().unwrap_or(*head));
             head.distance(a).min(head.distance(b))
         };
@@ -201,7 +205,8 @@ fn order_open(mut lines: Vec<Vec<DVec2>>, head: &mut DVec2, path: &mut CutPath, 
                     .then(a.cmp(&b))
             })
             .expect("a line is left");
-        let mut line = lines.remove(k);
+        let mut item = lines.remove(k);
+        let line = item.as_mut();
         let (Some(&first), Some(&last)) = (line.first(), line.last()) else {
             continue;
         };
@@ -217,7 +222,7 @@ fn order_open(mut lines: Vec<Vec<DVec2>>, head: &mut DVec2, path: &mut CutPath, 
             path.engrave_length += length;
         }
         *head = *line.last().expect("not empty");
-        out.push(line);
+        out.push(item);
     }
     out
 }
@@ -285,8 +290,7 @@ mod tests {
             id: format!("part-{id}"),
             cut: rings,
             slits: Vec::new(),
-            engrave,
-            labels: Vec::new(),
+            engrave: engrave.into_iter().map(crate::draw::svg::Engraved::text).collect(),
         }
     }
 

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use glam::DVec2;
 
 use super::legend::Legend;
-use crate::draw::svg::{SvgGroup, num};
+use crate::draw::svg::{Engraved, SvgGroup, num};
 use platener_geom::Polygon;
 
 use crate::kerf::{CutPaths, open_ring};
@@ -186,14 +186,17 @@ pub fn sheet_groups(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting:
     for (i, part) in input.parts.iter().enumerate() {
         let p = &nesting.placements[i];
         let c = &cut.parts[i];
-        // Cut marks come from the kerf step's slits; every other mark is engraved, text apart.
-        let marks = || part.marks.iter().chain(&labels.parts[i].marks);
-        let engraved = |label: bool| {
-            marks()
-                .filter(|m| m.kind != MarkKind::Cut && (m.kind == MarkKind::Label) == label)
-                .map(|m| moved(&m.path, p))
-                .collect()
-        };
+        // Cut marks come from the kerf step's slits; every other mark is engraved.
+        let engrave = part
+            .marks
+            .iter()
+            .chain(&labels.parts[i].marks)
+            .filter(|m| m.kind != MarkKind::Cut)
+            .map(|m| Engraved {
+                path: moved(&m.path, p),
+                text: m.kind == MarkKind::Label,
+            })
+            .collect();
         let g = SvgGroup {
             id: format!("part-{}", part.id),
             cut: std::iter::once(&c.cut.outer)
@@ -201,8 +204,7 @@ pub fn sheet_groups(input: &PlanInput, cut: &CutPaths, labels: &Labels, nesting:
                 .map(|r| moved(r, p))
                 .collect(),
             slits: c.slits.iter().map(|l| moved(l, p)).collect(),
-            engrave: engraved(false),
-            labels: engraved(true),
+            engrave,
         };
         groups[p.index as usize].push((part.id, g));
     }

@@ -43,7 +43,6 @@ mod tests {
             ]],
             slits: vec![],
             engrave: vec![],
-            labels: Vec::new(),
         };
         let png = render_png(&sheet_svg(600.0, 400.0, &[g], &style), "p.png").expect("renders");
         assert_eq!(&png[1..4], b"PNG");
@@ -67,7 +66,6 @@ mod tests {
             ]],
             slits: vec![vec![DVec2::new(300.0, 150.0), DVec2::new(300.0, 250.0)]],
             engrave: vec![],
-            labels: Vec::new(),
         };
         let png = render_png(&sheet_svg(600.0, 400.0, &[g], &style), "p.png").expect("renders");
         let pixmap = resvg::tiny_skia::Pixmap::decode_png(&png).expect("decodes");

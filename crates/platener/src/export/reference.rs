@@ -9,7 +9,7 @@
 use glam::DVec2;
 
 use crate::draw::font;
-use crate::draw::svg::SvgGroup;
+use crate::draw::svg::{Engraved, SvgGroup};
 
 /// The square's side, mm.
 pub const SIDE: f64 = 100.0;
@@ -40,15 +40,20 @@ pub fn place(width: f64, height: f64, groups: &[SvgGroup]) -> Option<(SvgGroup, 
         id: REFERENCE_ID.into(),
         cut: Vec::new(),
         slits: Vec::new(),
-        engrave: vec![square],
-        labels: font::place_text(text, TEXT_SIZE, origin, DVec2::X),
+        engrave: std::iter::once(Engraved::score(square))
+            .chain(
+                font::place_text(text, TEXT_SIZE, origin, DVec2::X)
+                    .into_iter()
+                    .map(Engraved::text),
+            )
+            .collect(),
     };
     Some((group, [at, at + DVec2::splat(SIDE)]))
 }
 
 /// The bounding box of everything `g` draws, if it draws anything.
 fn extent(g: &SvgGroup) -> Option<(DVec2, DVec2)> {
-    let paths = g.cut.iter().chain(&g.slits).chain(&g.engrave).chain(&g.labels);
+    let paths = g.cut.iter().chain(&g.slits).chain(g.engrave.iter().map(|e| &e.path));
     let (lo, hi) = platener_geom::boxes::bounds2(paths.flatten().copied());
     (lo.x <= hi.x).then_some((lo, hi))
 }
@@ -84,14 +89,15 @@ mod tests {
             );
         }
         // A closed score square (5 points, back to the start) and the text inside it.
-        assert_eq!(g.engrave.len(), 1);
-        assert_eq!(g.engrave[0].len(), 5);
-        assert_eq!(g.engrave[0][0], g.engrave[0][4]);
-        let (tlo, thi) = extent(&SvgGroup {
-            labels: g.labels.clone(),
+        let (text, square): (Vec<&Engraved>, Vec<&Engraved>) = g.engrave.iter().partition(|e| e.text);
+        assert_eq!(square.len(), 1);
+        assert_eq!(square[0].path.len(), 5);
+        assert_eq!(square[0].path[0], square[0].path[4]);
+        let text = SvgGroup {
+            engrave: text.into_iter().cloned().collect(),
             ..SvgGroup::default()
-        })
-        .expect("text");
+        };
+        let (tlo, thi) = extent(&text).expect("text");
         assert!(tlo.cmpge(lo).all() && thi.cmple(hi).all());
         assert!(g.cut.is_empty() && g.slits.is_empty(), "nothing of it is cut");
     }

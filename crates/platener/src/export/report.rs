@@ -110,7 +110,7 @@ pub fn lengths(groups: &[Vec<SvgGroup>]) -> (f64, f64) {
     let slits: f64 = all.clone().flat_map(|g| &g.slits).map(|l| length(l, false)).sum();
     let cut = rings + slits;
     let engrave = all
-        .flat_map(|g| g.engrave.iter().chain(&g.labels))
+        .flat_map(|g| g.engrave.iter().map(|e| &e.path))
         .map(|l| length(l, false))
         .sum();
     (cut, engrave)

@@ -12,7 +12,7 @@ use platener_geom::Polygon;
 use platener_geom::polygon::rect;
 
 use crate::draw::font::{place_text, text_width};
-use crate::draw::svg::{SvgGroup, SvgStyle, num, sheet_svg};
+use crate::draw::svg::{Engraved, SvgGroup, SvgStyle, num, sheet_svg};
 use crate::hinge::{BendDesign, HingeError, design, design_pattern, marks};
 use crate::plan::{BendStyle, HingePattern, Mark, MarkKind, Material};
 
@@ -170,12 +170,17 @@ impl Swatch {
                     .map(|m| m.path.clone())
                     .collect(),
                 engrave: s
-                    .marks
+                    .legend
                     .iter()
-                    .filter(|m| m.kind != MarkKind::Cut)
-                    .map(|m| m.path.clone())
+                    .cloned()
+                    .map(Engraved::text)
+                    .chain(
+                        s.marks
+                            .iter()
+                            .filter(|m| m.kind != MarkKind::Cut)
+                            .map(|m| Engraved::score(m.path.clone())),
+                    )
                     .collect(),
-                labels: s.legend.clone(),
             })
             .collect();
         sheet_svg(self.width, self.height, &groups, &SvgStyle::CUT)

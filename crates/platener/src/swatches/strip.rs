@@ -16,7 +16,7 @@ use glam::DVec2;
 use platener_geom::Polygon;
 
 use crate::draw::font::{place_text, text_width};
-use crate::draw::svg::{SvgGroup, SvgStyle, num, sheet_svg};
+use crate::draw::svg::{Engraved, SvgGroup, SvgStyle, num, sheet_svg};
 use crate::plan::{MAX_KERF, Material, PlanError};
 
 /// Width of the spike's tip, mm (the "known width").
@@ -220,15 +220,13 @@ impl TestStrip {
                 id: "part-1".into(),
                 cut: rings(&self.strip),
                 slits: Vec::new(),
-                engrave: Vec::new(),
-                labels: self.strip_engrave.clone(),
+                engrave: self.strip_engrave.iter().cloned().map(Engraved::text).collect(),
             },
             SvgGroup {
                 id: "part-2".into(),
                 cut: rings(&self.spike),
                 slits: Vec::new(),
-                engrave: Vec::new(),
-                labels: self.spike_engrave.clone(),
+                engrave: self.spike_engrave.iter().cloned().map(Engraved::text).collect(),
             },
         ];
         sheet_svg(self.width, self.height, &groups, &SvgStyle::CUT)
