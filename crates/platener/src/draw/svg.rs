@@ -19,25 +19,18 @@ pub const ENGRAVE_COLOR: &str = "#0000ff";
 pub const HAIRLINE: f64 = 0.0254;
 
 /// One operation's stroke: colour (`#rrggbb`) and width, mm.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Stroke {
     /// The colour, `#rrggbb` in lower case.
     pub color: &'static str,
-    /// The width, in 0.1 µm (so the palette is `Eq` and its numbers exact), see [`Stroke::width`].
-    pub width_um10: u32,
-}
-
-impl Stroke {
     /// The width, mm.
-    pub fn width(self) -> f64 {
-        f64::from(self.width_um10) / 10_000.0
-    }
+    pub width: f64,
 }
 
 /// The stroke of each operation on a sheet. Laser programs tell operations apart by colour;
 /// holes and slits have a colour of their own where a program orders operations by colour,
 /// so every inner cut runs before the outline that frees a part.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Palette {
     /// Numbers and text (the `labels` step, the sheet's legend).
     pub label: Stroke,
@@ -52,10 +45,10 @@ pub struct Palette {
 impl Palette {
     /// The palette of `profile` (docs/cutting-plans.md, "Colour profiles", gives the sources).
     pub const fn of(profile: ColorProfile) -> Palette {
-        const fn stroke(color: &'static str, width_um10: u32) -> Stroke {
-            Stroke { color, width_um10 }
+        const fn stroke(color: &'static str, width: f64) -> Stroke {
+            Stroke { color, width }
         }
-        const HAIR: u32 = 254;
+        const HAIR: f64 = HAIRLINE;
         match profile {
             ColorProfile::Classic => Palette {
                 label: stroke(ENGRAVE_COLOR, HAIR),
@@ -72,16 +65,16 @@ impl Palette {
             },
             // Ascending colour value in run order: black < blue < green < red.
             ColorProfile::Glowforge | ColorProfile::Xtool => Palette {
-                label: stroke("#000000", 1000),
-                score: stroke("#0000ff", 1000),
-                cut_inner: stroke("#00ff00", 1000),
-                cut_outer: stroke("#ff0000", 1000),
+                label: stroke("#000000", 0.1),
+                score: stroke("#0000ff", 0.1),
+                cut_inner: stroke("#00ff00", 0.1),
+                cut_outer: stroke("#ff0000", 0.1),
             },
             ColorProfile::Ponoko => Palette {
-                label: stroke("#ff0000", 100),
-                score: stroke("#ff0000", 100),
-                cut_inner: stroke("#0000ff", 100),
-                cut_outer: stroke("#0000ff", 100),
+                label: stroke("#ff0000", 0.01),
+                score: stroke("#ff0000", 0.01),
+                cut_inner: stroke("#0000ff", 0.01),
+                cut_outer: stroke("#0000ff", 0.01),
             },
         }
     }
@@ -155,11 +148,11 @@ impl SvgStyle {
     pub const fn preview(cut_width: f64, engrave_width: f64) -> SvgStyle {
         let cut = Stroke {
             color: CUT_COLOR,
-            width_um10: (cut_width * 10_000.0) as u32,
+            width: cut_width,
         };
         let engrave = Stroke {
             color: ENGRAVE_COLOR,
-            width_um10: (engrave_width * 10_000.0) as u32,
+            width: engrave_width,
         };
         SvgStyle {
             palette: Palette {
@@ -250,7 +243,7 @@ pub fn sheet_svg(width: f64, height: f64, groups: &[SvgGroup], style: &SvgStyle)
         let _ = writeln!(
             s,
             "<rect x=\"0\" y=\"0\" width=\"{w}\" height=\"{h}\" fill=\"#ffffff\" stroke=\"#808080\" stroke-width=\"{}\"/>",
-            num(p.cut_outer.width())
+            num(p.cut_outer.width)
         );
     }
     for g in groups {
@@ -272,7 +265,7 @@ pub fn sheet_svg(width: f64, height: f64, groups: &[SvgGroup], style: &SvgStyle)
                 "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>",
                 path_data(&e.path, false),
                 stroke.color,
-                num(stroke.width())
+                num(stroke.width)
             );
         }
         let outline = g.cut.len().checked_sub(1);
@@ -287,7 +280,7 @@ pub fn sheet_svg(width: f64, height: f64, groups: &[SvgGroup], style: &SvgStyle)
                 "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"/>",
                 path_data(path, closed),
                 stroke.color,
-                num(stroke.width())
+                num(stroke.width)
             );
         }
         s.push_str("</g>\n");
@@ -329,7 +322,6 @@ mod tests {
                 Engraved::text(vec![DVec2::new(2.0, 16.0), DVec2::new(3.0, 18.0)]),
             ],
         };
-        let mut palettes = Vec::new();
         for profile in ColorProfile::ALL {
             let p = Palette::of(profile);
             let svg = sheet_svg(30.0, 30.0, std::slice::from_ref(&g), &SvgStyle::cut(profile));
@@ -347,11 +339,10 @@ mod tests {
             // In file order: score, label, slit, hole, outline.
             let expected: Vec<(String, String)> = [p.score, p.label, p.cut_inner, p.cut_inner, p.cut_outer]
                 .iter()
-                .map(|s| (s.color.to_string(), num(s.width())))
+                .map(|s| (s.color.to_string(), num(s.width)))
                 .collect();
             let got: Vec<(String, String)> = strokes.iter().map(|(c, w)| (c.to_string(), w.to_string())).collect();
             assert_eq!(got, expected, "{profile:?}");
-            palettes.push(p);
         }
         // LightBurn's palette tells every operation apart; the Glowforge order is ascending
         // colour value from text to outlines; Ponoko cuts blue and engraves red.
@@ -365,10 +356,30 @@ mod tests {
         assert!(value(gf.cut_inner) < value(gf.cut_outer));
         let ponoko = Palette::of(ColorProfile::Ponoko);
         assert_eq!(
-            (ponoko.cut_outer.color, ponoko.score.color, ponoko.cut_outer.width()),
+            (ponoko.cut_outer.color, ponoko.score.color, ponoko.cut_outer.width),
             ("#0000ff", "#ff0000", 0.01)
         );
-        assert_eq!(palettes[0], Palette::of(ColorProfile::Classic));
+        // The default profile is the file format of before: red hairline cuts, blue engraving.
+        let classic = Palette::of(ColorProfile::default());
+        let (cut, engrave) = (
+            Stroke {
+                color: CUT_COLOR,
+                width: HAIRLINE,
+            },
+            Stroke {
+                color: ENGRAVE_COLOR,
+                width: HAIRLINE,
+            },
+        );
+        assert_eq!(
+            classic,
+            Palette {
+                label: engrave,
+                score: engrave,
+                cut_inner: cut,
+                cut_outer: cut
+            }
+        );
     }
 
     #[test]
