@@ -15,6 +15,12 @@ use crate::plan::ColorProfile;
 pub const CUT_COLOR: &str = "#ff0000";
 /// Engrave colour: pure blue, "score / engrave".
 pub const ENGRAVE_COLOR: &str = "#0000ff";
+/// The sheet outline's colour: grey, no operation's colour in any profile.
+pub const SHEET_COLOR: &str = "#808080";
+/// The `id` of the sheet outline's hidden layer in a cut file.
+pub const SHEET_ID: &str = "sheet";
+/// Inkscape's namespace, for the sheet outline's layer attributes.
+const INKSCAPE_NS: &str = " xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\"";
 /// Hairline width, mm (0.001 in, what Epilog, Trotec and LightBurn treat as a vector line).
 pub const HAIRLINE: f64 = 0.0254;
 
@@ -93,6 +99,52 @@ pub struct SvgGroup {
     /// Open polylines to engrave, sheet coordinates: score lines and text, one sequence so
     /// the cut order can interleave them along the shortest path.
     pub engrave: Vec<Engraved>,
+}
+
+/// One path of a group as a file draws it: its points, whether it is closed, and the stroke
+/// of its operation.
+#[derive(Debug, Clone, Copy)]
+pub struct Drawn<'a> {
+    /// The points, sheet coordinates.
+    pub points: &'a [DVec2],
+    /// A closed ring rather than an open polyline.
+    pub closed: bool,
+    /// Engraved (text or score) rather than cut.
+    pub engrave: bool,
+    /// The operation's stroke in the palette.
+    pub stroke: Stroke,
+}
+
+impl SvgGroup {
+    /// Every path of the group in file order, which is cut order (`export::order`):
+    /// engraving, then slits, then rings (holes before the outline, which comes last), each
+    /// with its operation's stroke in `palette`. Every file that draws a sheet draws this.
+    pub fn drawn<'a>(&'a self, palette: &'a Palette) -> impl Iterator<Item = Drawn<'a>> + 'a {
+        let engraved = self.engrave.iter().map(|e| Drawn {
+            points: &e.path,
+            closed: false,
+            engrave: true,
+            stroke: if e.text { palette.label } else { palette.score },
+        });
+        let slits = self.slits.iter().map(|l| Drawn {
+            points: l,
+            closed: false,
+            engrave: false,
+            stroke: palette.cut_inner,
+        });
+        let outline = self.cut.len().checked_sub(1);
+        let rings = self.cut.iter().enumerate().map(move |(k, r)| Drawn {
+            points: r,
+            closed: true,
+            engrave: false,
+            stroke: if Some(k) == outline {
+                palette.cut_outer
+            } else {
+                palette.cut_inner
+            },
+        });
+        engraved.chain(slits).chain(rings)
+    }
 }
 
 /// One engraved polyline and whether it is text (labels, legends) or a score line (bend lines,
@@ -237,8 +289,18 @@ pub fn sheet_svg(width: f64, height: f64, groups: &[SvgGroup], style: &SvgStyle)
     s.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     let _ = writeln!(
         s,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{w}mm\" height=\"{h}mm\" viewBox=\"0 0 {w} {h}\">"
+        "<svg xmlns=\"http://www.w3.org/2000/svg\"{} version=\"1.1\" width=\"{w}mm\" height=\"{h}mm\" viewBox=\"0 0 {w} {h}\">",
+        if style.preview { "" } else { INKSCAPE_NS }
     );
+    if !style.preview {
+        // The sheet's outline on a hidden layer of its own: a frame to place the material by
+        // in Inkscape, skipped by laser programs, which import no hidden element.
+        let _ = writeln!(
+            s,
+            "<g id=\"{SHEET_ID}\" inkscape:groupmode=\"layer\" inkscape:label=\"Sheet (not cut)\" style=\"display:none\">\n<rect x=\"0\" y=\"0\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"{SHEET_COLOR}\" stroke-width=\"{}\"/>\n</g>",
+            num(HAIRLINE)
+        );
+    }
     if style.preview {
         let _ = writeln!(
             s,
@@ -256,31 +318,19 @@ pub fn sheet_svg(width: f64, height: f64, groups: &[SvgGroup], style: &SvgStyle)
                 d.join(" ")
             );
         }
-        // Cut order (`export::order`): engraving, then slits, then rings (holes before the
-        // outline, which comes last).
-        for e in &g.engrave {
-            let stroke = if e.text { p.label } else { p.score };
+        for d in g.drawn(p) {
+            // Engraving has round ends and joins: text and score lines end where drawn.
+            let round = if d.engrave {
+                " stroke-linecap=\"round\" stroke-linejoin=\"round\""
+            } else {
+                ""
+            };
             let _ = writeln!(
                 s,
-                "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>",
-                path_data(&e.path, false),
-                stroke.color,
-                num(stroke.width)
-            );
-        }
-        let outline = g.cut.len().checked_sub(1);
-        let slits = g.slits.iter().map(|l| (l, false, p.cut_inner));
-        let rings = g.cut.iter().enumerate().map(|(k, r)| {
-            let stroke = if Some(k) == outline { p.cut_outer } else { p.cut_inner };
-            (r, true, stroke)
-        });
-        for (path, closed, stroke) in slits.chain(rings) {
-            let _ = writeln!(
-                s,
-                "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"/>",
-                path_data(path, closed),
-                stroke.color,
-                num(stroke.width)
+                "<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{round}/>",
+                path_data(d.points, d.closed),
+                d.stroke.color,
+                num(d.stroke.width)
             );
         }
         s.push_str("</g>\n");
@@ -396,6 +446,51 @@ mod tests {
         assert!(svg.contains("<path d=\"M0 0 L1 0 L1 1 Z\""));
     }
 
+    /// The cut file holds the sheet's outline on a hidden layer of its own, which Inkscape
+    /// lists and laser programs (like usvg) do not import.
+    #[test]
+    fn the_sheet_outline_is_a_hidden_layer_that_imports_as_nothing() {
+        let g = SvgGroup {
+            id: "part-1".into(),
+            cut: vec![vec![DVec2::ZERO, DVec2::X * 10.0, DVec2::splat(10.0)]],
+            ..SvgGroup::default()
+        };
+        let svg = sheet_svg(600.0, 400.0, std::slice::from_ref(&g), &SvgStyle::CUT);
+        let doc = roxmltree::Document::parse(&svg).expect("well-formed");
+        let layer = doc
+            .descendants()
+            .find(|n| n.attribute("id") == Some(SHEET_ID))
+            .expect("the sheet's layer");
+        let ns = "http://www.inkscape.org/namespaces/inkscape";
+        assert_eq!(layer.attribute((ns, "groupmode")), Some("layer"));
+        assert_eq!(layer.attribute("style"), Some("display:none"));
+        let rect = layer.children().find(|n| n.has_tag_name("rect")).expect("its outline");
+        let size: Vec<&str> = ["x", "y", "width", "height"]
+            .iter()
+            .map(|a| rect.attribute(*a).unwrap_or(""))
+            .collect();
+        assert_eq!(size, ["0", "0", "600", "400"]);
+        assert_eq!(rect.attribute("stroke"), Some(SHEET_COLOR));
+        // Imported as a laser program does, only the part's path is left.
+        let tree = resvg::usvg::Tree::from_str(&svg, &resvg::usvg::Options::default()).expect("parses");
+        let mut paths = 0;
+        count_paths(tree.root(), &mut paths);
+        assert_eq!(paths, 1);
+        // Previews draw the sheet themselves and have no such layer.
+        let preview = sheet_svg(600.0, 400.0, &[g], &SvgStyle::preview(0.8, 0.4));
+        assert!(!preview.contains(SHEET_ID) && !preview.contains("inkscape"));
+    }
+
+    fn count_paths(group: &resvg::usvg::Group, n: &mut usize) {
+        for node in group.children() {
+            match node {
+                resvg::usvg::Node::Path(_) => *n += 1,
+                resvg::usvg::Node::Group(g) => count_paths(g, n),
+                _ => {}
+            }
+        }
+    }
+
     #[test]
     fn slits_are_open_red_hairlines_inside_their_part() {
         let g = SvgGroup {
@@ -408,7 +503,8 @@ mod tests {
         let red = format!("<path d=\"M2 1 L2 5.5\" fill=\"none\" stroke=\"{CUT_COLOR}\" stroke-width=\"0.0254\"/>");
         let at = svg.find(&red).expect("the slit is a red open hairline");
         let group = svg.find("<g id=\"part-4\">").expect("group");
-        assert!(group < at && at < svg.find("</g>").expect("end"), "inside its group");
+        let end = group + svg[group..].find("</g>").expect("end");
+        assert!(group < at && at < end, "inside its group");
         assert_eq!(svg.matches(CUT_COLOR).count(), 2);
     }
 }

@@ -1,5 +1,6 @@
 //! DXF sheets for laser software that prefers DXF: R2000, `$INSUNITS` = 4 (mm), closed
-//! LWPOLYLINEs on layer CUT (red) with the parts' slits as open ones, engraving as open LWPOLYLINEs on layer ENGRAVE (blue).
+//! LWPOLYLINEs on layer CUT (red) with the parts' slits as open ones, engraving as open LWPOLYLINEs on layer ENGRAVE (blue),
+//! and the sheet's outline on layer SHEET (grey), switched off and not plotted.
 //!
 //! DXF's y axis points up, the SVG's down: y is written as `height − y`, so the sheet looks the
 //! same in both (this flips the drawing's coordinates, not the parts: both views show the sheet
@@ -20,6 +21,10 @@ use crate::plan::PlanError;
 pub const CUT_LAYER: &str = "CUT";
 /// Layer of engraving.
 pub const ENGRAVE_LAYER: &str = "ENGRAVE";
+/// Layer of the sheet's outline: off and not plotted, a frame to place the material by.
+pub const SHEET_LAYER: &str = "SHEET";
+/// AutoCAD colour index of grey.
+const GREY: u8 = 8;
 /// AutoCAD colour index of red.
 const RED: u8 = 1;
 /// AutoCAD colour index of blue.
@@ -58,8 +63,9 @@ fn polyline(points: &[DVec2], closed: bool, layer: &str, height: f64) -> Entity 
     e
 }
 
-/// The DXF file of one sheet `height` mm tall holding `groups` (sheet coordinates, y down).
-pub fn sheet_dxf(height: f64, groups: &[SvgGroup], file: &str) -> Result<Vec<u8>, PlanError> {
+/// The DXF file of one sheet `width` × `height` mm holding `groups` (sheet coordinates, y
+/// down).
+pub fn sheet_dxf(width: f64, height: f64, groups: &[SvgGroup], file: &str) -> Result<Vec<u8>, PlanError> {
     let mut drawing = Drawing::new();
     pin_header(&mut drawing);
     for (name, color) in [(CUT_LAYER, RED), (ENGRAVE_LAYER, BLUE)] {
@@ -69,6 +75,22 @@ pub fn sheet_dxf(height: f64, groups: &[SvgGroup], file: &str) -> Result<Vec<u8>
             ..Default::default()
         });
     }
+    // The sheet's outline first, on a layer CAD programs hide and plot nothing of, so a
+    // program that honours layers cuts nothing of it.
+    drawing.add_layer(Layer {
+        name: SHEET_LAYER.to_string(),
+        color: Color::from_index(GREY),
+        is_layer_on: false,
+        is_layer_plotted: false,
+        ..Default::default()
+    });
+    let sheet = [
+        DVec2::ZERO,
+        DVec2::new(width, 0.0),
+        DVec2::new(width, height),
+        DVec2::new(0.0, height),
+    ];
+    drawing.add_entity(polyline(&sheet, true, SHEET_LAYER, height));
     // In cut order (`export::order`): each part's engraving, slits, then rings (holes before
     // the outline, as they are ordered).
     for g in groups {
@@ -130,14 +152,25 @@ mod tests {
                 DVec2::new(3.0, 3.0),
             ])],
         };
-        let a = sheet_dxf(400.0, std::slice::from_ref(&g), "t.dxf").expect("writes");
-        let b = sheet_dxf(400.0, std::slice::from_ref(&g), "t.dxf").expect("writes");
+        let a = sheet_dxf(600.0, 400.0, std::slice::from_ref(&g), "t.dxf").expect("writes");
+        let b = sheet_dxf(600.0, 400.0, std::slice::from_ref(&g), "t.dxf").expect("writes");
         assert_eq!(a, b);
         let text = String::from_utf8_lossy(&a);
         assert!(text.contains("$INSUNITS\r\n 70\r\n     4") || text.contains("$INSUNITS\n 70\n     4"));
         assert!(text.contains("AC1015"), "R2000");
-        let back = read_polylines(&a, 400.0).expect("reads");
-        assert_eq!(back.len(), 3);
+        let mut back = read_polylines(&a, 400.0).expect("reads");
+        assert_eq!(back.len(), 4);
+        // The sheet's outline first, on its own layer, which is off and not plotted.
+        let sheet = back.remove(0);
+        assert_eq!((sheet.layer.as_str(), sheet.closed), (SHEET_LAYER, true));
+        let (lo, hi) = platener_geom::boxes::bounds2(sheet.points.iter().copied());
+        assert_eq!((lo, hi), (DVec2::ZERO, DVec2::new(600.0, 400.0)));
+        let drawing = Drawing::load(&mut std::io::Cursor::new(&a)).expect("loads");
+        let layer = drawing
+            .layers()
+            .find(|l| l.name == SHEET_LAYER)
+            .expect("the sheet layer");
+        assert!(!layer.is_layer_on && !layer.is_layer_plotted);
         // In cut order: engraving, the slit (cut, open, as drawn), then the ring.
         assert_eq!((back[0].layer.as_str(), back[0].closed), (ENGRAVE_LAYER, false));
         assert_eq!((back[1].layer.as_str(), back[1].closed), (CUT_LAYER, false));

@@ -4,7 +4,8 @@
 //! of here as one ZIP: plan.json (the contract in `shared/spec/plan-format.md`), report.json,
 //! assembly.glb (the assembled parts in 3D, [`crate::scene::assembly`]), thumbnail.png (the
 //! assembly drawn small, [`thumbnail`]), and per sheet an SVG ([`svg`]), a DXF ([`dxf`]), a
-//! LightBurn project ([`lightburn`]) and a PNG preview ([`png`]), all in cut order ([`order`]). Entries are
+//! LightBurn project ([`lightburn`]) and a PNG preview ([`png`]), all in cut order ([`order`]),
+//! and one PDF of all sheets ([`pdf`]). Entries are
 //! sorted by name and stamped 1980-01-01 with mode 0644, and report.json carries no timings
 //! unless asked, so the same input and settings give a byte-identical ZIP.
 
@@ -12,6 +13,7 @@ pub mod dxf;
 pub mod legend;
 pub mod lightburn;
 pub mod order;
+pub mod pdf;
 pub mod plan_json;
 pub mod png;
 pub mod reference;
@@ -77,12 +79,14 @@ pub fn run(
     // The sheets' files (the PNG previews above all) and the rest (report, 3D assembly,
     // thumbnail) do not depend on each other: made side by side, the plan is ready sooner. The
     // files are keyed by name, so the ZIP is the same whichever finishes first.
+    let stocks = stocks(nesting, &stems, input.settings.material);
     let (sheets, rest) = rayon::join(
-        || sheet_files(nesting, &stems, &groups, &input.settings),
+        || sheet_files(nesting, (&stems, &stocks), &groups, &input.settings),
         || plan_files(input, nesting, steps, (&groups, &paths), &stems, &plan),
     );
     let (report, rest) = rest?;
-    let files: BTreeMap<String, Vec<u8>> = sheets?.into_iter().chain(rest).collect();
+    let pdf = all_sheets_pdf(&stem, nesting, &groups, &stocks, input.settings.colors)?;
+    let files: BTreeMap<String, Vec<u8>> = sheets?.into_iter().chain(rest).chain([pdf]).collect();
     let zip = zip_files(&files)?;
     Ok(Bundle {
         plan,
@@ -95,10 +99,54 @@ pub fn run(
 /// Files of the bundle by name, in no particular order (the ZIP sorts them).
 type Files = Vec<(String, Vec<u8>)>;
 
+/// Which stock each sheet is ("box-3mm-1: 3 mm wood sheet, 600 × 400 mm"), as the SVG's
+/// title, the LightBurn project's notes and the PDF's captions say.
+fn stocks(nesting: &Nesting, stems: &[String], material: crate::plan::Material) -> Vec<String> {
+    nesting
+        .sheets
+        .iter()
+        .zip(stems)
+        .map(|(sheet, stem)| {
+            format!(
+                "{stem}: {} mm {} sheet, {} × {} mm",
+                svg::num(sheet.thickness),
+                material.name(),
+                svg::num(sheet.width),
+                svg::num(sheet.height)
+            )
+        })
+        .collect()
+}
+
+/// `{stem}.pdf`: every sheet on a page of its own at true size ([`pdf`]).
+fn all_sheets_pdf(
+    stem: &str,
+    nesting: &Nesting,
+    groups: &[Vec<svg::SvgGroup>],
+    stocks: &[String],
+    colors: crate::plan::ColorProfile,
+) -> Result<(String, Vec<u8>), PlanError> {
+    let sheets: Vec<pdf::PdfSheet> = nesting
+        .sheets
+        .iter()
+        .zip(groups)
+        .zip(stocks)
+        .map(|((sheet, g), stock)| pdf::PdfSheet {
+            width: sheet.width,
+            height: sheet.height,
+            groups: g,
+            stock,
+        })
+        .collect();
+    let name = format!("{stem}.pdf");
+    let bytes = pdf::plan_pdf(&name, &sheets, &svg::Palette::of(colors))?;
+    Ok((name, bytes))
+}
+
 /// Every sheet's SVG, DXF and PNG preview, the sheets side by side.
 fn sheet_files(
     nesting: &Nesting,
-    stems: &[String],
+    (stems, stocks): (&[String], &[String]),
     groups: &[Vec<svg::SvgGroup>],
     settings: &crate::plan::CutSettings,
 ) -> Result<Files, PlanError> {
@@ -107,20 +155,14 @@ fn sheet_files(
         .sheets
         .par_iter()
         .zip(stems)
+        .zip(stocks)
         .zip(groups)
-        .map(|((sheet, stem), g)| {
-            let stock = format!(
-                "{stem}: {} mm {} sheet, {} × {} mm",
-                svg::num(sheet.thickness),
-                settings.material.name(),
-                svg::num(sheet.width),
-                svg::num(sheet.height)
-            );
+        .map(|(((sheet, stem), stock), g)| {
             let style = SvgStyle::cut(settings.colors);
-            let svg = svg::titled(&sheet_svg(sheet.width, sheet.height, g, &style), &stock);
+            let svg = svg::titled(&sheet_svg(sheet.width, sheet.height, g, &style), stock);
             let dxf_name = format!("{stem}.dxf");
-            let dxf = dxf::sheet_dxf(sheet.height, g, &dxf_name)?;
-            let lightburn = lightburn::sheet_lbrn2(sheet.width, sheet.height, g, settings, &stock);
+            let dxf = dxf::sheet_dxf(sheet.width, sheet.height, g, &dxf_name)?;
+            let lightburn = lightburn::sheet_lbrn2(sheet.width, sheet.height, g, settings, stock);
             let png_name = format!("{stem}.png");
             let preview = sheet_svg(sheet.width, sheet.height, g, &PREVIEW_STYLE);
             let png = png::render_png(&preview, &png_name)?;

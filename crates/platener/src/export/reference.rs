@@ -52,7 +52,7 @@ pub fn place(width: f64, height: f64, groups: &[SvgGroup]) -> Option<(SvgGroup, 
 }
 
 /// The bounding box of everything `g` draws, if it draws anything.
-fn extent(g: &SvgGroup) -> Option<(DVec2, DVec2)> {
+pub(super) fn extent(g: &SvgGroup) -> Option<(DVec2, DVec2)> {
     let paths = g.cut.iter().chain(&g.slits).chain(g.engrave.iter().map(|e| &e.path));
     let (lo, hi) = platener_geom::boxes::bounds2(paths.flatten().copied());
     (lo.x <= hi.x).then_some((lo, hi))

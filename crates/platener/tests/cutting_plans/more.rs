@@ -471,3 +471,60 @@ fn the_reference_square_is_100_mm_beside_the_parts_in_svg_dxf_and_plan() {
             .any(|f| f.windows(REFERENCE_ID.len()).any(|w| w == REFERENCE_ID.as_bytes()))
     );
 }
+
+/// The PDF (issue 34): one page per sheet in plan.json's order, each page the sheet's size in
+/// points, drawing the SVG's paths in the SVG's order with its colours and widths (within
+/// 0.01 mm), then only the PDF's own reference square and grey stock caption.
+#[test]
+fn the_pdf_has_a_page_per_sheet_with_the_svg_paths_at_true_size() {
+    use platener::export::pdf::PT_PER_MM;
+    use platener::export::pdf::read::{hex_color, read_pages};
+    use platener::plan::ColorProfile;
+    let settings = CutSettings {
+        sheet: SheetSize::Fixed {
+            width: 400.0,
+            height: 300.0,
+        },
+        colors: ColorProfile::Ponoko,
+        ..CutSettings::default()
+    };
+    let (_, plan) = run(mixed_parts(), settings);
+    let bundle = &plan.bundle;
+    let stem = bundle.plan.sheets[0]
+        .file
+        .split("-3mm-")
+        .next()
+        .expect("stem")
+        .to_string();
+    let pages = read_pages(&bundle.files[&format!("{stem}.pdf")]).expect("reads");
+    assert!(bundle.plan.sheets.len() > 1, "a test of several pages");
+    assert_eq!(pages.len(), bundle.plan.sheets.len());
+    for (page, sheet) in pages.iter().zip(&bundle.plan.sheets) {
+        let points = DVec2::new(sheet.width, sheet.height) * PT_PER_MM;
+        assert!(
+            (page.size * PT_PER_MM - points).abs().max_element() < 1e-3,
+            "{}",
+            sheet.file
+        );
+        let svg = std::str::from_utf8(&bundle.files[&sheet.file]).expect("utf-8");
+        let doc = roxmltree::Document::parse(svg).expect("well-formed");
+        let svg_paths: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("path")).collect();
+        assert!(page.paths.len() > svg_paths.len(), "the SVG's paths, then the caption");
+        for (pdf, node) in page.paths.iter().zip(&svg_paths) {
+            let (pts, closed) = svg_read::path_points(node.attribute("d").expect("d"));
+            assert_eq!(pdf.closed, closed);
+            assert_eq!(pdf.color, hex_color(node.attribute("stroke").expect("stroke")));
+            let width: f64 = node.attribute("stroke-width").expect("width").parse().expect("number");
+            assert!((pdf.width - width).abs() < 1e-6);
+            assert_eq!(pdf.points.len(), pts.len());
+            for (a, b) in pdf.points.iter().zip(&pts) {
+                assert!(a.distance(*b) < 0.01, "{a} vs {b} in {}", sheet.file);
+            }
+        }
+        let grey = hex_color(platener::export::pdf::CAPTION_COLOR);
+        assert!(
+            page.paths[svg_paths.len()..].iter().any(|p| p.color == grey),
+            "the stock caption"
+        );
+    }
+}

@@ -71,7 +71,13 @@ pub fn parse(svg: &str) -> Sheet {
     let mut current: Option<String> = None;
     for tag in svg.split('<').skip(1) {
         if let Some(rest) = tag.strip_prefix("g ") {
-            current = attr(&format!(" {rest}"), "id").map(str::to_string);
+            let tag = format!(" {rest}");
+            // A hidden layer (the sheet's outline) is what a laser program does not import.
+            if attr(&tag, "style") == Some("display:none") {
+                current = None;
+                continue;
+            }
+            current = attr(&tag, "id").map(str::to_string);
             groups
                 .entry(current.clone().expect("group id"))
                 .or_insert_with(Group::default);
