@@ -24,14 +24,14 @@ impl Subset for Every {
 }
 
 /// `scene`: every setting but those of the cutting plan alone (kerf, sheet, margin, spacing,
-/// line colours, reference square, labels).
+/// line colours, reference square, fit, labels).
 #[derive(Debug, Clone, Copy)]
 pub struct ForScene;
 impl Subset for ForScene {
     fn includes(def: &Def) -> bool {
         !matches!(
             def.name,
-            "kerf" | "sheet" | "margin" | "spacing" | "colors" | "reference-square" | "labels"
+            "kerf" | "sheet" | "margin" | "spacing" | "colors" | "reference-square" | "fit" | "labels"
         )
     }
 }

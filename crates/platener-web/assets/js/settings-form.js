@@ -154,8 +154,13 @@ function numbersControl(def) {
     label.append(box, ` ${t}`);
     chips.append(label);
   }
-  const custom = numberInput(def, `${def.name}-custom`);
-  custom.placeholder = def.kind.unit;
+  // Text, not a number box: a sheet that measures other than it is sold as is given as
+  // nominal@measured (3@2.85), which the API takes as it is.
+  const custom = Object.assign(document.createElement('input'), {
+    type: 'text', id: `${def.name}-custom`, inputMode: 'decimal', placeholder: `${def.kind.unit}, or 3@2.85 measured`,
+    pattern: '\\s*[0-9]*\\.?[0-9]+(\\s*@\\s*[0-9]*\\.?[0-9]+)?\\s*',
+  });
+  custom.dataset.testid = custom.id;
   const label = Object.assign(document.createElement('label'), { className: 'custom' });
   label.append('Custom ', custom);
   set.append(legend, chips, label);
@@ -193,7 +198,13 @@ function readOne(def) {
   switch (def.kind.type) {
     case 'numbers': {
       const ts = [...document.querySelectorAll(`input[name="${def.name}"]:checked`)].map((i) => Number(i.value));
-      const custom = Number($(`${def.name}-custom`).value);
+      const text = $(`${def.name}-custom`).value.trim();
+      if (text.includes('@')) {
+        // A measured sheet replaces its nominal box: 3@2.85 is the 3 mm sheet.
+        const nominal = Number(text.split('@')[0]);
+        return [...ts.filter((t) => t !== nominal), text.replace(/\s+/g, '')];
+      }
+      const custom = Number(text);
       if (custom > 0 && !ts.includes(custom)) ts.push(custom);
       return ts.length ? ts : def.default;
     }
@@ -226,7 +237,8 @@ export function writeSettings(settings) {
 function writeOne(def, value) {
   switch (def.kind.type) {
     case 'numbers': {
-      const ts = (value || []).map(Number);
+      // Numbers, and "3@2.85" for a measured sheet, which goes in the custom box.
+      const ts = (value || []).map((v) => (typeof v === 'string' && v.includes('@') ? v : Number(v)));
       const ticked = [];
       for (const box of document.querySelectorAll(`input[name="${def.name}"]`)) {
         box.checked = ts.includes(Number(box.value));

@@ -66,7 +66,7 @@ pub fn run(
     steps: &[StepRecord],
 ) -> Result<Bundle, PlanError> {
     let stem = plan_json::file_stem(&input.source.name);
-    let stems = plan_json::sheet_stems(&stem, nesting);
+    let stems = plan_json::sheet_stems(&stem, nesting, &input.settings);
     let mut groups = plan_json::sheet_groups(input, cut, labels, nesting);
     let legends = sheet_legends(input, nesting, &groups);
     for (g, legend) in groups.iter_mut().zip(&legends) {
@@ -79,7 +79,7 @@ pub fn run(
     // The sheets' files (the PNG previews above all) and the rest (report, 3D assembly,
     // thumbnail) do not depend on each other: made side by side, the plan is ready sooner. The
     // files are keyed by name, so the ZIP is the same whichever finishes first.
-    let stocks = stocks(nesting, &stems, input.settings.material);
+    let stocks = stocks(nesting, &stems, &input.settings);
     let (sheets, rest) = rayon::join(
         || sheet_files(nesting, (&stems, &stocks), &groups, &input.settings),
         || plan_files(input, nesting, steps, (&groups, &paths), &stems, &plan),
@@ -101,16 +101,23 @@ type Files = Vec<(String, Vec<u8>)>;
 
 /// Which stock each sheet is ("box-3mm-1: 3 mm wood sheet, 600 × 400 mm"), as the SVG's
 /// title, the LightBurn project's notes and the PDF's captions say.
-fn stocks(nesting: &Nesting, stems: &[String], material: crate::plan::Material) -> Vec<String> {
+/// A measured sheet says both ("3 mm wood sheet measured 2.85 mm").
+fn stocks(nesting: &Nesting, stems: &[String], settings: &crate::plan::CutSettings) -> Vec<String> {
     nesting
         .sheets
         .iter()
         .zip(stems)
         .map(|(sheet, stem)| {
+            let nominal = settings.nominal(sheet.thickness);
+            let measured = if nominal.total_cmp(&sheet.thickness).is_eq() {
+                String::new()
+            } else {
+                format!(" measured {} mm", svg::num(sheet.thickness))
+            };
             format!(
-                "{stem}: {} mm {} sheet, {} × {} mm",
-                svg::num(sheet.thickness),
-                material.name(),
+                "{stem}: {} mm {} sheet{measured}, {} × {} mm",
+                svg::num(nominal),
+                settings.material.name(),
                 svg::num(sheet.width),
                 svg::num(sheet.height)
             )

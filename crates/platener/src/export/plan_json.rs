@@ -12,8 +12,8 @@ use crate::kerf::{CutPaths, open_ring};
 use crate::labels::Labels;
 use crate::plan::format::{FORMAT, VERSION};
 use crate::plan::{
-    Bend, MarkKind, Plan, PlanBend, PlanInput, PlanJoint, PlanPart, PlanSegment, PlanSettings, PlanSheet, PlanSource,
-    Segment, SettingValue, SheetPlacement,
+    Bend, CutSettings, MarkKind, Plan, PlanBend, PlanInput, PlanJoint, PlanPart, PlanSegment, PlanSettings, PlanSheet,
+    PlanSource, Segment, SettingValue, SheetPlacement,
 };
 use crate::sheets::Nesting;
 
@@ -40,8 +40,9 @@ pub fn file_stem(name: &str) -> String {
 }
 
 /// File names (without extension) of the sheets: `{stem}-{thickness}mm-{n}`, `n` counting
-/// from 1 within each thickness, as in the spec's `birdhouse-3mm-1.svg`.
-pub fn sheet_stems(stem: &str, nesting: &Nesting) -> Vec<String> {
+/// from 1 within each thickness, as in the spec's `birdhouse-3mm-1.svg`; a measured sheet by
+/// its nominal thickness ([`CutSettings::nominal`]).
+pub fn sheet_stems(stem: &str, nesting: &Nesting, settings: &CutSettings) -> Vec<String> {
     let mut out = Vec::with_capacity(nesting.sheets.len());
     let mut count = 0;
     let mut last = f64::NAN;
@@ -51,7 +52,7 @@ pub fn sheet_stems(stem: &str, nesting: &Nesting) -> Vec<String> {
             last = s.thickness;
         }
         count += 1;
-        out.push(format!("{stem}-{}mm-{count}", num(s.thickness)));
+        out.push(format!("{stem}-{}mm-{count}", num(settings.nominal(s.thickness))));
     }
     out
 }

@@ -22,7 +22,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::context::{StepContext, Warning, WarningKind};
-use crate::plan::{MarkKind, Part, PlanError, PlanInput};
+use crate::plan::{Fit, MarkKind, Part, PlanError, PlanInput};
 
 /// One part's cut path.
 #[derive(Debug, Clone, Serialize)]
@@ -113,6 +113,15 @@ pub fn slits(part: &Part) -> Vec<Vec<DVec2>> {
 /// narrow to cut ([`min_hole_width`]: left out of the nominal shape too, so plan.json, the
 /// sheets and the score agree) or close when offset.
 pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<(CutPaths, Vec<Warning>), PlanError> {
+    fitted_cut_paths(parts, kerf, Fit::Snug)
+}
+
+/// [`cut_paths`] for joints that fit as `fit` says: every path moves out by a further
+/// [`Fit::offset`] (in for a loose fit), so each finger and its notch differ by the fit's
+/// clearance. Holes too narrow to cut are judged by the kerf alone.
+pub fn fitted_cut_paths(parts: &[Part], kerf: f64, fit: Fit) -> Result<(CutPaths, Vec<Warning>), PlanError> {
+    // The width the cut path is grown by on both sides together, as a kerf would be.
+    let grown = kerf + 2.0 * fit.offset();
     let results: Vec<Result<(CutPart, Option<Warning>), PlanError>> = parts
         .par_iter()
         .map(|part| {
@@ -136,7 +145,7 @@ pub fn cut_paths(parts: &[Part], kerf: f64) -> Result<(CutPaths, Vec<Warning>), 
             };
             nominal.normalize_orientation();
             let (cut, touches) =
-                separate_touches(&cut_polygon(&nominal, kerf).map_err(grid_error)?).map_err(grid_error)?;
+                separate_touches(&cut_polygon(&nominal, grown).map_err(grid_error)?).map_err(grid_error)?;
             if cut.outer.len() < 3 {
                 return Err(PlanError::Part {
                     part: part.id,
@@ -224,7 +233,7 @@ fn kerf_warning(
 /// Step `kerf`: the cut path of every part, offset by half the kerf.
 pub fn run(input: &PlanInput, cx: &mut StepContext<'_>) -> Result<CutPaths, PlanError> {
     input.validate()?;
-    let (cut, warnings) = cut_paths(&input.parts, input.settings.kerf())?;
+    let (cut, warnings) = fitted_cut_paths(&input.parts, input.settings.kerf(), input.settings.fit)?;
     cx.extend(warnings);
     Ok(cut)
 }

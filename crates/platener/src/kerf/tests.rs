@@ -183,3 +183,63 @@ fn a_valid_cut_path_is_left_alone() {
     let cut = Polygon::new(rect(0.0, 0.0, 10.0, 5.0));
     assert_eq!(separate_touches(&cut).expect("grid"), (cut.clone(), 0));
 }
+
+/// The fit moves every cut path by a quarter of its clearance: a 10 mm finger grows by half
+/// the press interference beyond the kerf, and a 10 mm notch shrinks by as much, so the
+/// finger is 0.1 mm wider than its notch; loose leaves 0.15 mm of play; snug is the kerf alone.
+#[test]
+fn each_fit_sets_the_clearance_between_a_finger_and_its_notch() {
+    use crate::plan::Fit;
+    let kerf = 0.2;
+    // A plate with a 10 mm wide notch, and a 10 mm wide finger (a plate 10 mm across).
+    let notched = Polygon::new(vec![
+        DVec2::new(0.0, 0.0),
+        DVec2::new(40.0, 0.0),
+        DVec2::new(40.0, 20.0),
+        DVec2::new(25.0, 20.0),
+        DVec2::new(25.0, 10.0),
+        DVec2::new(15.0, 10.0),
+        DVec2::new(15.0, 20.0),
+        DVec2::new(0.0, 20.0),
+    ]);
+    let finger = Polygon::new(vec![
+        DVec2::new(0.0, 0.0),
+        DVec2::new(10.0, 0.0),
+        DVec2::new(10.0, 30.0),
+        DVec2::new(0.0, 30.0),
+    ]);
+    let width_at = |ring: &[DVec2], y: f64, pick_notch: bool| {
+        // The notch: the gap between the two prongs at height y; the finger: its extent.
+        let xs: Vec<f64> = ring
+            .iter()
+            .zip(ring.iter().cycle().skip(1))
+            .filter(|(a, b)| (a.y - y) * (b.y - y) < 0.0)
+            .map(|(a, b)| a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y))
+            .collect();
+        let mut xs = xs;
+        xs.sort_by(f64::total_cmp);
+        if pick_notch {
+            xs[2] - xs[1]
+        } else {
+            xs[xs.len() - 1] - xs[0]
+        }
+    };
+    for fit in Fit::ALL {
+        let parts = [part(1, notched.clone()), part(2, finger.clone())];
+        let (cut, _) = fitted_cut_paths(&parts, kerf, fit).expect("valid");
+        let notch = width_at(&cut.parts[0].cut.outer, 15.0, true);
+        let tab = width_at(&cut.parts[1].cut.outer, 15.0, false);
+        // Cut: the laser takes half the kerf off each side of every path.
+        let (notch, tab) = (notch + kerf, tab - kerf);
+        assert!(
+            // Four flanks, each on the 1 µm grid.
+            (notch - tab - fit.clearance()).abs() < 4e-3,
+            "{fit:?}: notch {notch} finger {tab}"
+        );
+    }
+    let snug = fitted_cut_paths(&[part(1, finger.clone())], kerf, Fit::Snug)
+        .expect("valid")
+        .0;
+    let plain = cut_paths(&[part(1, finger)], kerf).expect("valid").0;
+    assert_eq!(snug.parts[0].cut, plain.parts[0].cut, "snug is the kerf alone");
+}

@@ -5,7 +5,9 @@ use serde_json::{Value, json};
 use super::{Choice, Chosen, Def, Group, Kind};
 use crate::joints::JointStyle;
 use crate::method::MethodKind;
-use crate::plan::{ColorProfile, LabelMode, MAX_KERF, MAX_MARGIN, Material, SPACING_RANGE, SheetSize};
+use crate::plan::{
+    ColorProfile, Fit, LabelMode, MAX_KERF, MAX_MARGIN, Material, MeasuredThickness, SPACING_RANGE, SheetSize,
+};
 use crate::settings::{
     Bending, Features, MAX_SHEET_SIDE, MAX_THICKNESS, MAX_THICKNESSES, MAX_WELD, MIN_THICKNESS, PlateMode, SCALE_RANGE,
     SLICE_SPACING_RANGE, StackAxis, Units, Weld,
@@ -44,9 +46,11 @@ pub static DEFS: &[Def] = &[
         },
         help: "The thicknesses of the sheets you have, mm; give several to let each plate take the one that fits.",
         doc: "A plate of the model becomes a part of the sheet closest to its wall thickness; the stacked \
-              method's layers take the thinnest.",
+              method's layers take the thinnest. Sheets are rarely what they are sold as (3 mm plywood \
+              measures 2.6–3.4 mm): give the measured thickness after an @ (3@2.85) and slots and fingers \
+              are cut for it, while files still name the sheet 3 mm.",
         set: set_thicknesses,
-        get: |c| json!(c.settings.thicknesses),
+        get: get_thicknesses,
     },
     Def {
         name: "kerf",
@@ -218,6 +222,28 @@ pub static DEFS: &[Def] = &[
             Ok(())
         },
         get: |c| json!(if c.settings.cut.reference_square { "yes" } else { "no" }),
+    },
+    Def {
+        name: "fit",
+        key: "fit",
+        short: None,
+        label: "Fit",
+        group: Group::Joints,
+        kind: Kind::Choice { choices: FITS },
+        help: "How tight joints fit: press (0.1 mm interference), snug (exact) or loose (0.15 mm play).",
+        doc: "A clearance across each finger and tab, both flanks together, on top of the kerf: every cut \
+              path moves out by a quarter of it for press (in for loose). Press fits hold without glue when \
+              tapped home; loose fits slide together by hand. Measure your sheet's fit with the slot row of \
+              the kerf test strip.",
+        set: |c, v| {
+            let name = one(v)?;
+            c.settings.cut.fit = Fit::ALL
+                .into_iter()
+                .find(|f| f.name() == name)
+                .ok_or_else(|| choices_message(FITS))?;
+            Ok(())
+        },
+        get: |c| json!(c.settings.cut.fit.name()),
     },
     Def {
         name: "labels",
@@ -457,6 +483,24 @@ const JOINTS: &[Choice] = &[
     },
 ];
 
+const FITS: &[Choice] = &[
+    Choice {
+        value: "press",
+        label: "Press",
+        help: "0.1 mm interference: tap the joints home; they hold without glue.",
+    },
+    Choice {
+        value: "snug",
+        label: "Snug",
+        help: "Parts at their exact size: joints go together firmly by hand.",
+    },
+    Choice {
+        value: "loose",
+        label: "Loose",
+        help: "0.15 mm play: joints slide together, for glue or for taking apart.",
+    },
+];
+
 const COLORS: &[Choice] = &[
     Choice {
         value: "classic",
@@ -690,12 +734,42 @@ fn set_material(c: &mut Chosen, v: &[&str]) -> SetResult {
     Ok(())
 }
 
+/// Thicknesses as numbers, or `nominal@measured` for a sheet that measures other than it is
+/// sold as: the measured value is the sheet's thickness, the nominal one names it.
 fn set_thicknesses(c: &mut Chosen, v: &[&str]) -> SetResult {
     if v.is_empty() {
         return Err("needs at least one thickness".into());
     }
-    c.settings.thicknesses = v.iter().map(|t| number(t)).collect::<Result<_, _>>()?;
+    let mut thicknesses = Vec::with_capacity(v.len());
+    let mut measured = Vec::new();
+    for text in v {
+        match MeasuredThickness::parse(text) {
+            Some(m) => {
+                let m = m?;
+                thicknesses.push(m.measured);
+                measured.push(m);
+            }
+            None => thicknesses.push(number(text)?),
+        }
+    }
+    c.settings.thicknesses = thicknesses;
+    c.settings.cut.measured = measured;
     Ok(())
+}
+
+/// The thicknesses as the API writes them: numbers, and `"3@2.85"` for measured sheets.
+fn get_thicknesses(c: &Chosen) -> Value {
+    let cut = &c.settings.cut;
+    c.settings
+        .thicknesses
+        .iter()
+        .map(
+            |&t| match cut.measured.iter().find(|m| m.measured.total_cmp(&t).is_eq()) {
+                Some(m) => json!(m.text()),
+                None => json!(t),
+            },
+        )
+        .collect()
 }
 
 fn set_units(c: &mut Chosen, v: &[&str]) -> SetResult {

@@ -27,7 +27,8 @@ pub use part::{
     score_rings,
 };
 pub use settings::{
-    ColorProfile, CutSettings, LabelMode, MAX_KERF, MAX_MARGIN, Material, SPACING_RANGE, SettingValue, SheetSize,
+    ColorProfile, CutSettings, Fit, LabelMode, MAX_KERF, MAX_MARGIN, Material, MeasuredThickness, SPACING_RANGE,
+    SettingValue, SheetSize,
 };
 
 /// The model the parts were made from, for plan.json's `source`.

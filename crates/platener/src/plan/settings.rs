@@ -104,6 +104,95 @@ impl ColorProfile {
     }
 }
 
+/// How tight joints fit (`fit`): a clearance across each finger and tab, both flanks together,
+/// on top of the exact kerf compensation. Every cut path moves by a quarter of it (outward for
+/// press), as a finger grows by two such moves and its notch shrinks by two.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Fit {
+    /// 0.1 mm of interference: joints pressed home with a mallet hold without glue.
+    Press,
+    /// No clearance: the parts come out at their true size (the kerf compensated exactly).
+    #[default]
+    Snug,
+    /// 0.15 mm of play: joints slide together by hand, for glued or knock-down builds.
+    Loose,
+}
+
+impl Fit {
+    /// Every fit, in the order the settings list them.
+    pub const ALL: [Fit; 3] = [Fit::Press, Fit::Snug, Fit::Loose];
+
+    /// The fit's name, as the setting takes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Fit::Press => "press",
+            Fit::Snug => "snug",
+            Fit::Loose => "loose",
+        }
+    }
+
+    /// The clearance across a finger or tab, both flanks together, mm; negative interferes.
+    pub fn clearance(self) -> f64 {
+        match self {
+            Fit::Press => -0.1,
+            Fit::Snug => 0.0,
+            Fit::Loose => 0.15,
+        }
+    }
+
+    /// How far every cut path moves outward for this fit, mm (a quarter of the interference).
+    pub fn offset(self) -> f64 {
+        -self.clearance() / 4.0
+    }
+
+    /// Whether this is the default fit (plan.json then leaves the key out).
+    pub fn is_snug(&self) -> bool {
+        *self == Fit::Snug
+    }
+}
+
+/// A sheet sold as one thickness that measures another (`-t 3@2.85`): plywood sold as 3 mm
+/// is 2.6–3.4 mm, and a finger joint's fit depends on that more than on the kerf. The parts
+/// are made for the measured thickness (slots as wide as it, fingers as long); files and
+/// captions name the sheet by its nominal thickness, as the maker buys and stores it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct MeasuredThickness {
+    /// What the sheet is sold as, mm.
+    pub nominal: f64,
+    /// What it measures, mm (the thickness every part of it is made for).
+    pub measured: f64,
+}
+
+impl MeasuredThickness {
+    /// The farthest a measured thickness may be from its nominal one, as a share of it;
+    /// further is a typing error (`3@28.5`) rather than a real sheet.
+    pub const MAX_DEVIATION: f64 = 0.25;
+
+    /// Reads `nominal@measured` (`3@2.85`); `None` when `text` has no `@`.
+    pub fn parse(text: &str) -> Option<Result<MeasuredThickness, String>> {
+        let (nominal, measured) = text.split_once('@')?;
+        let number = |t: &str| t.trim().parse::<f64>().ok().filter(|v| v.is_finite() && *v > 0.0);
+        let (Some(nominal), Some(measured)) = (number(nominal), number(measured)) else {
+            return Some(Err(
+                "takes numbers, or a nominal and a measured thickness as 3@2.85".into()
+            ));
+        };
+        if (measured / nominal - 1.0).abs() > Self::MAX_DEVIATION {
+            return Some(Err(format!(
+                "a measured thickness must be within {:.0} % of its sheet's nominal thickness (3@2.85)",
+                100.0 * Self::MAX_DEVIATION
+            )));
+        }
+        Some(Ok(MeasuredThickness { nominal, measured }))
+    }
+
+    /// As the setting takes it: `3@2.85`.
+    pub fn text(&self) -> String {
+        format!("{}@{}", self.nominal, self.measured)
+    }
+}
+
 /// The sheets parts are nested on.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -188,6 +277,13 @@ pub struct CutSettings {
     /// scale after import (plan.json leaves the default, off, out).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub reference_square: bool,
+    /// Sheets whose measured thickness is not their nominal one (plan.json leaves an empty
+    /// list out); the sheet thicknesses are the measured ones.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub measured: Vec<MeasuredThickness>,
+    /// How tight joints fit (plan.json leaves the default, snug, out).
+    #[serde(default, skip_serializing_if = "Fit::is_snug")]
+    pub fit: Fit,
     /// Write step timings into report.json. Off by default, because timings differ from run to
     /// run and the ZIP must be byte-identical for the same input and settings.
     pub report_timings: bool,
@@ -210,6 +306,8 @@ impl Default for CutSettings {
             engrave_speed: 100.0,
             colors: ColorProfile::Classic,
             reference_square: false,
+            measured: Vec::new(),
+            fit: Fit::Snug,
             report_timings: false,
         }
     }
@@ -226,6 +324,15 @@ pub const MAX_MARGIN: f64 = 100.0;
 pub const SPACING_RANGE: (f64, f64) = (0.5, 50.0);
 
 impl CutSettings {
+    /// The nominal thickness of a sheet `thickness` mm thick: what a measured sheet is sold
+    /// as, or the thickness itself.
+    pub fn nominal(&self, thickness: f64) -> f64 {
+        self.measured
+            .iter()
+            .find(|m| m.measured.total_cmp(&thickness).is_eq())
+            .map_or(thickness, |m| m.nominal)
+    }
+
     /// Why an outline with the points `outline`, grown by `grow` mm on every side (less when
     /// negative), fits no sheet in any orientation (`what` names it in the message); `None`
     /// when it fits, or when sheets are sized to fit. Methods ask it as soon as they know
