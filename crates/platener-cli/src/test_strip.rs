@@ -46,5 +46,19 @@ pub fn render(strip: &TestStrip, file: &str, material: &str) -> String {
         };
         let _ = writeln!(s, "{:>4}  {:>8.3}  {:>7.3}{mark}", h.number, h.width, h.kerf);
     }
+    if let (Some(first), Some(last)) = (strip.slots.first(), strip.slots.last()) {
+        let _ = writeln!(
+            s,
+            "Slot row: turn the spike on its side and push it into the slots (each engraved with the sheet \
+             thickness it fits, {:.2}–{:.2} mm, for the starred kerf). The narrowest slot it enters snugly \
+             is your sheet's real thickness: give it as thickness {}@THAT (e.g. {}@{:.2}). The next narrower slot, \
+             pressed home, shows how tight a press fit is.",
+            first.sheet,
+            last.sheet,
+            platener::swatches::strip::slot_nominal(strip),
+            platener::swatches::strip::slot_nominal(strip),
+            first.sheet + 0.25
+        );
+    }
     s
 }

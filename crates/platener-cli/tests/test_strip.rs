@@ -41,10 +41,20 @@ fn the_strip_is_written_at_true_size_with_exact_hole_widths() {
     let svg = std::fs::read_to_string(&path).expect("written");
     assert!(svg.contains("mm\" height=\"") && svg.contains("viewBox=\"0 0 "));
     let strip = red_rings(&svg, "part-1");
-    // Holes first, the outline last (cut order).
-    let mut holes: Vec<(f64, f64)> = strip[..strip.len() - 1].iter().map(|r| x_extent(r)).collect();
+    // The 17 kerf holes first, then the 17 slots of the slot row, the outline last (cut order).
+    assert_eq!(strip.len(), 17 + 17 + 1);
+    let mut holes: Vec<(f64, f64)> = strip[..17].iter().map(|r| x_extent(r)).collect();
     holes.sort_by(|a, b| a.0.total_cmp(&b.0));
-    assert_eq!(holes.len(), 17);
+    // Slot k fits sheets 2.6 + 0.05·k mm thick with the wood's 0.2 mm kerf: drawn 0.2 narrower.
+    for (k, slot) in strip[17..34].iter().enumerate() {
+        let (lo, hi) = x_extent(slot);
+        let sheet = 2.6 + 0.05 * k as f64;
+        assert!(((hi - lo) - (sheet - 0.2)).abs() < WIDTH_TOL, "slot {k}: {}", hi - lo);
+    }
+    assert!(
+        stdout.contains("2.60–3.40 mm") && stdout.contains("thickness 3@"),
+        "{stdout}"
+    );
     for (i, (lo, hi)) in holes.iter().enumerate() {
         // The documented mapping: hole n stands for kerf (n − 1) × 0.025 mm, width 6 − 2·kerf.
         let kerf = 0.025 * i as f64;

@@ -230,6 +230,28 @@ fn examples_are_published_once_and_the_page_escapes_and_locks_down() {
     assert!(m.text().contains("platener_conversion_seconds_count"));
     let strip = server.get("/api/test-strip.json?thickness=3&material=wood").json();
     assert!(strip["holes"].as_array().is_some_and(|h| h.len() > 5), "{strip}");
+    // The slot row: 17 slots from 2.6 to 3.4 mm sheets, each drawn the wood's 0.2 mm kerf
+    // narrower than the sheet it fits.
+    let slots = strip["slots"].as_array().expect("slots");
+    assert_eq!(slots.len(), 17);
+    for slot in slots {
+        let (sheet, width) = (
+            slot["sheet"].as_f64().expect("sheet"),
+            slot["width"].as_f64().expect("width"),
+        );
+        assert!(
+            (sheet - 0.2 - width).abs() < 1e-9 && (2.6 - 1e-9..=3.4 + 1e-9).contains(&sheet),
+            "{slot}"
+        );
+        let xs: Vec<f64> = slot["ring"]
+            .as_array()
+            .expect("ring")
+            .iter()
+            .map(|p| p[0].as_f64().expect("x"))
+            .collect();
+        let across = xs.iter().copied().fold(f64::MIN, f64::max) - xs.iter().copied().fold(f64::MAX, f64::min);
+        assert!((across - width).abs() < 1e-9, "{slot}");
+    }
     assert!(server.get("/api/test-strip.svg?thickness=3").text().contains("<svg"));
 }
 

@@ -29,6 +29,8 @@ export function drawStrip(svg, strip, kerf, onPick) {
   // The engraving (hole numbers and the kerf table), as the laser draws it.
   const lines = (strip.engrave || []).map((l) => l.map(([x, y], i) => `${i ? 'L' : 'M'}${x} ${y}`).join(' '));
   if (lines.length) svg.append(el('path', { d: lines.join(' '), class: 'strip-engrave' }));
+  // The slot row measures the sheet's thickness; drawn, not picked here.
+  for (const slot of strip.slots || []) svg.append(el('path', { d: pathOf(slot.ring), class: 'strip-slot' }));
   for (const hole of strip.holes) {
     const xs = (hole.ring || []).map((p) => p[0]);
     const ys = (hole.ring || []).map((p) => p[1]);

@@ -88,6 +88,13 @@ pub async fn test_strip_json(
         .zip(&s.strip.holes)
         .map(|(h, ring)| json!({"number": h.number, "kerf": h.kerf, "width": h.width, "ring": points(ring)}))
         .collect();
+    // The slot row (an extension of api.md): each slot's sheet thickness, drawn width and ring.
+    let slots: Vec<Value> = s
+        .slots
+        .iter()
+        .zip(&s.strip.holes[s.holes.len()..])
+        .map(|(slot, ring)| json!({"sheet": slot.sheet, "width": slot.width, "ring": points(ring)}))
+        .collect();
     Ok(Json(json!({
         "thickness": thickness,
         "material": material.name(),
@@ -96,6 +103,7 @@ pub async fn test_strip_json(
         "default_hole": s.default_hole,
         "marked_hole": s.marked_hole,
         "holes": holes,
+        "slots": slots,
         "strip": points(&s.strip.outer),
         "spike": points(&s.spike.outer),
         "engrave": s.strip_engrave.iter().chain(&s.spike_engrave).map(Vec::as_slice).map(points).collect::<Vec<_>>(),

@@ -25,6 +25,15 @@ pub const SPIKE_WIDTH: f64 = 6.0;
 pub const KERF_STEP: f64 = 0.025;
 /// Number of holes: kerfs 0, 0.025, …, 0.4 mm.
 pub const HOLE_COUNT: u32 = 17;
+/// Sheet thickness difference between neighbouring slots, mm.
+pub const SLOT_STEP: f64 = 0.05;
+/// Number of slots: sheets from 0.4 mm thinner to 0.4 mm thicker than nominal (3 mm plywood
+/// measures 2.6–3.4 mm).
+pub const SLOT_COUNT: u32 = 17;
+/// The narrowest slot drawn, mm: a sheet too thin for the row (paper) gets none.
+const MIN_SLOT: f64 = 0.3;
+/// Text size of the slots' thicknesses, mm (they stand under slots 10 mm apart).
+const SLOT_TEXT: f64 = 1.8;
 /// Border between the sheet edge and the parts, mm.
 const MARGIN: f64 = 5.0;
 /// Hole centre to hole centre, mm.
@@ -60,6 +69,30 @@ pub struct StripHole {
     pub width: f64,
 }
 
+/// One slot of the strip's slot row: the spike turned on its side, as thick as the sheet,
+/// enters the slots of sheets at least as thick as it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StripSlot {
+    /// The sheet thickness it fits snugly with the kerf in use, mm (engraved under it).
+    pub sheet: f64,
+    /// Its drawn width (along the strip): `sheet − kerf`, mm.
+    pub width: f64,
+}
+
+/// The sheet thickness slot `n` (1-based) fits, for sheets sold as `thickness` mm.
+pub fn slot_sheet(thickness: f64, n: u32) -> f64 {
+    thickness + (f64::from(n) - f64::from(SLOT_COUNT.div_ceil(2))) * SLOT_STEP
+}
+
+/// The nominal thickness `strip` was drawn for, as the setting writes it (`3`): its middle
+/// slot's sheet; `0` without a slot row.
+pub fn slot_nominal(strip: &TestStrip) -> String {
+    strip
+        .slots
+        .get(strip.slots.len() / 2)
+        .map_or_else(|| "0".into(), |s| num(s.sheet))
+}
+
 /// The test strip sheet, in sheet coordinates (mm, y down).
 #[derive(Debug, Clone)]
 pub struct TestStrip {
@@ -77,6 +110,9 @@ pub struct TestStrip {
     pub spike_engrave: Vec<Vec<DVec2>>,
     /// The holes, left to right.
     pub holes: Vec<StripHole>,
+    /// The slot row, left to right (the strip's polygon has their rings after the holes');
+    /// empty for sheets too thin to slot.
+    pub slots: Vec<StripSlot>,
     /// The hole of the material's default kerf.
     pub default_hole: u32,
     /// The hole marked `*` in the table: the kerf in use (the material's default unless a
@@ -150,12 +186,22 @@ pub fn test_strip_marking(thickness: f64, material: Material, kerf: f64) -> Resu
     }
     let table_w = f64::from(HOLE_COUNT.div_ceil(rows)) * col_w;
     let holes_w = 8.0 + SPIKE_WIDTH + f64::from(HOLE_COUNT - 1) * PITCH;
-    let strip_w = holes_w.max(8.0 + table_w).max(8.0 + text_width(&header, TEXT));
-    let strip_bottom = header_base + f64::from(rows) * line + 3.0;
+    let row = slot_row(
+        thickness,
+        kerf,
+        DVec2::new(x0, header_base + f64::from(rows) * line + 3.0),
+    );
+    let strip_w = holes_w
+        .max(8.0 + table_w)
+        .max(8.0 + text_width(&header, TEXT))
+        .max(row.width);
+    engrave.extend(row.engrave);
+    hole_rings.extend(row.rings);
     let strip = Polygon {
-        outer: rect(x0, y0, x0 + strip_w, strip_bottom),
+        outer: rect(x0, y0, x0 + strip_w, row.bottom),
         holes: hole_rings,
     };
+    let strip_bottom = row.bottom;
     // The spike key: a handle with the spike hanging below it (towards larger y).
     let (kx, handle_w, handle_h) = (x0 + strip_w + 5.0, SPIKE_WIDTH + 10.0, 10.0);
     let spike_len = 2.0 * thickness + 3.0;
@@ -181,10 +227,72 @@ pub fn test_strip_marking(thickness: f64, material: Material, kerf: f64) -> Resu
         strip_engrave: engrave,
         spike_engrave,
         holes,
+        slots: row.slots,
         default_hole,
         marked_hole,
         table,
     })
+}
+
+/// The slot row of the strip, from `top_left` down: its slots, their rings (cut as drawn),
+/// the engraving (each slot's sheet thickness under it, and a header), the width the strip
+/// needs for it and the y where the strip ends below it.
+struct SlotRow {
+    slots: Vec<StripSlot>,
+    rings: Vec<Vec<DVec2>>,
+    engrave: Vec<Vec<DVec2>>,
+    width: f64,
+    bottom: f64,
+}
+
+/// Slots `sheet − kerf` wide, so that with the kerf in use the slot of the real sheet
+/// thickness is exactly as wide as the sheet: the slot the spike, turned on its side, enters
+/// snugly names the thickness to give as `3@2.85`, and the next narrower one a press fit.
+/// Slots run [`SPIKE_WIDTH`] + 1 mm along y, so only the sheet's thickness decides the fit.
+fn slot_row(thickness: f64, kerf: f64, top_left: DVec2) -> SlotRow {
+    let widest = slot_sheet(thickness, SLOT_COUNT) - kerf;
+    if slot_sheet(thickness, 1) - kerf < MIN_SLOT {
+        return SlotRow {
+            slots: Vec::new(),
+            rings: Vec::new(),
+            engrave: Vec::new(),
+            width: 0.0,
+            bottom: top_left.y,
+        };
+    }
+    let pitch = PITCH.max(widest + 4.0);
+    let (top, length) = (top_left.y + 2.0, SPIKE_WIDTH + 1.0);
+    let label_base = top + length + 1.5 + SLOT_TEXT;
+    let mut row = SlotRow {
+        slots: Vec::new(),
+        rings: Vec::new(),
+        engrave: Vec::new(),
+        width: 8.0 + widest + f64::from(SLOT_COUNT - 1) * pitch,
+        bottom: 0.0,
+    };
+    for n in 1..=SLOT_COUNT {
+        let cx = top_left.x + 4.0 + widest / 2.0 + f64::from(n - 1) * pitch;
+        let sheet = slot_sheet(thickness, n);
+        let w = sheet - kerf;
+        let mut ring = rect(cx - w / 2.0, top, cx + w / 2.0, top + length);
+        ring.reverse();
+        row.rings.push(ring);
+        let label = format!("{sheet:.2}");
+        let origin = DVec2::new(cx - text_width(&label, SLOT_TEXT) / 2.0, label_base);
+        row.engrave.extend(place_text(&label, SLOT_TEXT, origin, DVec2::X));
+        row.slots.push(StripSlot { sheet, width: w });
+    }
+    let header = format!("SLOT=SHEET MM  KERF {}MM", num(kerf));
+    let header_base = label_base + 3.0 + TEXT;
+    row.engrave.extend(place_text(
+        &header,
+        TEXT,
+        DVec2::new(top_left.x + 4.0, header_base),
+        DVec2::X,
+    ));
+    row.width = row.width.max(8.0 + text_width(&header, TEXT));
+    row.bottom = header_base + 3.0;
+    row
 }
 
 /// Refuses a thickness or a kerf the strip cannot be drawn for.
@@ -251,7 +359,7 @@ mod tests {
     #[test]
     fn the_strip_holds_its_holes_and_the_spike_stands_apart() {
         let s = test_strip(3.0, Material::Wood).expect("valid thickness");
-        assert_eq!(s.strip.holes.len(), HOLE_COUNT as usize);
+        assert_eq!(s.strip.holes.len(), (HOLE_COUNT + SLOT_COUNT) as usize);
         for h in &s.strip.holes {
             assert!(
                 h.iter()
@@ -264,6 +372,48 @@ mod tests {
         assert!(test_strip(-1.0, Material::Wood).is_err());
     }
 
+    /// The slot row: slot n is drawn `sheet − kerf` wide for sheets 0.4 mm thinner to 0.4 mm
+    /// thicker than nominal, the middle one the nominal sheet, every slot inside the strip,
+    /// below the holes and apart from its neighbours; paper gets none.
+    #[test]
+    fn the_slot_row_names_the_sheet_thickness_each_slot_fits() {
+        let kerf = 0.15;
+        let s = test_strip_marking(3.0, Material::Wood, kerf).expect("strip");
+        assert_eq!(s.slots.len(), SLOT_COUNT as usize);
+        assert!((s.slots[0].sheet - 2.6).abs() < 1e-9 && (s.slots[16].sheet - 3.4).abs() < 1e-9);
+        assert!(
+            (s.slots[8].sheet - 3.0).abs() < 1e-9,
+            "the middle slot is the nominal sheet"
+        );
+        let rings = &s.strip.holes[HOLE_COUNT as usize..];
+        let lowest_hole = s.strip.holes[..HOLE_COUNT as usize]
+            .iter()
+            .flatten()
+            .map(|p| p.y)
+            .fold(f64::MIN, f64::max);
+        let mut last_right = f64::MIN;
+        for (slot, ring) in s.slots.iter().zip(rings) {
+            let (lo, hi) = platener_geom::boxes::bounds2(ring.iter().copied());
+            assert!((hi.x - lo.x - (slot.sheet - kerf)).abs() < 1e-9, "drawn sheet − kerf");
+            assert!((slot.width - (hi.x - lo.x)).abs() < 1e-9);
+            assert!(
+                (hi.y - lo.y - (SPIKE_WIDTH + 1.0)).abs() < 1e-9,
+                "the spike's width enters freely"
+            );
+            assert!(lo.y > lowest_hole && lo.x > last_right + 3.0, "apart");
+            assert!(
+                ring.iter()
+                    .all(|p| platener_geom::polygon::ring_contains(&s.strip.outer, *p))
+            );
+            last_right = hi.x;
+        }
+        assert!(test_strip(0.3, Material::Paper).expect("paper").slots.is_empty());
+        assert_eq!(
+            test_strip(0.3, Material::Paper).expect("paper").strip.holes.len(),
+            HOLE_COUNT as usize
+        );
+    }
+
     #[test]
     fn the_table_stars_the_kerf_in_use() {
         let default = test_strip(3.0, Material::Wood).expect("strip");
@@ -273,9 +423,11 @@ mod tests {
         assert_eq!((recut.default_hole, recut.marked_hole), (9, 13));
         let starred: Vec<&String> = recut.table.iter().filter(|e| e.ends_with('*')).collect();
         assert_eq!(starred, ["13=0.300*"], "only the kerf in use is starred");
-        // The engraving is the table's: one more star's strokes move from hole 9 to hole 13.
-        assert_eq!(recut.strip_engrave.len(), default.strip_engrave.len());
+        // The engraving is the table's: the star moves from hole 9 to hole 13 (and the slot
+        // row, made for the kerf in use, names it).
         assert_ne!(recut.strip_engrave, default.strip_engrave);
+        let narrower = recut.slots.iter().zip(&default.slots);
+        assert!(narrower.clone().all(|(r, d)| (d.width - r.width - 0.1).abs() < 1e-9));
         for kerf in [-0.1, f64::NAN, MAX_KERF] {
             assert!(test_strip_marking(3.0, Material::Wood, kerf).is_err(), "{kerf}");
         }

@@ -8,7 +8,7 @@ use platener::kerf::cut_paths;
 use platener::plan::samples::{l_shape, rectangle, window};
 use platener::plan::{CutSettings, Material, Part, SheetSize};
 use platener::sheets::nest;
-use platener::swatches::strip::{HOLE_COUNT, SPIKE_WIDTH, hole_kerf, test_strip};
+use platener::swatches::strip::{HOLE_COUNT, SLOT_COUNT, SPIKE_WIDTH, hole_kerf, test_strip};
 use platener_geom::{Polygon, boolean};
 use proptest::prelude::*;
 
@@ -28,8 +28,23 @@ fn the_test_strip_holes_and_spike_have_the_stated_widths() {
     for (t, material) in [(3.0, Material::Wood), (6.0, Material::Acrylic)] {
         let svg = svg_read::parse(&test_strip(t, material).expect("strip").svg());
         let strip = &svg.groups["part-1"];
-        // Holes first, the outline last (cut order).
-        let mut holes: Vec<(f64, f64)> = strip.cut[..strip.cut.len() - 1].iter().map(|r| x_extent(r)).collect();
+        // Holes first, then the slot row, the outline last (cut order).
+        let n = HOLE_COUNT as usize;
+        let mut holes: Vec<(f64, f64)> = strip.cut[..n].iter().map(|r| x_extent(r)).collect();
+        // Slot k is drawn for the sheet `t + (k − 9) × 0.05` less the material's kerf.
+        let slots: Vec<f64> = strip.cut[n..strip.cut.len() - 1]
+            .iter()
+            .map(|r| x_extent(r))
+            .map(|(lo, hi)| hi - lo)
+            .collect();
+        assert_eq!(slots.len(), SLOT_COUNT as usize);
+        for (k, w) in slots.iter().enumerate() {
+            let sheet = t + (k as f64 - 8.0) * 0.05;
+            assert!(
+                (w - (sheet - material.default_kerf())).abs() < WIDTH_TOL,
+                "slot {k}: {w}"
+            );
+        }
         assert_eq!(holes.len(), HOLE_COUNT as usize);
         // Numbered left to right.
         holes.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -48,7 +63,7 @@ fn the_test_strip_holes_and_spike_have_the_stated_widths() {
         tip.sort_by(|a, b| b.y.total_cmp(&a.y));
         assert!((tip[0].y - tip[1].y).abs() < WIDTH_TOL);
         assert!(((tip[0].x - tip[1].x).abs() - SPIKE_WIDTH).abs() < WIDTH_TOL);
-        assert!(!strip.engrave.is_empty() && svg.red == 1 + HOLE_COUNT as usize + 1);
+        assert!(!strip.engrave.is_empty() && svg.red == 1 + (HOLE_COUNT + SLOT_COUNT) as usize + 1);
     }
 }
 
