@@ -202,8 +202,27 @@ pub fn test_strip_marking(thickness: f64, material: Material, kerf: f64) -> Resu
         holes: hole_rings,
     };
     let strip_bottom = row.bottom;
-    // The spike key: a handle with the spike hanging below it (towards larger y).
-    let (kx, handle_w, handle_h) = (x0 + strip_w + 5.0, SPIKE_WIDTH + 10.0, 10.0);
+    let (spike, spike_engrave, spike_corner) = spike_key(DVec2::new(x0 + strip_w + 5.0, y0), thickness);
+    Ok(TestStrip {
+        width: spike_corner.x + MARGIN,
+        height: strip_bottom.max(spike_corner.y) + MARGIN,
+        strip,
+        spike,
+        strip_engrave: engrave,
+        spike_engrave,
+        holes,
+        slots: row.slots,
+        default_hole,
+        marked_hole,
+        table,
+    })
+}
+
+/// The spike key from `top_left`: a handle with the spike hanging below it (towards larger
+/// y), its width engraved on the handle; and its box's far corner.
+fn spike_key(top_left: DVec2, thickness: f64) -> (Polygon, Vec<Vec<DVec2>>, DVec2) {
+    let (kx, y0) = (top_left.x, top_left.y);
+    let (handle_w, handle_h) = (SPIKE_WIDTH + 10.0, 10.0);
     let spike_len = 2.0 * thickness + 3.0;
     let (sx0, sx1) = (kx + 5.0, kx + 5.0 + SPIKE_WIDTH);
     let spike = Polygon::new(vec![
@@ -218,20 +237,8 @@ pub fn test_strip_marking(thickness: f64, material: Material, kerf: f64) -> Resu
     ]);
     let key_label = format!("{:.3}", SPIKE_WIDTH);
     let key_origin = DVec2::new(kx + (handle_w - text_width(&key_label, TEXT)) / 2.0, y0 + 2.0 + TEXT);
-    let spike_engrave = place_text(&key_label, TEXT, key_origin, DVec2::X);
-    Ok(TestStrip {
-        width: kx + handle_w + MARGIN,
-        height: strip_bottom.max(y0 + handle_h + spike_len) + MARGIN,
-        strip,
-        spike,
-        strip_engrave: engrave,
-        spike_engrave,
-        holes,
-        slots: row.slots,
-        default_hole,
-        marked_hole,
-        table,
-    })
+    let engrave = place_text(&key_label, TEXT, key_origin, DVec2::X);
+    (spike, engrave, DVec2::new(kx + handle_w, y0 + handle_h + spike_len))
 }
 
 /// The slot row of the strip, from `top_left` down: its slots, their rings (cut as drawn),
