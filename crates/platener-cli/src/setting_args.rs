@@ -24,14 +24,14 @@ impl Subset for Every {
 }
 
 /// `scene`: every setting but those of the cutting plan alone (kerf, sheet, margin, spacing,
-/// line colours, reference square, fit, labels).
+/// line colours, reference square, fit, labels, stock).
 #[derive(Debug, Clone, Copy)]
 pub struct ForScene;
 impl Subset for ForScene {
     fn includes(def: &Def) -> bool {
         !matches!(
             def.name,
-            "kerf" | "sheet" | "margin" | "spacing" | "colors" | "reference-square" | "fit" | "labels"
+            "kerf" | "sheet" | "stock" | "margin" | "spacing" | "colors" | "reference-square" | "fit" | "labels"
         )
     }
 }
@@ -122,6 +122,7 @@ fn arg_of(def: &'static Def) -> Arg {
         }),
         Kind::Numbers { unit, .. } => arg.value_name(unit_word(unit)).action(ArgAction::Append),
         Kind::Sheet { .. } => arg.value_name("WxH|fit"),
+        Kind::Text { .. } => arg.value_name("T:WxH[xN],..."),
     };
     arg
 }

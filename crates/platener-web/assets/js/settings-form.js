@@ -50,7 +50,7 @@ function control(def) {
   row.className = `setting kind-${def.kind.type}`;
   row.dataset.setting = def.name;
   row.title = def.doc;
-  const make = { choice: choiceControl, number: numberControl, numbers: numbersControl, sheet: sheetControl };
+  const make = { choice: choiceControl, number: numberControl, numbers: numbersControl, sheet: sheetControl, text: textControl };
   row.append(...make[def.kind.type](def));
   const help = document.createElement('p');
   help.className = 'help';
@@ -167,6 +167,17 @@ function numbersControl(def) {
   return [set];
 }
 
+/** Free text in a format of its own (the stock list); empty for none. */
+function textControl(def) {
+  const input = Object.assign(document.createElement('input'), {
+    type: 'text', id: def.name, name: def.name, placeholder: def.kind.example, value: def.default || '',
+  });
+  input.dataset.testid = def.name;
+  input.dataset.setting = def.name;
+  input.title = def.kind.format;
+  return [labelFor(def, input), input];
+}
+
 function sheetControl(def) {
   const select = selectOf(def, def.kind.presets);
   select.append(new Option('Custom…', 'custom'));
@@ -219,6 +230,8 @@ function readOne(def) {
       const h = Number($('sheet-height').value);
       return w > 0 && h > 0 ? `${w}x${h}` : def.default;
     }
+    case 'text':
+      return $(def.name).value.trim();
     default:
       return $(def.name).value;
   }
@@ -263,6 +276,9 @@ function writeOne(def, value) {
       }
       break;
     }
+    case 'text':
+      $(def.name).value = value == null ? '' : String(value);
+      break;
     default:
       $(def.name).value = value;
   }

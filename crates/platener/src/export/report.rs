@@ -137,16 +137,38 @@ pub fn sheet_lower_bound(nesting: &Nesting, settings: &crate::plan::CutSettings)
     for s in &nesting.sheets {
         *by_thickness.entry(s.thickness.to_bits()).or_default() += s.parts_area;
     }
-    match settings.sheet {
-        crate::plan::SheetSize::Fit => by_thickness.len(),
-        crate::plan::SheetSize::Fixed { width, height } => {
-            let usable = (width - 2.0 * settings.margin) * (height - 2.0 * settings.margin);
-            by_thickness
-                .values()
-                .map(|area| (area / usable).ceil().max(1.0) as usize)
-                .sum()
+    let usable = |width: f64, height: f64| (width - 2.0 * settings.margin) * (height - 2.0 * settings.margin);
+    by_thickness
+        .iter()
+        .map(|(bits, &area)| {
+            let stock = settings.stock_of(f64::from_bits(*bits));
+            match settings.sheet {
+                _ if !stock.is_empty() => stock_lower_bound(area, &stock, usable),
+                crate::plan::SheetSize::Fit => 1,
+                crate::plan::SheetSize::Fixed { width, height } => {
+                    (area / usable(width, height)).ceil().max(1.0) as usize
+                }
+            }
+        })
+        .sum()
+}
+
+/// The fewest sheets of `stock` whose usable areas add up to `area`: the largest first, each
+/// kind as many times as it counts (the last without a count as often as needed).
+fn stock_lower_bound(area: f64, stock: &[crate::plan::StockSheet], usable: impl Fn(f64, f64) -> f64) -> usize {
+    let mut kinds: Vec<(f64, Option<u32>)> = stock.iter().map(|s| (usable(s.width, s.height), s.count)).collect();
+    kinds.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let (mut left, mut sheets) = (area, 0usize);
+    for (each, count) in kinds {
+        if left <= 0.0 || each <= 0.0 {
+            break;
         }
+        let need = (left / each).ceil() as usize;
+        let take = count.map_or(need, |n| need.min(n as usize));
+        sheets += take;
+        left -= take as f64 * each;
     }
+    sheets.max(1)
 }
 
 /// Per-sheet and overall areas and densities.
@@ -192,4 +214,28 @@ fn part_warnings<S: serde::Serializer>(warnings: &[Warning], serializer: S) -> R
         part: w.part,
         message: &w.message,
     }))
+}
+
+#[cfg(test)]
+mod stock_tests {
+    use super::*;
+    use crate::plan::StockSheet;
+
+    /// The fewest stock sheets whose usable areas cover the parts: the largest first, counts
+    /// kept, the last kind as often as needed.
+    #[test]
+    fn the_lower_bound_takes_the_largest_stock_first() {
+        let usable = |w: f64, h: f64| w * h;
+        let sheet = |w, h, count| StockSheet {
+            thickness: 3.0,
+            width: w,
+            height: h,
+            count,
+        };
+        let stock = [sheet(100.0, 100.0, None), sheet(200.0, 100.0, Some(2))];
+        // 45 000 mm²: both large sheets (40 000) and one small one.
+        assert_eq!(stock_lower_bound(45_000.0, &stock, usable), 3);
+        assert_eq!(stock_lower_bound(15_000.0, &stock, usable), 1);
+        assert_eq!(stock_lower_bound(75_000.0, &stock, usable), 6);
+    }
 }

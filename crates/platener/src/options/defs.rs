@@ -5,8 +5,10 @@ use serde_json::{Value, json};
 use super::{Choice, Chosen, Def, Group, Kind};
 use crate::joints::JointStyle;
 use crate::method::MethodKind;
+use crate::plan::stock::parse_stock;
 use crate::plan::{
     ColorProfile, Fit, LabelMode, MAX_KERF, MAX_MARGIN, Material, MeasuredThickness, SPACING_RANGE, SheetSize,
+    StockSheet,
 };
 use crate::settings::{
     Bending, Features, MAX_SHEET_SIDE, MAX_THICKNESS, MAX_THICKNESSES, MAX_WELD, MIN_THICKNESS, PlateMode, SCALE_RANGE,
@@ -126,6 +128,30 @@ pub static DEFS: &[Def] = &[
             Ok(())
         },
         get: |c| json!(sheet_name(c.settings.cut.sheet)),
+    },
+    Def {
+        name: "stock",
+        key: "stock",
+        short: None,
+        label: "Sheets in stock",
+        group: Group::Sheets,
+        kind: Kind::Text {
+            example: "3:600x400x2, 3:300x200",
+            format: "thickness:widthxheight[xcount] in mm, separated by commas; empty for none",
+        },
+        help: "The sheets you have: thickness, size and count of each (3:600x400x2, 6:300x200x1); \
+               leave the count out for as many as needed.",
+        doc: "Parts of each thickness are nested onto its sheets in the order listed, so offcuts listed \
+              first are used first; a plan that needs more sheets than listed is refused, naming the parts \
+              left over. Thicknesses not listed go on sheets of the sheet size.",
+        set: |c, v| {
+            c.settings.cut.stock = parse_stock(&v.join(","), MAX_SHEET_SIDE)?;
+            Ok(())
+        },
+        get: |c| {
+            let listed: Vec<String> = c.settings.cut.stock.iter().map(StockSheet::text).collect();
+            json!(listed.join(","))
+        },
     },
     Def {
         name: "margin",

@@ -137,6 +137,13 @@ pub enum Kind {
         /// Common values a form offers as boxes to tick.
         common: &'static [f64],
     },
+    /// Free text in a format of its own (the stock list), empty for none.
+    Text {
+        /// What it looks like, for a form's placeholder and the CLI's value name.
+        example: &'static str,
+        /// The format in words.
+        format: &'static str,
+    },
     /// A sheet size, `WxH` in mm or `fit`, with presets for common beds.
     Sheet {
         /// Common sizes.

@@ -49,6 +49,7 @@ pub fn values_in_words(def: &Def) -> String {
             ..
         } => format!("1–{max_count} values, each {min}–{max} {unit}"),
         Kind::Sheet { max, .. } => format!("WxH in mm (each side ≤ {max}) or fit"),
+        Kind::Text { format, .. } => format.to_string(),
     }
 }
 

@@ -10,6 +10,7 @@ pub mod format;
 mod part;
 pub mod samples;
 mod settings;
+pub mod stock;
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -30,6 +31,7 @@ pub use settings::{
     ColorProfile, CutSettings, Fit, LabelMode, MAX_KERF, MAX_MARGIN, Material, MeasuredThickness, SPACING_RANGE,
     SettingValue, SheetSize,
 };
+pub use stock::StockSheet;
 
 /// The model the parts were made from, for plan.json's `source`.
 #[derive(Debug, Clone, PartialEq, Serialize)]

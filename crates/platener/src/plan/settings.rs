@@ -277,6 +277,10 @@ pub struct CutSettings {
     /// scale after import (plan.json leaves the default, off, out).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub reference_square: bool,
+    /// The sheets the maker has (`stock`), nested onto in the order listed; a thickness with
+    /// none listed goes on sheets of `sheet` (plan.json leaves an empty list out).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stock: Vec<super::StockSheet>,
     /// Sheets whose measured thickness is not their nominal one (plan.json leaves an empty
     /// list out); the sheet thicknesses are the measured ones.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -306,6 +310,7 @@ impl Default for CutSettings {
             engrave_speed: 100.0,
             colors: ColorProfile::Classic,
             reference_square: false,
+            stock: Vec::new(),
             measured: Vec::new(),
             fit: Fit::Snug,
             report_timings: false,
@@ -324,6 +329,17 @@ pub const MAX_MARGIN: f64 = 100.0;
 pub const SPACING_RANGE: (f64, f64) = (0.5, 50.0);
 
 impl CutSettings {
+    /// The stock listed for sheets `thickness` mm thick (a measured sheet by its nominal
+    /// thickness), in the order listed.
+    pub fn stock_of(&self, thickness: f64) -> Vec<super::StockSheet> {
+        let nominal = self.nominal(thickness);
+        self.stock
+            .iter()
+            .filter(|s| (s.thickness - nominal).abs() < 1e-9)
+            .copied()
+            .collect()
+    }
+
     /// The nominal thickness of a sheet `thickness` mm thick: what a measured sheet is sold
     /// as, or the thickness itself.
     pub fn nominal(&self, thickness: f64) -> f64 {
@@ -414,6 +430,16 @@ impl CutSettings {
             return bad(
                 "sheet",
                 format!("{width} × {height} mm must be finite and larger than twice the margin"),
+            );
+        }
+        if let Some(s) = self
+            .stock
+            .iter()
+            .find(|s| !(s.width > 2.0 * self.margin && s.height > 2.0 * self.margin))
+        {
+            return bad(
+                "stock",
+                format!("{}: a sheet must be larger than twice the margin", s.text()),
             );
         }
         if self.nest_tries == 0 {

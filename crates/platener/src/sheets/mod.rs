@@ -122,21 +122,26 @@ struct Group<'a> {
 
 impl Group<'_> {
     /// Nests the group onto new sheets of `nesting`: small parts into the holes of larger
-    /// ones, the rest onto sheets of the set size, parts too large for it onto sheets of
-    /// their own.
+    /// ones, the rest onto sheets of the set size or onto the stock listed for the thickness,
+    /// in its order ([`Group::nest_on_stock`]).
     fn nest(&self, nesting: &mut Nesting) -> Result<(), PlanError> {
         let (shapes, settings, spacing) = (self.shapes, self.settings, self.settings.spacing);
+        let stock = settings.stock_of(self.thickness);
         // A part no sheet holds ends the plan before the holes are filled (a part too large
         // for an empty sheet fits no hole of a part that fits one).
-        if let SheetSize::Fixed { width, height } = settings.sheet {
-            let region = sheet_region(width, height, settings.margin, spacing);
-            if let Some(&i) = self
-                .members
-                .iter()
-                .find(|&&i| !fits_empty(&shapes[i], region.1 - region.0))
-            {
-                return Err(self.too_large(i));
-            }
+        let sizes: Vec<(f64, f64)> = match settings.sheet {
+            _ if !stock.is_empty() => stock.iter().map(|s| (s.width, s.height)).collect(),
+            SheetSize::Fixed { width, height } => vec![(width, height)],
+            SheetSize::Fit => Vec::new(),
+        };
+        let fits_some = |i: usize| {
+            sizes.iter().any(|&(w, h)| {
+                let region = sheet_region(w, h, settings.margin, spacing);
+                fits_empty(&shapes[i], region.1 - region.0)
+            })
+        };
+        if let Some(&i) = self.members.iter().find(|&&i| !sizes.is_empty() && !fits_some(i)) {
+            return Err(self.too_large(i, &stock));
         }
         let by_area = search::order(shapes, &self.members, 0, 0);
         let hosted = if settings.fill_holes {
@@ -145,36 +150,117 @@ impl Group<'_> {
             vec![None; shapes.len()]
         };
         let top: Vec<usize> = self.members.iter().copied().filter(|&i| hosted[i].is_none()).collect();
-        let (width, height) = self.sheet_size(&top);
-        let region = sheet_region(width, height, settings.margin, spacing);
-        let (fitting, oversize): (Vec<usize>, Vec<usize>) =
-            top.iter().partition(|&&i| fits_empty(&shapes[i], region.1 - region.0));
-        if let Some(&i) = oversize.first() {
-            return Err(self.too_large(i));
-        }
-        let cancelled = self.cancelled;
-        let layout =
-            best_layout(shapes, &fitting, region, settings.nest_tries, settings.seed, cancelled).ok_or_else(|| {
-                if cancelled() {
-                    PlanError::Cancelled { step: "sheets" }
-                } else {
-                    PlanError::Setting {
-                        name: "sheet",
-                        message: format!("{width} × {height} mm leaves no room inside the margins"),
-                    }
-                }
-            })?;
         let mut placed: Vec<Option<Placement>> = vec![None; shapes.len()];
-        let first_sheet = nesting.sheets.len();
-        for (s, sheet) in layout.sheets.iter().enumerate() {
-            for p in sheet {
-                let (angle, t) = shapes[p.key].templates[p.template].placement(p.pos);
-                placed[p.key] = Some((first_sheet + s, angle, t));
+        if stock.is_empty() {
+            let (width, height) = self.sheet_size(&top);
+            let region = sheet_region(width, height, settings.margin, spacing);
+            if let Some(&i) = top.iter().find(|&&i| !fits_empty(&shapes[i], region.1 - region.0)) {
+                return Err(self.too_large(i, &stock));
             }
-            nesting.sheets.push(empty_sheet(self.thickness, width, height));
+            let layout = self.layout(&top, width, height)?;
+            self.take_sheets(nesting, &mut placed, &layout, layout.sheets.len(), (width, height));
+        } else {
+            self.nest_on_stock(nesting, &mut placed, &top, &stock)?;
         }
         resolve_children(&mut placed, &hosted, &self.members);
         self.record(nesting, &placed)
+    }
+
+    /// The best layout of `items` on sheets of `width` × `height` mm.
+    fn layout(&self, items: &[usize], width: f64, height: f64) -> Result<search::Layout, PlanError> {
+        let settings = self.settings;
+        let region = sheet_region(width, height, settings.margin, settings.spacing);
+        let cancelled = self.cancelled;
+        best_layout(
+            self.shapes,
+            items,
+            region,
+            settings.nest_tries,
+            settings.seed,
+            cancelled,
+        )
+        .ok_or_else(|| {
+            if cancelled() {
+                PlanError::Cancelled { step: "sheets" }
+            } else {
+                PlanError::Setting {
+                    name: "sheet",
+                    message: format!("{width} × {height} mm leaves no room inside the margins"),
+                }
+            }
+        })
+    }
+
+    /// Adds the first `count` sheets of `layout` (each `size`) to `nesting` and records where
+    /// their parts are in `placed`.
+    fn take_sheets(
+        &self,
+        nesting: &mut Nesting,
+        placed: &mut [Option<Placement>],
+        layout: &search::Layout,
+        count: usize,
+        (width, height): (f64, f64),
+    ) {
+        for sheet in layout.sheets.iter().take(count) {
+            let index = nesting.sheets.len();
+            for p in sheet {
+                let (angle, t) = self.shapes[p.key].templates[p.template].placement(p.pos);
+                placed[p.key] = Some((index, angle, t));
+            }
+            nesting.sheets.push(empty_sheet(self.thickness, width, height));
+        }
+    }
+
+    /// Nests `top` onto `stock` in its order: each kind of sheet takes as many of the
+    /// remaining parts as its count of sheets holds (offcuts listed first are used first);
+    /// parts left when the stock is used up end the plan with an error naming them.
+    fn nest_on_stock(
+        &self,
+        nesting: &mut Nesting,
+        placed: &mut [Option<Placement>],
+        top: &[usize],
+        stock: &[crate::plan::StockSheet],
+    ) -> Result<(), PlanError> {
+        let settings = self.settings;
+        let mut left: Vec<usize> = top.to_vec();
+        for kind in stock {
+            let region = sheet_region(kind.width, kind.height, settings.margin, settings.spacing);
+            let fitting: Vec<usize> = left
+                .iter()
+                .copied()
+                .filter(|&i| fits_empty(&self.shapes[i], region.1 - region.0))
+                .collect();
+            if fitting.is_empty() {
+                continue;
+            }
+            let layout = self.layout(&fitting, kind.width, kind.height)?;
+            let count = kind
+                .count
+                .map_or(layout.sheets.len(), |n| layout.sheets.len().min(n as usize));
+            self.take_sheets(nesting, placed, &layout, count, (kind.width, kind.height));
+            left.retain(|&i| placed[i].is_none());
+            if left.is_empty() {
+                return Ok(());
+            }
+        }
+        if left.is_empty() {
+            return Ok(());
+        }
+        let mut ids: Vec<u32> = left.iter().map(|&i| self.parts[i].id).collect();
+        ids.sort_unstable();
+        let listed: Vec<String> = stock.iter().map(crate::plan::StockSheet::text).collect();
+        Err(PlanError::Setting {
+            name: "stock",
+            message: format!(
+                "the {} mm sheets in stock ({}) hold {} of the {} parts of that thickness: parts {} need more; \
+                 add sheets to `stock`, or leave a count out for as many as needed",
+                crate::draw::svg::num(settings.nominal(self.thickness)),
+                listed.join(", "),
+                top.len() - left.len(),
+                top.len(),
+                ids.iter().map(u32::to_string).collect::<Vec<_>>().join(", ")
+            ),
+        })
     }
 
     /// The sheet size for the parts `top` (those not nested into holes): the set one, or
@@ -204,21 +290,34 @@ impl Group<'_> {
     /// Part `i` does not fit the sheet in any orientation: the sheet is too
     /// small for this model (a part on a sheet of its own would be cut from a sheet the user
     /// does not have), so the plan stops here, naming the part, its size and what to do.
-    fn too_large(&self, i: usize) -> PlanError {
+    /// With `stock` listed for the thickness, the message names the stock instead.
+    fn too_large(&self, i: usize, stock: &[crate::plan::StockSheet]) -> PlanError {
         let smallest = self.shapes[i]
             .templates
             .iter()
             .map(|t| t.size)
             .min_by(|a, b| (a.x * a.y).total_cmp(&(b.x * b.y)))
             .unwrap_or_default();
+        let what = format!("part {}", self.parts[i].id);
+        if !stock.is_empty() {
+            let listed: Vec<String> = stock.iter().map(crate::plan::StockSheet::text).collect();
+            return PlanError::Setting {
+                name: "stock",
+                message: format!(
+                    "{what} is {:.1} × {:.1} mm (cut path and spacing) and fits none of the sheets in stock ({}) \
+                     within their {} mm margins: add a larger sheet to `stock`, or scale the model down (`scale`)",
+                    smallest.x,
+                    smallest.y,
+                    listed.join(", "),
+                    self.settings.margin
+                ),
+            };
+        }
         PlanError::Setting {
             name: "sheet",
-            message: self.settings.oversize_message(
-                &format!("part {}", self.parts[i].id),
-                "cut path and spacing",
-                smallest.x,
-                smallest.y,
-            ),
+            message: self
+                .settings
+                .oversize_message(&what, "cut path and spacing", smallest.x, smallest.y),
         }
     }
 
@@ -309,7 +408,7 @@ fn finish_sheets(nesting: &mut Nesting, parts: &[Part], shapes: &[NestShape], se
         sheet.index = k as u32;
         sheet.parts.sort_unstable();
         let used = (right[k] + settings.margin).min(sheet.width);
-        if settings.sheet == SheetSize::Fit {
+        if settings.sheet == SheetSize::Fit && settings.stock_of(sheet.thickness).is_empty() {
             sheet.width = round_up(used);
         }
         sheet.used_area = used * sheet.height;

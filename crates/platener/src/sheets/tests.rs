@@ -177,3 +177,61 @@ fn a_hole_barely_wider_than_the_spacing_hosts_nothing() {
         "{child}"
     );
 }
+
+/// The stock list: parts go onto the listed sheets in order, as many as each count allows
+/// (the offcut first), every part inside its own sheet's margins; a plan needing more than
+/// the stock holds is refused naming the parts left over and `stock`; a part larger than every
+/// stock sheet is refused naming the stock.
+#[test]
+fn parts_go_onto_the_stock_in_order_and_too_few_sheets_are_refused() {
+    use crate::plan::stock::parse_stock;
+    // Twelve 90 × 90 plates: a 200 × 200 offcut holds 4 (2 × 2 within 5 mm margins).
+    let parts: Vec<Part> = (1..=12)
+        .map(|id| part(id, Polygon::new(rect(0.0, 0.0, 90.0, 90.0))))
+        .collect();
+    let with = |stock: &str| CutSettings {
+        stock: parse_stock(stock, 10_000.0).expect("valid"),
+        ..CutSettings::default()
+    };
+    let n = nest_all(&parts, &with("3:200x200x1, 3:600x400"));
+    let sizes: Vec<(f64, f64)> = n.sheets.iter().map(|s| (s.width, s.height)).collect();
+    assert_eq!(sizes[0], (200.0, 200.0), "the offcut first");
+    assert_eq!(n.sheets[0].parts.len(), 4);
+    assert!(sizes[1..].iter().all(|&s| s == (600.0, 400.0)));
+    assert_eq!(n.sheets.iter().map(|s| s.parts.len()).sum::<usize>(), 12);
+    // Every part inside its sheet's margins (the cut path grown by half the kerf included).
+    for p in &n.placements {
+        let sheet = &n.sheets[p.index as usize];
+        for q in rect(0.0, 0.0, 90.0, 90.0) {
+            let at = p.apply(q);
+            assert!(at.x >= 5.0 && at.y >= 5.0, "{at}");
+            assert!(
+                at.x <= sheet.width - 5.0 && at.y <= sheet.height - 5.0,
+                "{at} on {sheet:?}"
+            );
+        }
+    }
+    // Two offcuts hold 8 of the 12.
+    let Err(PlanError::Setting { name, message }) = nested(&parts, &with("3:200x200x2")) else {
+        panic!("two offcuts cannot hold twelve plates");
+    };
+    assert_eq!(name, "stock");
+    assert!(
+        message.contains("hold 8 of the 12") && message.contains("`stock`"),
+        "{message}"
+    );
+    // A plate larger than every stock sheet.
+    let big = [part(1, Polygon::new(rect(0.0, 0.0, 300.0, 90.0)))];
+    let Err(PlanError::Setting { name, message }) = nested(&big, &with("3:200x200x2")) else {
+        panic!("too large");
+    };
+    assert_eq!(name, "stock");
+    assert!(
+        message.contains("part 1") && message.contains("3:200x200x2"),
+        "{message}"
+    );
+    // Another thickness than the stock's goes on sheets of the sheet size.
+    let other = with("6:200x200x1");
+    let n = nest_all(&parts, &other);
+    assert!(n.sheets.iter().all(|s| (s.width, s.height) == (600.0, 400.0)));
+}
