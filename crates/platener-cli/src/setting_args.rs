@@ -24,14 +24,23 @@ impl Subset for Every {
 }
 
 /// `scene`: every setting but those of the cutting plan alone (kerf, sheet, margin, spacing,
-/// line colours, reference square, fit, labels, stock).
+/// line colours, reference square, fit, labels, stock, nesting).
 #[derive(Debug, Clone, Copy)]
 pub struct ForScene;
 impl Subset for ForScene {
     fn includes(def: &Def) -> bool {
         !matches!(
             def.name,
-            "kerf" | "sheet" | "stock" | "margin" | "spacing" | "colors" | "reference-square" | "fit" | "labels"
+            "kerf"
+                | "sheet"
+                | "stock"
+                | "nesting"
+                | "margin"
+                | "spacing"
+                | "colors"
+                | "reference-square"
+                | "fit"
+                | "labels"
         )
     }
 }

@@ -7,7 +7,7 @@
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use platener::kerf::cut_paths;
 use platener::plan::samples::{fingered, l_shape, mixed, rectangle, window};
-use platener::plan::{CutSettings, Part, SheetSize};
+use platener::plan::{CutSettings, NestEffort, Part, SheetSize};
 use platener::sheets::{Nesting, nest};
 
 /// A simple deterministic sequence in [0, 1) for sizes.
@@ -72,18 +72,98 @@ fn summary((n, millis): &(Nesting, f64)) -> String {
     )
 }
 
+/// The parts of `model` as the stacked method makes them (its layers, shafts and keys).
+fn stacked_parts(name: &str, model: Vec<platener_geom::Triangle>) -> Vec<Part> {
+    use platener::method::MethodKind;
+    let state = platener::convert(
+        MethodKind::Stacked,
+        platener::Source::triangles(name, model),
+        platener::Settings::default(),
+        &platener::Cancel::default(),
+    )
+    .expect("the stacked method converts");
+    state.stacked_parts.expect("the stacked parts").parts.clone()
+}
+
+/// The strip-packing sets compared with sparrow (issue 34): finger-jointed plates, a sphere's
+/// layers and an organic figure's layers.
+fn strip_sets() -> Vec<(&'static str, Vec<Part>)> {
+    use platener::glam::DVec3;
+    use platener_fixtures::samples;
+    let mut u = units(7);
+    let fingers = (1..=13)
+        .map(|id| fingered(id, 60.0 + 140.0 * u(), 40.0 + 80.0 * u(), 2 + id % 4, 3.0))
+        .collect();
+    vec![
+        ("fingered-13", fingers),
+        (
+            "sphere-layers",
+            stacked_parts("sphere", samples::sphere(DVec3::ZERO, 50.0, 32, 16)),
+        ),
+        ("animal-layers", stacked_parts("animal", samples::animal())),
+    ]
+}
+
+/// With `PLATENER_NESTING_EXPORT=FILE`, writes [`strip_sets`] for `tools/nesting-vs-spyrrow.py`:
+/// each set's cut outlines and our strip length on a 400 mm high strip (no margin, 2 mm
+/// spacing) at each `nesting` level, with the time it took.
+fn export_strip_sets(file: &str) {
+    let mut sets = Vec::new();
+    for (name, parts) in strip_sets() {
+        let (cut, _) = cut_paths(&parts, CutSettings::default().kerf()).expect("cut paths");
+        let outlines: Vec<Vec<[f64; 2]>> = cut
+            .parts
+            .iter()
+            .map(|p| p.cut.outer.iter().map(|q| [q.x, q.y]).collect())
+            .collect();
+        let area: f64 = cut.parts.iter().map(|p| p.nominal.area()).sum();
+        let mut ours = serde_json::Map::new();
+        for effort in NestEffort::ALL {
+            let settings = CutSettings {
+                sheet: SheetSize::Fixed {
+                    width: 10_000.0,
+                    height: 400.0,
+                },
+                margin: 0.0,
+                nest_tries: effort.tries(),
+                labels: platener::plan::LabelMode::None,
+                ..CutSettings::default()
+            };
+            let (n, millis) = run(&parts, &settings);
+            let length = n.sheets[0].used_area / 400.0;
+            println!(
+                "strip {name} {}: {} parts, length {length:.1} mm, {millis:.0} ms",
+                effort.name(),
+                parts.len()
+            );
+            ours.insert(
+                effort.name().into(),
+                serde_json::json!({"length": length, "millis": millis}),
+            );
+        }
+        sets.push(serde_json::json!({"name": name, "height": 400.0, "spacing": 2.0, "area": area, "outlines": outlines, "ours": ours}));
+    }
+    std::fs::write(file, serde_json::to_string(&sets).expect("json")).expect("write the sets");
+}
+
 fn bench(c: &mut Criterion) {
+    if let Ok(file) = std::env::var("PLATENER_NESTING_EXPORT") {
+        export_strip_sets(&file);
+        return;
+    }
     let mut group = c.benchmark_group("nesting");
     group.sample_size(10);
     for (name, parts) in part_sets() {
-        for (label, sheet, tries) in [
-            ("600x400-1try", SheetSize::default(), 1),
-            ("600x400-8tries", SheetSize::default(), 8),
-            ("fit-8tries", SheetSize::Fit, 8),
+        // The `nesting` setting's levels on 600 × 400 mm sheets, and the default on a fitted one.
+        for (label, sheet, effort) in [
+            ("600x400-fast", SheetSize::default(), NestEffort::Fast),
+            ("600x400-good", SheetSize::default(), NestEffort::Good),
+            ("600x400-best", SheetSize::default(), NestEffort::Best),
+            ("fit-good", SheetSize::Fit, NestEffort::Good),
         ] {
             let settings = CutSettings {
                 sheet,
-                nest_tries: tries,
+                nest_tries: effort.tries(),
                 labels: platener::plan::LabelMode::None,
                 ..CutSettings::default()
             };

@@ -7,8 +7,8 @@ use crate::joints::JointStyle;
 use crate::method::MethodKind;
 use crate::plan::stock::parse_stock;
 use crate::plan::{
-    ColorProfile, Fit, LabelMode, MAX_KERF, MAX_MARGIN, Material, MeasuredThickness, SPACING_RANGE, SheetSize,
-    StockSheet,
+    ColorProfile, Fit, LabelMode, MAX_KERF, MAX_MARGIN, Material, MeasuredThickness, NestEffort, SPACING_RANGE,
+    SheetSize, StockSheet,
 };
 use crate::settings::{
     Bending, Features, MAX_SHEET_SIDE, MAX_THICKNESS, MAX_THICKNESSES, MAX_WELD, MIN_THICKNESS, PlateMode, SCALE_RANGE,
@@ -207,6 +207,28 @@ pub static DEFS: &[Def] = &[
               behind the other part; dovetails are wedged by small keys cut from the same sheet.",
         set: set_joint,
         get: |c| json!(c.settings.joints.style.map_or("auto", joint_name)),
+    },
+    Def {
+        name: "nesting",
+        key: "nesting",
+        short: None,
+        label: "Nesting",
+        group: Group::Sheets,
+        kind: Kind::Choice { choices: NESTINGS },
+        help: "How long nesting searches for a denser layout: fast, good or best.",
+        doc: "Nesting lays the parts out in several orders side by side and keeps the densest: fast tries \
+              one (a plan at once), good eight, best forty-eight (for the sheets you buy; about six times \
+              as long as good).",
+        set: |c, v| {
+            let name = one(v)?;
+            let effort = NestEffort::ALL
+                .into_iter()
+                .find(|e| e.name() == name)
+                .ok_or_else(|| choices_message(NESTINGS))?;
+            c.settings.cut.nest_tries = effort.tries();
+            Ok(())
+        },
+        get: |c| json!(NestEffort::of(c.settings.cut.nest_tries).name()),
     },
     Def {
         name: "colors",
@@ -506,6 +528,24 @@ const JOINTS: &[Choice] = &[
         value: "dovetail",
         label: "Dovetail",
         help: "Dovetails wedged tight by small keys.",
+    },
+];
+
+const NESTINGS: &[Choice] = &[
+    Choice {
+        value: "fast",
+        label: "Fast",
+        help: "One order, largest part first: a plan at once.",
+    },
+    Choice {
+        value: "good",
+        label: "Good",
+        help: "Eight orders, the densest kept.",
+    },
+    Choice {
+        value: "best",
+        label: "Best",
+        help: "Forty-eight orders: denser, about six times as long.",
     },
 ];
 

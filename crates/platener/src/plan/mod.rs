@@ -28,8 +28,8 @@ pub use part::{
     score_rings,
 };
 pub use settings::{
-    ColorProfile, CutSettings, Fit, LabelMode, MAX_KERF, MAX_MARGIN, Material, MeasuredThickness, SPACING_RANGE,
-    SettingValue, SheetSize,
+    ColorProfile, CutSettings, Fit, LabelMode, MAX_KERF, MAX_MARGIN, Material, MeasuredThickness, NestEffort,
+    SPACING_RANGE, SettingValue, SheetSize,
 };
 pub use stock::StockSheet;
 

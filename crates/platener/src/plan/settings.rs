@@ -104,6 +104,50 @@ impl ColorProfile {
     }
 }
 
+/// How long nesting searches (`nesting`): how many part orders it lays out side by side and
+/// keeps the best of. More orders find denser layouts, linearly slower.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NestEffort {
+    /// One order, largest first: a plan at once, for previews and trials.
+    Fast,
+    /// Eight orders: the default, dense within a second or two on most plans.
+    Good,
+    /// Forty-eight orders: for the sheets you buy.
+    Best,
+}
+
+impl NestEffort {
+    /// Every level, in the order the settings list them.
+    pub const ALL: [NestEffort; 3] = [NestEffort::Fast, NestEffort::Good, NestEffort::Best];
+
+    /// The level's name, as the setting takes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            NestEffort::Fast => "fast",
+            NestEffort::Good => "good",
+            NestEffort::Best => "best",
+        }
+    }
+
+    /// The part orders tried ([`CutSettings::nest_tries`]).
+    pub fn tries(self) -> u32 {
+        match self {
+            NestEffort::Fast => 1,
+            NestEffort::Good => 8,
+            NestEffort::Best => 48,
+        }
+    }
+
+    /// The level `tries` orders are, the nearest one at or below it.
+    pub fn of(tries: u32) -> NestEffort {
+        match tries {
+            0..=7 => NestEffort::Fast,
+            8..=47 => NestEffort::Good,
+            _ => NestEffort::Best,
+        }
+    }
+}
+
 /// How tight joints fit (`fit`): a clearance across each finger and tab, both flanks together,
 /// on top of the exact kerf compensation. Every cut path moves by a quarter of it (outward for
 /// press), as a finger grows by two such moves and its notch shrinks by two.
