@@ -157,7 +157,7 @@ function numbersControl(def) {
   // Text, not a number box: a sheet that measures other than it is sold as is given as
   // nominal@measured (3@2.85), which the API takes as it is.
   const custom = Object.assign(document.createElement('input'), {
-    type: 'text', id: `${def.name}-custom`, inputMode: 'decimal', placeholder: `${def.kind.unit}, or 3@2.85 measured`,
+    type: 'text', id: `${def.name}-custom`, inputMode: 'decimal', placeholder: `${def.kind.unit} or 3@2.85`,
     pattern: '\\s*[0-9]*\\.?[0-9]+(\\s*@\\s*[0-9]*\\.?[0-9]+)?\\s*',
   });
   custom.dataset.testid = custom.id;
