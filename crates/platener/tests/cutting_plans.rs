@@ -316,6 +316,7 @@ fn a_zip_written_twice_is_byte_identical() {
             "test-box-3mm-1.lbrn2",
             "test-box-3mm-1.png",
             "test-box-3mm-1.svg",
+            "test-box.pdf",
             "thumbnail.png"
         ]
     );

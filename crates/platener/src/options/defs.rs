@@ -220,12 +220,7 @@ pub static DEFS: &[Def] = &[
               one (a plan at once), good eight, best forty-eight (for the sheets you buy; about six times \
               as long as good).",
         set: |c, v| {
-            let name = one(v)?;
-            let effort = NestEffort::ALL
-                .into_iter()
-                .find(|e| e.name() == name)
-                .ok_or_else(|| choices_message(NESTINGS))?;
-            c.settings.cut.nest_tries = effort.tries();
+            c.settings.cut.nest_tries = named(v, NestEffort::ALL, NestEffort::name, NESTINGS)?.tries();
             Ok(())
         },
         get: |c| json!(NestEffort::of(c.settings.cut.nest_tries).name()),
@@ -242,11 +237,7 @@ pub static DEFS: &[Def] = &[
               inner cuts (holes, slits) and outlines the colours its program maps to its own operations; \
               the DXF and LightBurn files name their layers and do not change.",
         set: |c, v| {
-            let name = one(v)?;
-            c.settings.cut.colors = ColorProfile::ALL
-                .into_iter()
-                .find(|p| p.name() == name)
-                .ok_or_else(|| choices_message(COLORS))?;
+            c.settings.cut.colors = named(v, ColorProfile::ALL, ColorProfile::name, COLORS)?;
             Ok(())
         },
         get: |c| json!(c.settings.cut.colors.name()),
@@ -284,11 +275,7 @@ pub static DEFS: &[Def] = &[
               tapped home; loose fits slide together by hand. Measure your sheet's fit with the slot row of \
               the kerf test strip.",
         set: |c, v| {
-            let name = one(v)?;
-            c.settings.cut.fit = Fit::ALL
-                .into_iter()
-                .find(|f| f.name() == name)
-                .ok_or_else(|| choices_message(FITS))?;
+            c.settings.cut.fit = named(v, Fit::ALL, Fit::name, FITS)?;
             Ok(())
         },
         get: |c| json!(c.settings.cut.fit.name()),
@@ -756,6 +743,19 @@ fn number(text: &str) -> Result<f64, String> {
         Ok(v) if v.is_finite() => Ok(v),
         _ => Err("takes a number".into()),
     }
+}
+
+/// The one value of `all` whose name is the one value in `v` (a choice's enum).
+fn named<T: Copy, const N: usize>(
+    v: &[&str],
+    all: [T; N],
+    name: fn(T) -> &'static str,
+    choices: &[Choice],
+) -> Result<T, String> {
+    let text = one(v)?;
+    all.into_iter()
+        .find(|&x| name(x) == text)
+        .ok_or_else(|| choices_message(choices))
 }
 
 /// "must be one of a, b, c".
