@@ -661,10 +661,12 @@ fn publish_and_see_in_gallery(rig: &Rig, page: &Page, id: &str) {
 }
 
 /// The share of a gallery thumbnail's pixels (its `img`, once loaded) that are not the white
-/// background, read back through a canvas.
+/// background, read back through a canvas. Thumbnails load lazily, so the card is scrolled
+/// into view first, as a visitor scrolls down to the gallery below the form.
 fn thumbnail_cover(page: &Page, img: &str) -> f64 {
     let js = format!(
-        "(() => {{ const i = document.querySelector('{img}'); if (!i || !i.complete || !i.naturalWidth) return null; \
+        "(() => {{ const i = document.querySelector('{img}'); if (i && !i.complete) i.scrollIntoView(); \
+         if (!i || !i.complete || !i.naturalWidth) return null; \
          const c = document.createElement('canvas'); c.width = i.naturalWidth; c.height = i.naturalHeight; \
          const x = c.getContext('2d'); x.drawImage(i, 0, 0); const d = x.getImageData(0, 0, c.width, c.height).data; \
          let n = 0; for (let k = 0; k < d.length; k += 4) if (d[k] < 250 || d[k + 1] < 250 || d[k + 2] < 250) n += 1; \
@@ -839,11 +841,11 @@ fn download_strip_svg(page: &Page) {
         .filter(|n| n.has_tag_name("path") && n.attribute("stroke") == Some("#ff0000"))
         .map(|n| path_width(n.attribute("d").expect("d")))
         .collect();
-    // The widest cut is the strip's outline; the rest are its holes.
+    // The widest cut is the strip's outline; the rest are its holes and its slot row.
     cuts.sort_by(|a, b| a.parse::<f64>().unwrap_or(0.0).total_cmp(&b.parse().unwrap_or(0.0)));
     cuts.pop();
     let shown = page.eval(
-        "[...document.querySelectorAll('[data-testid=strip-hole] .strip-hole-cut')].map(p => p.getAttribute('d'))",
+        "[...document.querySelectorAll('[data-testid=strip-hole] .strip-hole-cut, .strip-slot')].map(p => p.getAttribute('d'))",
     );
     let mut holes: Vec<String> = shown
         .as_array()
@@ -853,7 +855,7 @@ fn download_strip_svg(page: &Page) {
         .collect();
     holes.sort_by(|a, b| a.parse::<f64>().unwrap_or(0.0).total_cmp(&b.parse().unwrap_or(0.0)));
     assert!(holes.len() > 3, "{holes:?}");
-    assert_eq!(cuts, holes, "the SVG's holes are the page's strip's");
+    assert_eq!(cuts, holes, "the SVG's holes and slots are the page's strip's");
 }
 
 /// Clicks a test-strip hole other than the chosen one: a re-cut whose plan.json has that
@@ -1427,6 +1429,7 @@ fn assert_form_control_matches(page: &Page, def: &Value) {
         "(() => {{ const el = document.getElementById({name:?}); if (!el) return null; \
          if (el.tagName === 'SELECT') return {{ values: [...el.options].map(o => o.value).filter(v => v !== 'custom'), value: el.value }}; \
          if (el.tagName === 'FIELDSET') return {{ value: [...el.querySelectorAll('input:checked')].map(i => Number(i.value)) }}; \
+         if (el.type === 'text') return {{ value: el.value === '' ? 'none' : el.value }}; \
          return {{ value: el.value === '' ? null : Number(el.value) }}; }})()"
     );
     let control = page.eval(&js);

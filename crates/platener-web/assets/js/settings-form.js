@@ -167,10 +167,10 @@ function numbersControl(def) {
   return [set];
 }
 
-/** Free text in a format of its own (the stock list); empty for none. */
+/** Free text in a format of its own (the stock list); the empty field is the API's `none`. */
 function textControl(def) {
   const input = Object.assign(document.createElement('input'), {
-    type: 'text', id: def.name, name: def.name, placeholder: def.kind.example, value: def.default || '',
+    type: 'text', id: def.name, name: def.name, placeholder: def.kind.example, value: def.default === 'none' ? '' : def.default,
   });
   input.dataset.testid = def.name;
   input.dataset.setting = def.name;
@@ -231,7 +231,7 @@ function readOne(def) {
       return w > 0 && h > 0 ? `${w}x${h}` : def.default;
     }
     case 'text':
-      return $(def.name).value.trim();
+      return $(def.name).value.trim() || 'none';
     default:
       return $(def.name).value;
   }
@@ -277,7 +277,7 @@ function writeOne(def, value) {
       break;
     }
     case 'text':
-      $(def.name).value = value == null ? '' : String(value);
+      $(def.name).value = value == null || value === 'none' ? '' : String(value);
       break;
     default:
       $(def.name).value = value;

@@ -294,10 +294,12 @@ pub fn sheet_svg(width: f64, height: f64, groups: &[SvgGroup], style: &SvgStyle)
     );
     if !style.preview {
         // The sheet's outline on a hidden layer of its own: a frame to place the material by
-        // in Inkscape, skipped by laser programs, which import no hidden element.
+        // in Inkscape, skipped by laser programs, which import no hidden element. Hidden by
+        // the `display` attribute, not a `style`: a page whose policy forbids inline styles
+        // (ours) shows the sheet without complaint.
         let _ = writeln!(
             s,
-            "<g id=\"{SHEET_ID}\" inkscape:groupmode=\"layer\" inkscape:label=\"Sheet (not cut)\" style=\"display:none\">\n<rect x=\"0\" y=\"0\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"{SHEET_COLOR}\" stroke-width=\"{}\"/>\n</g>",
+            "<g id=\"{SHEET_ID}\" inkscape:groupmode=\"layer\" inkscape:label=\"Sheet (not cut)\" display=\"none\">\n<rect x=\"0\" y=\"0\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"{SHEET_COLOR}\" stroke-width=\"{}\"/>\n</g>",
             num(HAIRLINE)
         );
     }
@@ -463,7 +465,7 @@ mod tests {
             .expect("the sheet's layer");
         let ns = "http://www.inkscape.org/namespaces/inkscape";
         assert_eq!(layer.attribute((ns, "groupmode")), Some("layer"));
-        assert_eq!(layer.attribute("style"), Some("display:none"));
+        assert_eq!(layer.attribute("display"), Some("none"));
         let rect = layer.children().find(|n| n.has_tag_name("rect")).expect("its outline");
         let size: Vec<&str> = ["x", "y", "width", "height"]
             .iter()

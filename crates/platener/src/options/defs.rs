@@ -137,7 +137,7 @@ pub static DEFS: &[Def] = &[
         group: Group::Sheets,
         kind: Kind::Text {
             example: "3:600x400x2, 3:300x200",
-            format: "thickness:widthxheight[xcount] in mm, separated by commas; empty for none",
+            format: "thickness:widthxheight[xcount] in mm, separated by commas, or none",
         },
         help: "The sheets you have: thickness, size and count of each (3:600x400x2, 6:300x200x1); \
                leave the count out for as many as needed.",
@@ -145,12 +145,21 @@ pub static DEFS: &[Def] = &[
               first are used first; a plan that needs more sheets than listed is refused, naming the parts \
               left over. Thicknesses not listed go on sheets of the sheet size.",
         set: |c, v| {
-            c.settings.cut.stock = parse_stock(&v.join(","), MAX_SHEET_SIDE)?;
+            let text = v.join(",");
+            c.settings.cut.stock = if text.trim().eq_ignore_ascii_case("none") {
+                Vec::new()
+            } else {
+                parse_stock(&text, MAX_SHEET_SIDE)?
+            };
             Ok(())
         },
         get: |c| {
             let listed: Vec<String> = c.settings.cut.stock.iter().map(StockSheet::text).collect();
-            json!(listed.join(","))
+            json!(if listed.is_empty() {
+                "none".to_string()
+            } else {
+                listed.join(",")
+            })
         },
     },
     Def {

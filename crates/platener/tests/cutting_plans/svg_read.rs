@@ -73,7 +73,7 @@ pub fn parse(svg: &str) -> Sheet {
         if let Some(rest) = tag.strip_prefix("g ") {
             let tag = format!(" {rest}");
             // A hidden layer (the sheet's outline) is what a laser program does not import.
-            if attr(&tag, "style") == Some("display:none") {
+            if attr(&tag, "display") == Some("none") {
                 current = None;
                 continue;
             }
