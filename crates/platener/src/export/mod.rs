@@ -171,7 +171,8 @@ fn sheet_files(
             let dxf = dxf::sheet_dxf(sheet.width, sheet.height, g, &dxf_name)?;
             let lightburn = lightburn::sheet_lbrn2(sheet.width, sheet.height, g, settings, stock);
             let png_name = format!("{stem}.png");
-            let preview = sheet_svg(sheet.width, sheet.height, g, &PREVIEW_STYLE);
+            let caption = pdf::caption_strokes(stock, sheet.width, sheet.height, g);
+            let preview = png::captioned(&sheet_svg(sheet.width, sheet.height, g, &PREVIEW_STYLE), &caption);
             let png = png::render_png(&preview, &png_name)?;
             Ok(vec![
                 (format!("{stem}.svg"), svg.into_bytes()),

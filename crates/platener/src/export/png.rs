@@ -4,7 +4,39 @@
 use resvg::tiny_skia::{Pixmap, Transform};
 use resvg::usvg::{Options, Tree};
 
+use std::fmt::Write as _;
+
+use crate::draw::svg::{Engraved, num};
 use crate::plan::PlanError;
+
+/// The stock caption's stroke width in a preview, mm (as the preview's engraving).
+const CAPTION_WIDTH: f64 = 0.4;
+
+/// `svg` (a preview from `sheet_svg`) with `caption`'s strokes drawn in grey on top: the
+/// sheet's stock, which a preview names as the SVG's title and the PDF's caption do, in a
+/// colour no operation has, so it does not read as engraving.
+pub fn captioned(svg: &str, caption: &[Engraved]) -> String {
+    let Some(end) = svg.rfind("</svg>") else {
+        return svg.to_string();
+    };
+    if caption.is_empty() {
+        return svg.to_string();
+    }
+    let mut d = String::new();
+    for stroke in caption {
+        for (k, p) in stroke.path.iter().enumerate() {
+            let _ = write!(d, "{}{} {} ", if k == 0 { "M" } else { "L" }, num(p.x), num(p.y));
+        }
+    }
+    format!(
+        "{}<path id=\"caption\" d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>\n{}",
+        &svg[..end],
+        d.trim_end(),
+        super::pdf::CAPTION_COLOR,
+        num(CAPTION_WIDTH),
+        &svg[end..]
+    )
+}
 
 /// Longest side of a preview, pixels.
 pub const PREVIEW_PIXELS: f64 = 1200.0;
@@ -30,6 +62,37 @@ mod tests {
     use super::*;
     use crate::draw::svg::{SvgGroup, SvgStyle, sheet_svg};
     use glam::DVec2;
+
+    /// The caption is one grey path over the preview, drawn in the PNG: pixels there turn
+    /// grey where the sheet was white.
+    #[test]
+    fn a_captioned_preview_draws_the_stock_in_grey() {
+        let style = SvgStyle::preview(1.0, 0.5);
+        let svg = sheet_svg(200.0, 100.0, &[], &style);
+        let caption = crate::export::pdf::caption_strokes("box-3mm-1: 3 mm wood sheet", 200.0, 100.0, &[]);
+        assert!(!caption.is_empty());
+        let with = captioned(&svg, &caption);
+        let doc = roxmltree::Document::parse(&with).expect("well-formed");
+        let path = doc
+            .descendants()
+            .find(|n| n.attribute("id") == Some("caption"))
+            .expect("the caption");
+        assert_eq!(path.attribute("stroke"), Some(crate::export::pdf::CAPTION_COLOR));
+        let grey = |png: &[u8]| {
+            let pixmap = Pixmap::decode_png(png).expect("png");
+            pixmap
+                .pixels()
+                .iter()
+                .filter(|p| p.red() < 200 && p.red() == p.green() && p.green() == p.blue())
+                .count()
+        };
+        let (plain, drawn) = (
+            render_png(&svg, "a.png").expect("png"),
+            render_png(&with, "b.png").expect("png"),
+        );
+        assert!(grey(&drawn) > grey(&plain) + 50, "{} vs {}", grey(&drawn), grey(&plain));
+        assert_eq!(captioned(&svg, &[]), svg);
+    }
 
     #[test]
     fn a_preview_is_a_png_of_the_right_shape() {
