@@ -3,6 +3,7 @@
 use std::fmt::Write as _;
 
 use anyhow::Context as _;
+use platener::draw::svg::num;
 use platener::swatches::strip::{KERF_STEP, SPIKE_WIDTH, TestStrip, test_strip};
 
 use crate::args::TestStripArgs;
@@ -55,9 +56,9 @@ pub fn render(strip: &TestStrip, file: &str, material: &str) -> String {
              pressed home, shows how tight a press fit is.",
             first.sheet,
             last.sheet,
-            platener::swatches::strip::slot_nominal(strip),
-            platener::swatches::strip::slot_nominal(strip),
-            first.sheet + 0.25
+            num(strip.thickness),
+            num(strip.thickness),
+            strip.thickness - 0.15
         );
     }
     s

@@ -24,6 +24,17 @@ const INKSCAPE_NS: &str = " xmlns:inkscape=\"http://www.inkscape.org/namespaces/
 /// Hairline width, mm (0.001 in, what Epilog, Trotec and LightBurn treat as a vector line).
 pub const HAIRLINE: f64 = 0.0254;
 
+/// `#rrggbb` as bytes; black for anything else (the PDF's stroke colours, read back in tests).
+pub fn rgb(color: &str) -> [u8; 3] {
+    let byte = |k: usize| {
+        color
+            .get(1 + 2 * k..3 + 2 * k)
+            .and_then(|h| u8::from_str_radix(h, 16).ok())
+            .unwrap_or(0)
+    };
+    [byte(0), byte(1), byte(2)]
+}
+
 /// One operation's stroke: colour (`#rrggbb`) and width, mm.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Stroke {
@@ -270,7 +281,8 @@ pub fn titled(svg: &str, title: &str) -> String {
     }
 }
 
-fn path_data(points: &[DVec2], closed: bool) -> String {
+/// SVG path data of `points`, closed with `Z` or not.
+pub(crate) fn path_data(points: &[DVec2], closed: bool) -> String {
     let mut d = String::with_capacity(points.len() * 18);
     for (i, p) in points.iter().enumerate() {
         let _ = write!(d, "{}{} {}", if i == 0 { "M" } else { " L" }, num(p.x), num(p.y));

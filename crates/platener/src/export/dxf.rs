@@ -84,12 +84,7 @@ pub fn sheet_dxf(width: f64, height: f64, groups: &[SvgGroup], file: &str) -> Re
         is_layer_plotted: false,
         ..Default::default()
     });
-    let sheet = [
-        DVec2::ZERO,
-        DVec2::new(width, 0.0),
-        DVec2::new(width, height),
-        DVec2::new(0.0, height),
-    ];
+    let sheet = platener_geom::polygon::rect(0.0, 0.0, width, height);
     drawing.add_entity(polyline(&sheet, true, SHEET_LAYER, height));
     // In cut order (`export::order`): each part's engraving, slits, then rings (holes before
     // the outline, as they are ordered).

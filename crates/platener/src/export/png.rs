@@ -4,9 +4,7 @@
 use resvg::tiny_skia::{Pixmap, Transform};
 use resvg::usvg::{Options, Tree};
 
-use std::fmt::Write as _;
-
-use crate::draw::svg::{Engraved, num};
+use crate::draw::svg::{Engraved, num, path_data};
 use crate::plan::PlanError;
 
 /// The stock caption's stroke width in a preview, mm (as the preview's engraving).
@@ -22,16 +20,11 @@ pub fn captioned(svg: &str, caption: &[Engraved]) -> String {
     if caption.is_empty() {
         return svg.to_string();
     }
-    let mut d = String::new();
-    for stroke in caption {
-        for (k, p) in stroke.path.iter().enumerate() {
-            let _ = write!(d, "{}{} {} ", if k == 0 { "M" } else { "L" }, num(p.x), num(p.y));
-        }
-    }
+    let d: Vec<String> = caption.iter().map(|e| path_data(&e.path, false)).collect();
     format!(
         "{}<path id=\"caption\" d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>\n{}",
         &svg[..end],
-        d.trim_end(),
+        d.join(" "),
         super::pdf::CAPTION_COLOR,
         num(CAPTION_WIDTH),
         &svg[end..]
@@ -69,7 +62,7 @@ mod tests {
     fn a_captioned_preview_draws_the_stock_in_grey() {
         let style = SvgStyle::preview(1.0, 0.5);
         let svg = sheet_svg(200.0, 100.0, &[], &style);
-        let caption = crate::export::pdf::caption_strokes("box-3mm-1: 3 mm wood sheet", 200.0, 100.0, &[]);
+        let caption = crate::export::pdf::caption_strokes("box-3mm-1: 3 mm wood sheet", 200.0, 100.0, []);
         assert!(!caption.is_empty());
         let with = captioned(&svg, &caption);
         let doc = roxmltree::Document::parse(&with).expect("well-formed");

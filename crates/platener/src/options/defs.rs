@@ -838,12 +838,7 @@ fn get_thicknesses(c: &Chosen) -> Value {
     c.settings
         .thicknesses
         .iter()
-        .map(
-            |&t| match cut.measured.iter().find(|m| m.measured.total_cmp(&t).is_eq()) {
-                Some(m) => json!(m.text()),
-                None => json!(t),
-            },
-        )
+        .map(|&t| cut.measured_as(t).map_or_else(|| json!(t), |m| json!(m.text())))
         .collect()
 }
 

@@ -387,10 +387,12 @@ impl CutSettings {
     /// The nominal thickness of a sheet `thickness` mm thick: what a measured sheet is sold
     /// as, or the thickness itself.
     pub fn nominal(&self, thickness: f64) -> f64 {
-        self.measured
-            .iter()
-            .find(|m| m.measured.total_cmp(&thickness).is_eq())
-            .map_or(thickness, |m| m.nominal)
+        self.measured_as(thickness).map_or(thickness, |m| m.nominal)
+    }
+
+    /// The measured sheet `thickness` mm thick is, if it is one.
+    pub fn measured_as(&self, thickness: f64) -> Option<&MeasuredThickness> {
+        self.measured.iter().find(|m| m.measured.total_cmp(&thickness).is_eq())
     }
 
     /// Why an outline with the points `outline`, grown by `grow` mm on every side (less when

@@ -239,9 +239,6 @@ impl Group<'_> {
                 .map_or(layout.sheets.len(), |n| layout.sheets.len().min(n as usize));
             self.take_sheets(nesting, placed, &layout, count, (kind.width, kind.height));
             left.retain(|&i| placed[i].is_none());
-            if left.is_empty() {
-                return Ok(());
-            }
         }
         if left.is_empty() {
             return Ok(());

@@ -84,18 +84,11 @@ pub fn slot_sheet(thickness: f64, n: u32) -> f64 {
     thickness + (f64::from(n) - f64::from(SLOT_COUNT.div_ceil(2))) * SLOT_STEP
 }
 
-/// The nominal thickness `strip` was drawn for, as the setting writes it (`3`): its middle
-/// slot's sheet; `0` without a slot row.
-pub fn slot_nominal(strip: &TestStrip) -> String {
-    strip
-        .slots
-        .get(strip.slots.len() / 2)
-        .map_or_else(|| "0".into(), |s| num(s.sheet))
-}
-
 /// The test strip sheet, in sheet coordinates (mm, y down).
 #[derive(Debug, Clone)]
 pub struct TestStrip {
+    /// The sheet thickness it is drawn for, mm (the slot row's middle slot).
+    pub thickness: f64,
     /// Sheet width, mm.
     pub width: f64,
     /// Sheet height, mm.
@@ -204,6 +197,7 @@ pub fn test_strip_marking(thickness: f64, material: Material, kerf: f64) -> Resu
     let strip_bottom = row.bottom;
     let (spike, spike_engrave, spike_corner) = spike_key(DVec2::new(x0 + strip_w + 5.0, y0), thickness);
     Ok(TestStrip {
+        thickness,
         width: spike_corner.x + MARGIN,
         height: strip_bottom.max(spike_corner.y) + MARGIN,
         strip,

@@ -492,8 +492,9 @@ fn the_reference_square_is_100_mm_beside_the_parts_in_svg_dxf_and_plan() {
 /// 0.01 mm), then only the PDF's own reference square and grey stock caption.
 #[test]
 fn the_pdf_has_a_page_per_sheet_with_the_svg_paths_at_true_size() {
+    use platener::draw::svg::rgb as hex_color;
     use platener::export::pdf::PT_PER_MM;
-    use platener::export::pdf::read::{hex_color, read_pages};
+    use platener::export::pdf::read::read_pages;
     use platener::plan::ColorProfile;
     let settings = CutSettings {
         sheet: SheetSize::Fixed {

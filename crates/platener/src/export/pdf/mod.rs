@@ -22,7 +22,7 @@ use krilla::{Document, SerializeSettings};
 
 use super::reference::{self, REFERENCE_ID};
 use crate::draw::font;
-use crate::draw::svg::{Engraved, Palette, Stroke, SvgGroup};
+use crate::draw::svg::{Engraved, Palette, Stroke, SvgGroup, rgb};
 use crate::plan::PlanError;
 
 /// Points per millimetre.
@@ -31,8 +31,11 @@ pub const PT_PER_MM: f64 = 72.0 / 25.4;
 pub const CAPTION_COLOR: &str = crate::draw::svg::SHEET_COLOR;
 /// The caption's cap height, mm.
 const CAPTION_SIZE: f64 = 4.0;
-/// The caption's stroke width, mm.
-const CAPTION_WIDTH: f64 = 0.3;
+/// The caption's stroke: grey, 0.3 mm.
+const CAPTION_STROKE: Stroke = Stroke {
+    color: CAPTION_COLOR,
+    width: 0.3,
+};
 /// The caption's distance to the sheet's edges and to any part, mm.
 const CAPTION_GAP: f64 = 3.0;
 
@@ -67,8 +70,13 @@ pub fn plan_pdf(title: &str, sheets: &[PdfSheet], palette: &Palette) -> Result<V
         let mut page = document.start_page_with(page_settings);
         let mut surface = page.surface();
         surface.push_transform(&Transform::from_scale(PT_PER_MM as f32, PT_PER_MM as f32));
-        for (points, closed, stroke) in page_paths(sheet, palette) {
-            draw(&mut surface, &points, closed, stroke);
+        let square = extra_square(sheet);
+        let groups = || sheet.groups.iter().chain(square.as_ref());
+        for d in groups().flat_map(|g| g.drawn(palette)) {
+            draw(&mut surface, d.points, d.closed, d.stroke);
+        }
+        for e in caption_strokes(sheet.stock, sheet.width, sheet.height, groups()) {
+            draw(&mut surface, &e.path, false, CAPTION_STROKE);
         }
         surface.pop();
         surface.finish();
@@ -87,36 +95,23 @@ pub fn plan_pdf(title: &str, sheets: &[PdfSheet], palette: &Palette) -> Result<V
     document.finish().map_err(|e| PlanError::write(title, format!("{e:?}")))
 }
 
-/// Every path of one page in drawing order, sheet mm: the groups' paths in cut order, a
-/// reference square when the groups have none and there is room, and the stock caption.
-fn page_paths(sheet: &PdfSheet, palette: &Palette) -> Vec<(Vec<DVec2>, bool, Stroke)> {
-    let has_square = sheet.groups.iter().any(|g| g.id == REFERENCE_ID);
-    let square = (!has_square)
-        .then(|| reference::place(sheet.width, sheet.height, sheet.groups))
-        .flatten()
-        .map(|(g, _)| g);
-    let groups: Vec<&SvgGroup> = sheet.groups.iter().chain(square.as_ref()).collect();
-    let mut out: Vec<(Vec<DVec2>, bool, Stroke)> = groups
-        .iter()
-        .flat_map(|g| g.drawn(palette))
-        .map(|d| (d.points.to_vec(), d.closed, d.stroke))
-        .collect();
-    let owned: Vec<SvgGroup> = groups.into_iter().cloned().collect();
-    let caption = Stroke {
-        color: CAPTION_COLOR,
-        width: CAPTION_WIDTH,
-    };
-    out.extend(
-        caption_strokes(sheet.stock, sheet.width, sheet.height, &owned)
-            .into_iter()
-            .map(|e| (e.path, false, caption)),
-    );
-    out
+/// The reference square the PDF adds to `sheet`: none when its groups have one already
+/// (`reference-square` on) or there is no room beside the parts.
+fn extra_square(sheet: &PdfSheet) -> Option<SvgGroup> {
+    if sheet.groups.iter().any(|g| g.id == REFERENCE_ID) {
+        return None;
+    }
+    reference::place(sheet.width, sheet.height, sheet.groups).map(|(g, _)| g)
 }
 
 /// The strokes of `stock` in capitals in the first free corner of the sheet (bottom left,
 /// bottom right, top right, top left), clear of every group; none without such a corner.
-pub fn caption_strokes(stock: &str, width: f64, height: f64, groups: &[SvgGroup]) -> Vec<Engraved> {
+pub fn caption_strokes<'a>(
+    stock: &str,
+    width: f64,
+    height: f64,
+    groups: impl IntoIterator<Item = &'a SvgGroup>,
+) -> Vec<Engraved> {
     // In the labels' font's characters: it has no `×` and no comma.
     let text = stock.replace('×', "X").replace(", ", " - ").to_uppercase();
     let size = DVec2::new(font::text_width(&text, CAPTION_SIZE), CAPTION_SIZE);
@@ -127,7 +122,7 @@ pub fn caption_strokes(stock: &str, width: f64, height: f64, groups: &[SvgGroup]
     if hi.x < lo.x || hi.y < lo.y {
         return Vec::new();
     }
-    let boxes: Vec<(DVec2, DVec2)> = groups.iter().filter_map(reference::extent).collect();
+    let boxes: Vec<(DVec2, DVec2)> = groups.into_iter().filter_map(reference::extent).collect();
     let free = |at: DVec2| {
         let (a, b) = (at - CAPTION_GAP, at + size + CAPTION_GAP);
         boxes
@@ -159,7 +154,7 @@ fn draw(surface: &mut krilla::surface::Surface, points: &[DVec2], closed: bool, 
         builder.close();
     }
     let Some(path) = builder.finish() else { return };
-    let [r, g, b] = read::hex_color(stroke.color);
+    let [r, g, b] = rgb(stroke.color);
     surface.set_fill(None);
     surface.set_stroke(Some(PdfStroke {
         paint: rgb::Color::new(r, g, b).into(),
@@ -235,7 +230,7 @@ mod tests {
             let expected: Vec<_> = groups[0].drawn(&palette).collect();
             for (got, want) in page.paths.iter().zip(&expected) {
                 assert_eq!(got.closed, want.closed);
-                assert_eq!(got.color, read::hex_color(want.stroke.color));
+                assert_eq!(got.color, rgb(want.stroke.color));
                 assert!((got.width - want.stroke.width).abs() < 1e-6);
                 assert_eq!(got.points.len(), want.points.len());
                 for (a, b) in got.points.iter().zip(want.points) {
@@ -244,7 +239,7 @@ mod tests {
             }
             let rest = &page.paths[expected.len()..];
             let (grey, square): (Vec<&read::PdfPath>, Vec<&read::PdfPath>) =
-                rest.iter().partition(|p| p.color == read::hex_color(CAPTION_COLOR));
+                rest.iter().partition(|p| p.color == rgb(CAPTION_COLOR));
             assert!(!grey.is_empty(), "the stock is named on every page");
             let part_box = reference::extent(&groups[0]).expect("part");
             for p in grey.iter().flat_map(|p| &p.points) {
@@ -278,11 +273,7 @@ mod tests {
         let palette = Palette::of(ColorProfile::Classic);
         let pages = read::read_pages(&plan_pdf("t", &sheets, &palette).expect("writes")).expect("reads");
         let drawn = groups.iter().map(|g| g.drawn(&palette).count()).sum::<usize>();
-        let grey = pages[0]
-            .paths
-            .iter()
-            .filter(|p| p.color == read::hex_color(CAPTION_COLOR))
-            .count();
+        let grey = pages[0].paths.iter().filter(|p| p.color == rgb(CAPTION_COLOR)).count();
         assert_eq!(pages[0].paths.len(), drawn + grey);
     }
 
@@ -290,6 +281,6 @@ mod tests {
     fn no_caption_without_a_free_corner() {
         let full = [part(1.0, 1.0, 99.0, 99.0)];
         assert!(caption_strokes("s", 100.0, 100.0, &full).is_empty());
-        assert!(caption_strokes("a long caption", 20.0, 20.0, &[]).is_empty());
+        assert!(caption_strokes("a long caption", 20.0, 20.0, []).is_empty());
     }
 }

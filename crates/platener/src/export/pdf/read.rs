@@ -1,16 +1,5 @@
 //! Reading back the PDFs [`super::plan_pdf`] writes (tests and checks).
 
-/// `#rrggbb` as bytes; black for anything else.
-pub fn hex_color(color: &str) -> [u8; 3] {
-    let byte = |k: usize| {
-        color
-            .get(1 + 2 * k..3 + 2 * k)
-            .and_then(|h| u8::from_str_radix(h, 16).ok())
-            .unwrap_or(0)
-    };
-    [byte(0), byte(1), byte(2)]
-}
-
 use std::collections::BTreeMap;
 use std::io::Read;
 
