@@ -150,6 +150,7 @@ fn finish(result: &MethodResult, model: &ModelFile, config: &BatchConfig) -> Met
         parts: bundle.map(|b| b.plan.parts.len()),
         sheets: bundle.map(|b| b.plan.sheets.len()),
         glue: bundle.map(|b| b.plan.glue_note()),
+        fabrication: bundle.map(|b| b.report.fabrication.clone()),
         warnings: result
             .warnings()
             .map(|w| format!("[{}] {}", w.step, flags(&w.message)))

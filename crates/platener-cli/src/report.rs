@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
 use platener::convert::Status;
+use platener::fabrication::{Fabrication, SPEED_UP_CLASS};
 use platener::score::Score;
 use serde::Serialize;
 
@@ -39,6 +40,9 @@ pub struct MethodReport {
     /// "glue-free" or "needs glue: N parts in G groups", when converted (`Plan::glue_note`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub glue: Option<String>,
+    /// Laser, handwork and print times, when converted (report.json's `fabrication`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fabrication: Option<platener::fabrication::Fabrication>,
     /// Warnings of the steps, as `[step] message`.
     pub warnings: Vec<String>,
     /// Why it failed.
@@ -192,6 +196,11 @@ pub struct Summary {
     pub methods: BTreeMap<&'static str, MethodStats>,
     /// Every failure with its reason, in input order.
     pub failures: Vec<Failure>,
+    /// Converted models whose best plan has a print time to compare with.
+    pub compared: usize,
+    /// Of those, the models whose best plan cuts at least 10× faster than printing
+    /// (`fabrication::SPEED_UP_CLASS`).
+    pub ten_times_faster: usize,
     /// Wall time of the batch, seconds.
     pub seconds: f64,
     /// Models attempted per second of wall time.
@@ -284,6 +293,7 @@ pub fn summarize(
         }
     }
     let count = |st: ModelStatus| models.iter().filter(|m| m.status == st).count();
+    let speed_ups: Vec<f64> = models.iter().filter_map(best_speed_up).collect();
     // A model counts as converted when some method converted it: with `--method all`, a
     // method that fails on a model did not apply to it (the summary still says "partial").
     let all_ok = input_errors.is_empty() && models.iter().all(|m| m.status != ModelStatus::Failed);
@@ -296,6 +306,8 @@ pub fn summarize(
         input_errors: input_errors.len(),
         methods: stats,
         failures,
+        compared: speed_ups.len(),
+        ten_times_faster: speed_ups.iter().filter(|&&v| v >= SPEED_UP_CLASS).count(),
         seconds,
         models_per_second: if seconds > 0.0 {
             models.len() as f64 / seconds
@@ -303,6 +315,31 @@ pub fn summarize(
             0.0
         },
         exit_code: if all_ok { 0 } else { 1 },
+    }
+}
+
+/// The speed-up of a model's best plan: print time over laser time.
+fn best_speed_up(model: &ModelReport) -> Option<f64> {
+    let best = model.best?;
+    let m = model.methods.iter().find(|m| m.method == best)?;
+    m.fabrication.as_ref()?.speed_up
+}
+
+/// A duration as a maker reads it: seconds under a minute, minutes under two hours, hours.
+pub fn duration(seconds: f64) -> String {
+    match seconds {
+        s if s < 60.0 => format!("{s:.0} s"),
+        s if s < 7200.0 => format!("{:.0} min", s / 60.0),
+        s => format!("{:.1} h", s / 3600.0),
+    }
+}
+
+/// "laser 3 min, print 6.1 h (127× faster)": a plan's making time against printing it.
+pub fn times(f: &Fabrication) -> String {
+    let laser = format!("laser {}", duration(f.laser_seconds));
+    match (f.print_seconds, f.speed_up) {
+        (Some(print), Some(up)) => format!("{laser}, print {} ({up:.0}× faster)", duration(print)),
+        _ => laser,
     }
 }
 
@@ -331,6 +368,9 @@ pub fn render_model(m: &ModelReport, verbose: bool) -> String {
                 );
                 if let Some(glue) = &r.glue {
                     let _ = write!(line, ", {glue}");
+                }
+                if let Some(f) = &r.fabrication {
+                    let _ = write!(line, ", {}", times(f));
                 }
                 if let Some(v) = r.verify.as_ref().filter(|v| !v.passed) {
                     let n = v.problems.len();
@@ -414,6 +454,15 @@ pub fn render_summary(r: &BatchReport) -> String {
             let method = f.method.map_or(String::new(), |m| format!(" [{m}]"));
             let _ = writeln!(s, "    {}{method} {}: {}", f.file, f.status, f.reason);
         }
+    }
+    if u.compared > 0 {
+        let _ = writeln!(
+            s,
+            "  speed-up   ≥ {SPEED_UP_CLASS}× for {} of {} converted model{} (the best plan's laser time against printing the model)",
+            u.ten_times_faster,
+            u.compared,
+            if u.compared == 1 { "" } else { "s" }
+        );
     }
     let _ = writeln!(
         s,

@@ -24,7 +24,7 @@ impl Subset for Every {
 }
 
 /// `scene`: every setting but those of the cutting plan alone (kerf, sheet, margin, spacing,
-/// line colours, reference square, fit, labels, stock, nesting).
+/// line colours, reference square, fit, labels, stock, nesting, laser).
 #[derive(Debug, Clone, Copy)]
 pub struct ForScene;
 impl Subset for ForScene {
@@ -32,6 +32,7 @@ impl Subset for ForScene {
         !matches!(
             def.name,
             "kerf"
+                | "laser"
                 | "sheet"
                 | "stock"
                 | "nesting"

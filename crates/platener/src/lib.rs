@@ -67,6 +67,7 @@ pub mod debug;
 pub mod draw;
 pub mod error;
 pub mod export;
+pub mod fabrication;
 pub mod hinge;
 pub mod inspect;
 pub mod interlocked;

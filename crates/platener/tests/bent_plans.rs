@@ -108,6 +108,7 @@ fn input(with_slits: bool) -> PlanInput {
         bbox_max: DVec3::splat(50.0),
         units: platener::Units::Mm,
         scale: 1.0,
+        print: None,
     };
     let joints = vec![Joint {
         parts: PLATES,

@@ -39,6 +39,7 @@ fn input(parts: Vec<Part>, settings: CutSettings) -> PlanInput {
         bbox_max: DVec3::splat(100.0),
         units: platener::Units::Mm,
         scale: 1.0,
+        print: None,
     };
     let mut input = PlanInput::new(source, Method::Plate, parts, joints);
     input.settings = settings;

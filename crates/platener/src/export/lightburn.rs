@@ -11,7 +11,7 @@
 //! paths in mm, written in the file's cut order ([`super::order`]). LightBurn's y axis points
 //! up: y is written as `height − y`, as in the DXF.
 //!
-//! Speeds are the plan's cut and engrave speeds (the time estimate's); powers are starting
+//! Speeds are the `laser` setting's for the sheet (the time estimate's); powers are starting
 //! points per material for a 40–60 W CO₂ laser ([`power`], docs/cutting-plans.md), to check
 //! with the test strip before a whole sheet.
 
@@ -71,20 +71,27 @@ pub fn power(material: Material) -> (f64, f64) {
 }
 
 /// The LightBurn project of one sheet `width` × `height` mm holding `groups` (in cut order,
-/// sheet coordinates with y down); `stock` says which sheet it is, in the project's notes.
-pub fn sheet_lbrn2(width: f64, height: f64, groups: &[SvgGroup], settings: &CutSettings, stock: &str) -> String {
+/// sheet coordinates with y down), `thickness` mm thick; `stock` says which sheet it is, in
+/// the project's notes. Its layers' speeds are the `laser` setting's for the sheet.
+pub fn sheet_lbrn2(
+    (width, height, thickness): (f64, f64, f64),
+    groups: &[SvgGroup],
+    settings: &CutSettings,
+    stock: &str,
+) -> String {
     let (cut_power, engrave_power) = power(settings.material);
+    let speeds = settings.laser.speeds(settings.material, thickness);
     let mut s = String::new();
     s.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     s.push_str("<LightBurnProject AppVersion=\"1.4.00\" FormatVersion=\"1\" MaterialHeight=\"0\" MirrorX=\"False\" MirrorY=\"False\">\n");
     for (layer, speed, power) in [
-        (ENGRAVE, settings.engrave_speed, engrave_power),
-        (CUT_INNER, settings.cut_speed, cut_power),
-        (CUT_OUTER, settings.cut_speed, cut_power),
+        (ENGRAVE, speeds.engrave, engrave_power),
+        (CUT_INNER, speeds.cut, cut_power),
+        (CUT_OUTER, speeds.cut, cut_power),
     ] {
         cut_setting(&mut s, layer, speed, power, true);
     }
-    cut_setting(&mut s, SHEET, settings.cut_speed, 0.0, false);
+    cut_setting(&mut s, SHEET, speeds.cut, 0.0, false);
     let flip = |points: &[DVec2]| -> Vec<DVec2> { points.iter().map(|p| DVec2::new(p.x, height - p.y)).collect() };
     let sheet = [
         DVec2::ZERO,
@@ -185,8 +192,7 @@ mod tests {
             ])],
         };
         let text = sheet_lbrn2(
-            200.0,
-            100.0,
+            (200.0, 100.0, 3.0),
             std::slice::from_ref(&g),
             &CutSettings::default(),
             "a <b> & c",

@@ -28,6 +28,7 @@ use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, DateTime, ZipWriter};
 
 use crate::context::StepRecord;
+use crate::fabrication::{Fabrication, handwork::Handwork};
 use crate::kerf::CutPaths;
 use crate::labels::Labels;
 use crate::plan::{Plan, PlanError, PlanInput};
@@ -169,7 +170,7 @@ fn sheet_files(
             let svg = svg::titled(&sheet_svg(sheet.width, sheet.height, g, &style), stock);
             let dxf_name = format!("{stem}.dxf");
             let dxf = dxf::sheet_dxf(sheet.width, sheet.height, g, &dxf_name)?;
-            let lightburn = lightburn::sheet_lbrn2(sheet.width, sheet.height, g, settings, stock);
+            let lightburn = lightburn::sheet_lbrn2((sheet.width, sheet.height, sheet.thickness), g, settings, stock);
             let png_name = format!("{stem}.png");
             let caption = pdf::caption_strokes(stock, sheet.width, sheet.height, g);
             let preview = png::captioned(&sheet_svg(sheet.width, sheet.height, g, &PREVIEW_STYLE), &caption);
@@ -277,9 +278,22 @@ fn build_report(
         warnings: Vec::new(),
     });
     let files: Vec<String> = stems.iter().map(|s| format!("{s}.svg")).collect();
-    let t = report::totals(nesting, &files, paths);
+    let t = report::totals(nesting, &files, paths, &input.settings);
     let (cut_length, engrave_length) = report::lengths(groups);
-    let s = &input.settings;
+    let laser_seconds: f64 = t.sheets.iter().map(|s| s.laser_seconds).sum();
+    let kinds = input.joints.iter().map(|j| j.kind);
+    // A glued pair that is no joint (stacked layers no shaft joins) is glued all the same.
+    let joined = |g: &&crate::plan::Glue| {
+        let pair = |p: [u32; 2]| (p[0].min(p[1]), p[0].max(p[1]));
+        input.joints.iter().any(|j| pair(j.parts) == pair(g.parts))
+    };
+    let glued = input
+        .glued
+        .iter()
+        .filter(|g| !joined(g))
+        .map(|_| crate::plan::JointKind::Glued);
+    let handwork = Handwork::new(nesting.sheets.len(), input.parts.len(), kinds.chain(glued));
+    let fabrication = Fabrication::new(input.settings.laser.text(), laser_seconds, handwork, input.source.print);
     Report {
         generator: plan_json::generator(),
         model: input.source.name.clone(),
@@ -301,7 +315,8 @@ fn build_report(
         sheet_area: t.sheet_area,
         cut_length,
         engrave_length,
-        estimated_cutting_seconds: cut_length / s.cut_speed + engrave_length / s.engrave_speed,
+        estimated_cutting_seconds: laser_seconds,
+        fabrication,
         method_report: input.method_report.clone(),
     }
 }

@@ -40,6 +40,18 @@ pub struct CutPath {
     pub pierces: usize,
 }
 
+impl CutPath {
+    /// The figures the laser's time is made of.
+    pub fn sheet_path(&self) -> crate::fabrication::SheetPath {
+        crate::fabrication::SheetPath {
+            cut: self.cut_length,
+            engrave: self.engrave_length,
+            travel: self.travel_length,
+            pierces: self.pierces,
+        }
+    }
+}
+
 /// Orders the parts of one sheet and the paths within each (see the module docs), and
 /// measures the result.
 pub fn order_sheet(groups: Vec<SvgGroup>) -> (Vec<SvgGroup>, CutPath) {

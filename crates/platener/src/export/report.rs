@@ -1,8 +1,8 @@
 //! report.json: what the conversion did and what cutting it will take.
 //!
-//! The time estimate is cut length over the cutting speed plus engraving length over the
-//! engraving speed (defaults 10 and 100 mm/s: 3 mm plywood on a 40 W CO₂ laser); travel moves
-//! and acceleration are not counted, so real jobs take somewhat longer.
+//! The laser's time per sheet is its path in cut order at the laser setting's speeds for the
+//! sheet's material and thickness, pierces and travel included; `fabrication` adds the
+//! maker's handwork and sets it against printing the model ([`crate::fabrication`]).
 
 use serde::Serialize;
 
@@ -47,6 +47,10 @@ pub struct ReportSheet {
     /// engrave and travel lengths, mm, and the pierces.
     #[serde(flatten)]
     pub path: CutPath,
+    /// The speeds the sheet is cut with (the `laser` setting's for its material and thickness).
+    pub laser_speeds: crate::plan::LaserSpeeds,
+    /// The laser's time for the sheet, s.
+    pub laser_seconds: f64,
 }
 
 /// report.json.
@@ -86,8 +90,10 @@ pub struct Report {
     pub cut_length: f64,
     /// Length of all engraving, mm.
     pub engrave_length: f64,
-    /// Estimated laser time, s (see the module docs).
+    /// Estimated laser time, s: the sheets' `laser_seconds` added up.
     pub estimated_cutting_seconds: f64,
+    /// The object's making time, laser and hands, against printing it (an extension, issue 35).
+    pub fabrication: crate::fabrication::Fabrication,
     /// What the method reports about itself (the plate method: which faces became plates and
     /// why the others did not).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -172,13 +178,17 @@ fn stock_lower_bound(area: f64, stock: &[crate::plan::StockSheet], usable: impl 
 }
 
 /// Per-sheet and overall areas and densities.
-pub fn totals(nesting: &Nesting, files: &[String], paths: &[CutPath]) -> Totals {
+pub fn totals(nesting: &Nesting, files: &[String], paths: &[CutPath], settings: &crate::plan::CutSettings) -> Totals {
     let sheets: Vec<ReportSheet> = nesting
         .sheets
         .iter()
         .zip(files)
         .zip(paths)
-        .map(|((s, f), path)| ReportSheet {
+        .map(|((s, f), path)| {
+            let speeds = settings.laser.speeds(settings.material, s.thickness);
+            (s, f, path, speeds)
+        })
+        .map(|(s, f, path, speeds)| ReportSheet {
             index: s.index,
             file: f.clone(),
             thickness: s.thickness,
@@ -188,6 +198,8 @@ pub fn totals(nesting: &Nesting, files: &[String], paths: &[CutPath]) -> Totals 
             density: s.density,
             used_area: s.used_area,
             path: *path,
+            laser_speeds: speeds,
+            laser_seconds: crate::fabrication::laser_seconds(path.sheet_path(), speeds),
         })
         .collect();
     let parts_area: f64 = nesting.sheets.iter().map(|s| s.parts_area).sum();

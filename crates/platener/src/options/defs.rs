@@ -5,9 +5,10 @@ use serde_json::{Value, json};
 use super::{Choice, Chosen, Def, Group, Kind};
 use crate::joints::JointStyle;
 use crate::method::MethodKind;
+use crate::plan::laser::parse_laser;
 use crate::plan::stock::parse_stock;
 use crate::plan::{
-    ColorProfile, Fit, LabelMode, MAX_KERF, MAX_MARGIN, Material, MeasuredThickness, NestEffort, SPACING_RANGE,
+    ColorProfile, Fit, LabelMode, Laser, MAX_KERF, MAX_MARGIN, Material, MeasuredThickness, NestEffort, SPACING_RANGE,
     SheetSize, StockSheet,
 };
 use crate::settings::{
@@ -73,6 +74,32 @@ pub static DEFS: &[Def] = &[
             Ok(())
         },
         get: |c| json!(c.settings.cut.kerf),
+    },
+    Def {
+        name: "laser",
+        key: "laser",
+        short: None,
+        label: "Laser",
+        group: Group::Material,
+        kind: Kind::Text {
+            example: "co2, cut=12",
+            format: "co2, co2-100w, k40, diode-10w or diode-20w, then any of cut=, engrave=, travel= (mm/s), pierce= (s)",
+        },
+        help: "Your laser cutter (co2 is a 40–60 W tube; co2-100w, k40, diode-10w, diode-20w), and any speed \
+               you know better: cut=12, engrave=150, travel=300 mm/s, pierce=0.2 s.",
+        doc: "It sets the speeds of the time estimate and the LightBurn project, per material and \
+              thickness from a table of published starting settings (docs/cutting-plans.md); a speed you \
+              give holds for every sheet. The plan itself does not change.",
+        set: |c, v| {
+            let text = v.join(",");
+            c.settings.cut.laser = if text.trim().eq_ignore_ascii_case("none") {
+                Laser::default()
+            } else {
+                parse_laser(&text)?
+            };
+            Ok(())
+        },
+        get: |c| json!(c.settings.cut.laser.text()),
     },
     Def {
         name: "units",

@@ -122,6 +122,7 @@ mod tests {
             bbox_max: DVec3::ONE,
             units: crate::settings::Units::Mm,
             scale: 1.0,
+            print: None,
         };
         let mut input = PlanInput::new(source, Method::Plate, parts, joints);
         let cancel = Cancel::default();

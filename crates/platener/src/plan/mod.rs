@@ -7,6 +7,7 @@
 pub mod bent;
 mod error;
 pub mod format;
+pub mod laser;
 mod part;
 pub mod samples;
 mod settings;
@@ -23,6 +24,7 @@ pub use format::{
     Glue, Method, Plan, PlanBend, PlanJoint, PlanPart, PlanSegment, PlanSettings, PlanSheet, PlanSource, SheetLegend,
     SheetPlacement,
 };
+pub use laser::{Laser, LaserKind, LaserSpeeds};
 pub use part::{
     Bend, BendStyle, EdgeLabel, HingePattern, Joint, JointKind, Mark, MarkKind, MarkSide, Part, PartKind, Segment,
     score_rings,
@@ -48,6 +50,22 @@ pub struct SourceInfo {
     pub units: crate::settings::Units,
     /// The extra scale applied to them.
     pub scale: f64,
+    /// Printing it instead; `None` for parts made without a model (tests).
+    pub print: Option<PrintEstimate>,
+}
+
+/// How long printing the model on an FDM printer would take (`fabrication::print`), what a
+/// plan's laser time is measured against.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct PrintEstimate {
+    /// Seconds, with the reference slicer profile.
+    pub seconds: f64,
+    /// Layers of 0.2 mm.
+    pub layers: u32,
+    /// Plastic extruded, mm³.
+    pub filament_mm3: f64,
+    /// The model's volume, mm³.
+    pub volume_mm3: f64,
 }
 
 /// Everything the cutting-plan steps start from (the pipeline's `parts` snapshot).

@@ -310,10 +310,10 @@ pub struct CutSettings {
     pub fine_rotations: bool,
     /// Let small parts go into the holes of large ones.
     pub fill_holes: bool,
-    /// Cutting speed for the time estimate, mm/s (10 mm/s: 3 mm plywood on a 40 W laser).
-    pub cut_speed: f64,
-    /// Vector-engraving speed for the time estimate, mm/s.
-    pub engrave_speed: f64,
+    /// The laser: its kind and any speed the maker set (the time estimate's and the
+    /// LightBurn project's speeds per material and thickness).
+    #[serde(default)]
+    pub laser: super::Laser,
     /// The SVG sheets' stroke colours per operation (plan.json leaves the default out).
     #[serde(default, skip_serializing_if = "ColorProfile::is_classic")]
     pub colors: ColorProfile,
@@ -350,8 +350,7 @@ impl Default for CutSettings {
             nest_tries: 8,
             fine_rotations: true,
             fill_holes: true,
-            cut_speed: 10.0,
-            engrave_speed: 100.0,
+            laser: super::Laser::default(),
             colors: ColorProfile::Classic,
             reference_square: false,
             stock: Vec::new(),
@@ -490,11 +489,6 @@ impl CutSettings {
         }
         if self.nest_tries == 0 {
             return bad("nest tries", "must be at least 1".into());
-        }
-        for (name, v) in [("cut speed", self.cut_speed), ("engrave speed", self.engrave_speed)] {
-            if !(v.is_finite() && v > 0.0) {
-                return bad(name, format!("{v} is not a positive speed in mm/s"));
-            }
         }
         Ok(())
     }
