@@ -94,6 +94,14 @@ pub fn render(r: &Inspection) -> String {
         r.planar_groups,
         r.shapes
     );
+    let _ = writeln!(
+        s,
+        "print      {} on an FDM printer ({}): {} layers, {:.1} cm³ of plastic",
+        crate::report::duration(r.print.seconds),
+        platener::fabrication::PRINT_PROFILE,
+        r.print.layers,
+        r.print.filament_mm3 / 1000.0
+    );
     render_largest_shapes(&mut s, r);
     render_warnings_and_steps(&mut s, r);
     s

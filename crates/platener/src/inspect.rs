@@ -103,6 +103,8 @@ pub struct Inspection {
     pub shapes: usize,
     /// The largest shapes.
     pub largest_shapes: Vec<ShapeSummary>,
+    /// Printing the model instead, with the reference slicer profile (`fabrication::print`).
+    pub print: crate::plan::PrintEstimate,
     /// Plates and coverage, when asked for.
     pub plates: Option<PlatesReport>,
     /// Steps with their times and warnings.
@@ -202,6 +204,7 @@ pub fn inspect(source: Source, settings: Settings, cancel: &Cancel, with_plates:
                 at: s.frame.origin,
             })
             .collect(),
+        print: crate::fabrication::print::estimate(&model.triangles),
         plates: state.plates.as_deref().map(plates_report),
         steps,
     })

@@ -46,8 +46,10 @@ pub struct PrintProfile {
     /// Speeds, mm/s: external perimeter, other perimeters, sparse infill, solid infill, top
     /// surface, first layer.
     pub speeds: PrintSpeeds,
-    /// Seconds no layer goes under (the slicer slows down to let it cool).
+    /// Seconds no layer goes under (the slicer slows down to let it cool)...
     pub min_layer_seconds: f64,
+    /// ...but never below this speed, mm/s.
+    pub min_speed: f64,
     /// Seconds every layer costs beyond its extrusion (layer change, travel, retraction).
     pub layer_seconds: f64,
     /// Extrusion time over the time at full speed (acceleration and corners).
@@ -76,7 +78,7 @@ pub const MK3S: PrintProfile = PrintProfile {
     layer: 0.2,
     width: 0.45,
     perimeters: 2.0,
-    top_layers: 5,
+    top_layers: 6,
     bottom_layers: 4,
     infill: 0.15,
     speeds: PrintSpeeds {
@@ -88,8 +90,9 @@ pub const MK3S: PrintProfile = PrintProfile {
         first_layer: 20.0,
     },
     min_layer_seconds: 15.0,
-    layer_seconds: 1.0,
-    motion_factor: 1.2,
+    min_speed: 15.0,
+    layer_seconds: 2.0,
+    motion_factor: 1.5,
 };
 
 /// The most layers estimated one by one; a taller model (a 10 m tower in mm) is estimated
@@ -271,17 +274,16 @@ fn time(layers: &Layers, p: &PrintProfile, h: f64) -> (f64, f64) {
             (top / p.width, s.top),
             (sparse * p.infill / p.width, s.infill),
         ];
+        let length: f64 = lines.iter().map(|(len, _)| len).sum();
         let motion: f64 = if k == 0 {
-            lines.iter().map(|(len, _)| len).sum::<f64>() / s.first_layer
+            length / s.first_layer
         } else {
             lines.iter().map(|(len, speed)| len / speed).sum()
         };
         let layer = motion * p.motion_factor + p.layer_seconds;
-        seconds += if area > 0.0 {
-            layer.max(p.min_layer_seconds)
-        } else {
-            layer
-        };
+        // Slowed to cool: up to the floor, as far as the slowest speed allows.
+        let cooled = p.min_layer_seconds.min(length / p.min_speed + p.layer_seconds);
+        seconds += layer.max(cooled);
         filament += (ring + solid + sparse * p.infill) * h;
     }
     (seconds, filament)
@@ -334,7 +336,7 @@ mod tests {
 
     #[test]
     fn a_cube_takes_the_sum_of_its_lines_by_hand() {
-        // 20 mm cube, 100 layers: every layer 2 loops of 80 mm; 4 bottom + 5 top layers solid.
+        // 20 mm cube, 100 layers: every layer 2 loops of 80 mm; 4 bottom + 6 top layers solid.
         let p = PrintProfile {
             min_layer_seconds: 0.0,
             layer_seconds: 0.0,
@@ -349,7 +351,7 @@ mod tests {
         let solid = loops + free / 0.45 / 80.0;
         let top = loops + free / 0.45 / 40.0;
         let sparse = loops + free * 0.15 / 0.45 / 80.0;
-        let by_hand = first + 3.0 * solid + 4.0 * solid + top + 91.0 * sparse;
+        let by_hand = first + 3.0 * solid + 5.0 * solid + top + 90.0 * sparse;
         assert!(
             (estimate.seconds - by_hand).abs() < 1e-6 * by_hand,
             "{} vs {by_hand}",
@@ -369,10 +371,26 @@ mod tests {
 
     #[test]
     fn small_layers_wait_for_the_cooling_floor() {
-        // A 2 mm pin 40 mm tall: 200 layers of almost nothing, each held to 15 s.
-        let pin = samples::cuboid(DVec3::ZERO, DVec3::new(2.0, 2.0, 40.0));
-        let estimate = estimate(&pin);
-        assert!((estimate.seconds - 200.0 * 15.0).abs() < 1e-6, "{}", estimate.seconds);
+        // Two layers of a 20 mm square, no top or bottom: 160 mm of loops and 109 mm of
+        // sparse fill take 11.5 s, slowed to the 15 s floor (269 mm at 15 mm/s would be 18 s).
+        let layers = Layers {
+            area: vec![400.0; 2],
+            outline: vec![80.0; 2],
+            top: vec![0.0; 2],
+            bottom: vec![0.0; 2],
+        };
+        let (free, loops) = (400.0 - 160.0 * 0.45, 80.0 / 25.0 + 80.0 / 45.0);
+        let fill = free * 0.15 / 0.45;
+        let first = ((160.0 + fill) / 20.0 * 1.5 + 2.0_f64).max(15.0);
+        assert!(loops * 1.5 + fill / 80.0 * 1.5 + 2.0 < 15.0);
+        let (seconds, _) = time(&layers, &MK3S, 0.2);
+        assert!((seconds - (first + 15.0)).abs() < 1e-9, "{seconds}");
+        // A 1 mm pin: 2.2 mm of line a layer cannot be slowed to 15 s at 15 mm/s.
+        let thin = estimate_with(&samples::cuboid(DVec3::ZERO, DVec3::new(1.0, 1.0, 40.0)), &MK3S);
+        // The first layer at 20 mm/s with the motion factor is slower still.
+        let line = 1.0 / 0.45;
+        let by_hand = (line / 20.0 * 1.5 + 2.0) + 199.0 * (line / 15.0 + 2.0);
+        assert!((thin.seconds - by_hand).abs() < 1e-6, "{} vs {by_hand}", thin.seconds);
     }
 
     #[test]

@@ -26,8 +26,8 @@
 //! - **details**: 1 − ½·(1 − kept), kept the share of the model's sharp edges (faces turning
 //!   by more than 30°) within the cover distance of a part's outline or a score mark (issue
 //!   32: raised letters a blank part drops).
-//! - **work_minutes**: laser time (report.json's estimate) + 1 minute per part to assemble
-//!   + 2 minutes per sheet to handle.
+//! - **work_minutes**: report.json's `fabrication` total: laser time, sheets handled, parts
+//!   taken out and joints closed ([`crate::fabrication::handwork`]), one estimate for both.
 //!
 //! The surface is a factor, not a term: a plan that reproduces nothing is worth nothing,
 //! however cheap. Everything is measured on plan.json (outline, holes, transform) by the one
@@ -60,10 +60,6 @@ pub const QUALITY_WEIGHT: f64 = 0.2;
 pub const EFFORT_WEIGHT: f64 = 0.1;
 /// Interference (shared volume over the parts' volume) that leaves nothing of the assembly.
 pub const INTERFERENCE_LIMIT: f64 = 0.05;
-/// Minutes to take a part off the sheet, sand it and put it in place.
-pub const MINUTES_PER_PART: f64 = 1.0;
-/// Minutes to put a sheet in the laser, focus and take it out.
-pub const MINUTES_PER_SHEET: f64 = 2.0;
 /// Work that halves the effort score, minutes.
 pub const EFFORT_HALF_MINUTES: f64 = 60.0;
 
@@ -200,7 +196,7 @@ fn effort(plan: &Plan, report: &Report) -> EffortScore {
     let parts = plan.parts.len();
     let sheets = plan.sheets.len();
     let laser_minutes = report.estimated_cutting_seconds.max(0.0) / 60.0;
-    let work_minutes = laser_minutes + MINUTES_PER_PART * parts as f64 + MINUTES_PER_SHEET * sheets as f64;
+    let work_minutes = report.fabrication.total_seconds.max(0.0) / 60.0;
     EffortScore {
         value: 1.0 / (1.0 + work_minutes / EFFORT_HALF_MINUTES),
         parts,
