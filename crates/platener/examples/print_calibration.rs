@@ -55,19 +55,33 @@ fn main() -> Result<(), String> {
         }
         return Ok(());
     }
-    println!("| model | PrusaSlicer | ours | ours / PrusaSlicer | filament ours / PrusaSlicer |");
-    println!("|---|---|---|---|---|");
+    println!(
+        "| model | triangles | PrusaSlicer | ours | ours / PrusaSlicer | filament ours / PrusaSlicer | estimate took |"
+    );
+    println!("|---|---|---|---|---|---|---|");
     for s in &samples {
+        let start = std::time::Instant::now();
         let e = estimate_with(&s.triangles, &MK3S);
+        let took = start.elapsed().as_secs_f64() * 1000.0;
         println!(
-            "| {} | {:.2} h | {:.2} h | {:.2} | {:.2} |",
+            "| {} | {} | {:.2} h | {:.2} h | {:.2} | {:.2} | {took:.1} ms |",
             s.file,
+            s.triangles.len(),
             s.seconds / 3600.0,
             e.seconds / 3600.0,
             e.seconds / s.seconds,
             e.filament_mm3 / s.filament
         );
     }
+    let sphere = platener_fixtures::samples::sphere(platener::glam::DVec3::ZERO, 50.0, 1000, 500);
+    let start = std::time::Instant::now();
+    let e = estimate_with(&sphere, &MK3S);
+    println!(
+        "\na sphere of r 50 mm in {} triangles: {:.2} h, estimated in {:.0} ms",
+        sphere.len(),
+        e.seconds / 3600.0,
+        start.elapsed().as_secs_f64() * 1000.0
+    );
     let (within, spread) = judge(&samples, &MK3S);
     println!(
         "\n{within} of {} models within ±25 % of PrusaSlicer; mean |log ratio| {spread:.3}",

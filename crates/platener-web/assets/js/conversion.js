@@ -14,7 +14,7 @@ import { follow } from './live.js';
 import { initBars, barMethod, clearBars, endBars, markShown } from './bars.js';
 import { showPublishing } from './publish.js';
 import { showWarnings } from './warnings.js';
-import { laserNote, partsShown } from './wording.js';
+import { duration, laserNote, partsShown } from './wording.js';
 
 const $ = (id) => document.getElementById(id);
 export const VIEWS = ['model', 'wireframe', 'coplanar', 'primitives', 'plates', 'bent', 'final'];
@@ -419,8 +419,8 @@ export function createConversionArea({ state, onGalleryChange }) {
     }
   }
 
-  /** Score, counts, cut length and laser time (report.json's estimate at its stated speeds) of
-   * `method`'s plan. */
+  /** Score, counts, cut length, laser and print time and the speed-up (report.json's
+   * estimates at their stated speeds) of `method`'s plan. */
   function showStats(c, report, method) {
     const m = c && (c.methods || []).find((x) => x.method === method);
     const set = (k, v) => (document.querySelector(`#stats [data-stat="${k}"]`).textContent = v);
@@ -429,8 +429,11 @@ export function createConversionArea({ state, onGalleryChange }) {
     set('sheets', m ? String(m.sheets) : '–');
     const r = report || {};
     set('cut', r.cut_length != null ? `${(r.cut_length / 1000).toFixed(2)} m` : '–');
-    set('minutes', r.estimated_cutting_seconds != null ? `≈ ${(r.estimated_cutting_seconds / 60).toFixed(1)} min` : '–');
-    $('speed-note').textContent = laserNote(r.settings);
+    const f = r.fabrication;
+    set('minutes', r.estimated_cutting_seconds != null ? `≈ ${duration(r.estimated_cutting_seconds)}` : '–');
+    set('print', f && f.print_seconds != null ? `≈ ${duration(f.print_seconds)}` : '–');
+    set('speedup', f && f.speed_up != null ? `${Math.round(f.speed_up)}× faster` : '–');
+    $('speed-note').textContent = laserNote(r);
   }
 }
 

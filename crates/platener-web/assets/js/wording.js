@@ -31,13 +31,27 @@ function thicknesses(list) {
   return `${ts.slice(0, -1).join(', ')} and ${ts.at(-1)} mm`;
 }
 
-/** The note under the laser time, for the plan's own material and thicknesses (report.json's
- * `settings`): the speeds the estimate assumed, so a maker can compare them with their laser's. */
-export function laserNote(settings) {
-  const s = settings || {};
-  if (!s.cut_speed) return '';
+/** A duration as a maker reads it: seconds under a minute, minutes under two hours, hours. */
+export function duration(seconds) {
+  if (seconds < 60) return `${Math.round(seconds)} s`;
+  if (seconds < 7200) return `${Math.round(seconds / 60)} min`;
+  return `${(seconds / 3600).toFixed(1)} h`;
+}
+
+/** The note under the laser time, from report.json: the plan's material and thicknesses, the
+ * speeds the estimate assumed (the first sheet's, from the `laser` setting), the handwork and
+ * the print profile, so a maker can compare them with their own machines. */
+export function laserNote(report) {
+  const r = report || {};
+  const s = r.settings || {};
+  const f = r.fabrication;
+  const speeds = ((r.sheets || [])[0] || {}).laser_speeds;
+  if (!f || !speeds) return '';
   const what = `${thicknesses(s.thicknesses)} ${MATERIAL_NAMES[s.material] || s.material || 'sheet'}`;
-  return `Laser time for ${what}: cutting at ${s.cut_speed} mm/s and engraving at ${s.engrave_speed} mm/s, without travel moves.`;
+  const laser = `Laser time for ${what}: on a ${f.laser} laser, cutting at ${speeds.cut} mm/s, engraving at ${speeds.engrave} mm/s, moving at ${speeds.travel} mm/s, ${speeds.pierce} s per cut started.`;
+  const hands = ` Then ${duration(f.sheet_seconds)} to load the sheets and ${duration(f.assembly_seconds)} to take the parts out and assemble them.`;
+  const print = f.print_seconds != null ? ` Print time: ${f.print_profile}.` : '';
+  return laser + hands + print;
 }
 
 /**

@@ -3,8 +3,10 @@
 
 use std::process::Command;
 
+use platener::fabrication::handwork::joint_seconds;
 use platener::glam::DVec2;
 use platener::kerf::cut_paths;
+use platener::plan::laser::parse_laser;
 use platener::plan::samples::{l_shape, rectangle, window};
 use platener::plan::{CutSettings, Material, Part, SheetSize};
 use platener::sheets::nest;
@@ -225,8 +227,6 @@ fn every_sheet_is_in_cut_order() {
         seen.sort_unstable();
         seen.dedup();
         assert_eq!(seen.len(), groups.len(), "each part's paths are together: {groups:?}");
-        let (mut pierces, mut cut, mut travel) = (0, 0.0, 0.0);
-        let mut head = DVec2::ZERO;
         for g in groups {
             let mine: Vec<&svg_read::OrderedPath> = paths.iter().filter(|p| p.group == g).collect();
             let first_red = mine.iter().position(|p| p.red).unwrap_or(mine.len());
@@ -244,25 +244,10 @@ fn every_sheet_is_in_cut_order() {
                 let last_path = mine.last().expect("a path");
                 assert!(last_path.red && last_path.closed, "{g}: the outline is cut last");
             }
-            for p in &mine {
-                travel += head.distance(p.points[0]);
-                let open: f64 = p.points.windows(2).map(|w| w[0].distance(w[1])).sum();
-                let length = if p.closed {
-                    open + p.points[0].distance(*p.points.last().expect("points"))
-                } else {
-                    open
-                };
-                head = if p.closed {
-                    p.points[0]
-                } else {
-                    *p.points.last().expect("points")
-                };
-                if p.red {
-                    pierces += 1;
-                    cut += length;
-                }
-            }
         }
+        let Walk {
+            pierces, cut, travel, ..
+        } = walk(&paths);
         assert_eq!(measured.path.pierces, pierces);
         assert!(
             (measured.path.cut_length - cut).abs() < 1e-2,
@@ -275,6 +260,85 @@ fn every_sheet_is_in_cut_order() {
             measured.path.travel_length
         );
     }
+}
+
+/// What the laser's head does through a sheet's paths in file order: pierces (cut paths
+/// started), cut and engraved lengths and the travel between paths from the origin, mm.
+struct Walk {
+    pierces: usize,
+    cut: f64,
+    engrave: f64,
+    travel: f64,
+}
+
+fn walk(paths: &[svg_read::OrderedPath]) -> Walk {
+    let mut w = Walk {
+        pierces: 0,
+        cut: 0.0,
+        engrave: 0.0,
+        travel: 0.0,
+    };
+    let mut head = DVec2::ZERO;
+    for p in paths {
+        w.travel += head.distance(p.points[0]);
+        let open: f64 = p.points.windows(2).map(|s| s[0].distance(s[1])).sum();
+        let last = *p.points.last().expect("points");
+        let (length, end) = if p.closed {
+            (open + p.points[0].distance(last), p.points[0])
+        } else {
+            (open, last)
+        };
+        head = end;
+        if p.red {
+            w.pierces += 1;
+            w.cut += length;
+        } else {
+            w.engrave += length;
+        }
+    }
+    w
+}
+
+/// Issue 35: each sheet's laser time is its lengths and pierces read from the SVG at the
+/// table's speeds for 3 mm wood on the default laser (cut 15, engrave 150, travel 300 mm/s,
+/// 0.2 s a pierce); the plan's total adds 2 minutes a sheet, 20 s a part and each joint's time; a laser set to
+/// its own cutting speed takes that speed.
+#[test]
+fn laser_time_is_the_svgs_lengths_at_the_tables_speeds() {
+    let seconds = |settings: CutSettings, cut_speed: f64| {
+        let (input, plan) = run(mixed_parts(), settings);
+        let report = &plan.bundle.report;
+        let mut total = 0.0;
+        for (sheet, measured) in plan.bundle.plan.sheets.iter().zip(&report.sheets) {
+            assert_eq!(sheet.thickness, 3.0);
+            let svg = std::str::from_utf8(&plan.bundle.files[&sheet.file]).expect("utf-8");
+            let w = walk(&svg_read::paths_in_order(svg));
+            assert!(w.pierces > 0 && w.engrave > 0.0, "cuts and labels on {}", sheet.file);
+            let by_hand = w.cut / cut_speed + w.engrave / 150.0 + w.travel / 300.0 + w.pierces as f64 * 0.2;
+            assert!(
+                (measured.laser_seconds - by_hand).abs() < 1e-3,
+                "{}: {} s, by hand {by_hand} s",
+                sheet.file,
+                measured.laser_seconds
+            );
+            total += by_hand;
+        }
+        let f = &report.fabrication;
+        assert!((f.laser_seconds - total).abs() < 1e-2 && (report.estimated_cutting_seconds - total).abs() < 1e-2);
+        let sheets = plan.bundle.plan.sheets.len() as f64;
+        assert_eq!(f.sheet_seconds, 120.0 * sheets);
+        let joints: f64 = input.joints.iter().map(|j| joint_seconds(j.kind)).sum();
+        assert_eq!(f.assembly_seconds, 20.0 * input.parts.len() as f64 + joints);
+        assert!((f.total_seconds - (total + 120.0 * sheets + f.assembly_seconds)).abs() < 1e-2);
+        total
+    };
+    let table = seconds(CutSettings::default(), 15.0);
+    let own = CutSettings {
+        laser: parse_laser("co2, cut=7.5").expect("a laser"),
+        ..CutSettings::default()
+    };
+    let slower = seconds(own, 7.5);
+    assert!(slower > table);
 }
 
 /// Issue 34: each sheet's LightBurn project, parsed back as XML, has the SVG's paths shape by
