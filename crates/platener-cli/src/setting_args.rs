@@ -132,7 +132,7 @@ fn arg_of(def: &'static Def) -> Arg {
         }),
         Kind::Numbers { unit, .. } => arg.value_name(unit_word(unit)).action(ArgAction::Append),
         Kind::Sheet { .. } => arg.value_name("WxH|fit"),
-        Kind::Text { .. } => arg.value_name("T:WxH[xN],..."),
+        Kind::Text { shape, .. } => arg.value_name(shape),
     };
     arg
 }

@@ -247,7 +247,16 @@ fn upload_button_progress_six_views_hover_and_settings_recut() {
     page.screenshot("06-hover-page", None);
 
     // And the other way: hovering a part on the sheet lights it up in 3D.
-    let other = if part == 1 { 2 } else { 1 };
+    // A part of the sheet in view as it is: scrolling to one would move the 3D view under the
+    // pointer when its pixels are read.
+    let other = page
+        .eval(&format!(
+            "[...document.querySelectorAll('[data-testid=sheet-part]')].map(g => [Number(g.dataset.part), g.getBoundingClientRect()]) \
+             .filter(([p, r]) => p !== {part} && r.top >= 0 && r.bottom <= innerHeight && r.left >= 0 && r.right <= innerWidth) \
+             .map(([p]) => p)[0] ?? null"
+        ))
+        .as_u64()
+        .expect("a part of the sheet in view");
     let (x, y) = page
         .rect(&format!("[data-testid=sheet-part][data-part=\"{other}\"]"))
         .center();
@@ -415,6 +424,29 @@ fn says_it_in_plain_words(page: &Page) {
     page.wait_until(
         "document.getElementById('speed-note').textContent.startsWith('Laser time for 3 mm plywood or MDF:')",
         "the laser-time note of a 3 mm wood plan",
+    );
+    // Issue 35: print time and speed-up beside the laser time; the assembly steps beside the
+    // player, each showing the parts so far; their printable page served with its pictures.
+    page.wait_until(
+        "document.querySelector('#stats [data-stat=speedup]').textContent.endsWith('× faster')",
+        "the speed-up against printing",
+    );
+    page.wait_until(
+        "document.querySelectorAll('#assembly-steps > li').length === 6",
+        "the box's six assembly steps beside the player",
+    );
+    page.eval("document.querySelector('#assembly-steps > li:nth-child(2) button').click()");
+    page.wait_until(
+        "document.getElementById('player').value === '2'",
+        "step 2 shows two parts",
+    );
+    let instructions = page.eval(
+        "(async () => { const a = document.getElementById('steps-link'); const r = await fetch(a.href);          const t = await r.text(); const img = await fetch(new URL('assembly/step-02.png', a.href));          return [r.status, t.includes('Step 6 of 6'), img.status, img.headers.get('content-type')]; })()",
+    );
+    assert_eq!(
+        instructions,
+        serde_json::json!([200, true, 200, "image/png"]),
+        "the instructions' page"
     );
     let help =
         page.eval("['score-help', 'labels-help'].map(t => document.querySelector(`[data-testid=${t}]`).textContent)");

@@ -30,6 +30,8 @@ pub const SVG: &str = "image/svg+xml";
 pub const PNG: &str = "image/png";
 /// The content type of a glTF binary scene.
 pub const GLB: &str = "model/gltf-binary";
+/// The content type of the assembly instructions' page.
+pub const HTML: &str = "text/html; charset=utf-8";
 
 /// What a worker stored of a conversion while it ran, so the end stores only the rest.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -195,8 +197,9 @@ pub fn model_files(state: &State) -> Vec<ResultFile> {
     )
 }
 
-/// A method's files: the ZIP, plan.json, report.json, the gallery's thumbnail, sheets (SVG,
-/// PNG) and the scenes it reached but the model's (one for all methods, [`model_files`]).
+/// A method's files: the ZIP, plan.json, report.json, the gallery's thumbnail, the assembly
+/// instructions' page and pictures, sheets (SVG, PNG) and the scenes it reached but the
+/// model's (one for all methods, [`model_files`]).
 pub fn method_files(m: &MethodResult) -> Vec<ResultFile> {
     let method = m.method.name();
     let file = |file: String, content_type: &str, data: Vec<u8>| ResultFile {
@@ -215,6 +218,15 @@ pub fn method_files(m: &MethodResult) -> Vec<ResultFile> {
         }
         if let Some(png) = bundle.files.get(platener::export::thumbnail::FILE) {
             files.push(file(platener::export::thumbnail::FILE.into(), PNG, png.clone()));
+        }
+        // The assembly instructions' page and its step pictures (issue 35), beside each other
+        // as in the ZIP, so the page's relative picture links work.
+        for (name, data) in &bundle.files {
+            if name == "assembly.html" {
+                files.push(file(name.clone(), HTML, data.clone()));
+            } else if name.starts_with("assembly/step-") && name.ends_with(".png") {
+                files.push(file(name.clone(), PNG, data.clone()));
+            }
         }
         for (i, sheet) in bundle.plan.sheets.iter().enumerate() {
             let n = i + 1;

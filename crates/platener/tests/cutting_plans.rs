@@ -307,20 +307,20 @@ fn a_zip_written_twice_is_byte_identical() {
     let (_, b) = run(mixed_parts(), CutSettings::default());
     assert_eq!(a.bundle.zip, b.bundle.zip);
     let names: Vec<&String> = a.bundle.files.keys().collect();
-    assert_eq!(
-        names,
-        [
-            "assembly.glb",
-            "plan.json",
-            "report.json",
-            "test-box-3mm-1.dxf",
-            "test-box-3mm-1.lbrn2",
-            "test-box-3mm-1.png",
-            "test-box-3mm-1.svg",
-            "test-box.pdf",
-            "thumbnail.png"
-        ]
-    );
+    let steps: Vec<String> = (1..=9).map(|k| format!("assembly/step-{k:02}.png")).collect();
+    let mut expected = vec!["assembly.glb", "assembly.html", "assembly.pdf"];
+    expected.extend(steps.iter().map(String::as_str));
+    expected.extend([
+        "plan.json",
+        "report.json",
+        "test-box-3mm-1.dxf",
+        "test-box-3mm-1.lbrn2",
+        "test-box-3mm-1.png",
+        "test-box-3mm-1.svg",
+        "test-box.pdf",
+        "thumbnail.png",
+    ]);
+    assert_eq!(names, expected);
 }
 
 #[test]

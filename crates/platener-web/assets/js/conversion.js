@@ -14,7 +14,8 @@ import { follow } from './live.js';
 import { initBars, barMethod, clearBars, endBars, markShown } from './bars.js';
 import { showPublishing } from './publish.js';
 import { showWarnings } from './warnings.js';
-import { duration, laserNote, partsShown } from './wording.js';
+import { showSteps } from './steps.js';
+import { duration, laserNote, partsShown, timesTitles } from './wording.js';
 
 const $ = (id) => document.getElementById(id);
 export const VIEWS = ['model', 'wireframe', 'coplanar', 'primitives', 'plates', 'bent', 'final'];
@@ -24,6 +25,8 @@ export function createConversionArea({ state, onGalleryChange }) {
   let viewer = null;
   let current = null; // the conversion JSON
   let plan = null;
+  // The shown plan's instruction steps (report.json) and their page's link.
+  let steps = { list: [], href: null };
   let stopEvents = () => {};
   let playTimer = null;
   let keepCamera = false; // the next scene is a re-cut of the one shown: keep the camera
@@ -129,6 +132,10 @@ export function createConversionArea({ state, onGalleryChange }) {
     player.max = String(state.assembly.length);
     player.value = String(state.assembly.length);
     showParts(state.assembly.length);
+    showSteps($('assembly-steps'), steps.list, $('steps-link'), steps.href, (k) => {
+      stopPlaying();
+      showParts(k);
+    });
   }
 
   function showParts(k) {
@@ -412,6 +419,7 @@ export function createConversionArea({ state, onGalleryChange }) {
       const [p, report] = await Promise.all([api.getJson(links.plan_json), api.getJson(links.report_json), sheets.show(links.sheets || [])]);
       if (state.id !== c.id || state.method !== method) return;
       plan = p;
+      steps = { list: (report && report.assembly_steps) || [], href: links.assembly_html || null };
       showStats(c, report, method);
       if (state.loadedView === 'final') setupFinal();
     } catch (e) {
@@ -434,6 +442,9 @@ export function createConversionArea({ state, onGalleryChange }) {
     set('print', f && f.print_seconds != null ? `≈ ${duration(f.print_seconds)}` : '–');
     set('speedup', f && f.speed_up != null ? `${Math.round(f.speed_up)}× faster` : '–');
     $('speed-note').textContent = laserNote(r);
+    const titles = timesTitles(r);
+    document.querySelector('#stats [data-stat="minutes"]').title = titles.laser;
+    document.querySelector('#stats [data-stat="print"]').title = titles.print;
   }
 }
 

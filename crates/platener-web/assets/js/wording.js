@@ -38,9 +38,10 @@ export function duration(seconds) {
   return `${(seconds / 3600).toFixed(1)} h`;
 }
 
-/** The note under the laser time, from report.json: the plan's material and thicknesses, the
- * speeds the estimate assumed (the first sheet's, from the `laser` setting), the handwork and
- * the print profile, so a maker can compare them with their own machines. */
+/** The note under the laser time, from report.json: the plan's material and thicknesses and
+ * the speeds the estimate assumed (the first sheet's, from the `laser` setting), so a maker can
+ * compare them with their laser's. Kept to two lines: the handwork and the print profile are
+ * in the times' tooltips (`timesTitles`). */
 export function laserNote(report) {
   const r = report || {};
   const s = r.settings || {};
@@ -48,10 +49,17 @@ export function laserNote(report) {
   const speeds = ((r.sheets || [])[0] || {}).laser_speeds;
   if (!f || !speeds) return '';
   const what = `${thicknesses(s.thicknesses)} ${MATERIAL_NAMES[s.material] || s.material || 'sheet'}`;
-  const laser = `Laser time for ${what}: on a ${f.laser} laser, cutting at ${speeds.cut} mm/s, engraving at ${speeds.engrave} mm/s, moving at ${speeds.travel} mm/s, ${speeds.pierce} s per cut started.`;
-  const hands = ` Then ${duration(f.sheet_seconds)} to load the sheets and ${duration(f.assembly_seconds)} to take the parts out and assemble them.`;
-  const print = f.print_seconds != null ? ` Print time: ${f.print_profile}.` : '';
-  return laser + hands + print;
+  return `Laser time for ${what}: a ${f.laser} laser cutting at ${speeds.cut} mm/s, engraving at ${speeds.engrave} mm/s, moving at ${speeds.travel} mm/s, ${speeds.pierce} s a cut started.`;
+}
+
+/** The tooltips of the laser and print times: what else the making takes, and what printer. */
+export function timesTitles(report) {
+  const f = (report || {}).fabrication;
+  if (!f) return { laser: '', print: '' };
+  return {
+    laser: `Then ${duration(f.sheet_seconds)} to load the sheets and ${duration(f.assembly_seconds)} to take the parts out and assemble them.`,
+    print: f.print_profile ? `The model printed as it lies: ${f.print_profile}.` : '',
+  };
 }
 
 /**

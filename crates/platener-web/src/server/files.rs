@@ -12,7 +12,7 @@ use super::App;
 use super::api::load;
 use super::error::{ApiError, ApiResult};
 use crate::db::JobRow;
-use crate::results::{MODEL_SCENE, SHARED, SVG, ZIP};
+use crate::results::{HTML, MODEL_SCENE, SHARED, SVG, ZIP};
 
 /// The best method of a finished job, from its summary.
 fn best_of(row: &JobRow) -> ApiResult<String> {
@@ -66,6 +66,13 @@ async fn stored_file(app: &App, row: &JobRow, method: &str, file: &str) -> ApiRe
             HeaderValue::from_static("default-src 'none'; style-src 'unsafe-inline'; sandbox"),
         );
     }
+    if content_type == HTML {
+        // The instructions: their own pictures and style, nothing else, no script.
+        headers.insert(
+            header::CONTENT_SECURITY_POLICY,
+            HeaderValue::from_static("default-src 'none'; img-src 'self'; style-src 'unsafe-inline'; sandbox"),
+        );
+    }
     Ok(Some(response))
 }
 
@@ -85,7 +92,7 @@ pub(super) fn known_method(method: &str) -> ApiResult<()> {
     }
 }
 
-/// `GET /api/conversions/{id}/methods/{method}/{plan.zip|plan.json|report.json|thumbnail.png}`.
+/// `GET /api/conversions/{id}/methods/{method}/{plan.zip|plan.json|report.json|thumbnail.png|assembly.html}`.
 pub async fn method_file(
     State(app): State<Arc<App>>,
     Path((id, method, file)): Path<(String, String, String)>,
@@ -93,7 +100,7 @@ pub async fn method_file(
     known_method(&method)?;
     let row = load(&app, &id).await?;
     match file.as_str() {
-        "plan.zip" | "plan.json" | "report.json" => serve_file(&app, &row, &method, &file).await,
+        "plan.zip" | "plan.json" | "report.json" | "assembly.html" => serve_file(&app, &row, &method, &file).await,
         THUMBNAIL => thumbnail(&app, &row, &method).await,
         _ => Err(ApiError::not_found("file")),
     }
@@ -124,6 +131,24 @@ pub async fn sheet(
     }
     let row = load(&app, &id).await?;
     serve_file(&app, &row, &method, &format!("sheets/{n}.{ext}")).await
+}
+
+/// `GET /api/conversions/{id}/methods/{method}/assembly/step-NN.png`: an assembly step's
+/// picture (an extension of api.md, for the instructions' page).
+pub async fn step_picture(
+    State(app): State<Arc<App>>,
+    Path((id, method, file)): Path<(String, String, String)>,
+) -> ApiResult<Response> {
+    known_method(&method)?;
+    let digits = file
+        .strip_prefix("step-")
+        .and_then(|f| f.strip_suffix(".png"))
+        .filter(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()));
+    if digits.is_none() {
+        return Err(ApiError::not_found("step picture"));
+    }
+    let row = load(&app, &id).await?;
+    serve_file(&app, &row, &method, &format!("assembly/{file}")).await
 }
 
 /// `?method=` of a scene.
@@ -166,5 +191,9 @@ pub fn routes() -> axum::Router<std::sync::Arc<super::App>> {
         .route("/api/conversions/{id}/plan.zip", get(best_plan))
         .route("/api/conversions/{id}/methods/{method}/{file}", get(method_file))
         .route("/api/conversions/{id}/methods/{method}/sheets/{file}", get(sheet))
+        .route(
+            "/api/conversions/{id}/methods/{method}/assembly/{file}",
+            get(step_picture),
+        )
         .route("/api/conversions/{id}/scenes/{file}", get(scene))
 }

@@ -91,6 +91,9 @@ fn links(id: &str, best: Option<&str>, files: &[(String, String)]) -> Value {
             if let Some(a) = entry[list].as_array_mut() {
                 a.push(Value::String(url));
             }
+        } else if file.starts_with("assembly/") {
+            // The instructions' pictures: assembly.html links them itself.
+            continue;
         } else if let Some(view) = file.strip_prefix("scenes/").and_then(|v| v.strip_suffix(".glb")) {
             entry["scenes"][view] = Value::String(format!("{base}/scenes/{view}.glb?method={method}"));
         } else {

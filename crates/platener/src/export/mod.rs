@@ -10,6 +10,7 @@
 //! unless asked, so the same input and settings give a byte-identical ZIP.
 
 pub mod dxf;
+pub mod instructions;
 pub mod legend;
 pub mod lightburn;
 pub mod order;
@@ -186,7 +187,8 @@ fn sheet_files(
     Ok(per_sheet.into_iter().flatten().collect())
 }
 
-/// report.json (returned too), plan.json, the 3D assembly and its thumbnail.
+/// report.json (returned too), plan.json, the 3D assembly, its thumbnail and the assembly
+/// instructions.
 fn plan_files(
     input: &PlanInput,
     nesting: &Nesting,
@@ -195,17 +197,20 @@ fn plan_files(
     stems: &[String],
     plan: &Plan,
 ) -> Result<(Report, Files), PlanError> {
-    let report = build_report(input, nesting, steps, drawn, stems);
-    let report_json = serde_json::to_string_pretty(&report).map_err(|e| PlanError::write("report.json", e))?;
     // The parts were validated by now, so a scene that cannot be written is our bug.
     let assembly = crate::scene::Assembly::new(&input.parts).map_err(|e| PlanError::write("assembly.glb", e))?;
     let scene = assembly.scene().map_err(|e| PlanError::write("assembly.glb", e))?;
-    let files = vec![
+    let instructions = instructions::instructions(plan, &assembly);
+    let mut report = build_report(input, nesting, steps, drawn, stems);
+    report.assembly_steps = instructions.iter().map(instructions::StepText::of).collect();
+    let report_json = serde_json::to_string_pretty(&report).map_err(|e| PlanError::write("report.json", e))?;
+    let mut files = vec![
         ("plan.json".to_string(), plan.to_json()?.into_bytes()),
         ("report.json".to_string(), report_json.into_bytes()),
         ("assembly.glb".to_string(), scene.glb),
         (thumbnail::FILE.to_string(), thumbnail::thumbnail(&assembly)?),
     ];
+    files.extend(instructions::files(plan, &instructions, &input.source.name)?);
     Ok((report, files))
 }
 
@@ -317,6 +322,7 @@ fn build_report(
         engrave_length,
         estimated_cutting_seconds: laser_seconds,
         fabrication,
+        assembly_steps: Vec::new(),
         method_report: input.method_report.clone(),
     }
 }

@@ -94,6 +94,9 @@ pub struct Report {
     pub estimated_cutting_seconds: f64,
     /// The object's making time, laser and hands, against printing it (an extension, issue 35).
     pub fabrication: crate::fabrication::Fabrication,
+    /// The assembly instructions' steps as the ZIP's assembly.html tells them (an extension,
+    /// issue 35): what the page lists beside its 3D player.
+    pub assembly_steps: Vec<super::instructions::StepText>,
     /// What the method reports about itself (the plate method: which faces became plates and
     /// why the others did not).
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -38,19 +38,78 @@ const AMBIENT: f64 = 0.45;
 /// The thumbnail of `assembly` as PNG bytes, [`WIDTH`] × [`HEIGHT`]; an assembly with nothing
 /// to draw gives a blank picture.
 pub fn thumbnail(assembly: &Assembly) -> Result<Vec<u8>, PlanError> {
-    let triangles: Vec<([DVec3; 3], [u8; 3])> = assembly
-        .triangles()
-        .filter(|(t, _)| t.iter().all(|p| p.is_finite()))
-        .collect();
-    let mut canvas = Canvas::new(WIDTH * SUPERSAMPLE, HEIGHT * SUPERSAMPLE);
-    if let Some(view) = View::fitted(&triangles, canvas.width, canvas.height) {
+    let triangles: Vec<([DVec3; 3], [u8; 3])> = assembly.triangles().collect();
+    picture(&triangles, &triangles, (WIDTH, HEIGHT), None, FILE)
+}
+
+/// The arrow's colour: a dark red no part has.
+pub const ARROW: [u8; 3] = [190, 30, 30];
+
+/// [`rgb_picture`] as PNG bytes (`name` for errors).
+pub fn picture(
+    triangles: &[([DVec3; 3], [u8; 3])],
+    frame: &[([DVec3; 3], [u8; 3])],
+    (width, height): (u32, u32),
+    arrow: Option<[DVec3; 2]>,
+    name: &str,
+) -> Result<Vec<u8>, PlanError> {
+    encode(
+        &rgb_picture(triangles, frame, (width, height), arrow),
+        width,
+        height,
+        name,
+    )
+}
+
+/// `triangles` drawn from the thumbnail's camera, fitted to `frame` (so the pictures of one
+/// object's assembly steps share one view), `width` × `height` pixels, with an `arrow` from its
+/// first model point to its second drawn on top: RGB bytes, row by row.
+pub fn rgb_picture(
+    triangles: &[([DVec3; 3], [u8; 3])],
+    frame: &[([DVec3; 3], [u8; 3])],
+    (width, height): (u32, u32),
+    arrow: Option<[DVec3; 2]>,
+) -> Vec<u8> {
+    let finite = |t: &&([DVec3; 3], [u8; 3])| t.0.iter().all(|p| p.is_finite());
+    let mut framed: Vec<([DVec3; 3], [u8; 3])> = frame.iter().filter(finite).copied().collect();
+    framed.extend(arrow.map(|[a, _]| ([a, a, a], ARROW)));
+    let mut canvas = Canvas::new(width * SUPERSAMPLE, height * SUPERSAMPLE);
+    if let Some(view) = View::fitted(&framed, canvas.width, canvas.height) {
         // The solids are closed and face outward (plan-format.md), so a triangle facing away
         // is hidden behind its own solid: skipping it halves the work.
-        for (t, colour) in triangles.iter().filter(|(t, _)| facing(t, view.toward_eye)) {
+        for (t, colour) in triangles
+            .iter()
+            .filter(finite)
+            .filter(|(t, _)| facing(t, view.toward_eye))
+        {
             canvas.fill(view.project(t), shade(t, *colour));
         }
+        if let Some([from, to]) = arrow {
+            draw_arrow(&mut canvas, &view, from, to);
+        }
     }
-    encode(&canvas.downsampled(SUPERSAMPLE), WIDTH, HEIGHT)
+    canvas.downsampled(SUPERSAMPLE)
+}
+
+/// An arrow from `from` to `to` (model points) over everything drawn: a shaft and a head, in
+/// samples; none when it points at the eye (too short on screen to read).
+fn draw_arrow(canvas: &mut Canvas, view: &View, from: DVec3, to: DVec3) {
+    let [a, b, _] = view.project(&[from, to, to]);
+    let (a, b) = (a.truncate(), b.truncate());
+    let length = a.distance(b);
+    let k = f64::from(SUPERSAMPLE);
+    if length < 12.0 * k {
+        return;
+    }
+    let u = (b - a) / length;
+    let n = u.perp();
+    let (half, head, wide) = (1.5 * k, (14.0 * k).min(length / 2.0), 6.0 * k);
+    let neck = b - u * head;
+    let top = 1e12;
+    let at = |p: DVec2| p.extend(top);
+    canvas.fill([at(a + n * half), at(a - n * half), at(neck - n * half)], ARROW);
+    canvas.fill([at(a + n * half), at(neck - n * half), at(neck + n * half)], ARROW);
+    canvas.fill([at(neck + n * wide), at(neck - n * wide), at(b)], ARROW);
 }
 
 /// The orthographic camera: screen axes and the scale and offset that fit the object.
@@ -258,14 +317,14 @@ impl Weights {
     }
 }
 
-/// RGB bytes of a `width` × `height` picture as an opaque PNG.
-fn encode(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, PlanError> {
+/// RGB bytes of a `width` × `height` picture as an opaque PNG (`name` for errors).
+pub(crate) fn encode(rgb: &[u8], width: u32, height: u32, name: &str) -> Result<Vec<u8>, PlanError> {
     let mut pixmap =
-        Pixmap::new(width, height).ok_or_else(|| PlanError::write(FILE, format!("no {width} × {height} picture")))?;
+        Pixmap::new(width, height).ok_or_else(|| PlanError::write(name, format!("no {width} × {height} picture")))?;
     for (px, c) in pixmap.data_mut().chunks_exact_mut(4).zip(rgb.chunks_exact(3)) {
         px.copy_from_slice(&[c[0], c[1], c[2], 255]);
     }
-    pixmap.encode_png().map_err(|e| PlanError::write(FILE, e))
+    pixmap.encode_png().map_err(|e| PlanError::write(name, e))
 }
 
 #[cfg(test)]

@@ -83,6 +83,7 @@ pub static DEFS: &[Def] = &[
         group: Group::Material,
         kind: Kind::Text {
             example: "co2, cut=12",
+            shape: "KIND[,cut=MM/S,...]",
             format: "co2, co2-100w, k40, diode-10w or diode-20w, then any of cut=, engrave=, travel= (mm/s), pierce= (s)",
         },
         help: "Your laser cutter (co2 is a 40–60 W tube; co2-100w, k40, diode-10w, diode-20w), and any speed \
@@ -164,6 +165,7 @@ pub static DEFS: &[Def] = &[
         group: Group::Sheets,
         kind: Kind::Text {
             example: "3:600x400x2, 3:300x200",
+            shape: "T:WxH[xN],...",
             format: "thickness:widthxheight[xcount] in mm, separated by commas, or none",
         },
         help: "The sheets you have: thickness, size and count of each (3:600x400x2, 6:300x200x1); \

@@ -139,8 +139,10 @@ pub enum Kind {
     },
     /// Free text in a format of its own (the stock list), empty for none.
     Text {
-        /// What it looks like, for a form's placeholder and the CLI's value name.
+        /// What it looks like, for a form's placeholder.
         example: &'static str,
+        /// Its shape, for the CLI's value name (`T:WxH[xN],...`).
+        shape: &'static str,
         /// The format in words.
         format: &'static str,
     },

@@ -74,6 +74,7 @@ pub struct Assembly {
 /// One part's solid in its own frame.
 #[derive(Debug, Clone)]
 struct PartSolid {
+    id: u32,
     name: String,
     data: MeshData,
     frame: Frame,
@@ -88,6 +89,7 @@ impl Assembly {
         let solids = order
             .into_iter()
             .map(|p| {
+                let id = p.id;
                 let name = format!("part-{}", p.id);
                 let data = if p.segments.is_empty() {
                     slab_mesh(&p.polygon, p.thickness)
@@ -97,6 +99,7 @@ impl Assembly {
                 .map_err(|e| e.about(&name))?;
                 let colour = Colour::nth(p.id.saturating_sub(1) as usize);
                 Ok(PartSolid {
+                    id,
                     name,
                     data,
                     frame: p.frame,
@@ -120,10 +123,16 @@ impl Assembly {
     /// Every triangle in the model's coordinates (mm, Z up), counter-clockwise seen from
     /// outside, with its part's colour (sRGB): parts in ascending id order.
     pub fn triangles(&self) -> impl Iterator<Item = ([DVec3; 3], [u8; 3])> + '_ {
+        self.part_triangles().map(|(_, t, colour)| (t, colour))
+    }
+
+    /// [`Assembly::triangles`] with each one's part id, for drawings of some parts only (the
+    /// assembly instructions' steps).
+    pub fn part_triangles(&self) -> impl Iterator<Item = (u32, [DVec3; 3], [u8; 3])> + '_ {
         self.solids.iter().flat_map(|s| {
             s.data.indices.chunks_exact(3).map(move |t| {
                 let corner = |i: u32| s.frame.to_model(s.data.positions[i as usize]);
-                ([corner(t[0]), corner(t[1]), corner(t[2])], s.colour.srgb())
+                (s.id, [corner(t[0]), corner(t[1]), corner(t[2])], s.colour.srgb())
             })
         })
     }

@@ -141,7 +141,7 @@ pub fn caption_strokes<'a>(
 }
 
 /// Strokes one path, sheet mm (the surface is scaled to mm).
-fn draw(surface: &mut krilla::surface::Surface, points: &[DVec2], closed: bool, stroke: Stroke) {
+pub(crate) fn draw(surface: &mut krilla::surface::Surface, points: &[DVec2], closed: bool, stroke: Stroke) {
     let mut builder = PathBuilder::new();
     for (k, p) in points.iter().enumerate() {
         if k == 0 {

@@ -15,6 +15,8 @@ pub struct PdfPage {
     pub size: DVec2,
     /// The stroked paths in drawing order.
     pub paths: Vec<PdfPath>,
+    /// Images drawn (`Do`: the assembly instructions' step pictures).
+    pub images: usize,
 }
 
 /// One stroked path read back.
@@ -34,9 +36,10 @@ fn bad(what: impl std::fmt::Display) -> PlanError {
     PlanError::write("pdf (reading)", what.to_string())
 }
 
-/// The pages of a PDF written by [`super::plan_pdf`], in page order. Reads only what that
-/// writer writes: uncompressed objects, a flat page tree, one Flate content stream per page,
-/// and paths made of `m`, `l`, `h` and `S` under `q`/`cm`/`Q`, coloured with `RG`.
+/// The pages of a PDF written by [`super::plan_pdf`] or the assembly instructions, in page
+/// order. Reads only what those writers write: uncompressed objects, a flat page tree, one
+/// Flate content stream per page, paths made of `m`, `l`, `h` and `S` under `q`/`cm`/`Q`,
+/// coloured with `RG`, and images drawn with `Do` (counted).
 pub fn read_pages(bytes: &[u8]) -> Result<Vec<PdfPage>, PlanError> {
     let objects = objects(bytes);
     let dict = |n: u32| {
@@ -72,10 +75,8 @@ pub fn read_pages(bytes: &[u8]) -> Result<Vec<PdfPage>, PlanError> {
                 .read_to_string(&mut text)
                 .map_err(bad)?;
             let size = DVec2::new(x1 - x0, y1 - y0) / PT_PER_MM;
-            Ok(PdfPage {
-                size,
-                paths: content_paths(&text, size.y)?,
-            })
+            let (paths, images) = content_paths(&text, size.y)?;
+            Ok(PdfPage { size, paths, images })
         })
         .collect()
 }
@@ -136,8 +137,10 @@ fn refs(text: &str) -> Vec<u32> {
         .collect()
 }
 
-/// The stroked paths of one page's content, sheet mm with y down on a sheet `height` mm tall.
-fn content_paths(content: &str, height: f64) -> Result<Vec<PdfPath>, PlanError> {
+/// The stroked paths of one page's content, sheet mm with y down on a sheet `height` mm tall,
+/// and the count of images it draws.
+fn content_paths(content: &str, height: f64) -> Result<(Vec<PdfPath>, usize), PlanError> {
+    let mut images = 0;
     let mut stack = vec![DAffine2::IDENTITY];
     let mut operands: Vec<f64> = Vec::new();
     let mut color = [0u8; 3];
@@ -146,9 +149,15 @@ fn content_paths(content: &str, height: f64) -> Result<Vec<PdfPath>, PlanError> 
     let mut closed = false;
     let mut out = Vec::new();
     let to_mm = |p: DVec2| DVec2::new(p.x / PT_PER_MM, height - p.y / PT_PER_MM);
-    for token in content.split_whitespace() {
+    // A name may follow an operator with no space between ("cm/x0 Do").
+    let spaced = content.replace('/', " /");
+    for token in spaced.split_whitespace() {
         if let Ok(v) = token.parse::<f64>() {
             operands.push(v);
+            continue;
+        }
+        if token.starts_with('/') {
+            // A resource's name (an image's, for `Do`).
             continue;
         }
         let ctm = *stack.last().ok_or_else(|| bad("Q without q"))?;
@@ -164,6 +173,7 @@ fn content_paths(content: &str, height: f64) -> Result<Vec<PdfPath>, PlanError> 
             ("RG", &[r, g, b]) => color = [r, g, b].map(|v| (v * 255.0).round() as u8),
             ("w", &[w]) => width = w * ctm.matrix2.determinant().abs().sqrt() / PT_PER_MM,
             ("J" | "j", _) => {}
+            ("Do", _) => images += 1,
             ("m" | "l", &[x, y]) => current.push(to_mm(ctm.transform_point2(DVec2::new(x, y)))),
             ("h", _) => closed = true,
             ("S", _) => out.push(PdfPath {
@@ -176,5 +186,5 @@ fn content_paths(content: &str, height: f64) -> Result<Vec<PdfPath>, PlanError> 
         }
         operands.clear();
     }
-    Ok(out)
+    Ok((out, images))
 }

@@ -1,0 +1,119 @@
+//! The assembly instructions (issue 35, item 3): `assembly.html`, `assembly.pdf` and a picture
+//! per step in every ZIP, following plan.json's `assembly`; pictures that show the parts
+//! placed so far in grey, the new part in colour and an arrow; a PDF page per two steps after
+//! the parts list.
+
+use platener::convert::{Status, no_progress};
+use platener::export::Bundle;
+use platener::export::instructions::{MAX_STEPS, PICTURE, pdf::STEPS_PER_PAGE};
+use platener::export::thumbnail::{ARROW, BACKGROUND};
+use platener::method::MethodKind;
+use platener::{Cancel, Request, Settings, Source, convert_all};
+use platener_fixtures::samples;
+
+fn bundle(name: &str, triangles: Vec<platener::read::Triangle>, method: MethodKind) -> std::sync::Arc<Bundle> {
+    let request = Request {
+        methods: vec![method],
+        ..Request::new(Source::triangles(name, triangles), Settings::default())
+    };
+    let all = convert_all(request, &Cancel::default(), no_progress());
+    let result = all
+        .methods
+        .iter()
+        .find(|m| m.method == method && m.status == Status::Converted)
+        .unwrap_or_else(|| panic!("{name} converts with {method:?}"));
+    result.bundle().expect("a plan").clone()
+}
+
+/// The RGB pixels of a PNG.
+fn pixels(png: &[u8]) -> Vec<[u8; 3]> {
+    let pixmap = resvg::tiny_skia::Pixmap::decode_png(png).expect("a PNG");
+    assert_eq!((pixmap.width(), pixmap.height()), PICTURE);
+    pixmap.data().chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect()
+}
+
+#[test]
+fn a_boxs_instructions_show_each_step_with_its_picture() {
+    let b = bundle("box", samples::closed_box(100.0, 80.0, 60.0, 3.0), MethodKind::Plate);
+    let steps = &b.plan.assembly;
+    assert_eq!(steps.len(), 6, "one step per plate");
+    let html = std::str::from_utf8(&b.files["assembly.html"]).expect("utf-8");
+    for (k, step) in steps.iter().enumerate() {
+        let file = format!("assembly/step-{:02}.png", k + 1);
+        assert!(html.contains(&format!("src=\"{file}\"")), "the page shows {file}");
+        assert!(html.contains(&format!("Step {} of 6", k + 1)));
+        let px = pixels(&b.files[&file]);
+        let drawn = px.iter().filter(|p| **p != BACKGROUND).count();
+        assert!(
+            drawn > px.len() / 20,
+            "step {}: {drawn} of {} pixels drawn",
+            k + 1,
+            px.len()
+        );
+        // Grey parts placed before (none at the base), and an arrow for every part that moves
+        // in onto others.
+        let grey = px
+            .iter()
+            .filter(|p| p[0] == p[1] && p[1] == p[2] && p[0] < 250 && p[0] > 60)
+            .count();
+        let arrow = px.iter().filter(|p| **p == ARROW).count();
+        if k == 0 {
+            assert!(html.contains(&format!("Lay part {} down as the base.", step.parts[0])));
+            assert_eq!(arrow, 0, "the base has no arrow");
+        } else {
+            assert!(grey > 100, "step {}: the placed parts in grey ({grey} pixels)", k + 1);
+            assert!(arrow > 50, "step {}: an arrow ({arrow} pixels)", k + 1);
+        }
+    }
+    // The lid goes last and says which engraved edge numbers it closes.
+    let last = steps.last().expect("steps");
+    for &j in &last.joints {
+        let label = b.plan.joints[j].label;
+        assert!(html.contains(&format!("edge {label} to part")), "edge {label} named");
+    }
+    // Parts list: every part with its number.
+    for part in &b.plan.parts {
+        assert!(html.contains(&format!("aria-label=\"part {}\"", part.id)));
+    }
+    let pdf = &b.files["assembly.pdf"];
+    assert!(pdf.starts_with(b"%PDF-"));
+    let pages = platener::export::pdf::read::read_pages(pdf).expect("the PDF reads back");
+    assert_eq!(
+        pages.len(),
+        1 + 6usize.div_ceil(STEPS_PER_PAGE),
+        "parts list, then 2 steps a page"
+    );
+    assert_eq!(pages[0].images, 0);
+    assert!(pages[0].paths.len() >= 6, "every part drawn in the list");
+    for page in &pages[1..] {
+        assert_eq!(page.images, STEPS_PER_PAGE, "a picture a step");
+        assert!(
+            (page.size.x - 210.0).abs() < 0.01 && (page.size.y - 297.0).abs() < 0.01,
+            "A4"
+        );
+    }
+}
+
+#[test]
+fn a_long_stack_is_told_in_runs_of_layers() {
+    let b = bundle(
+        "sphere",
+        samples::sphere(glam::DVec3::ZERO, 40.0, 48, 24),
+        MethodKind::Stacked,
+    );
+    let parts = b.plan.parts.len();
+    assert!(parts > MAX_STEPS, "{parts} parts");
+    let html = std::str::from_utf8(&b.files["assembly.html"]).expect("utf-8");
+    let steps = html.matches("<section class=\"step\"").count();
+    assert!(steps <= MAX_STEPS && steps > 1, "{steps} steps for {parts} parts");
+    // Every part is added in exactly one step.
+    let mut added: Vec<u32> = b.plan.assembly.iter().flat_map(|s| s.parts.clone()).collect();
+    added.sort_unstable();
+    let mut ids: Vec<u32> = b.plan.parts.iter().map(|p| p.id).collect();
+    ids.sort_unstable();
+    assert_eq!(added, ids);
+    assert_eq!(
+        b.files.keys().filter(|k| k.starts_with("assembly/step-")).count(),
+        steps
+    );
+}
