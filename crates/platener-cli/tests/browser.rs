@@ -131,6 +131,18 @@ fn canvas_pixels(page: &Page, shot: &str) -> Image {
     Image::from_png(&page.screenshot(shot, Some(rect)))
 }
 
+/// A part of the sheet other than `not`, in view as the page is: scrolling to one would move
+/// the 3D view under the pointer when its pixels are read.
+fn sheet_part_in_view(page: &Page, not: u64) -> u64 {
+    page.eval(&format!(
+        "[...document.querySelectorAll('[data-testid=sheet-part]')].map(g => [Number(g.dataset.part), g.getBoundingClientRect()]) \
+         .filter(([p, r]) => p !== {not} && r.top >= 0 && r.bottom <= innerHeight && r.left >= 0 && r.right <= innerWidth) \
+         .map(([p]) => p)[0] ?? null"
+    ))
+    .as_u64()
+    .expect("a part of the sheet in view")
+}
+
 /// Moves the mouse over the canvas on a grid until a part is hovered; its number.
 fn hover_a_part(page: &Page, canvas: Rect) -> u64 {
     for i in 1..8 {
@@ -247,16 +259,7 @@ fn upload_button_progress_six_views_hover_and_settings_recut() {
     page.screenshot("06-hover-page", None);
 
     // And the other way: hovering a part on the sheet lights it up in 3D.
-    // A part of the sheet in view as it is: scrolling to one would move the 3D view under the
-    // pointer when its pixels are read.
-    let other = page
-        .eval(&format!(
-            "[...document.querySelectorAll('[data-testid=sheet-part]')].map(g => [Number(g.dataset.part), g.getBoundingClientRect()]) \
-             .filter(([p, r]) => p !== {part} && r.top >= 0 && r.bottom <= innerHeight && r.left >= 0 && r.right <= innerWidth) \
-             .map(([p]) => p)[0] ?? null"
-        ))
-        .as_u64()
-        .expect("a part of the sheet in view");
+    let other = sheet_part_in_view(&page, part);
     let (x, y) = page
         .rect(&format!("[data-testid=sheet-part][data-part=\"{other}\"]"))
         .center();

@@ -29,10 +29,10 @@ fn workspace() -> PathBuf {
 /// Our estimate over PrusaSlicer's for every model of the fixture found on this machine,
 /// after checking that the file is the one the slicer measured (its size).
 fn compare(corpus: Option<&Path>) -> Vec<Compared> {
-    let fixture: serde_json::Value = serde_json::from_str(FIXTURE).unwrap();
+    let fixture: serde_json::Value = serde_json::from_str(FIXTURE).expect("the fixture is JSON");
     let mut out = Vec::new();
-    for m in fixture["models"].as_array().unwrap() {
-        let file = m["file"].as_str().unwrap();
+    for m in fixture["models"].as_array().expect("models") {
+        let file = m["file"].as_str().expect("a file name");
         let Some(seconds) = m["seconds"].as_f64().filter(|s| *s >= MIN_SECONDS) else {
             continue;
         };
@@ -49,9 +49,9 @@ fn compare(corpus: Option<&Path>) -> Vec<Compared> {
         let size = hi - lo;
         let theirs: Vec<f64> = m["size_mm"]
             .as_array()
-            .unwrap()
+            .expect("a size")
             .iter()
-            .map(|v| v.as_f64().unwrap())
+            .map(|v| v.as_f64().expect("a number"))
             .collect();
         for (axis, (ours, theirs)) in size.to_array().iter().zip(&theirs).enumerate() {
             assert!(

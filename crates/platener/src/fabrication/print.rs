@@ -173,7 +173,7 @@ fn sections(triangles: &[Triangle], z0: f64, h: f64, count: usize) -> Layers {
     for t in triangles {
         let n = (t[1] - t[0]).cross(t[2] - t[0]);
         let length = n.length();
-        if !(length > 0.0) || !length.is_finite() {
+        if length <= 0.0 || !length.is_finite() {
             continue;
         }
         let projected = 0.5 * n.z;

@@ -261,11 +261,11 @@ mod tests {
 
     #[test]
     fn a_setting_reads_back_as_written() {
-        let laser = parse_laser("diode-10w, cut=3.5 travel=120").unwrap();
+        let laser = parse_laser("diode-10w, cut=3.5 travel=120").expect("a laser");
         assert_eq!(laser.kind, LaserKind::Diode10);
         assert_eq!(laser.cut, Some(3.5));
         assert_eq!(laser.travel, Some(120.0));
-        assert_eq!(parse_laser(&laser.text()).unwrap(), laser);
+        assert_eq!(parse_laser(&laser.text()).expect("reads back"), laser);
         let speeds = laser.speeds(Material::Wood, 3.0);
         assert_eq!((speeds.cut, speeds.travel, speeds.pierce), (3.5, 120.0, 0.2));
         // The diode's engraving is slower than the tube's by its factor.
@@ -274,13 +274,13 @@ mod tests {
 
     #[test]
     fn a_bad_setting_names_what_is_wrong() {
-        assert!(parse_laser("co3").unwrap_err().contains("co2-100w"));
-        assert!(parse_laser("cut=-1").unwrap_err().contains("positive"));
+        assert!(parse_laser("co3").expect_err("no such laser").contains("co2-100w"));
+        assert!(parse_laser("cut=-1").expect_err("negative").contains("positive"));
         assert!(
             parse_laser("speed=3")
-                .unwrap_err()
+                .expect_err("no such key")
                 .contains("cut, engrave, travel, pierce")
         );
-        assert_eq!(parse_laser("").unwrap(), Laser::default());
+        assert_eq!(parse_laser("").expect("empty is the default"), Laser::default());
     }
 }

@@ -250,10 +250,7 @@ pub fn files(plan: &Plan, steps: &[Instruction], title: &str) -> Result<Vec<(Str
         let png = thumbnail::encode(&s.picture, PICTURE.0, PICTURE.1, &name)?;
         out.push((name, png));
     }
-    out.push((
-        "assembly.html".to_string(),
-        html::page(plan, &steps, title).into_bytes(),
-    ));
-    out.push(("assembly.pdf".to_string(), pdf::document(plan, &steps, title)?));
+    out.push(("assembly.html".to_string(), html::page(plan, steps, title).into_bytes()));
+    out.push(("assembly.pdf".to_string(), pdf::document(plan, steps, title)?));
     Ok(out)
 }

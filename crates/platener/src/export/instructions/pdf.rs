@@ -6,12 +6,11 @@ use glam::DVec2;
 use krilla::geom::{Size, Transform};
 use krilla::image::Image;
 use krilla::page::PageSettings;
-use krilla::{Document, SerializeSettings};
 
 use super::{Instruction, PICTURE};
 use crate::draw::font;
 use crate::draw::svg::Stroke;
-use crate::export::pdf::{PT_PER_MM, draw};
+use crate::export::pdf::{PT_PER_MM, draw, new_document};
 use crate::plan::{Plan, PlanError, PlanPart};
 
 /// A4, mm.
@@ -34,12 +33,7 @@ const INK: Stroke = Stroke {
 
 /// The document: parts list pages, then the steps.
 pub fn document(plan: &Plan, steps: &[Instruction], title: &str) -> Result<Vec<u8>, PlanError> {
-    let settings = SerializeSettings {
-        xmp_metadata: false,
-        enable_tagging: false,
-        ..SerializeSettings::default()
-    };
-    let mut document = Document::new_with(settings);
+    let mut document = new_document();
     let page_size = PAGE * PT_PER_MM;
     let a4 = || PageSettings::from_wh(page_size.x as f32, page_size.y as f32).expect("A4 has an area");
     let per_page = cells_per_page();

@@ -52,16 +52,19 @@ pub struct PdfSheet<'a> {
     pub stock: &'a str,
 }
 
-/// The PDF of `sheets`, one page each, stroked with `palette`; `title` names the document.
-pub fn plan_pdf(title: &str, sheets: &[PdfSheet], palette: &Palette) -> Result<Vec<u8>, PlanError> {
-    let settings = SerializeSettings {
-        // No XMP packet and no tagging: a drawing, not a text document; the same sheets give
-        // the same bytes.
+/// A document as every PDF of ours is written: no XMP packet and no tagging (drawings, not
+/// text documents), so the same content gives the same bytes.
+pub(crate) fn new_document() -> Document {
+    Document::new_with(SerializeSettings {
         xmp_metadata: false,
         enable_tagging: false,
         ..SerializeSettings::default()
-    };
-    let mut document = Document::new_with(settings);
+    })
+}
+
+/// The PDF of `sheets`, one page each, stroked with `palette`; `title` names the document.
+pub fn plan_pdf(title: &str, sheets: &[PdfSheet], palette: &Palette) -> Result<Vec<u8>, PlanError> {
+    let mut document = new_document();
     let mut outline = Outline::new();
     for (index, sheet) in sheets.iter().enumerate() {
         let size = DVec2::new(sheet.width, sheet.height) * PT_PER_MM;
