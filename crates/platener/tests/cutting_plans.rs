@@ -335,6 +335,7 @@ fn plan_json_has_every_field_of_the_spec() {
     assert_eq!(
         keys(&v),
         [
+            "assembly",
             "format",
             "generator",
             "joints",

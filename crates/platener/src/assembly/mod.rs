@@ -1,17 +1,21 @@
 //! The assembly a plan describes, rebuilt for measuring: each part as a solid (outline extruded
 //! by its thickness, placed by its transform, read from plan.json alone), a point-in-model
-//! test, and the one [`analyse`] of the assembly (groups, joints that meet, interference,
-//! surface covered) that `convert`, the score and `verify` all read.
+//! test, the one [`analyse`] of the assembly (groups, joints that meet, interference,
+//! surface covered) that `convert`, the score and `verify` all read, and the [`order`] to
+//! assemble the parts in (plan.json's `assembly`).
 
 mod analysis;
 mod groups;
 mod inside;
+mod order;
 pub(crate) mod sample;
 mod solid;
+mod sweep;
 
 pub use analysis::{Analysis, COVER_SLACK, Interference, analyse, cover_distance};
 pub(crate) use groups::UnionFind;
 pub(crate) use inside::Inside;
+pub use order::order;
 pub(crate) use solid::Solid;
 
 use glam::DVec3;

@@ -128,7 +128,7 @@ pub fn build_plan(
         })
         .collect();
     let src = &input.source;
-    Plan {
+    let mut plan = Plan {
         format: FORMAT.into(),
         version: VERSION,
         generator: generator(),
@@ -146,7 +146,11 @@ pub fn build_plan(
         joints,
         sheets,
         glued: input.glued.clone(),
-    }
+        assembly: Vec::new(),
+    };
+    // The order is made from the finished plan alone, as a reader of plan.json would.
+    plan.assembly = crate::assembly::order(&plan);
+    plan
 }
 
 /// A bent part's segment as in plan.json: rings as the outline's (outer counter-clockwise,

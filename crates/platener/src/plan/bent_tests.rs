@@ -240,6 +240,7 @@ fn plan_of(mut part: Part, extra: &[PlanJoint]) -> Plan {
             legend: None,
         }],
         glued: Vec::new(),
+        assembly: Vec::new(),
     }
 }
 

@@ -55,6 +55,36 @@ pub struct Plan {
     /// groups of the assembly. Omitted when empty (docs/decisions.md, "Stacked layers").
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub glued: Vec<Glue>,
+    /// The order to assemble the parts in, one step per part (an extension of the spec,
+    /// docs/cutting-plans.md; the `assembly` module makes it from the rest of the plan).
+    /// Omitted when empty, so plans older than it still parse.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub assembly: Vec<AssemblyStep>,
+}
+
+/// One entry of `assembly`: a part added to those already placed, and how it goes in.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AssemblyStep {
+    /// The parts added in this step (one for now).
+    pub parts: Vec<u32>,
+    /// The unit direction the part moves in to reach its place, in model coordinates, each
+    /// component rounded to 1e-6 (`[0, 0, -1]`: lowered from above).
+    pub direction: [f64; 3],
+    /// Indices into `joints` of the joints this step closes: those between the new part and
+    /// parts already placed.
+    pub joints: Vec<usize>,
+    /// The placed parts the new part is glued to (pairs of `glued`); omitted when none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub glued: Vec<u32>,
+    /// Whether no tested direction was free: the part is interlocked with those placed and
+    /// goes in along the least blocked direction (it must be sprung or forced in). Omitted
+    /// when false.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub forced: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 /// One entry of `glued`: two parts touching face to face over `area` mm², to be glued.
