@@ -561,7 +561,8 @@ fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
 
 /// The exploded slider moves every part of the final view away from the others (the
 /// viewer's part centres, and the picture changes); the assembly player then shows k parts,
-/// in an order where each part after the first is joined (plan.json's joints) to one before.
+/// in plan.json's `assembly` order, where each part after the first is joined (plan.json's
+/// joints) to one before.
 fn check_explode_and_player(rig: &Rig, page: &Page, id: &str) {
     let assembled = show_view(page, "final", "13-final-assembled");
     let home = part_centres(page);
@@ -625,6 +626,20 @@ fn check_player(page: &Page, plan: &Value, assembled: &Image) {
         .collect();
     assert!(!joined.is_empty(), "plan.json has joints");
     let total = plan["parts"].as_array().expect("parts").len();
+    // plan.json's assembly order, which the library plans from the parts' geometry.
+    let order: Vec<u64> = plan["assembly"]
+        .as_array()
+        .expect("plan.json's assembly")
+        .iter()
+        .flat_map(|s| {
+            s["parts"]
+                .as_array()
+                .expect("a step's parts")
+                .iter()
+                .filter_map(Value::as_u64)
+        })
+        .collect();
+    assert_eq!(order.len(), total, "every part in one step: {order:?}");
     let mut shown: Vec<u64> = Vec::new();
     for k in 1..=total {
         page.click(&tid("player-step"));
@@ -632,6 +647,7 @@ fn check_player(page: &Page, plan: &Value, assembled: &Image) {
         let now: Vec<u64> = serde_json::from_value(page.state()["shownParts"].clone()).expect("numbers");
         assert_eq!(now.len(), k, "step {k} shows {now:?}");
         assert_eq!(now[..k - 1], shown[..], "step {k} keeps the parts shown before");
+        assert_eq!(now[..], order[..k], "step {k} follows plan.json's assembly");
         let new = now[k - 1];
         assert!(
             k == 1 || shown.iter().any(|&s| joined.contains(&(s, new))),

@@ -121,12 +121,14 @@ export function createConversionArea({ state, onGalleryChange }) {
     $('simplified').hidden = !simplified;
   }
 
-  /** Exploded view and assembly player for the final view, from plan.json's joints (and its
-   * method: interlocked slices go B first, then A). */
+  /** Exploded view and assembly player for the final view, in plan.json's `assembly` order
+   * (older plans: from their joints and method, see assembly.js). */
   function setupFinal() {
     $('explode').value = '0';
     const parts = plan ? plan.parts.map((p) => p.id) : viewer.parts;
-    state.assembly = assemblyOrder(parts, plan ? plan.joints : [], plan ? plan.method : null);
+    state.assembly = plan
+      ? assemblyOrder(parts, plan.joints, plan.method, plan.assembly)
+      : assemblyOrder(parts, [], null);
     viewer.setOrder(state.assembly);
     const player = $('player');
     player.max = String(state.assembly.length);
