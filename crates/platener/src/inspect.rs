@@ -204,7 +204,7 @@ pub fn inspect(source: Source, settings: Settings, cancel: &Cancel, with_plates:
                 at: s.frame.origin,
             })
             .collect(),
-        print: crate::fabrication::print::estimate(&model.triangles),
+        print: model.print,
         plates: state.plates.as_deref().map(plates_report),
         steps,
     })

@@ -181,7 +181,7 @@ impl From<&Model> for crate::plan::SourceInfo {
             bbox_max: model.bounds.max,
             units: model.units,
             scale: model.scale,
-            print: Some(crate::fabrication::print::estimate(&model.triangles)),
+            print: Some(model.print),
         }
     }
 }

@@ -75,6 +75,9 @@ pub struct Model {
     pub units: Units,
     /// The extra scale applied.
     pub scale: f64,
+    /// Printing it on an FDM printer instead (`fabrication::print`), estimated once here for
+    /// every method's report.
+    pub print: crate::plan::PrintEstimate,
 }
 
 /// Step `read`: the model's triangles in mm, with its bounds and what the reader noticed.
@@ -125,6 +128,7 @@ fn model(
     validate_finite(&name, &triangles)?;
     let bounds = Bounds::of(&triangles).ok_or_else(|| Error::model(&name, ModelProblem::NoTriangles))?;
     warn_units(bounds.largest_extent(), settings.thinnest(), cx);
+    let print = crate::fabrication::print::estimate(&triangles);
     Ok(Model {
         name,
         format,
@@ -135,6 +139,7 @@ fn model(
         unit_factor: settings.unit_factor(),
         units: settings.units,
         scale: settings.scale,
+        print,
     })
 }
 

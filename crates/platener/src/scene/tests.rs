@@ -107,6 +107,7 @@ fn grid_model(n: usize) -> read::Model {
         name: "grid".into(),
         format: None,
         bounds: Bounds::of(&triangles).expect("triangles"),
+        print: crate::fabrication::print::estimate(&triangles),
         triangles: Arc::new(triangles),
         solids: 1,
         normals_against_winding: 0,
