@@ -81,6 +81,19 @@ fn check_link(server: &Server, link: &str) {
         assert!(r.text().contains("<svg"), "{link}");
         assert_no_markup(link, &r.text());
         assert!(r.header("content-security-policy").is_some(), "{link}");
+    } else if path.ends_with(".html") {
+        // The assembly instructions (issue 35): a page with no script, sandboxed.
+        assert!(ct.starts_with("text/html"), "{link}: {ct}");
+        let text = r.text();
+        assert!(
+            text.starts_with("<!DOCTYPE html>") && !text.contains("<script"),
+            "{link}"
+        );
+        let csp = r.header("content-security-policy").unwrap_or_default();
+        assert!(
+            csp.contains("sandbox") && csp.contains("default-src 'none'"),
+            "{link}: {csp}"
+        );
     } else {
         assert!(ct.starts_with("application/json"), "{link}: {ct}");
         assert_no_markup(link, &r.text());
