@@ -28,9 +28,14 @@ fn zip_entries(zip: &[u8]) -> Vec<(String, Vec<u8>)> {
         .collect()
 }
 
-/// Text a hostile name would leave behind if it were not reduced.
+/// Text a hostile name would leave behind if it were not reduced. The assembly instructions'
+/// page shows its own pictures: there an `<img` is ours, and the rest must still be absent.
 fn assert_no_markup(what: &str, text: &str) {
+    let page = what.ends_with(".html");
     for bad in ["<img", "onerror=", "&\"'", "alert(1)"] {
+        if page && bad == "<img" {
+            continue;
+        }
         assert!(!text.contains(bad), "{what} holds {bad:?}");
     }
 }
