@@ -65,6 +65,7 @@ fn render(v: &Verification) -> String {
             .map(|m| format!("; the model has {m} solid{}", if m == 1 { "" } else { "s" }))
             .unwrap_or_default()
     );
+    let _ = writeln!(s, "edges      {}", edges(&v.mismatched_edges));
     if let (Some(c), Some(i)) = (v.surface_covered, v.volume_inside) {
         let _ = writeln!(
             s,
@@ -85,4 +86,47 @@ fn render(v: &Verification) -> String {
         }
     }
     s
+}
+
+/// Pairs of joints named on the `edges` line, at most.
+const NAMED_PAIRS: usize = 6;
+
+/// The `edges` line: how many pairs of non-partner edges fit each other (a wrong assembly
+/// that goes together), naming the first ones; reported, never a failure.
+fn edges(m: &platener::verify::MismatchReport) -> String {
+    let twins = match m.interchangeable_pairs {
+        0 => String::new(),
+        n => format!("; {n} between interchangeable parts (harmless)"),
+    };
+    if m.accepting_pairs == 0 {
+        return format!(
+            "every finger-joint edge fits only its partner ({} joint{} read){twins}",
+            m.joints_read,
+            if m.joints_read == 1 { "" } else { "s" }
+        );
+    }
+    let named: Vec<String> = m
+        .pairs
+        .iter()
+        .take(NAMED_PAIRS)
+        .map(|p| {
+            let turned = if p.reversed { ", turned round" } else { "" };
+            format!(
+                "joints {} and {} (parts {} and {}{turned})",
+                p.joints[0], p.joints[1], p.parts[0], p.parts[1]
+            )
+        })
+        .collect();
+    let more = m.accepting_pairs.saturating_sub(NAMED_PAIRS);
+    format!(
+        "{} pair{} of edges of different joints fit each other: {}{}{twins}",
+        m.accepting_pairs,
+        if m.accepting_pairs == 1 { "" } else { "s" },
+        named.join(", "),
+        if more > 0 {
+            format!(" and {more} more")
+        } else {
+            String::new()
+        }
+    )
 }

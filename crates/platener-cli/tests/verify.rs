@@ -205,3 +205,43 @@ fn verify_fails_a_loose_part_and_overlapping_parts_naming_them() {
         "{text}"
     );
 }
+
+/// The `edges` line: the box's walls fit only their partners or their twins' places; with
+/// holes in two neighbouring walls they are no twins any more, and the wrong fits are counted
+/// and named, without failing the plan.
+#[test]
+fn verify_counts_edges_that_fit_where_they_do_not_belong_without_failing() {
+    let out = tempfile::tempdir().expect("tempdir");
+    let zip = convert_box(out.path(), &[]);
+    let v = verified_against_the_box(&zip);
+    assert_eq!(v["mismatched_edges"]["accepting_pairs"], 0, "{v}");
+    assert_eq!(v["mismatched_edges"]["joints_read"], 12, "{v}");
+    let holed = altered(&zip, "holed.zip", |plan| {
+        for part in plan.parts.iter_mut().filter(|p| p.id == 3 || p.id == 5) {
+            let (lo, hi) = part.outline.iter().fold(
+                (
+                    platener::glam::DVec2::splat(f64::INFINITY),
+                    platener::glam::DVec2::splat(f64::NEG_INFINITY),
+                ),
+                |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+            );
+            let c = (lo + hi) / 2.0;
+            let d = platener::glam::DVec2::new;
+            // Clockwise, as plan.json's holes are.
+            part.holes.push(vec![
+                c + d(-5.0, -5.0),
+                c + d(-5.0, 5.0),
+                c + d(5.0, 5.0),
+                c + d(5.0, -5.0),
+            ]);
+        }
+    });
+    let o = platener().arg("verify").arg(&holed).output().expect("runs");
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{text}");
+    let edges = text.lines().find(|l| l.starts_with("edges")).expect("an edges line");
+    assert!(
+        edges.contains("of edges of different joints fit each other: joints "),
+        "{edges}"
+    );
+}

@@ -8,8 +8,10 @@ use platener_geom::tolerance::GRID_NOISE_AREA;
 use platener_geom::{GridError, Polygon};
 
 use super::connect::{Region, band};
+use super::distinct::{self, KeyFinger, Look, Variant};
 use super::{Connection, ConnectionKind, JointSettings, JointStyle, Joints, Key};
 use crate::plates::Plate;
+use crate::verify::EdgeJoint;
 
 /// Number of segments for a joint `len` long: the odd count nearest to `len / width`, never
 /// narrower than `min_feature`, and at least three (a tab between two fingers) when there is room.
@@ -117,6 +119,8 @@ struct FingerLayout {
     /// At a corner, plate b owns the first segment (a does otherwise): with two segments, a
     /// lap, the plate that would be cut apart keeps the end it needs.
     b_first: bool,
+    /// A wider finger that tells the joint apart from look-alikes ([`super::distinct`]).
+    key: Option<KeyFinger>,
 }
 
 impl FingerLayout {
@@ -127,6 +131,7 @@ impl FingerLayout {
             short: false,
             keeper: None,
             b_first: false,
+            key: None,
         }
     }
 }
@@ -192,16 +197,23 @@ fn first_plan(plates: &[Plate], r: &Region, settings: &JointSettings, style: Joi
         }
         return FingerLayout::of(segments);
     }
+    let (narrowest, target) = widths(plates, r, settings, style);
+    let segments = match r.kind {
+        ConnectionKind::Cross => 2,
+        _ => segment_count(r.range.1 - r.range.0, target, narrowest),
+    };
+    FingerLayout::of(segments)
+}
+
+/// The narrowest segment a connection (not on a junction) may have, and the finger width
+/// the settings ask for.
+fn widths(plates: &[Plate], r: &Region, settings: &JointSettings, style: JointStyle) -> (f64, f64) {
     let t = plates[r.a].thickness.max(plates[r.b].thickness);
     let narrowest = match style {
         JointStyle::Dovetail => Dovetail::new(plates, r).min_segment(min_feature(t)),
         _ => min_feature(t),
     };
-    let segments = match r.kind {
-        ConnectionKind::Cross => 2,
-        _ => segment_count(r.range.1 - r.range.0, settings.finger_factor * t, narrowest),
-    };
-    FingerLayout::of(segments)
+    (narrowest, settings.finger_factor * t)
 }
 
 /// The plate that owns segment `s` of connection `r` under `plan` (the other gives it up).
@@ -244,11 +256,12 @@ fn cut(plates: &[Plate], r: &Region, plan: FingerLayout, style: JointStyle) -> R
         None => (r.axis, r.range, style),
     };
     let step = (range.1 - range.0) / segments as f64;
+    let bounds = distinct::boundaries(range, segments, plan.key);
     let dovetail = (style == JointStyle::Dovetail && r.kind != ConnectionKind::Cross).then(|| Dovetail::new(plates, r));
     let male = dovetailed(r);
     for s in 0..segments {
         let owner = segment_owner(r, plan, s);
-        let (a0, a1) = (range.0 + step * s as f64, range.0 + step * (s + 1) as f64);
+        let (a0, a1) = (bounds[s], bounds[s + 1]);
         // The first and last segments reach past the range (the region's ends).
         let s0 = if s == 0 { a0 - 1e3 } else { a0 };
         let s1 = if s + 1 == segments { a1 + 1e3 } else { a1 };
@@ -418,6 +431,7 @@ pub(super) fn apply(
     let mut cutting = Cutting::new(plates, regions, settings, style)?;
     cutting.shorten_where_split()?;
     cutting.adapt()?;
+    cutting.tell_apart()?;
     cutting.into_joints()
 }
 
@@ -661,6 +675,137 @@ impl<'a> Cutting<'a> {
             (self.used[k], self.cuts[k], self.outlines[a], self.outlines[b]) = before;
             Ok(None)
         }
+    }
+
+    /// Joints whose edges would fit another joint's, where the parts that would swap are not
+    /// twins, get a key finger or other fingers ([`distinct`]), as `verify`'s check reads the
+    /// plates cut so far. A plate that a new cut would cost more keeps its joints as they
+    /// were (and so do their partners).
+    fn tell_apart(&mut self) -> Result<(), GridError> {
+        for _ in 0..distinct::ROUNDS {
+            if !self.tell_apart_once()? {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// One round of [`Self::tell_apart`]: whether any connection changed.
+    fn tell_apart_once(&mut self) -> Result<bool, GridError> {
+        let slabs = (0..self.plates.len())
+            .map(|i| {
+                Ok(self
+                    .pieces_kept(i)?
+                    .into_iter()
+                    .next()
+                    .map(|o| self.plates[i].slab_of(o)))
+            })
+            .collect::<Result<Vec<_>, GridError>>()?;
+        // Halved joints are no finger joints: the check leaves them out.
+        let read: Vec<usize> = (0..self.regions.len())
+            .filter(|&k| self.regions[k].kind != ConnectionKind::Cross)
+            .collect();
+        let joints: Vec<EdgeJoint> = read.iter().map(|&k| self.edge_joint(k)).collect();
+        let (_, mut found) = crate::verify::acceptances(&slabs, &joints);
+        if found.iter().all(|a| a.interchangeable) {
+            return Ok(false);
+        }
+        for a in &mut found {
+            a.joints = a.joints.map(|j| read[j]);
+        }
+        let looks: Vec<Look> = (0..self.regions.len()).map(|k| self.look(k)).collect();
+        let chosen = distinct::choose(&looks, &found);
+        let before = self.plans.clone();
+        let was = (0..self.plates.len())
+            .map(|i| Ok(loss(&self.pieces_kept(i)?)))
+            .collect::<Result<Vec<_>, GridError>>()?;
+        let mut changed = false;
+        for (k, variant) in chosen.into_iter().enumerate() {
+            if let Some(Variant { segments, key }) = variant {
+                self.recut(
+                    k,
+                    FingerLayout {
+                        segments,
+                        key,
+                        ..before[k]
+                    },
+                )?;
+                changed = true;
+            }
+        }
+        self.keep_plates_whole(&before, &was)?;
+        Ok(changed && self.plans != before)
+    }
+
+    /// Plate `i`'s pieces, kept for later.
+    fn pieces_kept(&mut self, i: usize) -> Result<Vec<Polygon>, GridError> {
+        let pieces = self.pieces(i)?;
+        self.finished[i] = Some(pieces.clone());
+        Ok(pieces)
+    }
+
+    /// Connection `k` as `verify`'s check of edges reads it.
+    fn edge_joint(&self, k: usize) -> EdgeJoint {
+        let r = &self.regions[k];
+        let plain = r.kind == ConnectionKind::Cross || self.plans[k].keeper.is_some() || r.junction.is_some();
+        EdgeJoint {
+            parts: [r.a, r.b],
+            dovetail: self.style == JointStyle::Dovetail && !plain,
+        }
+    }
+
+    /// What telling connection `k` apart needs to know: it may change unless it is no row
+    /// of fingers of its own (a halved joint, a butt joint, a junction's shared row, a lap)
+    /// or adapted to keep a plate whole.
+    fn look(&self, k: usize) -> Look {
+        let (r, plan) = (&self.regions[k], self.plans[k]);
+        let own_row = r.kind != ConnectionKind::Cross && r.junction.is_none() && plan.keeper.is_none();
+        let (narrowest, target) = widths(self.plates, r, self.settings, self.style);
+        Look {
+            len: r.range.1 - r.range.0,
+            segments: plan.segments,
+            key: plan.key,
+            narrowest,
+            target,
+            free: own_row && plan.segments >= 3 && self.adapted_for[k].is_none(),
+            from_high: distinct::from_high(r.axis),
+        }
+    }
+
+    /// Cuts connection `k` by `plan`; its plates are to be finished again.
+    fn recut(&mut self, k: usize, plan: FingerLayout) -> Result<(), GridError> {
+        self.plans[k] = plan;
+        self.cuts[k] = cut(self.plates, &self.used[k], plan, self.style)?;
+        for p in [self.regions[k].a, self.regions[k].b] {
+            self.finished[p] = None;
+        }
+        Ok(())
+    }
+
+    /// Finishes every plate a new cut changed; one that loses more than it did (`was`) gets
+    /// its connections' plans of `before` back, and its partners are finished again.
+    fn keep_plates_whole(&mut self, before: &[FingerLayout], was: &[(usize, i64)]) -> Result<(), GridError> {
+        let mut i = 0;
+        while i < self.plates.len() {
+            if self.finished[i].is_some() {
+                i += 1;
+                continue;
+            }
+            let pieces = self.whole(i)?;
+            if loss(&pieces) <= was[i] {
+                self.finished[i] = Some(pieces);
+                i += 1;
+                continue;
+            }
+            for (k, _) in self.touching[i].clone() {
+                if self.plans[k] != before[k] {
+                    self.recut(k, before[k])?;
+                }
+            }
+            // A partner finished under the new cut is to be finished again: from the start.
+            i = 0;
+        }
+        Ok(())
     }
 
     /// Every plate's final outline (the largest of its pieces), and a warning for each plate

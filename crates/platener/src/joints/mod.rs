@@ -26,6 +26,9 @@ mod bridge;
 mod cap;
 mod claims;
 mod connect;
+mod distinct;
+#[cfg(test)]
+mod distinct_tests;
 mod fingers;
 mod junction;
 #[cfg(test)]

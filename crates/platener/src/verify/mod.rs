@@ -16,9 +16,16 @@
 //! - a part lies outside its sheet or is larger than it,
 //! - a bent part's segments and bends disagree ([`crate::plan::bent`]).
 //!
-//! Each failure names the parts it concerns. [`check`] turns an analysis already made (as
+//! Each failure names the parts it concerns. Reported, never failed: [`mismatched_edges`],
+//! the pairs of finger-joint edges that fit where they do not belong (a maker could build
+//! the plan wrongly; not a flaw of the parts, and a shelf of identical shelves has such pairs
+//! by design, counted apart as interchangeable). [`check`] turns an analysis already made (as
 //! `convert` makes it for every plan) into a verdict without measuring again.
 
+mod edge_pattern;
+#[cfg(test)]
+mod edge_tests;
+mod mismatched_edges;
 mod outline;
 mod sheet;
 #[cfg(test)]
@@ -30,6 +37,9 @@ use crate::assembly::{Analysis, analyse};
 pub use crate::assembly::{COVER_SLACK, Interference, cover_distance};
 use crate::mesh::Mesh;
 use crate::plan::Plan;
+pub use edge_pattern::{LENGTH_TOL, PATTERN_TOL};
+pub(crate) use mismatched_edges::{Acceptance, EdgeJoint, acceptances};
+pub use mismatched_edges::{EdgePair, MismatchReport, mismatched_edges};
 pub use outline::outline_findings;
 
 /// Interference above this share of the parts' volume fails verification.
@@ -95,6 +105,9 @@ pub struct Verification {
     pub volume_inside: Option<f64>,
     /// Labels of joints whose parts do not meet.
     pub joints_not_meeting: Vec<u32>,
+    /// Finger-joint edges that fit where they do not belong ([`mismatched_edges`]):
+    /// reported, not failed.
+    pub mismatched_edges: MismatchReport,
     /// The sampling step used, mm.
     pub step: f64,
     /// Why verification failed, with the parts (empty when it passed).
@@ -200,6 +213,7 @@ pub fn check(plan: &Plan, analysis: &Analysis, min_coverage: f64) -> Verificatio
         surface_covered: analysis.surface_covered,
         volume_inside: analysis.volume_inside,
         joints_not_meeting: analysis.joints_not_meeting.clone(),
+        mismatched_edges: mismatched_edges(plan),
         step: analysis.step,
         problems: failures.iter().map(|f| f.message.clone()).collect(),
         failures,
