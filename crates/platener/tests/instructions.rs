@@ -71,6 +71,25 @@ fn a_boxs_instructions_show_each_step_with_its_picture() {
         let label = b.plan.joints[j].label;
         assert!(html.contains(&format!("edge {label} to part")), "edge {label} named");
     }
+    // The twins (base and lid, the long walls, the short walls) are told once each, where the
+    // first of them goes in; report.json gives the same groups.
+    let report: serde_json::Value = serde_json::from_slice(&b.files["report.json"]).expect("report.json");
+    let groups = &report["mismatched_edges"]["interchangeable_parts"];
+    assert_eq!(report["mismatched_edges"]["accepting_pairs"], 0);
+    assert_eq!(groups.as_array().map(Vec::len), Some(3), "{groups}");
+    for g in groups.as_array().into_iter().flatten() {
+        let ids: Vec<u64> = g.as_array().into_iter().flatten().filter_map(|v| v.as_u64()).collect();
+        let said = format!(
+            "Parts {} and {} are identical: either one fits in either of their places.",
+            ids[0], ids[1]
+        );
+        assert_eq!(html.matches(&said).count(), 1, "{said}");
+        let first = steps
+            .iter()
+            .position(|s| s.parts.iter().any(|p| ids.contains(&u64::from(*p))));
+        let told = report["assembly_steps"][first.expect("a step adds them")]["lines"].to_string();
+        assert!(told.contains(&said), "{told}");
+    }
     // Parts list: every part with its number.
     for part in &b.plan.parts {
         assert!(html.contains(&format!("aria-label=\"part {}\"", part.id)));

@@ -200,9 +200,11 @@ fn plan_files(
     // The parts were validated by now, so a scene that cannot be written is our bug.
     let assembly = crate::scene::Assembly::new(&input.parts).map_err(|e| PlanError::write("assembly.glb", e))?;
     let scene = assembly.scene().map_err(|e| PlanError::write("assembly.glb", e))?;
-    let instructions = instructions::instructions(plan, &assembly);
+    let edges = crate::verify::mismatched_edges(plan);
+    let instructions = instructions::instructions(plan, &assembly, &edges.interchangeable_parts);
     let mut report = build_report(input, nesting, steps, drawn, stems);
     report.assembly_steps = instructions.iter().map(instructions::StepText::of).collect();
+    report.mismatched_edges = edges;
     let report_json = serde_json::to_string_pretty(&report).map_err(|e| PlanError::write("report.json", e))?;
     let mut files = vec![
         ("plan.json".to_string(), plan.to_json()?.into_bytes()),
@@ -323,6 +325,7 @@ fn build_report(
         estimated_cutting_seconds: laser_seconds,
         fabrication,
         assembly_steps: Vec::new(),
+        mismatched_edges: crate::verify::MismatchReport::default(),
         method_report: input.method_report.clone(),
     }
 }

@@ -97,6 +97,10 @@ pub struct Report {
     /// The assembly instructions' steps as the ZIP's assembly.html tells them (an extension,
     /// issue 35): what the page lists beside its 3D player.
     pub assembly_steps: Vec<super::instructions::StepText>,
+    /// Edges that fit where they do not belong (an extension, issue 35; `platener verify`'s
+    /// `edges` line): pairs of non-partner finger-like edges that accept each other, those
+    /// between interchangeable twins apart, and the groups of twins.
+    pub mismatched_edges: crate::verify::MismatchReport,
     /// What the method reports about itself (the plate method: which faces became plates and
     /// why the others did not).
     #[serde(skip_serializing_if = "Option::is_none")]

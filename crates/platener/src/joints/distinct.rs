@@ -181,7 +181,11 @@ impl Look {
 /// one finds no way of its own (too many look-alikes on a short edge), none of them changes,
 /// as new fingers would not make the plan foolproof.
 pub(super) fn choose(looks: &[Look], found: &[Acceptance]) -> Vec<Option<Variant>> {
-    let wrong: Vec<[usize; 2]> = found.iter().filter(|a| !a.interchangeable).map(|a| a.joints).collect();
+    let wrong: Vec<[usize; 2]> = found
+        .iter()
+        .filter(|a| !a.interchangeable())
+        .map(|a| a.joints)
+        .collect();
     let change = to_change(looks, found, &wrong);
     let mut identities: Vec<Identity> = looks.iter().map(|l| identity(l.now())).collect();
     let mut out = vec![None; looks.len()];
@@ -215,7 +219,7 @@ pub(super) fn choose(looks: &[Look], found: &[Acceptance]) -> Vec<Option<Variant
 /// The joints to change: one of each pair in `wrong` (see [`choose`]).
 fn to_change(looks: &[Look], found: &[Acceptance], wrong: &[[usize; 2]]) -> BTreeSet<usize> {
     let mut twins = vec![0usize; looks.len()];
-    for a in found.iter().filter(|a| a.interchangeable) {
+    for a in found.iter().filter(|a| a.interchangeable()) {
         for k in a.joints {
             twins[k] += 1;
         }

@@ -21,7 +21,7 @@ fn fit(joints: [usize; 2], interchangeable: bool) -> Acceptance {
         joints,
         sides: [0, 0],
         reversed: false,
-        interchangeable,
+        twins: interchangeable.then_some([0, 1]),
     }
 }
 

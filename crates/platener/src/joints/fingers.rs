@@ -707,7 +707,7 @@ impl<'a> Cutting<'a> {
             .collect();
         let joints: Vec<EdgeJoint> = read.iter().map(|&k| self.edge_joint(k)).collect();
         let (_, mut found) = crate::verify::acceptances(&slabs, &joints);
-        if found.iter().all(|a| a.interchangeable) {
+        if found.iter().all(|a| a.interchangeable()) {
             return Ok(false);
         }
         for a in &mut found {

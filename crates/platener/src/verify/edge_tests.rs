@@ -95,6 +95,45 @@ fn boxes_fit_only_the_right_way() {
         assert_foolproof(&plan, &v);
         // Their walls are twins: a wall in its twin's place builds the same box.
         assert!(v.mismatched_edges.interchangeable_pairs > 0);
+        assert_twins(&plan, &v.mismatched_edges.interchangeable_parts);
+    }
+    // The closed box: base and lid, the long walls, the short walls.
+    let (plan, v) = verified(samples::closed_box(100.0, 80.0, 60.0, 3.0), Material::Wood);
+    let size = |id: u32| {
+        let p = plan.parts.iter().find(|p| p.id == id).expect("a part");
+        let (lo, hi) = platener_geom::polygon::bounds_of(p.outline.iter().copied());
+        ((hi - lo).max_element().round(), (hi - lo).min_element().round())
+    };
+    let groups = &v.mismatched_edges.interchangeable_parts;
+    let sizes: Vec<Vec<(f64, f64)>> = groups.iter().map(|g| g.iter().map(|&id| size(id)).collect()).collect();
+    assert_eq!(groups.len(), 3, "{groups:?} {sizes:?}");
+    assert!(groups.iter().all(|g| g.len() == 2), "{groups:?}");
+}
+
+/// Each group of twins holds parts of one thickness and the same area (within 1 %), and no
+/// part is in two groups.
+fn assert_twins(plan: &Plan, groups: &[Vec<u32>]) {
+    let mut seen = std::collections::BTreeSet::new();
+    for g in groups {
+        assert!(g.len() >= 2 && g.windows(2).all(|w| w[0] < w[1]), "{groups:?}");
+        let slabs: Vec<_> = g
+            .iter()
+            .map(|id| {
+                plan.parts
+                    .iter()
+                    .find(|p| p.id == *id)
+                    .expect("a part")
+                    .pieces()
+                    .expect("flat")[0]
+                    .clone()
+            })
+            .collect();
+        for s in &slabs {
+            assert!((s.thickness - slabs[0].thickness).abs() < 1e-9);
+            let (a, b) = (s.polygon.area(), slabs[0].polygon.area());
+            assert!((a - b).abs() <= 0.01 * b, "{g:?}: {a} vs {b}");
+        }
+        assert!(g.iter().all(|id| seen.insert(*id)), "{groups:?}");
     }
 }
 
@@ -135,6 +174,12 @@ fn identical_shelves_stay_identical() {
     shelves.sort_by(f64::total_cmp);
     assert_eq!(shelves.len(), 3, "{shelves:?}");
     assert!(shelves[2] - shelves[0] < 0.01, "{shelves:?}");
+    let groups = &v.mismatched_edges.interchangeable_parts;
+    assert_twins(&plan, groups);
+    assert!(
+        groups.iter().any(|g| g.len() >= 3),
+        "the three shelves are one group: {groups:?}"
+    );
 }
 
 /// Holes in two neighbouring walls of a box make them no twins of the walls opposite: the

@@ -33,6 +33,9 @@ pub struct MismatchReport {
     pub interchangeable_pairs: usize,
     /// The accepting pairs (not the interchangeable ones), by joint labels.
     pub pairs: Vec<EdgePair>,
+    /// Parts that take each other's places harmlessly, in groups of twins (ids ascending, the
+    /// groups by their first id): what the instructions tell the maker may be swapped.
+    pub interchangeable_parts: Vec<Vec<u32>>,
 }
 
 /// Two edges of different joints that accept each other.
@@ -64,8 +67,16 @@ pub(crate) struct Acceptance {
     pub sides: [usize; 2],
     /// Whether they fit only with one turned end for end.
     pub reversed: bool,
-    /// Whether the parts that would swap are twins (harmless).
-    pub interchangeable: bool,
+    /// The parts that would swap when they are twins (indices into the slabs given): the pair
+    /// is harmless.
+    pub twins: Option<[usize; 2]>,
+}
+
+impl Acceptance {
+    /// Whether the parts that would swap are twins, so the wrong fit builds the same thing.
+    pub fn interchangeable(&self) -> bool {
+        self.twins.is_some()
+    }
 }
 
 /// The check on a plan: its finger-like joints between flat parts (the first joint of each
@@ -104,9 +115,11 @@ pub fn mismatched_edges(plan: &Plan) -> MismatchReport {
         joints_read: read,
         ..MismatchReport::default()
     };
+    let mut twins = Vec::new();
     for a in found {
-        if a.interchangeable {
+        if let Some(pair) = a.twins {
             report.interchangeable_pairs += 1;
+            twins.push(pair.map(|k| plan.parts[k].id));
             continue;
         }
         report.accepting_pairs += 1;
@@ -118,7 +131,35 @@ pub fn mismatched_edges(plan: &Plan) -> MismatchReport {
         });
     }
     report.pairs.sort_unstable();
+    report.interchangeable_parts = groups(&twins);
     report
+}
+
+/// The groups of ids that `pairs` join (each group ascending, the groups by their first id).
+fn groups(pairs: &[[u32; 2]]) -> Vec<Vec<u32>> {
+    let mut out: Vec<Vec<u32>> = Vec::new();
+    for &[a, b] in pairs {
+        let has = |g: &Vec<u32>, id| g.contains(&id);
+        let (ia, ib) = (out.iter().position(|g| has(g, a)), out.iter().position(|g| has(g, b)));
+        match (ia, ib) {
+            (Some(i), Some(j)) if i != j => {
+                let merged = out.remove(i.max(j));
+                out[i.min(j)].extend(merged);
+            }
+            (Some(_), Some(_)) => {}
+            (Some(i), None) => out[i].push(b),
+            (None, Some(j)) => out[j].push(a),
+            (None, None) => out.push(vec![a, b]),
+        }
+    }
+    for g in &mut out {
+        g.sort_unstable();
+        g.dedup();
+    }
+    // A part that takes its own place turned round is no swap.
+    out.retain(|g| g.len() > 1);
+    out.sort();
+    out
 }
 
 /// One side of a read joint: the joint, the side, and the part's index.
@@ -221,14 +262,18 @@ impl Reading<'_> {
         let forth = self.takes_place(x, y);
         let back = self.takes_place(y, x);
         let reversed = forth.or(back)?;
-        let interchangeable = forth.is_some_and(|r| self.twins(x, self.partner(y), r))
-            || back.is_some_and(|r| self.twins(y, self.partner(x), r));
+        let pair = |a: Side, b: Side| [a.part.min(b.part), a.part.max(b.part)];
+        let twins = match (forth, back) {
+            (Some(r), _) if self.twins(x, self.partner(y), r) => Some(pair(x, self.partner(y))),
+            (_, Some(r)) if self.twins(y, self.partner(x), r) => Some(pair(y, self.partner(x))),
+            _ => None,
+        };
         let (x, y) = if x.joint < y.joint { (x, y) } else { (y, x) };
         Some(Acceptance {
             joints: [x.joint, y.joint],
             sides: [x.side, y.side],
             reversed,
-            interchangeable,
+            twins,
         })
     }
 

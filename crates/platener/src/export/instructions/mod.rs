@@ -74,8 +74,10 @@ impl StepText {
 }
 
 /// The steps of `plan`'s assembly, pictures drawn from `assembly` (its parts in 3D); none
-/// when the plan has no order.
-pub fn instructions(plan: &Plan, assembly: &Assembly) -> Vec<Instruction> {
+/// when the plan has no order. `twins`: groups of identical parts that may take each other's
+/// places (`verify::MismatchReport::interchangeable_parts`), told where the first of them
+/// goes in.
+pub fn instructions(plan: &Plan, assembly: &Assembly, twins: &[Vec<u32>]) -> Vec<Instruction> {
     let triangles: Vec<(u32, [DVec3; 3], [u8; 3])> = assembly.part_triangles().collect();
     let frame: Vec<([DVec3; 3], [u8; 3])> = triangles.iter().map(|(_, t, c)| (*t, *c)).collect();
     let runs = runs(&plan.assembly);
@@ -101,7 +103,7 @@ pub fn instructions(plan: &Plan, assembly: &Assembly) -> Vec<Instruction> {
             .flatten();
         out.push(Instruction {
             number: k + 1,
-            lines: lines(plan, run, &placed),
+            lines: lines(plan, run, &placed, twins),
             picture: thumbnail::rgb_picture(&drawn, &frame, PICTURE, arrow),
             parts: parts.clone(),
         });
@@ -175,7 +177,7 @@ pub fn way(direction: [f64; 3]) -> String {
 }
 
 /// What to do in a step, sentence by sentence.
-fn lines(plan: &Plan, run: &[&AssemblyStep], placed: &[u32]) -> Vec<String> {
+fn lines(plan: &Plan, run: &[&AssemblyStep], placed: &[u32], twins: &[Vec<u32>]) -> Vec<String> {
     let parts: Vec<u32> = run.iter().flat_map(|s| s.parts.iter().copied()).collect();
     let mut out = Vec::new();
     let names = list(&parts);
@@ -220,6 +222,14 @@ fn lines(plan: &Plan, run: &[&AssemblyStep], placed: &[u32]) -> Vec<String> {
                 list(&step.parts)
             ));
         }
+    }
+    let first_time = |g: &&Vec<u32>| g.iter().any(|id| parts.contains(id)) && !g.iter().any(|id| placed.contains(id));
+    for group in twins.iter().filter(first_time) {
+        let which = if group.len() == 2 { "either" } else { "any" };
+        out.push(format!(
+            "Parts {} are identical: {which} one fits in {which} of their places.",
+            list(group)
+        ));
     }
     out
 }
