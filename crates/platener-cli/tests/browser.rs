@@ -460,6 +460,38 @@ fn says_it_in_plain_words(page: &Page) {
     );
 }
 
+/// Part `id` came in along its assembly step's direction (plan.json, model axes): it started
+/// back along that direction, at least a few millimetres away, and now rests at `home`.
+fn check_motion(page: &Page, plan: &Value, id: u64, home: &std::collections::BTreeMap<u64, [f64; 3]>) {
+    let step = plan["assembly"]
+        .as_array()
+        .expect("plan.json's assembly")
+        .iter()
+        .find(|s| s["parts"].as_array().is_some_and(|p| p.contains(&Value::from(id))))
+        .expect("a step adds the part");
+    let way: [f64; 3] = serde_json::from_value(step["direction"].clone()).expect("a direction");
+    let motion = &page.state()["motion"][id.to_string()];
+    if way.iter().all(|c| c.abs() < 0.5) {
+        assert!(motion.is_null(), "part {id} has no way in, yet moved: {motion}");
+        return;
+    }
+    let (from, to): ([f64; 3], [f64; 3]) = (
+        serde_json::from_value(motion["from"].clone()).unwrap_or_else(|_| panic!("part {id} moved: {motion}")),
+        serde_json::from_value(motion["to"].clone()).expect("where it rests"),
+    );
+    let moved = [to[0] - from[0], to[1] - from[1], to[2] - from[2]];
+    let length = distance(from, to);
+    assert!(length > 5.0, "part {id} slides {length} mm");
+    let along = (0..3).map(|i| moved[i] * way[i]).sum::<f64>() / length;
+    assert!(along > 0.999, "part {id} moves {moved:?}, its step says {way:?}");
+    let rest = part_centres(page)[&id];
+    assert!(
+        distance(rest, home[&id]) < 0.01,
+        "part {id} rests at {rest:?}, not {:?}",
+        home[&id]
+    );
+}
+
 /// Choosing the classifier method re-cuts, and its primitives view is enabled and drawn in
 /// the palette's colours.
 fn classifier_shows_its_primitives(rig: &Rig, page: &Page) {
@@ -612,11 +644,13 @@ fn check_explode_and_player(rig: &Rig, page: &Page, id: &str) {
         home.iter().all(|(n, p)| distance(*p, back[n]) < 0.01),
         "the slider at 0 puts the parts back: {home:?} → {back:?}"
     );
-    check_player(page, &plan, &assembled);
+    check_player(page, &plan, &assembled, &home);
 }
 
-/// Steps the assembly player from one part to all of them (see `check_explode_and_player`).
-fn check_player(page: &Page, plan: &Value, assembled: &Image) {
+/// Steps the assembly player from one part to all of them (see `check_explode_and_player`):
+/// each part it adds slides in along its step's direction and comes to rest where it was in
+/// the assembled view (`home`, mm).
+fn check_player(page: &Page, plan: &Value, assembled: &Image, home: &std::collections::BTreeMap<u64, [f64; 3]>) {
     let joined: std::collections::HashSet<(u64, u64)> = plan["joints"]
         .as_array()
         .expect("joints")
@@ -644,8 +678,16 @@ fn check_player(page: &Page, plan: &Value, assembled: &Image) {
     for k in 1..=total {
         page.click(&tid("player-step"));
         settle(page);
+        page.wait_until(
+            "!(window.platener.state.moving || []).length",
+            "the player's part comes to rest",
+        );
         let now: Vec<u64> = serde_json::from_value(page.state()["shownParts"].clone()).expect("numbers");
         assert_eq!(now.len(), k, "step {k} shows {now:?}");
+        if k > 1 {
+            // The first step goes back to the base alone: nothing comes in.
+            check_motion(page, plan, now[k - 1], home);
+        }
         assert_eq!(now[..k - 1], shown[..], "step {k} keeps the parts shown before");
         assert_eq!(now[..], order[..k], "step {k} follows plan.json's assembly");
         let new = now[k - 1];

@@ -130,18 +130,29 @@ export function createConversionArea({ state, onGalleryChange }) {
       ? assemblyOrder(parts, plan.joints, plan.method, plan.assembly)
       : assemblyOrder(parts, [], null);
     viewer.setOrder(state.assembly);
+    viewer.setDirections(partDirections(plan && plan.assembly));
     const player = $('player');
     player.max = String(state.assembly.length);
     player.value = String(state.assembly.length);
     showParts(state.assembly.length);
-    showSteps($('assembly-steps'), steps.list, $('steps-link'), steps.href, (k) => {
+    // A step shows the parts before it, then its own sliding in.
+    showSteps($('assembly-steps'), steps.list, $('steps-link'), steps.href, (k, own) => {
       stopPlaying();
-      showParts(k);
+      showParts(k - own);
+      showParts(k, true);
     });
   }
 
-  function showParts(k) {
-    viewer.showUpTo(k);
+  /** Each part's way into place, from plan.json's assembly steps (model axes). */
+  function partDirections(steps) {
+    const out = {};
+    for (const step of steps || []) for (const id of step.parts || []) out[id] = step.direction;
+    return out;
+  }
+
+  /** Shows the first k parts; `animate`: the parts this adds slide in along their ways. */
+  function showParts(k, animate = false) {
+    viewer.showUpTo(k, { animate });
     $('player').value = String(k);
     const total = state.assembly.length;
     const last = state.assembly[k - 1];
@@ -162,7 +173,7 @@ export function createConversionArea({ state, onGalleryChange }) {
   $('player-step').addEventListener('click', () => {
     stopPlaying();
     const k = Number($('player').value);
-    showParts(k >= state.assembly.length ? 1 : k + 1);
+    showParts(k >= state.assembly.length ? 1 : k + 1, true);
   });
   $('player-play').addEventListener('click', () => {
     if (playTimer) return stopPlaying();
@@ -171,8 +182,8 @@ export function createConversionArea({ state, onGalleryChange }) {
     playTimer = setInterval(() => {
       const k = Number($('player').value);
       if (k >= state.assembly.length) return stopPlaying();
-      showParts(k + 1);
-    }, 700);
+      showParts(k + 1, true);
+    }, 900);
   });
   for (const b of document.querySelectorAll('[data-view]')) {
     b.addEventListener('click', () => {

@@ -16,6 +16,10 @@ const MM = 0.001;
 /** The grid lies this far below the model (a share of its size, at least 0.2 mm), so the
  * bottom plate's underside never fights with it for the same pixels. */
 const GRID_DROP = 0.004;
+/** A part the player adds slides in along its assembly direction over this long, ms… */
+const MOVE_MS = 600;
+/** …from this share of the model's size away. */
+const MOVE_REACH = 0.35;
 
 /** The numbered node an object belongs to, with its kind and number; null if none. */
 function numbered(object) {
@@ -43,7 +47,8 @@ function disposeTree(root) {
 
 /**
  * createViewer(canvas, { onHover(number|null, kind) }) → the viewer API of the page's contract:
- * load, setRender, highlight, explode, showUpTo, setOrder, frame, clear, dispose, and `stats`
+ * load, setRender, highlight, explode, showUpTo, setOrder, setDirections, frame, clear, dispose,
+ * and `stats`
  * (frames rendered, lastFrameMs: how long the last frame took).
  */
 export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, lastFrameMs: 0 } } = {}) {
@@ -66,6 +71,8 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     model: null,
     nodes: new Map(), // number → { node, kind, home: Vector3, dir: Vector3 }
     order: [],
+    directions: new Map(), // number → [x, y, z]: the way the part moves in, model axes
+    motion: null, // { numbers, from: Map, to: Map, start } while parts slide in
     shown: Infinity,
     exploded: 0,
     highlighted: null,
@@ -184,6 +191,8 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
       disposeTree(state.model);
     }
     state.model = gltf.scene;
+    dropMotion();
+    state.directions = new Map();
     // Sample points (the primitives view) load one pixel wide: too small to see a primitive's
     // inliers by.
     state.model.traverse((o) => {
@@ -277,14 +286,18 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     requestRender();
   }
 
+  /** Where a numbered node rests: its place, moved out by the exploded view. */
+  function restPosition({ node, home, dir }) {
+    const parent = node.parent;
+    const world = parent.localToWorld(home.clone()).addScaledVector(dir, state.exploded * state.size * 0.3);
+    return parent.worldToLocal(world);
+  }
+
   /** Moves every numbered node out from the centre by t (0..1) of the model's size. */
   function explode(t) {
+    endMotion();
     state.exploded = Math.max(0, Math.min(1, Number(t) || 0));
-    for (const { node, home, dir } of state.nodes.values()) {
-      const parent = node.parent;
-      const world = parent.localToWorld(home.clone()).addScaledVector(dir, state.exploded * state.size * 0.3);
-      node.position.copy(parent.worldToLocal(world));
-    }
+    for (const entry of state.nodes.values()) entry.node.position.copy(restPosition(entry));
     // The exploded parts stay in the picture and above the grid.
     const box = new THREE.Box3().setFromObject(state.model);
     placeHelpers(box);
@@ -300,12 +313,86 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     report();
   }
 
-  /** Shows the first k parts of the assembly order (Infinity: all). */
-  function showUpTo(k) {
+  /** The way each part moves into place (plan.json's assembly steps, model axes); parts not
+   * named appear where they are. */
+  function setDirections(byNumber) {
+    state.directions = new Map(Object.entries(byNumber || {}).map(([n, d]) => [Number(n), d]));
+  }
+
+  /** Shows the first k parts of the assembly order (Infinity: all). With `animate`, the parts
+   * this adds slide into place along their directions (not with reduced motion asked for). */
+  function showUpTo(k, { animate = false } = {}) {
+    endMotion();
+    const before = state.order.filter((n, i) => i < state.shown);
     state.shown = k;
     state.order.forEach((n, i) => {
       state.nodes.get(n).node.visible = i < k;
     });
+    const added = state.order.filter((n, i) => i < k && !before.includes(n) && state.directions.has(n));
+    const calm = window.matchMedia && window.matchMedia('(prefers-reduced-motion: reduce)').matches;
+    if (animate && !calm && added.length && added.length <= 24) startMotion(added);
+    report();
+    requestRender();
+  }
+
+  /** Starts `numbers` sliding in: each from MOVE_REACH of the model's size back along its
+   * direction (the way it came from) to where it rests. */
+  function startMotion(numbers) {
+    const from = new Map();
+    const to = new Map();
+    for (const n of numbers) {
+      const entry = state.nodes.get(n);
+      const parent = entry.node.parent;
+      const rest = restPosition(entry);
+      const way = new THREE.Vector3(...state.directions.get(n));
+      if (way.lengthSq() < 0.25) continue;
+      // The direction is in the model's axes, the parent's frame: its length in the world
+      // says how far one millimetre is.
+      const worldRest = parent.localToWorld(rest.clone());
+      const worldWay = parent.localToWorld(rest.clone().add(way.normalize())).sub(worldRest).normalize();
+      const start = parent.worldToLocal(worldRest.clone().addScaledVector(worldWay, -state.size * MOVE_REACH));
+      from.set(n, start);
+      to.set(n, rest);
+      entry.node.position.copy(start);
+    }
+    if (!from.size) return;
+    state.motion = { from, to, start: performance.now() };
+    stats.motion = Object.fromEntries([...from.keys()].map((n) => [n, {
+      direction: state.directions.get(n),
+      from: from.get(n).toArray(),
+      to: to.get(n).toArray(),
+    }]));
+    stats.moving = [...from.keys()];
+    requestAnimationFrame(stepMotion);
+  }
+
+  function stepMotion(now) {
+    const m = state.motion;
+    if (!m || state.disposed) return;
+    const t = Math.min(1, Math.max(0, (now - m.start) / MOVE_MS));
+    const eased = 1 - (1 - t) ** 3;
+    for (const [n, from] of m.from) state.nodes.get(n).node.position.lerpVectors(from, m.to.get(n), eased);
+    requestRender();
+    if (t < 1) requestAnimationFrame(stepMotion);
+    else endMotion();
+  }
+
+  /** Forgets a motion under way (its scene is gone). */
+  function dropMotion() {
+    state.motion = null;
+    stats.moving = [];
+  }
+
+  /** Puts the moving parts where they rest (a new step, an explode, a new scene). */
+  function endMotion() {
+    const m = state.motion;
+    if (!m) return;
+    state.motion = null;
+    for (const [n, to] of m.to) {
+      const entry = state.nodes.get(n);
+      if (entry) entry.node.position.copy(to);
+    }
+    stats.moving = [];
     report();
     requestRender();
   }
@@ -398,6 +485,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
       disposeTree(state.model);
     }
     state.model = null;
+    dropMotion();
     state.nodes.clear();
     state.order = [];
     state.highlighted = null;
@@ -417,7 +505,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
 
   resize();
   return {
-    load, setRender, highlight, explode, showUpTo, setOrder, frame, clear, dispose, stats,
+    load, setRender, highlight, explode, showUpTo, setOrder, setDirections, frame, clear, dispose, stats,
     get parts() { return [...state.nodes.keys()]; },
     get gridCellMm() { return helpers.userData.cellMm || null; },
   };
