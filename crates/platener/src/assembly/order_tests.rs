@@ -26,13 +26,18 @@ const OVERLAP_MM3: f64 = 2.0;
 
 /// The plan `method` makes of `triangles` from `t` mm sheets (one nesting try: quick).
 fn plan_of(triangles: Vec<platener_geom::Triangle>, method: MethodKind, t: f64) -> Plan {
+    plan_from(Source::triangles("sample", triangles), method, t)
+}
+
+/// The plan `method` makes of `source` from `t` mm sheets (one nesting try: quick).
+fn plan_from(source: Source, method: MethodKind, t: f64) -> Plan {
     let mut s = Settings {
         thicknesses: vec![t],
         ..Settings::default()
     };
     s.cut.nest_tries = 1;
     s.cut.fine_rotations = false;
-    let state = convert(method, Source::triangles("sample", triangles), s, &Cancel::default()).expect("converts");
+    let state = convert(method, source, s, &Cancel::default()).expect("converts");
     let plan = state.export.as_ref().expect("exported").plan.clone();
     assert_eq!(
         plan.assembly,
@@ -195,6 +200,37 @@ fn both_checks_see_fingers_in_the_way() {
     for (mover, placed, d) in [(x_wall, y_wall, DVec3::NEG_Z), (lid, x_wall, DVec3::X)] {
         assert!(blocks(mover, -d, placed), "{} along {d}", mover.id);
         assert!(worst_overlap_moving_in(mover, d, &[placed]) > 10.0 * OVERLAP_MM3);
+    }
+}
+
+/// The egg crate: the interlocked method's slices of a block stand their B slices up and
+/// lower the A slices onto them, each free along its way.
+#[test]
+fn the_egg_crate_is_buildable() {
+    let block = samples::cuboid(DVec3::ZERO, DVec3::new(90.0, 70.0, 50.0));
+    let plan = plan_of(block, MethodKind::Interlocked, 3.0);
+    assert!(plan.parts.len() >= 6, "{} slices", plan.parts.len());
+    assert_buildable(&plan);
+    let last = plan.assembly.last().expect("steps");
+    assert!(
+        last.direction[2] < -0.99,
+        "the last slice is lowered on: {:?}",
+        plan.assembly
+    );
+}
+
+/// Real models by others (the shared corpus): the drawer-like parts tray and the photo frame
+/// in two parts are built without forcing a part or passing one through another.
+#[test]
+fn the_corpus_tray_and_photo_frame_are_buildable() {
+    let dir = match platener_fixtures::samples::shared_corpus() {
+        Ok(dir) => dir,
+        Err(message) => return eprintln!("{message}"),
+    };
+    for name in ["parts_tray_drawer_holder.stl", "photo_frame_5inch_two_parts.stl"] {
+        let plan = plan_from(Source::File(dir.join("plates").join(name)), MethodKind::Plate, 3.0);
+        assert!(plan.parts.len() >= 4, "{name}: {} parts", plan.parts.len());
+        assert_buildable(&plan);
     }
 }
 
