@@ -136,3 +136,53 @@ fn a_long_stack_is_told_in_runs_of_layers() {
         steps
     );
 }
+
+/// Two boxes side by side are two objects: each is built on its own, in one run of steps
+/// starting with its own base (no arrow), and the instructions say which parts it has.
+#[test]
+fn separate_objects_are_built_one_after_another() {
+    let mut model = samples::closed_box(100.0, 80.0, 60.0, 3.0);
+    let shift = glam::DVec3::new(160.0, 0.0, 0.0);
+    model.extend(
+        samples::closed_box(100.0, 80.0, 60.0, 3.0)
+            .into_iter()
+            .map(|t| t.map(|v| v + shift)),
+    );
+    let b = bundle("two boxes", model, MethodKind::Plate);
+    let steps = &b.plan.assembly;
+    assert_eq!(steps.len(), 12, "{steps:?}");
+    let numbers: Vec<Option<u32>> = steps.iter().map(|s| s.subassembly).collect();
+    assert_eq!(numbers[..6], [Some(1); 6], "{numbers:?}");
+    assert_eq!(numbers[6..], [Some(2); 6], "{numbers:?}");
+    // Each object's parts are one box: all on one side of the gap between them.
+    let centre_x = |id: u32| {
+        let p = b.plan.parts.iter().find(|p| p.id == id).expect("a part");
+        p.transform[0][3]
+    };
+    for object in [&steps[..6], &steps[6..]] {
+        let xs: Vec<f64> = object.iter().map(|s| centre_x(s.parts[0])).collect();
+        assert!(
+            xs.iter().all(|x| *x < 130.0) || xs.iter().all(|x| *x > 130.0),
+            "one object spans both boxes: {xs:?}"
+        );
+    }
+    let html = std::str::from_utf8(&b.files["assembly.html"]).expect("utf-8");
+    for (n, object) in [(1, &steps[..6]), (2, &steps[6..])] {
+        let mut ids: Vec<u32> = object.iter().map(|s| s.parts[0]).collect();
+        ids.sort_unstable();
+        let words: Vec<String> = ids.iter().map(u32::to_string).collect();
+        let said = format!(
+            "Object {n} of 2 (parts {} and {}): build it on its own.",
+            words[..5].join(", "),
+            words[5]
+        );
+        assert!(html.contains(&said), "{said}");
+        assert!(html.contains(&format!("Lay part {} down as the base.", object[0].parts[0])));
+    }
+    let px = pixels(&b.files["assembly/step-07.png"]);
+    assert_eq!(
+        px.iter().filter(|p| **p == ARROW).count(),
+        0,
+        "the second base has no arrow"
+    );
+}

@@ -16,7 +16,8 @@
 //! highest id (so equal parts are placed by ascending id). "Up" is the model's +z, or a
 //! stacked plan's stacking axis. A part that no tested direction frees (truly interlocked)
 //! is still taken, the least blocked one along its least blocked direction, and its step is
-//! marked `forced`: every part appears exactly once. Parts no joint connects form groups
+//! marked `forced`: every part appears exactly once. Parts no joint or glue connects form
+//! groups (the separate objects of a plan, numbered as `subassembly` when there are several)
 //! assembled one after another, lowest first, each on its own: only parts of its own group
 //! are in a part's way (the boxes of a grid of boxes, side by side, would otherwise block each
 //! other's walls coming in from far away).
@@ -72,7 +73,8 @@ pub fn order(plan: &Plan) -> Vec<AssemblyStep> {
     let mut world = World::new(&solids, directions);
     let mut removed = Vec::with_capacity(solids.len());
     // Only the parts of the same group are ever in the way: each group is built on its own.
-    for group in groups.iter().rev() {
+    for (number, group) in groups.iter().enumerate().rev() {
+        let subassembly = (groups.len() > 1).then_some(number as u32 + 1);
         let mut left = group.clone();
         left.sort_by_key(|&i| keys[i]);
         while !left.is_empty() {
@@ -84,21 +86,35 @@ pub fn order(plan: &Plan) -> Vec<AssemblyStep> {
                     (k, d, true)
                 }
             };
-            removed.push((left.remove(k), d, forced));
+            removed.push(Removal {
+                part: left.remove(k),
+                direction: d,
+                forced,
+                subassembly,
+            });
         }
     }
     removed.reverse();
     steps(plan, &pairs, &removed)
 }
 
-/// The steps of the assembly order `placed` (part index, direction, forced): each with the
-/// joints and glue it closes.
-fn steps(plan: &Plan, pairs: &[Option<[usize; 2]>], placed: &[(usize, DVec3, bool)]) -> Vec<AssemblyStep> {
+/// A part taken away, read backwards a step: the part (index), the way it goes in, whether
+/// forced, and its group's number when there are several.
+struct Removal {
+    part: usize,
+    direction: DVec3,
+    forced: bool,
+    subassembly: Option<u32>,
+}
+
+/// The steps of the assembly order `placed`: each with the joints and glue it closes.
+fn steps(plan: &Plan, pairs: &[Option<[usize; 2]>], placed: &[Removal]) -> Vec<AssemblyStep> {
     let index = part_index(plan);
     let mut done = vec![false; plan.parts.len()];
     placed
         .iter()
-        .map(|&(i, d, forced)| {
+        .map(|r| {
+            let (i, d) = (r.part, r.direction);
             let joints = (0..pairs.len())
                 .filter(|&j| pairs[j].is_some_and(|[a, b]| (a == i && done[b]) || (b == i && done[a])))
                 .collect();
@@ -122,7 +138,8 @@ fn steps(plan: &Plan, pairs: &[Option<[usize; 2]>], placed: &[(usize, DVec3, boo
                 direction: d.to_array().map(|c| (c * 1e6).round() / 1e6 + 0.0),
                 joints,
                 glued,
-                forced,
+                forced: r.forced,
+                subassembly: r.subassembly,
             }
         })
         .collect()
@@ -220,12 +237,19 @@ fn grid(x: f64) -> i64 {
     (x / KEY_GRID).round() as i64
 }
 
-/// The groups of parts the joints connect (part indices ascending), lowest group first (by
-/// its lowest point along "up", then its lowest id).
+/// The groups of parts the joints or glue connect (part indices ascending): the separate
+/// objects the maker ends up with, lowest group first (by its lowest point along "up", then
+/// its lowest id).
 fn groups(plan: &Plan, pairs: &[Option<[usize; 2]>], infos: &[Info]) -> Vec<Vec<usize>> {
     let mut uf = UnionFind::new(plan.parts.len());
     for [a, b] in pairs.iter().flatten() {
         uf.join(*a, *b);
+    }
+    let index = part_index(plan);
+    for g in &plan.glued {
+        if let [Some(&a), Some(&b)] = g.parts.map(|id| index.get(&id)) {
+            uf.join(a, b);
+        }
     }
     let mut by_root: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
     for i in 0..plan.parts.len() {

@@ -81,6 +81,11 @@ pub struct AssemblyStep {
     /// when false.
     #[serde(default, skip_serializing_if = "is_false")]
     pub forced: bool,
+    /// Of a plan in several separate objects (parts no joint or glue connects), the number
+    /// of the one this part belongs to, from 1, lowest first: each is built on its own, one
+    /// after another (an extension, issue 35). Omitted when the plan is one object.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub subassembly: Option<u32>,
 }
 
 fn is_false(b: &bool) -> bool {

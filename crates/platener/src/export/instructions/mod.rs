@@ -97,13 +97,14 @@ pub fn instructions(plan: &Plan, assembly: &Assembly, twins: &[Vec<u32>]) -> Vec
                 colour.map(|c| (*t, c))
             })
             .collect();
-        // The base is laid down, not moved onto anything.
-        let arrow = (!placed.is_empty())
+        // A base (of the plan, or of one of its objects) is laid down, not moved onto anything.
+        let starts = starts_object(&plan.assembly, run[0]);
+        let arrow = (!starts)
             .then(|| arrow(&triangles, &parts, direction, &frame))
             .flatten();
         out.push(Instruction {
             number: k + 1,
-            lines: lines(plan, run, &placed, twins),
+            lines: lines(plan, run, (&placed, starts), twins),
             picture: thumbnail::rgb_picture(&drawn, &frame, PICTURE, arrow),
             parts: parts.clone(),
         });
@@ -121,7 +122,11 @@ fn runs(steps: &[AssemblyStep]) -> Vec<Vec<&AssemblyStep>> {
         let alone = |s: &AssemblyStep| s.forced || !s.glued.is_empty();
         match out.last_mut() {
             Some(run)
-                if run.len() < longest && run[0].direction == step.direction && !alone(run[0]) && !alone(step) =>
+                if run.len() < longest
+                    && run[0].direction == step.direction
+                    && run[0].subassembly == step.subassembly
+                    && !alone(run[0])
+                    && !alone(step) =>
             {
                 run.push(step)
             }
@@ -176,12 +181,34 @@ pub fn way(direction: [f64; 3]) -> String {
     )
 }
 
-/// What to do in a step, sentence by sentence.
-fn lines(plan: &Plan, run: &[&AssemblyStep], placed: &[u32], twins: &[Vec<u32>]) -> Vec<String> {
+/// Whether `step` is the first of the plan or of one of its separate objects.
+fn starts_object(steps: &[AssemblyStep], step: &AssemblyStep) -> bool {
+    let at = steps.iter().position(|s| std::ptr::eq(s, step));
+    at.is_none_or(|k| k == 0 || steps[k - 1].subassembly != step.subassembly)
+}
+
+/// What to do in a step, sentence by sentence (`placed`: the parts placed before it, and
+/// whether it starts the plan or one of its separate objects).
+fn lines(plan: &Plan, run: &[&AssemblyStep], (placed, starts): (&[u32], bool), twins: &[Vec<u32>]) -> Vec<String> {
     let parts: Vec<u32> = run.iter().flat_map(|s| s.parts.iter().copied()).collect();
     let mut out = Vec::new();
     let names = list(&parts);
-    out.push(if placed.is_empty() {
+    if let (true, Some(n)) = (starts, run[0].subassembly) {
+        let mut of: Vec<u32> = plan
+            .assembly
+            .iter()
+            .filter(|s| s.subassembly == Some(n))
+            .flat_map(|s| s.parts.iter().copied())
+            .collect();
+        of.sort_unstable();
+        let objects = plan.assembly.iter().filter_map(|s| s.subassembly).max().unwrap_or(n);
+        out.push(format!(
+            "Object {n} of {objects} (part{} {}): build it on its own.",
+            plural(of.len()),
+            list(&of)
+        ));
+    }
+    out.push(if starts {
         format!("Lay part{} {names} down as the base.", plural(parts.len()))
     } else {
         format!(
