@@ -577,6 +577,9 @@ pub struct JointSettings {
     /// at shallow angles whatever this is (`cap`); below a few degrees two plates are one
     /// bent sheet rather than a corner.
     pub min_angle_deg: f64,
+    /// Crush ribs in the slots tabs pass through (the cutting plan's `crush_ribs`, which the
+    /// joints step copies here).
+    pub crush_ribs: bool,
 }
 
 impl Default for JointSettings {
@@ -585,6 +588,7 @@ impl Default for JointSettings {
             style: None,
             finger_factor: 3.0,
             min_angle_deg: 5.0,
+            crush_ribs: false,
         }
     }
 }

@@ -22,7 +22,8 @@ pub struct Interference {
     /// Shared volume, mm³.
     pub volume: f64,
     /// Whether the overlap is intended: the two parts are joined by a JimJoint, whose barbs
-    /// squeeze through and snap behind the partner.
+    /// squeeze through and snap behind the partner, or by a tab in a slot with crush ribs
+    /// (the `crush_ribs` setting), which the tab crushes going in.
     pub intended: bool,
 }
 
@@ -109,10 +110,11 @@ pub fn analyse(plan: &Plan, model: Option<&Mesh>) -> Analysis {
     let mut interference = sample::interference(&solids, &cells);
     for i in &mut interference {
         let pair = i.parts;
-        i.intended = plan
-            .joints
-            .iter()
-            .any(|j| j.kind == JointKind::Jim && (j.parts == pair || j.parts == [pair[1], pair[0]]));
+        let ribs = plan.settings.cut.crush_ribs;
+        i.intended = plan.joints.iter().any(|j| {
+            let squeezed = j.kind == JointKind::Jim || (ribs && j.kind == JointKind::Slot);
+            squeezed && (j.parts == pair || j.parts == [pair[1], pair[0]])
+        });
     }
     interference.sort_by(|a, b| b.volume.total_cmp(&a.volume).then(a.parts.cmp(&b.parts)));
     let shared: f64 = interference.iter().filter(|i| !i.intended).map(|i| i.volume).sum();

@@ -840,6 +840,9 @@ impl<'a> Cutting<'a> {
     fn into_joints(mut self) -> Result<(Joints, Vec<String>), GridError> {
         let (mut outlines, split) = self.final_outlines()?;
         let gave_way = super::claims::settle(self.plates, &mut outlines, &super::claims::decided(&self.used))?;
+        if self.settings.crush_ribs {
+            self.add_ribs(&mut outlines)?;
+        }
         let (labels, unjoined) = super::claims::labels(self.plates, &outlines, &self.used, &gave_way, min_feature)?;
         let mut warnings = self.warnings(&labels, &unjoined);
         warnings.extend(split);
@@ -854,6 +857,30 @@ impl<'a> Cutting<'a> {
             refused_bends: Vec::new(),
         };
         Ok((joints, warnings))
+    }
+
+    /// The crush ribs of every tee's slots joined to the plate they are cut in
+    /// ([`super::ribs`]): the slots are the segments the ending plate's tabs take from the
+    /// plate it ends against.
+    fn add_ribs(&self, outlines: &mut [Polygon]) -> Result<(), GridError> {
+        for (r, &plan) in self.used.iter().zip(&self.plans) {
+            let Some(host) = r.through.filter(|_| r.kind == ConnectionKind::Tee) else {
+                continue;
+            };
+            if plan.keeper.is_some() || r.junction.is_some() {
+                continue;
+            }
+            let ending = if host == r.a { r.b } else { r.a };
+            let bounds = distinct::boundaries(r.range, plan.segments, plan.key);
+            let slots: Vec<(f64, f64)> = (0..plan.segments)
+                .filter(|&s| segment_owner(r, plan, s) == ending)
+                .map(|s| (bounds[s], bounds[s + 1]))
+                .collect();
+            let region = if host == r.a { &r.in_a } else { &r.in_b };
+            let ribs = super::ribs::ribs(&self.plates[host], region, r.axis, &slots)?;
+            outlines[host] = super::ribs::with_ribs(&outlines[host], &ribs)?;
+        }
+        Ok(())
     }
 
     /// Each labelled joint's region on both plates and the plate that claimed its ends (the

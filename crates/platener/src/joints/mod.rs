@@ -31,6 +31,9 @@ mod distinct;
 mod distinct_tests;
 mod fingers;
 mod junction;
+mod ribs;
+#[cfg(test)]
+mod ribs_tests;
 #[cfg(test)]
 mod tests;
 
@@ -220,6 +223,7 @@ pub(crate) fn settings_for(settings: &Settings) -> JointSettings {
     let chosen = &settings.joints;
     JointSettings {
         style: Some(chosen.style.unwrap_or(JointStyle::for_material(settings.cut.material))),
+        crush_ribs: settings.cut.crush_ribs,
         ..chosen.clone()
     }
 }

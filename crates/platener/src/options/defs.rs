@@ -319,6 +319,28 @@ pub static DEFS: &[Def] = &[
         get: |c| json!(c.settings.cut.fit.name()),
     },
     Def {
+        name: "crush-ribs",
+        key: "crush_ribs",
+        short: None,
+        label: "Crush ribs",
+        group: Group::Joints,
+        kind: Kind::Choice { choices: YES_NO },
+        help: "Small bumps on the walls of each slot a tab goes through, which crush as the tab is pressed in.",
+        doc: "For press fits in plywood or MDF whose thickness varies: each slot wall gets one rib (two in \
+              slots from 20 mm long), 0.25 mm high on a 1.5 mm foot, and the slot keeps its width, so a tab \
+              a little thicker than sold still goes in and a thinner one is still held. Not for acrylic, \
+              which cracks instead of crushing; use with the snug fit.",
+        set: |c, v| {
+            c.settings.cut.crush_ribs = match one(v)? {
+                "yes" => true,
+                "no" => false,
+                _ => return Err(choices_message(YES_NO)),
+            };
+            Ok(())
+        },
+        get: |c| json!(if c.settings.cut.crush_ribs { "yes" } else { "no" }),
+    },
+    Def {
         name: "labels",
         key: "labels",
         short: None,

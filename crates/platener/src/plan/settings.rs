@@ -332,6 +332,10 @@ pub struct CutSettings {
     /// How tight joints fit (plan.json leaves the default, snug, out).
     #[serde(default, skip_serializing_if = "Fit::is_snug")]
     pub fit: Fit,
+    /// Crush ribs on the long walls of the slots tabs pass through (`joints::ribs`; plan.json
+    /// leaves the default, off, out).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub crush_ribs: bool,
     /// Write step timings into report.json. Off by default, because timings differ from run to
     /// run and the ZIP must be byte-identical for the same input and settings.
     pub report_timings: bool,
@@ -353,6 +357,7 @@ impl Default for CutSettings {
             laser: super::Laser::default(),
             colors: ColorProfile::Classic,
             reference_square: false,
+            crush_ribs: false,
             stock: Vec::new(),
             measured: Vec::new(),
             fit: Fit::Snug,
