@@ -186,3 +186,37 @@ fn separate_objects_are_built_one_after_another() {
         "the second base has no arrow"
     );
 }
+
+/// Loose plates no joint holds (tiles side by side) are each laid down on their own, with no
+/// object heading and no arrow.
+#[test]
+fn loose_plates_are_laid_down_on_their_own() {
+    use glam::DVec3;
+    let mut model = samples::cuboid(DVec3::ZERO, DVec3::new(60.0, 40.0, 3.0));
+    model.extend(samples::cuboid(
+        DVec3::new(80.0, 0.0, 0.0),
+        DVec3::new(140.0, 40.0, 3.0),
+    ));
+    let b = bundle("tiles", model, MethodKind::Plate);
+    let steps = &b.plan.assembly;
+    assert_eq!(steps.len(), 2, "{steps:?}");
+    assert_eq!(
+        steps.iter().map(|s| s.subassembly).collect::<Vec<_>>(),
+        [Some(1), Some(2)]
+    );
+    let html = std::str::from_utf8(&b.files["assembly.html"]).expect("utf-8");
+    assert!(!html.contains("Object "), "no heading for a one-part object");
+    for s in steps {
+        let said = format!(
+            "Lay part {} down on its own: no joint holds it to the others.",
+            s.parts[0]
+        );
+        assert!(html.contains(&said), "{said}");
+    }
+    let px = pixels(&b.files["assembly/step-02.png"]);
+    assert_eq!(
+        px.iter().filter(|p| **p == ARROW).count(),
+        0,
+        "a loose plate has no arrow"
+    );
+}

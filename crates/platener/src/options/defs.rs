@@ -291,14 +291,10 @@ pub static DEFS: &[Def] = &[
         doc: "A laser program that imports a file at the wrong scale shows the square at another size: \
               measure it before cutting. Sheets without room beside the parts get none.",
         set: |c, v| {
-            c.settings.cut.reference_square = match one(v)? {
-                "yes" => true,
-                "no" => false,
-                _ => return Err(choices_message(YES_NO)),
-            };
+            c.settings.cut.reference_square = yes(v)?;
             Ok(())
         },
-        get: |c| json!(if c.settings.cut.reference_square { "yes" } else { "no" }),
+        get: |c| json!(yes_no(c.settings.cut.reference_square)),
     },
     Def {
         name: "fit",
@@ -331,14 +327,10 @@ pub static DEFS: &[Def] = &[
               a little thicker than sold still goes in and a thinner one is still held. Not for acrylic, \
               which cracks instead of crushing; use with the snug fit.",
         set: |c, v| {
-            c.settings.cut.crush_ribs = match one(v)? {
-                "yes" => true,
-                "no" => false,
-                _ => return Err(choices_message(YES_NO)),
-            };
+            c.settings.cut.crush_ribs = yes(v)?;
             Ok(())
         },
-        get: |c| json!(if c.settings.cut.crush_ribs { "yes" } else { "no" }),
+        get: |c| json!(yes_no(c.settings.cut.crush_ribs)),
     },
     Def {
         name: "labels",
@@ -795,6 +787,20 @@ fn one<'a>(values: &[&'a str]) -> Result<&'a str, String> {
         [] => Err("needs a value".into()),
         _ => Err("takes one value".into()),
     }
+}
+
+/// A yes or no setting's value.
+fn yes(values: &[&str]) -> Result<bool, String> {
+    match one(values)? {
+        "yes" => Ok(true),
+        "no" => Ok(false),
+        _ => Err(choices_message(YES_NO)),
+    }
+}
+
+/// How a yes or no setting reads.
+fn yes_no(on: bool) -> &'static str {
+    if on { "yes" } else { "no" }
 }
 
 /// A number; ranges are [`crate::Settings::validate`]'s, which names them.

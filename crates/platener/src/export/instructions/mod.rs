@@ -181,6 +181,33 @@ pub fn way(direction: [f64; 3]) -> String {
     )
 }
 
+/// The parts listed by number up to this many; more are counted.
+const LISTED: usize = 12;
+
+/// The sentence that starts separate object `step.subassembly` of a plan in several: "Object
+/// 2 of 3 (parts 4, 5 and 6): build it on its own."; empty for an object of one part (no
+/// joint holds it); `None` for a plan that is one object.
+fn object_line(plan: &Plan, step: &AssemblyStep) -> Option<String> {
+    let n = step.subassembly?;
+    let mut of: Vec<u32> = plan
+        .assembly
+        .iter()
+        .filter(|s| s.subassembly == Some(n))
+        .flat_map(|s| s.parts.iter().copied())
+        .collect();
+    if of.len() < 2 {
+        return Some(String::new());
+    }
+    of.sort_unstable();
+    let objects = plan.assembly.iter().filter_map(|s| s.subassembly).max().unwrap_or(n);
+    let parts = if of.len() <= LISTED {
+        format!("parts {}", list(&of))
+    } else {
+        format!("{} parts", of.len())
+    };
+    Some(format!("Object {n} of {objects} ({parts}): build it on its own."))
+}
+
 /// Whether `step` is the first of the plan or of one of its separate objects.
 fn starts_object(steps: &[AssemblyStep], step: &AssemblyStep) -> bool {
     let at = steps.iter().position(|s| std::ptr::eq(s, step));
@@ -193,22 +220,12 @@ fn lines(plan: &Plan, run: &[&AssemblyStep], (placed, starts): (&[u32], bool), t
     let parts: Vec<u32> = run.iter().flat_map(|s| s.parts.iter().copied()).collect();
     let mut out = Vec::new();
     let names = list(&parts);
-    if let (true, Some(n)) = (starts, run[0].subassembly) {
-        let mut of: Vec<u32> = plan
-            .assembly
-            .iter()
-            .filter(|s| s.subassembly == Some(n))
-            .flat_map(|s| s.parts.iter().copied())
-            .collect();
-        of.sort_unstable();
-        let objects = plan.assembly.iter().filter_map(|s| s.subassembly).max().unwrap_or(n);
-        out.push(format!(
-            "Object {n} of {objects} (part{} {}): build it on its own.",
-            plural(of.len()),
-            list(&of)
-        ));
-    }
-    out.push(if starts {
+    let object = starts.then(|| object_line(plan, run[0])).flatten();
+    let alone = object.as_deref() == Some("");
+    out.extend(object.filter(|o| !o.is_empty()));
+    out.push(if alone {
+        format!("Lay part {names} down on its own: no joint holds it to the others.")
+    } else if starts {
         format!("Lay part{} {names} down as the base.", plural(parts.len()))
     } else {
         format!(
