@@ -29,6 +29,9 @@ pub(crate) struct Template {
     pub size: DVec2,
     /// The grown, rotated, shifted outline as jagua-rs sees it.
     pub shape: SPolygon,
+    /// The largest circle inside the grown shape (jagua-rs's pole of inaccessibility, made
+    /// with the polygon): centre from the box corner, and radius, mm.
+    pub core: (DVec2, f64),
     /// Reflex corners of the grown outline between two edges of at least [`POCKET_EDGE`]:
     /// the inner corners of Ls and notches where another part may nest.
     pub pockets: Vec<DVec2>,
@@ -204,10 +207,16 @@ pub(crate) fn nest_shape(cut: &Polygon, area: f64, spacing: f64, fine: bool) -> 
                 }
                 _ => to_spolygon(&shifted)?,
             };
+            let poi = shape.poi();
+            let core = (
+                DVec2::new(f64::from(poi.center.0), f64::from(poi.center.1)),
+                f64::from(poi.radius),
+            );
             Some(Template {
                 angle,
                 shift: -lo,
                 size: hi - lo,
+                core,
                 pockets: pockets(&shifted),
                 shape,
             })
