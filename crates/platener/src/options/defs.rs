@@ -255,8 +255,9 @@ pub static DEFS: &[Def] = &[
         kind: Kind::Choice { choices: NESTINGS },
         help: "How long nesting searches for a denser layout: fast, good or best.",
         doc: "Nesting lays the parts out in several orders side by side and keeps the densest: fast tries \
-              one (a plan at once), good eight, best forty-eight (for the sheets you buy; about six times \
-              as long as good).",
+              one (a plan at once), good eight, best forty-eight (for the sheets you buy; about five times \
+              as long as good). Good and best then try to shorten the last sheet, taking parts off its end \
+              and fitting them into gaps further left.",
         set: |c, v| {
             c.settings.cut.nest_tries = named(v, NestEffort::ALL, NestEffort::name, NESTINGS)?.tries();
             Ok(())
@@ -579,12 +580,12 @@ const NESTINGS: &[Choice] = &[
     Choice {
         value: "good",
         label: "Good",
-        help: "Eight orders, the densest kept.",
+        help: "Eight orders, the densest kept, its last sheet shortened.",
     },
     Choice {
         value: "best",
         label: "Best",
-        help: "Forty-eight orders: denser, about six times as long.",
+        help: "Forty-eight orders: denser, about five times as long.",
     },
 ];
 

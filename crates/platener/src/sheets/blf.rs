@@ -131,6 +131,12 @@ impl Bin {
         (self.lo, self.hi)
     }
 
+    /// Whether template `t` may sit at `pos`: inside the region and clear of every placed part.
+    #[cfg(test)]
+    pub fn is_free(&self, t: &Template, pos: DVec2) -> bool {
+        self.feasible(t, pos, &mut t.shape.clone())
+    }
+
     fn feasible(&self, t: &Template, pos: DVec2, scratch: &mut SPolygon) -> bool {
         if pos.x < self.lo.x
             || pos.y < self.lo.y
@@ -254,13 +260,18 @@ impl Bin {
     /// Finds the best orientation and position for `shape`; places it under `key` and returns
     /// the placement, or `None` when it fits nowhere.
     pub fn place(&mut self, key: usize, shape: &NestShape) -> Option<Placed> {
+        self.place_before(key, shape, f64::INFINITY)
+    }
+
+    /// [`Self::place`] with the part's right edge before `limit`.
+    pub fn place_before(&mut self, key: usize, shape: &NestShape, limit: f64) -> Option<Placed> {
         let mut best: Option<(f64, f64, usize, DVec2)> = None;
         for (i, t) in shape.templates.iter().enumerate() {
             if t.size.x > self.hi.x - self.lo.x - 2.0 * GAP || t.size.y > self.hi.y - self.lo.y - 2.0 * GAP {
                 continue;
             }
             let mut scratch = t.shape.clone();
-            let bound = best.map_or(f64::INFINITY, |b| b.0 + SCORE_TOLERANCE);
+            let bound = best.map_or(limit, |b| (b.0 + SCORE_TOLERANCE).min(limit));
             let Some(pos) = self.best_for(t, bound, &mut scratch) else {
                 continue;
             };
@@ -275,13 +286,6 @@ impl Bin {
         }
         let (_, _, template, pos) = best?;
         let t = &shape.templates[template];
-        let moved = Transformation::from_translation((pos.x as f32, pos.y as f32));
-        let mut placed_shape = t.shape.clone();
-        placed_shape.transform_from(&t.shape, &moved);
-        let slot = self.placed.len();
-        self.cores.push((pos + t.core.0, t.core.1));
-        self.cde
-            .register_hazard(Hazard::new(Entity::Placed(slot), Arc::new(placed_shape)));
         let placed = Placed {
             key,
             template,
@@ -289,8 +293,21 @@ impl Bin {
             max: pos + t.size,
             pockets: t.pockets.iter().map(|p| *p + pos).collect(),
         };
-        self.placed.push(placed.clone());
+        self.put(placed.clone(), shape);
         Some(placed)
+    }
+
+    /// Places `placed` (a placement of `shape` found before, in a bin like this) as it is.
+    pub fn put(&mut self, placed: Placed, shape: &NestShape) {
+        let t = &shape.templates[placed.template];
+        let moved = Transformation::from_translation((placed.pos.x as f32, placed.pos.y as f32));
+        let mut placed_shape = t.shape.clone();
+        placed_shape.transform_from(&t.shape, &moved);
+        let slot = self.placed.len();
+        self.cores.push((placed.pos + t.core.0, t.core.1));
+        self.cde
+            .register_hazard(Hazard::new(Entity::Placed(slot), Arc::new(placed_shape)));
+        self.placed.push(placed);
     }
 
     /// The right edge of the rightmost placed box, or the region's left edge when empty.

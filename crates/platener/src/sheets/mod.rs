@@ -8,6 +8,7 @@
 //! on the parts, the settings and the seed.
 
 mod blf;
+mod compress;
 mod holes;
 mod search;
 mod shape;

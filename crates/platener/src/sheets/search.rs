@@ -12,6 +12,7 @@ use platener_geom::rng::SplitMix64;
 use rayon::prelude::*;
 
 use super::blf::{Bin, GAP, Placed};
+use super::compress;
 use super::shape::NestShape;
 
 /// Keeps cut paths 1 µm inside the region so f32 rounding never puts them on the margin line.
@@ -111,7 +112,7 @@ pub(crate) fn best_layout(
             first_fit(shapes, &o, region.0, region.1, cancelled).map(|l| (t, l))
         })
         .collect();
-    layouts
+    let mut best = layouts
         .into_iter()
         .min_by(|(ta, a), (tb, b)| {
             let (sa, sb) = (a.score(), b.score());
@@ -120,7 +121,19 @@ pub(crate) fn best_layout(
                 .then(sa.2.total_cmp(&sb.2))
                 .then(ta.cmp(tb))
         })
-        .map(|(_, l)| l)
+        .map(|(_, l)| l)?;
+    // The last sheet's length is what the layouts were chosen by: shorten it further.
+    let attempts = (compress::attempts(tries), seed);
+    if let Some(last) = best.sheets.last_mut()
+        && let Some(shorter) = compress::compress(shapes, last, region, attempts, cancelled)
+    {
+        *last = shorter;
+        let right = last.iter().map(|p| p.max.x).fold(region.0.x, f64::max);
+        if let Some(r) = best.used_right.last_mut() {
+            *r = right;
+        }
+    }
+    Some(best)
 }
 
 /// `--sheet fit`: the strip height that gives the smallest sheet. Heights around the square
