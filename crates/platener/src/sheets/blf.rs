@@ -312,8 +312,13 @@ impl Bin {
 
     /// The right edge of the rightmost placed box, or the region's left edge when empty.
     pub fn used_right(&self) -> f64 {
-        self.placed.iter().map(|p| p.max.x).fold(self.lo.x, f64::max)
+        right_edge(&self.placed, self.lo.x)
     }
+}
+
+/// The right edge of the rightmost box of `placed`, or `left` when there is none.
+pub(crate) fn right_edge(placed: &[Placed], left: f64) -> f64 {
+    placed.iter().map(|p| p.max.x).fold(left, f64::max)
 }
 
 #[cfg(test)]
@@ -390,7 +395,9 @@ mod tests {
         let mut bin = Bin::rect(DVec2::ZERO, DVec2::new(300.0, 200.0)).expect("a bin");
         let placed = bin.place(0, &shapes[0]).expect("room");
         let t = &shapes[0].templates[placed.template];
-        assert!(bin.cores_meet(t, placed.pos + DVec2::new(5.0, 5.0)));
+        let on = placed.pos + DVec2::new(5.0, 5.0);
+        assert!(bin.cores_meet(t, on));
+        assert!(bin.collides(t, on, &mut t.shape.clone()));
         assert!(!bin.cores_meet(t, placed.max + DVec2::splat(1.0)));
     }
 }

@@ -14,7 +14,7 @@
 use glam::DVec2;
 use platener_geom::rng::SplitMix64;
 
-use super::blf::{Bin, Placed};
+use super::blf::{Bin, Placed, right_edge};
 use super::shape::NestShape;
 
 /// The first step asked for: this share of the used length.
@@ -44,7 +44,7 @@ pub(crate) fn compress(
     (attempts, seed): (u32, u64),
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Option<Vec<Placed>> {
-    let right = |p: &[Placed]| p.iter().map(|q| q.max.x).fold(lo.x, f64::max);
+    let right = |p: &[Placed]| right_edge(p, lo.x);
     let mut best: Vec<Placed> = placed.to_vec();
     let mut step = (right(&best) - lo.x) * FIRST_STEP;
     let mut rng = SplitMix64::new(seed ^ 0x5EED_C0DE_5EED_C0DE);
@@ -75,7 +75,7 @@ fn recreate(
     target: f64,
     rng: &mut SplitMix64,
 ) -> Option<Vec<Placed>> {
-    let now = placed.iter().map(|q| q.max.x).fold(lo.x, f64::max);
+    let now = right_edge(placed, lo.x);
     let near = now - (now - lo.x) * NEAR_END;
     let mut out: Vec<bool> = placed.iter().map(|p| p.max.x > target).collect();
     let candidates: Vec<usize> = (0..placed.len())
@@ -144,7 +144,7 @@ mod tests {
         let layout = first_fit(&shapes, &order(&shapes, &items, 0, 0), region.0, region.1, &|| false).expect("fits");
         let before = layout.used_right[0];
         let after = compress(&shapes, &layout.sheets[0], region, (64, 7), &|| false).expect("shorter");
-        let right = after.iter().map(|p| p.max.x).fold(0.0, f64::max);
+        let right = right_edge(&after, 0.0);
         assert!(right < before - 1.0, "{before} → {right}");
         let mut keys: Vec<usize> = after.iter().map(|p| p.key).collect();
         keys.sort_unstable();

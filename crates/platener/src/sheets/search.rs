@@ -127,11 +127,10 @@ pub(crate) fn best_layout(
     if let Some(last) = best.sheets.last_mut()
         && let Some(shorter) = compress::compress(shapes, last, region, attempts, cancelled)
     {
-        *last = shorter;
-        let right = last.iter().map(|p| p.max.x).fold(region.0.x, f64::max);
         if let Some(r) = best.used_right.last_mut() {
-            *r = right;
+            *r = super::blf::right_edge(&shorter, region.0.x);
         }
+        *last = shorter;
     }
     Some(best)
 }

@@ -119,7 +119,7 @@ pub fn mismatched_edges(plan: &Plan) -> MismatchReport {
     for a in found {
         if let Some(pair) = a.twins {
             report.interchangeable_pairs += 1;
-            twins.push(pair.map(|k| plan.parts[k].id));
+            twins.push(pair);
             continue;
         }
         report.accepting_pairs += 1;
@@ -131,33 +131,30 @@ pub fn mismatched_edges(plan: &Plan) -> MismatchReport {
         });
     }
     report.pairs.sort_unstable();
-    report.interchangeable_parts = groups(&twins);
+    report.interchangeable_parts = groups(plan, &twins);
     report
 }
 
-/// The groups of ids that `pairs` join (each group ascending, the groups by their first id).
-fn groups(pairs: &[[u32; 2]]) -> Vec<Vec<u32>> {
-    let mut out: Vec<Vec<u32>> = Vec::new();
+/// The groups of parts that `pairs` (indices into `plan.parts`) join, by id: each group
+/// ascending, the groups by their first id; a part paired only with itself (turned round in
+/// its own place) is no group.
+fn groups(plan: &Plan, pairs: &[[usize; 2]]) -> Vec<Vec<u32>> {
+    let mut uf = crate::assembly::UnionFind::new(plan.parts.len());
     for &[a, b] in pairs {
-        let has = |g: &Vec<u32>, id| g.contains(&id);
-        let (ia, ib) = (out.iter().position(|g| has(g, a)), out.iter().position(|g| has(g, b)));
-        match (ia, ib) {
-            (Some(i), Some(j)) if i != j => {
-                let merged = out.remove(i.max(j));
-                out[i.min(j)].extend(merged);
-            }
-            (Some(_), Some(_)) => {}
-            (Some(i), None) => out[i].push(b),
-            (None, Some(j)) => out[j].push(a),
-            (None, None) => out.push(vec![a, b]),
-        }
+        uf.join(a, b);
     }
-    for g in &mut out {
-        g.sort_unstable();
-        g.dedup();
+    let mut by_root: std::collections::BTreeMap<usize, Vec<u32>> = std::collections::BTreeMap::new();
+    for &i in pairs.iter().flatten().collect::<std::collections::BTreeSet<_>>() {
+        by_root.entry(uf.root(i)).or_default().push(plan.parts[i].id);
     }
-    // A part that takes its own place turned round is no swap.
-    out.retain(|g| g.len() > 1);
+    let mut out: Vec<Vec<u32>> = by_root
+        .into_values()
+        .filter(|g| g.len() > 1)
+        .map(|mut g| {
+            g.sort_unstable();
+            g
+        })
+        .collect();
     out.sort();
     out
 }

@@ -98,7 +98,7 @@ pub fn instructions(plan: &Plan, assembly: &Assembly, twins: &[Vec<u32>]) -> Vec
             })
             .collect();
         // A base (of the plan, or of one of its objects) is laid down, not moved onto anything.
-        let starts = starts_object(&plan.assembly, run[0]);
+        let starts = k == 0 || runs[k - 1][0].subassembly != run[0].subassembly;
         let arrow = (!starts)
             .then(|| arrow(&triangles, &parts, direction, &frame))
             .flatten();
@@ -206,12 +206,6 @@ fn object_line(plan: &Plan, step: &AssemblyStep) -> Option<String> {
         format!("{} parts", of.len())
     };
     Some(format!("Object {n} of {objects} ({parts}): build it on its own."))
-}
-
-/// Whether `step` is the first of the plan or of one of its separate objects.
-fn starts_object(steps: &[AssemblyStep], step: &AssemblyStep) -> bool {
-    let at = steps.iter().position(|s| std::ptr::eq(s, step));
-    at.is_none_or(|k| k == 0 || steps[k - 1].subassembly != step.subassembly)
 }
 
 /// What to do in a step, sentence by sentence (`placed`: the parts placed before it, and
