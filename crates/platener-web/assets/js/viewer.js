@@ -72,7 +72,7 @@ export function createViewer(canvas, { onHover = () => {}, stats = { frames: 0, 
     nodes: new Map(), // number → { node, kind, home: Vector3, dir: Vector3 }
     order: [],
     directions: new Map(), // number → [x, y, z]: the way the part moves in, model axes
-    motion: null, // { numbers, from: Map, to: Map, start } while parts slide in
+    motion: null, // { from: Map, to: Map, start } while parts slide in
     shown: Infinity,
     exploded: 0,
     highlighted: null,
