@@ -5,8 +5,7 @@
 /**
  * Fills `list` (an <ol>) with `steps`; `pick(k, n)` shows the first k parts of the order (the
  * parts of the steps so far), the step's own n parts last. `link` (an <a>) opens the
- * instructions' page when the plan has
- * one (`href`), and is hidden otherwise.
+ * instructions' page when the plan has one (`href`), and is hidden otherwise.
  */
 export function showSteps(list, steps, link, href, pick) {
   list.replaceChildren();
