@@ -35,11 +35,11 @@ const SLIDE_ROUNDS: usize = 3;
 const SCORE_TOLERANCE: f64 = 0.5;
 /// Two cores must overlap by more than this (mm) to refuse a position without the engine:
 /// far above f32 rounding on a sheet, so the engine would find the overlap too.
-const CORE_OVERLAP: f64 = 0.05;
+pub(crate) const CORE_OVERLAP: f64 = 0.05;
 
 /// What a hazard in our collision engine stands for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-enum Entity {
+pub(crate) enum Entity {
     /// Everything outside the region.
     Exterior,
     /// A placed part (its slot in the bin).
@@ -85,7 +85,7 @@ pub(crate) struct Bin {
     cores: Vec<(DVec2, f64)>,
 }
 
-fn engine_config() -> CDEConfig {
+pub(crate) fn engine_config() -> CDEConfig {
     CDEConfig {
         quadtree_depth: 5,
         cd_threshold: 16,

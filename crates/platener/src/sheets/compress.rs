@@ -26,15 +26,6 @@ const EXTRA: u64 = 6;
 /// The random parts come from this share of the used length at its right end.
 const NEAR_END: f64 = 0.5;
 
-/// Attempts per part order tried.
-const PER_ORDER: u32 = 4;
-
-/// Attempts for `tries` part orders (the `nesting` level): none for one order (`fast`), 32
-/// for `good`, 192 for `best`.
-pub(crate) fn attempts(tries: u32) -> u32 {
-    if tries < 2 { 0 } else { PER_ORDER * tries }
-}
-
 /// Shortens `placed` (one sheet whose free region is `lo..hi`) by up to `attempts` tries of
 /// ruin and recreate; the better placements, or `None` when none was found.
 pub(crate) fn compress(

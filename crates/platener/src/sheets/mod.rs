@@ -11,6 +11,7 @@ mod blf;
 mod compress;
 mod holes;
 mod search;
+mod separate;
 mod shape;
 #[cfg(test)]
 mod tests;

@@ -12,8 +12,8 @@ use platener_geom::rng::SplitMix64;
 use rayon::prelude::*;
 
 use super::blf::{Bin, GAP, Placed};
-use super::compress;
 use super::shape::NestShape;
+use super::{compress, separate};
 
 /// Keeps cut paths 1 µm inside the region so f32 rounding never puts them on the margin line.
 const INSET: f64 = 1e-3;
@@ -112,27 +112,53 @@ pub(crate) fn best_layout(
             first_fit(shapes, &o, region.0, region.1, cancelled).map(|l| (t, l))
         })
         .collect();
-    let mut best = layouts
+    // The last sheet's length is what the layouts were chosen by: shorten it further, from the
+    // best few layouts (see `separate::Budget`), and keep the best result.
+    let budget = separate::budget(tries);
+    let mut layouts = layouts;
+    layouts.sort_by(|(ta, a), (tb, b)| compare(a, b).then(ta.cmp(tb)));
+    let shrunk: Vec<Layout> = layouts
         .into_iter()
-        .min_by(|(ta, a), (tb, b)| {
-            let (sa, sb) = (a.score(), b.score());
-            sa.0.cmp(&sb.0)
-                .then(sa.1.total_cmp(&sb.1))
-                .then(sa.2.total_cmp(&sb.2))
-                .then(ta.cmp(tb))
-        })
-        .map(|(_, l)| l)?;
-    // The last sheet's length is what the layouts were chosen by: shorten it further.
-    let attempts = (compress::attempts(tries), seed);
-    if let Some(last) = best.sheets.last_mut()
-        && let Some(shorter) = compress::compress(shapes, last, region, attempts, cancelled)
+        .take(budget.starts)
+        .enumerate()
+        .collect::<Vec<_>>()
+        .into_par_iter()
+        .map(|(k, (_, layout))| shorten_last(shapes, layout, region, (budget, seed ^ k as u64), cancelled))
+        .collect();
+    shrunk.into_iter().min_by(compare)
+}
+
+/// Layouts by (sheets used, length used on the last sheet, total length used).
+fn compare(a: &Layout, b: &Layout) -> std::cmp::Ordering {
+    let (sa, sb) = (a.score(), b.score());
+    sa.0.cmp(&sb.0).then(sa.1.total_cmp(&sb.1)).then(sa.2.total_cmp(&sb.2))
+}
+
+/// `layout` with its last sheet shortened by [`separate::shrink`] where it can be.
+fn shorten_last(
+    shapes: &[NestShape],
+    mut layout: Layout,
+    region: (DVec2, DVec2),
+    (budget, seed): (separate::Budget, u64),
+    cancelled: &(dyn Fn() -> bool + Sync),
+) -> Layout {
+    if let Some(last) = layout.sheets.last_mut()
+        && let Some(shorter) = compress::compress(shapes, last, region, (budget.attempts, seed), cancelled)
     {
-        if let Some(r) = best.used_right.last_mut() {
+        if let Some(r) = layout.used_right.last_mut() {
             *r = super::blf::right_edge(&shorter, region.0.x);
         }
         *last = shorter;
     }
-    Some(best)
+    if let Some(last) = layout.sheets.last_mut()
+        && let Some(shorter) = separate::shrink(shapes, last, region, (budget, seed), cancelled)
+    {
+        if let Some(r) = layout.used_right.last_mut() {
+            *r = super::blf::right_edge(&shorter, region.0.x);
+        }
+        *last = shorter;
+    }
+    layout
 }
 
 /// `--sheet fit`: the strip height that gives the smallest sheet. Heights around the square
