@@ -213,9 +213,47 @@ impl Group<'_> {
         }
     }
 
+    /// Whether part `i` fits an empty sheet of `kind` within the margins.
+    fn fits_kind(&self, i: usize, kind: &crate::plan::StockSheet) -> bool {
+        let region = sheet_region(kind.width, kind.height, self.settings.margin, self.settings.spacing);
+        fits_empty(&self.shapes[i], region.1 - region.0)
+    }
+
+    /// The last sheet of `layout` (on stock kind `k`, as many as needed) nested again on the
+    /// smallest other kind with a sheet free that holds all of its parts on one sheet: a maker
+    /// who lists `3:600x400, 3:300x200` cuts the leftovers from the small sheet. `None` when no
+    /// smaller kind holds them.
+    fn smaller_last(
+        &self,
+        layout: &search::Layout,
+        stock: &[crate::plan::StockSheet],
+        k: usize,
+        free: &[Option<usize>],
+    ) -> Result<Option<(usize, search::Layout)>, PlanError> {
+        let Some(last) = layout.sheets.last() else {
+            return Ok(None);
+        };
+        let items: Vec<usize> = last.iter().map(|p| p.key).collect();
+        let area = |j: usize| stock[j].width * stock[j].height;
+        let mut smaller: Vec<usize> = (0..stock.len())
+            .filter(|&j| j != k && area(j) < area(k) && free[j] != Some(0))
+            .filter(|&j| items.iter().all(|&i| self.fits_kind(i, &stock[j])))
+            .collect();
+        smaller.sort_by(|&a, &b| area(a).total_cmp(&area(b)).then(a.cmp(&b)));
+        for j in smaller {
+            let other = self.layout(&items, stock[j].width, stock[j].height)?;
+            if other.sheets.len() == 1 {
+                return Ok(Some((j, other)));
+            }
+        }
+        Ok(None)
+    }
+
     /// Nests `top` onto `stock` in its order: each kind of sheet takes as many of the
-    /// remaining parts as its count of sheets holds (offcuts listed first are used first);
-    /// parts left when the stock is used up end the plan with an error naming them.
+    /// remaining parts as its count of sheets holds (offcuts listed first are used first); the
+    /// last sheet of a kind listed without a count goes onto a smaller kind when one holds it
+    /// ([`Self::smaller_last`]); parts left when the stock is used up end the plan with an
+    /// error naming them.
     fn nest_on_stock(
         &self,
         nesting: &mut Nesting,
@@ -223,23 +261,30 @@ impl Group<'_> {
         top: &[usize],
         stock: &[crate::plan::StockSheet],
     ) -> Result<(), PlanError> {
-        let settings = self.settings;
         let mut left: Vec<usize> = top.to_vec();
-        for kind in stock {
-            let region = sheet_region(kind.width, kind.height, settings.margin, settings.spacing);
-            let fitting: Vec<usize> = left
-                .iter()
-                .copied()
-                .filter(|&i| fits_empty(&self.shapes[i], region.1 - region.0))
-                .collect();
-            if fitting.is_empty() {
+        // Sheets of each kind still free (`None`: as many as needed).
+        let mut free: Vec<Option<usize>> = stock.iter().map(|k| k.count.map(|n| n as usize)).collect();
+        for (k, kind) in stock.iter().enumerate() {
+            let fitting: Vec<usize> = left.iter().copied().filter(|&i| self.fits_kind(i, kind)).collect();
+            if fitting.is_empty() || free[k] == Some(0) {
                 continue;
             }
             let layout = self.layout(&fitting, kind.width, kind.height)?;
-            let count = kind
-                .count
-                .map_or(layout.sheets.len(), |n| layout.sheets.len().min(n as usize));
+            let mut count = free[k].map_or(layout.sheets.len(), |n| layout.sheets.len().min(n));
+            let smaller = if free[k].is_none() {
+                self.smaller_last(&layout, stock, k, &free)?
+            } else {
+                None
+            };
+            if smaller.is_some() {
+                count -= 1;
+            }
             self.take_sheets(nesting, placed, &layout, count, (kind.width, kind.height));
+            if let Some((j, last)) = smaller {
+                self.take_sheets(nesting, placed, &last, 1, (stock[j].width, stock[j].height));
+                free[j] = free[j].map(|n| n - 1);
+            }
+            free[k] = free[k].map(|n| n - count);
             left.retain(|&i| placed[i].is_none());
         }
         if left.is_empty() {
@@ -253,7 +298,7 @@ impl Group<'_> {
             message: format!(
                 "the {} mm sheets in stock ({}) hold {} of the {} parts of that thickness: parts {} need more; \
                  add sheets to `stock`, or leave a count out for as many as needed",
-                crate::draw::svg::num(settings.nominal(self.thickness)),
+                crate::draw::svg::num(self.settings.nominal(self.thickness)),
                 listed.join(", "),
                 top.len() - left.len(),
                 top.len(),

@@ -235,3 +235,55 @@ fn parts_go_onto_the_stock_in_order_and_too_few_sheets_are_refused() {
     let n = nest_all(&parts, &other);
     assert!(n.sheets.iter().all(|s| (s.width, s.height) == (600.0, 400.0)));
 }
+
+/// A size listed without a count hands its last sheet to a smaller listed size that holds it,
+/// the smallest such with a sheet left.
+#[test]
+fn the_last_sheet_goes_onto_a_smaller_size_in_stock() {
+    use crate::plan::stock::parse_stock;
+    let with = |stock: &str| CutSettings {
+        stock: parse_stock(stock, 10_000.0).expect("valid"),
+        ..CutSettings::default()
+    };
+    // The large sheets, then the leftovers on one small sheet.
+    // Eight 180 × 180 plates: a 600 × 400 sheet holds 6 (3 × 2), the other 2 fit 400 × 200.
+    let eight: Vec<Part> = (1..=8)
+        .map(|id| part(id, Polygon::new(rect(0.0, 0.0, 180.0, 180.0))))
+        .collect();
+    let n = nest_all(&eight, &with("3:600x400, 3:400x200, 3:200x200"));
+    let sizes: Vec<(f64, f64)> = n.sheets.iter().map(|s| (s.width, s.height)).collect();
+    assert_eq!(
+        sizes,
+        [(600.0, 400.0), (400.0, 200.0)],
+        "the last sheet on the smallest that holds it"
+    );
+    assert_eq!(n.sheets[1].parts.len(), 2);
+    for p in &n.placements {
+        let sheet = &n.sheets[p.index as usize];
+        for q in rect(0.0, 0.0, 180.0, 180.0) {
+            let at = p.apply(q);
+            assert!(
+                at.x >= 5.0 && at.y >= 5.0 && at.x <= sheet.width - 5.0 && at.y <= sheet.height - 5.0,
+                "{at} on {sheet:?}"
+            );
+        }
+    }
+    // A small kind already used up is not taken; one with a count left is, once.
+    let n = nest_all(&eight, &with("3:400x200x1, 3:600x400"));
+    let sizes: Vec<(f64, f64)> = n.sheets.iter().map(|s| (s.width, s.height)).collect();
+    assert_eq!(
+        sizes,
+        [(400.0, 200.0), (600.0, 400.0)],
+        "the offcut first, the rest on one large sheet"
+    );
+    let sixteen: Vec<Part> = (1..=16)
+        .map(|id| part(id, Polygon::new(rect(0.0, 0.0, 180.0, 180.0))))
+        .collect();
+    let n = nest_all(&sixteen, &with("3:600x400, 3:400x200x1"));
+    let sizes: Vec<(f64, f64)> = n.sheets.iter().map(|s| (s.width, s.height)).collect();
+    assert_eq!(
+        sizes,
+        [(600.0, 400.0), (600.0, 400.0), (600.0, 400.0)],
+        "4 left: more than the small sheet holds"
+    );
+}
