@@ -148,7 +148,8 @@ pub static DEFS: &[Def] = &[
         },
         help: "The sheet size, width × height in mm (e.g. 600x400), or fit for one sheet per thickness just large enough.",
         doc: "Parts are nested on as many sheets of this size as they need; a part larger than the sheet \
-              within its margins is refused.",
+              within its margins is refused. For several sizes (a small sheet for the leftovers, offcuts, \
+              a counted number of sheets), list them in Sheets in stock.",
         set: |c, v| {
             c.settings.cut.sheet = one(v)?
                 .parse::<SheetSize>()
@@ -171,8 +172,10 @@ pub static DEFS: &[Def] = &[
         help: "The sheets you have: thickness, size and count of each (3:600x400x2, 6:300x200x1); \
                leave the count out for as many as needed.",
         doc: "Parts of each thickness are nested onto its sheets in the order listed, so offcuts listed \
-              first are used first; a plan that needs more sheets than listed is refused, naming the parts \
-              left over. Thicknesses not listed go on sheets of the sheet size.",
+              first are used first; the last sheet of a size listed without a count moves to a smaller \
+              listed size when that holds its parts (3:600x400, 3:300x200 cuts the leftovers from a small \
+              sheet); a plan that needs more sheets than listed is refused, naming the parts left over. \
+              Thicknesses not listed go on sheets of the sheet size.",
         set: |c, v| {
             let text = v.join(",");
             c.settings.cut.stock = if text.trim().eq_ignore_ascii_case("none") {
@@ -255,9 +258,9 @@ pub static DEFS: &[Def] = &[
         kind: Kind::Choice { choices: NESTINGS },
         help: "How long nesting searches for a denser layout: fast, good or best.",
         doc: "Nesting lays the parts out in several orders side by side and keeps the densest: fast tries \
-              one (a plan at once), good eight, best forty-eight (for the sheets you buy; about five times \
-              as long as good). Good and best then try to shorten the last sheet, taking parts off its end \
-              and fitting them into gaps further left.",
+              one (a plan at once), good eight, best forty-eight (for the sheets you buy; several times \
+              as long as good, some ten seconds on a large plan). Good and best then shorten the last sheet: they push the parts at its end \
+              onto the others and move the parts that overlap until none does, again and again.",
         set: |c, v| {
             c.settings.cut.nest_tries = named(v, NestEffort::ALL, NestEffort::name, NESTINGS)?.tries();
             Ok(())
@@ -585,7 +588,7 @@ const NESTINGS: &[Choice] = &[
     Choice {
         value: "best",
         label: "Best",
-        help: "Forty-eight orders: denser, about five times as long.",
+        help: "Forty-eight orders, the four densest shortened: denser, several times as long.",
     },
 ];
 
