@@ -85,7 +85,7 @@ pub(crate) struct Bin {
     cores: Vec<(DVec2, f64)>,
 }
 
-pub(crate) fn engine_config() -> CDEConfig {
+fn engine_config() -> CDEConfig {
     CDEConfig {
         quadtree_depth: 5,
         cd_threshold: 16,
@@ -93,25 +93,37 @@ pub(crate) fn engine_config() -> CDEConfig {
     }
 }
 
+/// A collision engine whose one static hazard is everything outside the polygon `ring`
+/// (counter-clockwise, mm), and the ring's box.
+pub(crate) fn region_engine(ring: &[DVec2]) -> Option<(CDEngine<Entity>, (DVec2, DVec2))> {
+    let outer = to_spolygon(ring)?;
+    let (lo, hi) = bounds_of(ring.iter().copied());
+    let pad = ((hi - lo).max_element() * 0.01).max(1.0);
+    let bbox = Rect::try_new(
+        (lo.x - pad) as f32,
+        (lo.y - pad) as f32,
+        (hi.x + pad) as f32,
+        (hi.y + pad) as f32,
+    )
+    .ok()?
+    .inflate_to_square();
+    let cde = CDEngine::new(
+        bbox,
+        vec![Hazard::new(Entity::Exterior, Arc::new(outer))],
+        engine_config(),
+    );
+    Some((cde, (lo, hi)))
+}
+
+/// The counter-clockwise rectangle from `lo` to `hi`.
+pub(crate) fn rect_ring(lo: DVec2, hi: DVec2) -> [DVec2; 4] {
+    [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)]
+}
+
 impl Bin {
     /// A bin whose free region is the polygon `ring` (counter-clockwise, mm).
     pub fn new(ring: &[DVec2]) -> Option<Self> {
-        let outer = to_spolygon(ring)?;
-        let (lo, hi) = bounds_of(ring.iter().copied());
-        let pad = ((hi - lo).max_element() * 0.01).max(1.0);
-        let bbox = Rect::try_new(
-            (lo.x - pad) as f32,
-            (lo.y - pad) as f32,
-            (hi.x + pad) as f32,
-            (hi.y + pad) as f32,
-        )
-        .ok()?
-        .inflate_to_square();
-        let cde = CDEngine::new(
-            bbox,
-            vec![Hazard::new(Entity::Exterior, Arc::new(outer))],
-            engine_config(),
-        );
+        let (cde, (lo, hi)) = region_engine(ring)?;
         Some(Self {
             cde,
             lo,
@@ -123,7 +135,7 @@ impl Bin {
 
     /// A rectangular bin from `lo` to `hi`.
     pub fn rect(lo: DVec2, hi: DVec2) -> Option<Self> {
-        Self::new(&[lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)])
+        Self::new(&rect_ring(lo, hi))
     }
 
     /// The free region's box.
@@ -322,7 +334,7 @@ pub(crate) fn right_edge(placed: &[Placed], left: f64) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use glam::DVec2;
     use platener_geom::Polygon;
     use proptest::prelude::*;
@@ -332,7 +344,7 @@ mod tests {
 
     /// A disc of radius `r` (48 sides), an L and a plate with a notch: shapes whose cores are
     /// most of them, a corner of them, and off their middle.
-    fn shapes() -> Vec<NestShape> {
+    pub(crate) fn shapes() -> Vec<NestShape> {
         let disc: Vec<DVec2> = (0..48)
             .map(|k| DVec2::from_angle(f64::from(k) * std::f64::consts::TAU / 48.0) * 30.0)
             .collect();

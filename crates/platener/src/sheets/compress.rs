@@ -102,6 +102,7 @@ mod tests {
     use super::*;
     use crate::sheets::search::{first_fit, order};
     use crate::sheets::shape::nest_shape;
+    use crate::sheets::tests::assert_free;
 
     /// Forty L-shapes and rectangles of mixed sizes, from a fixed sequence.
     fn shapes() -> Vec<NestShape> {
@@ -140,17 +141,6 @@ mod tests {
         let mut keys: Vec<usize> = after.iter().map(|p| p.key).collect();
         keys.sort_unstable();
         assert_eq!(keys, items, "every part once");
-        for (k, p) in after.iter().enumerate() {
-            let mut bin = Bin::rect(region.0, region.1).expect("a bin");
-            for (_, q) in after.iter().enumerate().filter(|(j, _)| *j != k) {
-                bin.put(q.clone(), &shapes[q.key]);
-            }
-            let t = &shapes[p.key].templates[p.template];
-            assert!(
-                bin.is_free(t, p.pos),
-                "part {} overlaps another or leaves the strip",
-                p.key
-            );
-        }
+        assert_free(&shapes, &after, region);
     }
 }

@@ -24,12 +24,12 @@ use jagua_rs::collision_detection::hazards::collector::{BasicHazardCollector, Ha
 use jagua_rs::collision_detection::hazards::filter::NoFilter;
 use jagua_rs::geometry::Transformation;
 use jagua_rs::geometry::geo_traits::TransformableFrom;
-use jagua_rs::geometry::primitives::{Rect, SPolygon};
+use jagua_rs::geometry::primitives::SPolygon;
 use platener_geom::polygon::{ring_contains, ring_distance_squared, signed_area};
 use platener_geom::rng::SplitMix64;
 
-use super::blf::{CORE_OVERLAP, Entity, GAP, Placed, engine_config, right_edge};
-use super::shape::{NestShape, Template, to_spolygon};
+use super::blf::{CORE_OVERLAP, Entity, GAP, Placed, rect_ring, region_engine, right_edge};
+use super::shape::{NestShape, Template};
 use crate::plan::NestEffort;
 
 /// The first step asked for: this share of the used length.
@@ -83,12 +83,7 @@ impl Poles {
 /// coarse where jagua-rs's pole search is exact, and a thousand times cheaper: the circles
 /// only measure how deep two shapes overlap, the exact test decides whether they do.
 fn template_poles(t: &Template) -> Circles {
-    let ring: Vec<DVec2> = t
-        .shape
-        .vertices()
-        .iter()
-        .map(|p| DVec2::new(f64::from(p.0), f64::from(p.1)))
-        .collect();
+    let ring = ring_of(t);
     let cell = t.size / f64::from(POLE_GRID);
     let inside: Vec<(DVec2, f64)> = (0..POLE_GRID * POLE_GRID)
         .map(|k| cell * (DVec2::new(f64::from(k % POLE_GRID), f64::from(k / POLE_GRID)) + 0.5))
@@ -111,6 +106,15 @@ fn template_poles(t: &Template) -> Circles {
         poles.push((next.0, r));
     }
     poles
+}
+
+/// The outline of `t`'s shape (grown, turned, from its box corner), mm.
+fn ring_of(t: &Template) -> Vec<DVec2> {
+    t.shape
+        .vertices()
+        .iter()
+        .map(|p| DVec2::new(f64::from(p.0), f64::from(p.1)))
+        .collect()
 }
 
 /// How deep two placed shapes reach into each other, from their poles: the sum over pole pairs
@@ -245,21 +249,7 @@ struct Separation<'a> {
 impl<'a> Separation<'a> {
     /// `placed` squeezed into `lo..hi`: parts reaching past it are pushed back inside.
     fn new(shapes: &'a [NestShape], poles: &'a Poles, placed: &[Placed], (lo, hi): (DVec2, DVec2)) -> Option<Self> {
-        let outer = to_spolygon(&[lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)])?;
-        let pad = ((hi - lo).max_element() * 0.01).max(1.0);
-        let bbox = Rect::try_new(
-            (lo.x - pad) as f32,
-            (lo.y - pad) as f32,
-            (hi.x + pad) as f32,
-            (hi.y + pad) as f32,
-        )
-        .ok()?
-        .inflate_to_square();
-        let cde = CDEngine::new(
-            bbox,
-            vec![Hazard::new(Entity::Exterior, Arc::new(outer))],
-            engine_config(),
-        );
+        let (cde, _) = region_engine(&rect_ring(lo, hi))?;
         let n = placed.len();
         let mut sep = Self {
             shapes,
@@ -544,9 +534,9 @@ mod tests {
     use platener_geom::polygon::ring_distance_squared;
 
     use super::*;
-    use crate::sheets::blf::Bin;
     use crate::sheets::search::{first_fit, order};
     use crate::sheets::shape::nest_shape;
+    use crate::sheets::tests::assert_free;
 
     /// A disc of radius `r` with 48 sides.
     fn disc(r: f64) -> Vec<DVec2> {
@@ -567,32 +557,21 @@ mod tests {
             .collect()
     }
 
-    /// Each part of `placed` inside `region` and clear of all the others, asked of the
-    /// collision engine part by part (the same test a fill uses).
-    fn assert_free(shapes: &[NestShape], placed: &[Placed], region: (DVec2, DVec2)) {
-        for (k, p) in placed.iter().enumerate() {
-            let mut bin = Bin::rect(region.0, region.1).expect("a bin");
-            for (_, q) in placed.iter().enumerate().filter(|(j, _)| *j != k) {
-                bin.put(q.clone(), &shapes[q.key]);
-            }
-            let t = &shapes[p.key].templates[p.template];
-            assert!(
-                bin.is_free(t, p.pos),
-                "part {} overlaps another or leaves the strip",
-                p.key
-            );
-        }
+    /// The layers filled left-first into a 300 mm high strip: shapes, placements, strip.
+    fn strip() -> (Vec<NestShape>, Vec<Placed>, (DVec2, DVec2)) {
+        let shapes = layers();
+        let items: Vec<usize> = (0..shapes.len()).collect();
+        let region = (DVec2::ZERO, DVec2::new(3000.0, 300.0));
+        let layout = first_fit(&shapes, &order(&shapes, &items, 0, 0), region.0, region.1, &|| false).expect("fits");
+        (shapes, layout.sheets[0].clone(), region)
     }
 
     /// Shrinking a strip of discs makes it shorter, keeps every disc once, inside the strip
     /// and clear of the others, and gives the same layout for the same seed.
     #[test]
     fn a_shrunk_strip_of_discs_is_shorter_and_free_of_overlaps() {
-        let shapes = layers();
-        let items: Vec<usize> = (0..shapes.len()).collect();
-        let region = (DVec2::ZERO, DVec2::new(3000.0, 300.0));
-        let layout = first_fit(&shapes, &order(&shapes, &items, 0, 0), region.0, region.1, &|| false).expect("fits");
-        let before = layout.used_right[0];
+        let (shapes, placed, region) = strip();
+        let before = right_edge(&placed, 0.0);
         let budget = Budget {
             starts: 1,
             work: 60_000,
@@ -600,50 +579,33 @@ mod tests {
             stall: 20,
             attempts: 0,
         };
-        let after = shrink(&shapes, &layout.sheets[0], region, (budget, 3), &|| false).expect("shorter");
+        let after = shrink(&shapes, &placed, region, (budget, 3), &|| false).expect("shorter");
         let right = right_edge(&after, 0.0);
         assert!(right < before - 5.0, "{before} → {right}");
         let mut keys: Vec<usize> = after.iter().map(|p| p.key).collect();
         keys.sort_unstable();
-        assert_eq!(keys, items, "every disc once");
+        assert_eq!(keys, (0..shapes.len()).collect::<Vec<_>>(), "every disc once");
         assert_free(&shapes, &after, region);
-        let again = shrink(&shapes, &layout.sheets[0], region, (budget, 3), &|| false).expect("shorter");
+        let again = shrink(&shapes, &placed, region, (budget, 3), &|| false).expect("shorter");
         assert_eq!(again, after, "the same seed, the same layout");
     }
 
     /// Nothing to do at `fast`, and a cancelled search stops at once with what it has.
     #[test]
     fn fast_and_cancelled_shrink_nothing() {
-        let shapes = layers();
-        let items: Vec<usize> = (0..shapes.len()).collect();
-        let region = (DVec2::ZERO, DVec2::new(3000.0, 300.0));
-        let layout = first_fit(&shapes, &order(&shapes, &items, 0, 0), region.0, region.1, &|| false).expect("fits");
+        let (shapes, placed, region) = strip();
         assert_eq!(budget(1).work, 0);
-        assert!(shrink(&shapes, &layout.sheets[0], region, (budget(1), 3), &|| false).is_none());
-        assert!(shrink(&shapes, &layout.sheets[0], region, (budget(8), 3), &|| true).is_none());
+        assert!(shrink(&shapes, &placed, region, (budget(1), 3), &|| false).is_none());
+        assert!(shrink(&shapes, &placed, region, (budget(8), 3), &|| true).is_none());
     }
 
     /// The poles of an L lie inside it, apart from each other, the first one its core, and
     /// together cover most of it.
     #[test]
     fn poles_fill_a_shape_without_leaving_it() {
-        let l = [
-            (0.0, 0.0),
-            (80.0, 0.0),
-            (80.0, 20.0),
-            (20.0, 20.0),
-            (20.0, 60.0),
-            (0.0, 60.0),
-        ];
-        let p = Polygon::new(l.iter().map(|&(x, y)| DVec2::new(x, y)).collect());
-        let shape = nest_shape(&p, p.area(), 2.0, false).expect("a shape");
+        let shape = &crate::sheets::blf::tests::shapes()[1];
         for t in &shape.templates {
-            let ring: Vec<DVec2> = t
-                .shape
-                .vertices()
-                .iter()
-                .map(|q| DVec2::new(f64::from(q.0), f64::from(q.1)))
-                .collect();
+            let ring = ring_of(t);
             let poles = template_poles(t);
             assert_eq!(poles[0], t.core);
             assert!(poles.len() > 2, "an L needs more than its core: {poles:?}");

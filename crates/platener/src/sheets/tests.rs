@@ -8,6 +8,38 @@ use platener_geom::polygon::rect;
 
 use crate::plan::samples::flat_part as part;
 
+/// Each part of `placed` inside `region` and clear of all the others, asked of the collision
+/// engine part by part (the same test a fill uses).
+pub(crate) fn assert_free(shapes: &[shape::NestShape], placed: &[blf::Placed], region: (DVec2, DVec2)) {
+    for (k, p) in placed.iter().enumerate() {
+        let mut bin = blf::Bin::rect(region.0, region.1).expect("a bin");
+        for (_, q) in placed.iter().enumerate().filter(|(j, _)| *j != k) {
+            bin.put(q.clone(), &shapes[q.key]);
+        }
+        let t = &shapes[p.key].templates[p.template];
+        assert!(
+            bin.is_free(t, p.pos),
+            "part {} overlaps another or leaves the region",
+            p.key
+        );
+    }
+}
+
+/// Every corner of each part's outline `ring` (all parts alike) at least `margin` inside its
+/// sheet.
+fn assert_within_margins(n: &Nesting, ring: &[DVec2], margin: f64) {
+    for p in &n.placements {
+        let sheet = &n.sheets[p.index as usize];
+        for q in ring {
+            let at = p.apply(*q);
+            assert!(
+                at.x >= margin && at.y >= margin && at.x <= sheet.width - margin && at.y <= sheet.height - margin,
+                "{at} on {sheet:?}"
+            );
+        }
+    }
+}
+
 fn nest_all(parts: &[Part], settings: &CutSettings) -> Nesting {
     nested(parts, settings).expect("nests")
 }
@@ -200,17 +232,7 @@ fn parts_go_onto_the_stock_in_order_and_too_few_sheets_are_refused() {
     assert!(sizes[1..].iter().all(|&s| s == (600.0, 400.0)));
     assert_eq!(n.sheets.iter().map(|s| s.parts.len()).sum::<usize>(), 12);
     // Every part inside its sheet's margins (the cut path grown by half the kerf included).
-    for p in &n.placements {
-        let sheet = &n.sheets[p.index as usize];
-        for q in rect(0.0, 0.0, 90.0, 90.0) {
-            let at = p.apply(q);
-            assert!(at.x >= 5.0 && at.y >= 5.0, "{at}");
-            assert!(
-                at.x <= sheet.width - 5.0 && at.y <= sheet.height - 5.0,
-                "{at} on {sheet:?}"
-            );
-        }
-    }
+    assert_within_margins(&n, &rect(0.0, 0.0, 90.0, 90.0), 5.0);
     // Two offcuts hold 8 of the 12.
     let Err(PlanError::Setting { name, message }) = nested(&parts, &with("3:200x200x2")) else {
         panic!("two offcuts cannot hold twelve plates");
@@ -258,16 +280,7 @@ fn the_last_sheet_goes_onto_a_smaller_size_in_stock() {
         "the last sheet on the smallest that holds it"
     );
     assert_eq!(n.sheets[1].parts.len(), 2);
-    for p in &n.placements {
-        let sheet = &n.sheets[p.index as usize];
-        for q in rect(0.0, 0.0, 180.0, 180.0) {
-            let at = p.apply(q);
-            assert!(
-                at.x >= 5.0 && at.y >= 5.0 && at.x <= sheet.width - 5.0 && at.y <= sheet.height - 5.0,
-                "{at} on {sheet:?}"
-            );
-        }
-    }
+    assert_within_margins(&n, &rect(0.0, 0.0, 180.0, 180.0), 5.0);
     // A small kind already used up is not taken; one with a count left is, once.
     let n = nest_all(&eight, &with("3:400x200x1, 3:600x400"));
     let sizes: Vec<(f64, f64)> = n.sheets.iter().map(|s| (s.width, s.height)).collect();
