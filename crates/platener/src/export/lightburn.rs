@@ -60,7 +60,8 @@ pub const SHEET: Layer = Layer {
 };
 
 /// Starting powers (per cent of the tube's maximum) for cutting and for engraving `material`
-/// on a 40–60 W CO₂ laser at the plan's speeds.
+/// on a 40–60 W CO₂ laser at the plan's speeds; the `laser` setting's `cut-power` and
+/// `engrave-power` take their place.
 pub fn power(material: Material) -> (f64, f64) {
     match material {
         Material::Wood => (70.0, 20.0),
@@ -80,6 +81,8 @@ pub fn sheet_lbrn2(
     stock: &str,
 ) -> String {
     let (cut_power, engrave_power) = power(settings.material);
+    let cut_power = settings.laser.cut_power.unwrap_or(cut_power);
+    let engrave_power = settings.laser.engrave_power.unwrap_or(engrave_power);
     let speeds = settings.laser.speeds(settings.material, thickness);
     let mut s = String::new();
     s.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
@@ -223,5 +226,41 @@ mod tests {
         assert!(text.contains("<PrimList>L0 1</PrimList>"), "open");
         assert_eq!(text.matches("<CutSetting").count(), 4);
         assert!(text.contains("Notes=\"a &lt;b&gt; &amp; c\""), "the stock, escaped");
+    }
+
+    /// Each layer's power: the material's starting point, or the `laser` setting's own.
+    #[test]
+    fn powers_come_from_the_material_unless_the_laser_setting_gives_them() {
+        let powers = |settings: &CutSettings| -> Vec<(String, String)> {
+            let text = sheet_lbrn2((200.0, 100.0, 3.0), &[], settings, "s");
+            let doc = roxmltree::Document::parse(&text).expect("XML");
+            doc.descendants()
+                .filter(|n| n.has_tag_name("CutSetting"))
+                .map(|n| {
+                    let value = |tag: &str| {
+                        n.children()
+                            .find(|c| c.has_tag_name(tag))
+                            .and_then(|c| c.attribute("Value"))
+                            .expect("a value")
+                            .to_string()
+                    };
+                    assert_eq!(value("minPower"), value("maxPower"));
+                    (value("name"), value("maxPower"))
+                })
+                .collect()
+        };
+        let by_material = powers(&CutSettings::default());
+        assert_eq!(by_material[0], ("Engrave".to_string(), "20".to_string()));
+        assert_eq!(by_material[1].1, "70", "wood's cutting power");
+        let own = CutSettings {
+            laser: crate::plan::laser::parse_laser("co2, cut-power=55, engrave-power=12.5").expect("a laser"),
+            ..CutSettings::default()
+        };
+        let given = powers(&own);
+        assert_eq!(
+            given.iter().map(|(_, p)| p.as_str()).collect::<Vec<_>>(),
+            ["12.5", "55", "55", "0"],
+            "engrave, cut inner, cut outer, the sheet (off)"
+        );
     }
 }

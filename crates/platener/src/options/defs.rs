@@ -84,13 +84,16 @@ pub static DEFS: &[Def] = &[
         kind: Kind::Text {
             example: "co2, cut=12",
             shape: "KIND[,cut=MM/S,...]",
-            format: "co2, co2-100w, k40, diode-10w or diode-20w, then any of cut=, engrave=, travel= (mm/s), pierce= (s)",
+            format: "co2, co2-100w, k40, diode-10w or diode-20w, then any of cut=, engrave=, travel= (mm/s), \
+                     pierce= (s), cut-power=, engrave-power= (%)",
         },
         help: "Your laser cutter (co2 is a 40–60 W tube; co2-100w, k40, diode-10w, diode-20w), and any speed \
-               you know better: cut=12, engrave=150, travel=300 mm/s, pierce=0.2 s.",
+               or power you know better: cut=12, engrave=150, travel=300 mm/s, pierce=0.2 s, cut-power=70, \
+               engrave-power=20 %.",
         doc: "It sets the speeds of the time estimate and the LightBurn project, per material and \
-              thickness from a table of published starting settings (docs/cutting-plans.md); a speed you \
-              give holds for every sheet. The plan itself does not change.",
+              thickness from a table of published starting settings, and the project's powers, per \
+              material (docs/cutting-plans.md); a speed or power you give holds for every sheet. The \
+              plan itself does not change.",
         set: |c, v| {
             let text = v.join(",");
             c.settings.cut.laser = if text.trim().eq_ignore_ascii_case("none") {

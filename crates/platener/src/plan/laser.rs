@@ -138,6 +138,11 @@ pub struct Laser {
     pub travel: Option<f64>,
     /// Seconds per cut path started.
     pub pierce: Option<f64>,
+    /// Cutting power in the LightBurn project, per cent of the tube; `None` takes the
+    /// material's starting point (`export::lightburn::power`).
+    pub cut_power: Option<f64>,
+    /// Engraving and scoring power, per cent.
+    pub engrave_power: Option<f64>,
 }
 
 /// The speeds one sheet is cut with.
@@ -154,11 +159,13 @@ pub struct LaserSpeeds {
 }
 
 /// The keys a laser setting may set, with what each is.
-pub const LASER_KEYS: [(&str, &str); 4] = [
+pub const LASER_KEYS: [(&str, &str); 6] = [
     ("cut", "cutting speed, mm/s"),
     ("engrave", "engraving and scoring speed, mm/s"),
     ("travel", "speed with the beam off, mm/s"),
     ("pierce", "seconds per cut started"),
+    ("cut-power", "cutting power, % of the tube"),
+    ("engrave-power", "engraving and scoring power, % of the tube"),
 ];
 
 impl Laser {
@@ -185,6 +192,8 @@ impl Laser {
             ("engrave", self.engrave),
             ("travel", self.travel),
             ("pierce", self.pierce),
+            ("cut-power", self.cut_power),
+            ("engrave-power", self.engrave_power),
         ] {
             if let Some(v) = value {
                 out.push_str(&format!(", {key}={v}"));
@@ -195,7 +204,7 @@ impl Laser {
 }
 
 /// Reads a laser setting: a kind (`co2`, `co2-100w`, `k40`, `diode-10w`, `diode-20w`) and/or
-/// `key=value` pairs (`cut=12, travel=400`), separated by commas or spaces. The error is a
+/// `key=value` pairs (`cut=12, travel=400, cut-power=55`), separated by commas or spaces. The error is a
 /// phrase for the page.
 pub fn parse_laser(text: &str) -> Result<Laser, String> {
     let mut laser = Laser::default();
@@ -216,16 +225,22 @@ pub fn parse_laser(text: &str) -> Result<Laser, String> {
             .ok()
             .filter(|v: &f64| v.is_finite() && *v > 0.0 && *v <= 10_000.0)
             .ok_or_else(|| format!("{item:?}: the value must be a positive number"))?;
-        let slot = match key.trim().to_ascii_lowercase().as_str() {
+        let key = key.trim().to_ascii_lowercase();
+        let slot = match key.as_str() {
             "cut" => &mut laser.cut,
             "engrave" => &mut laser.engrave,
             "travel" => &mut laser.travel,
             "pierce" => &mut laser.pierce,
+            "cut-power" => &mut laser.cut_power,
+            "engrave-power" => &mut laser.engrave_power,
             other => {
                 let keys: Vec<&str> = LASER_KEYS.iter().map(|(k, _)| *k).collect();
-                return Err(format!("{other:?} is not a laser speed; give {}", keys.join(", ")));
+                return Err(format!("{other:?} is not a laser setting; give {}", keys.join(", ")));
             }
         };
+        if key.ends_with("-power") && value > 100.0 {
+            return Err(format!("{item:?}: a power is a per cent of the tube, at most 100"));
+        }
         *slot = Some(value);
     }
     Ok(laser)
@@ -270,6 +285,20 @@ mod tests {
         assert_eq!((speeds.cut, speeds.travel, speeds.pierce), (3.5, 120.0, 0.2));
         // The diode's engraving is slower than the tube's by its factor.
         assert!((speeds.engrave - 150.0 / 16.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn powers_read_back_and_stay_within_the_tube() {
+        let laser = parse_laser("co2, cut-power=55 engrave-power=12.5").expect("a laser");
+        assert_eq!((laser.cut_power, laser.engrave_power), (Some(55.0), Some(12.5)));
+        assert_eq!(laser.text(), "co2, cut-power=55, engrave-power=12.5");
+        assert_eq!(parse_laser(&laser.text()).expect("reads back"), laser);
+        assert!(
+            parse_laser("cut-power=120")
+                .expect_err("over 100")
+                .contains("at most 100")
+        );
+        assert!(parse_laser("cut-power=0").expect_err("zero").contains("positive"));
     }
 
     #[test]
