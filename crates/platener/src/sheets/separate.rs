@@ -191,15 +191,14 @@ pub(crate) fn shrink(
     (budget, seed): (Budget, u64),
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Option<Vec<Placed>> {
-    let work = budget.work;
-    if placed.len() < 2 || work == 0 {
+    if placed.len() < 2 || budget.work == 0 {
         return None;
     }
     let poles = Poles::new(shapes, placed);
     let mut rng = SplitMix64::new(seed ^ 0x5E9A_4A7E_5E9A_4A7E);
     let mut best = placed.to_vec();
     let mut step = (right_edge(&best, lo.x) - lo.x) * FIRST_STEP;
-    let mut left = work;
+    let mut left = budget.work;
     let mut improved = false;
     let mut strikes = 0u32;
     while left > 0 && !cancelled() {
@@ -304,8 +303,9 @@ impl<'a> Separation<'a> {
         self.overlapping[j * n + i] = on;
     }
 
-    /// The parts template `template` of part `i` at `pos` overlaps (part `i` itself left out
-    /// when `registered`); `None` in the list stands for the region's border.
+    /// The parts template `template` of part `i` at `pos` overlaps, in index order (part `i`
+    /// itself left out when `registered`). Positions are clamped inside the region, so the
+    /// region's border is never among them.
     fn hits(&self, i: usize, template: usize, pos: DVec2, scratch: &mut SPolygon, registered: bool) -> Vec<usize> {
         let t = &self.shapes[self.items[i].key].templates[template];
         scratch.transform_from(&t.shape, &translation(pos));
