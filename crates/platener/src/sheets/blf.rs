@@ -35,7 +35,7 @@ const SLIDE_ROUNDS: usize = 3;
 const SCORE_TOLERANCE: f64 = 0.5;
 /// Two cores must overlap by more than this (mm) to refuse a position without the engine:
 /// far above f32 rounding on a sheet, so the engine would find the overlap too.
-pub(crate) const CORE_OVERLAP: f64 = 0.05;
+const CORE_OVERLAP: f64 = 0.05;
 
 /// What a hazard in our collision engine stands for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -91,6 +91,13 @@ fn engine_config() -> CDEConfig {
         cd_threshold: 16,
         item_surrogate_config: SPSurrogateConfig::none(),
     }
+}
+
+/// Whether two cores (centre, radius, as placed) overlap by more than [`CORE_OVERLAP`]: then
+/// the shapes they lie in overlap too, whatever their outlines.
+pub(crate) fn cores_overlap((a, r): (DVec2, f64), (b, s): (DVec2, f64)) -> bool {
+    let reach = r + s - CORE_OVERLAP;
+    reach > 0.0 && a.distance_squared(b) < reach * reach
 }
 
 /// A collision engine whose one static hazard is everything outside the polygon `ring`
@@ -165,11 +172,8 @@ impl Bin {
     /// placed parts, and this refuses them for a few multiplications each instead of the
     /// engine's walk of every edge through its quadtree (3–4× faster fills, the same layouts).
     fn cores_meet(&self, t: &Template, pos: DVec2) -> bool {
-        let (centre, r) = (pos + t.core.0, t.core.1);
-        self.cores.iter().any(|&(c, s)| {
-            let reach = r + s - CORE_OVERLAP;
-            reach > 0.0 && c.distance_squared(centre) < reach * reach
-        })
+        let core = (pos + t.core.0, t.core.1);
+        self.cores.iter().any(|&placed| cores_overlap(core, placed))
     }
 
     /// The collision engine's answer: whether template `t` at `pos` overlaps a placed part or

@@ -28,6 +28,14 @@ pub(crate) struct Layout {
 }
 
 impl Layout {
+    /// Its last sheet replaced by `placed` (on a region whose left edge is `left`).
+    fn replace_last(&mut self, placed: Vec<Placed>, left: f64) {
+        if let (Some(sheet), Some(right)) = (self.sheets.last_mut(), self.used_right.last_mut()) {
+            *right = super::blf::right_edge(&placed, left);
+            *sheet = placed;
+        }
+    }
+
     fn score(&self) -> (usize, f64, f64) {
         let last = self.used_right.last().copied().unwrap_or(0.0);
         (self.sheets.len(), last, self.used_right.iter().sum())
@@ -105,7 +113,7 @@ pub(crate) fn best_layout(
     seed: u64,
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Option<Layout> {
-    let layouts: Vec<(u32, Layout)> = (0..tries)
+    let mut layouts: Vec<(u32, Layout)> = (0..tries)
         .into_par_iter()
         .filter_map(|t| {
             let o = order(shapes, items, t, seed);
@@ -115,7 +123,6 @@ pub(crate) fn best_layout(
     // The last sheet's length is what the layouts were chosen by: shorten it further, from the
     // best few layouts (see `separate::Budget`), and keep the best result.
     let budget = separate::budget(tries);
-    let mut layouts = layouts;
     layouts.sort_by(|(ta, a), (tb, b)| compare(a, b).then(ta.cmp(tb)));
     let shrunk: Vec<Layout> = layouts
         .into_iter()
@@ -142,21 +149,19 @@ fn shorten_last(
     (budget, seed): (separate::Budget, u64),
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Layout {
-    if let Some(last) = layout.sheets.last_mut()
-        && let Some(shorter) = compress::compress(shapes, last, region, (budget.attempts, seed), cancelled)
-    {
-        if let Some(r) = layout.used_right.last_mut() {
-            *r = super::blf::right_edge(&shorter, region.0.x);
-        }
-        *last = shorter;
+    let compressed = layout
+        .sheets
+        .last()
+        .and_then(|last| compress::compress(shapes, last, region, (budget.attempts, seed), cancelled));
+    if let Some(shorter) = compressed {
+        layout.replace_last(shorter, region.0.x);
     }
-    if let Some(last) = layout.sheets.last_mut()
-        && let Some(shorter) = separate::shrink(shapes, last, region, (budget, seed), cancelled)
-    {
-        if let Some(r) = layout.used_right.last_mut() {
-            *r = super::blf::right_edge(&shorter, region.0.x);
-        }
-        *last = shorter;
+    let shrunk = layout
+        .sheets
+        .last()
+        .and_then(|last| separate::shrink(shapes, last, region, (budget, seed), cancelled));
+    if let Some(shorter) = shrunk {
+        layout.replace_last(shorter, region.0.x);
     }
     layout
 }

@@ -28,7 +28,7 @@ use jagua_rs::geometry::primitives::SPolygon;
 use platener_geom::polygon::{ring_contains, ring_distance_squared, signed_area};
 use platener_geom::rng::SplitMix64;
 
-use super::blf::{CORE_OVERLAP, Entity, GAP, Placed, rect_ring, region_engine, right_edge};
+use super::blf::{Entity, GAP, Placed, cores_overlap, rect_ring, region_engine, right_edge};
 use super::shape::{NestShape, Template};
 use crate::plan::NestEffort;
 
@@ -237,8 +237,6 @@ struct Separation<'a> {
     lo: DVec2,
     hi: DVec2,
     items: Vec<Placed>,
-    /// Each part's core as its template has it (centre from the box corner, radius).
-    cores: Vec<(DVec2, f64)>,
     /// `n × n`: whether parts i and j overlap now.
     overlapping: Vec<bool>,
     /// `n × n`: the weight of the pair's overlap (guided local search).
@@ -257,7 +255,6 @@ impl<'a> Separation<'a> {
             lo,
             hi,
             items: Vec::with_capacity(n),
-            cores: Vec::with_capacity(n),
             overlapping: vec![false; n * n],
             weights: vec![1.0; n * n],
         };
@@ -265,7 +262,6 @@ impl<'a> Separation<'a> {
             let t = &shapes[p.key].templates[p.template];
             let pos = sep.clamp(t, p.pos)?;
             sep.items.push(at(p.key, p.template, t, pos));
-            sep.cores.push(t.core);
             sep.register(i);
         }
         for i in 0..n {
@@ -342,9 +338,8 @@ impl<'a> Separation<'a> {
             if j == i || q.pos.x >= hi.x || q.pos.y >= hi.y || q.max.x <= lo.x || q.max.y <= lo.y {
                 continue;
             }
-            let (qc, qr) = self.cores[j];
-            let reach = r + qr - CORE_OVERLAP;
-            if reach > 0.0 && (qc + q.pos).distance_squared(core) < reach * reach {
+            let (qc, qr) = self.shapes[q.key].templates[q.template].core;
+            if cores_overlap((core, r), (qc + q.pos, qr)) {
                 add(j, &mut sum);
                 s.counted.push(j);
                 if sum >= bound {
@@ -501,7 +496,6 @@ impl<'a> Separation<'a> {
         }
         *work = work.saturating_sub(evaluated);
         self.items[i] = at(key, template, t, pos);
-        self.cores[i] = t.core;
         self.register(i);
         let hits = self.hits(i, template, pos, &mut scratch.shape, true);
         for j in 0..self.items.len() {

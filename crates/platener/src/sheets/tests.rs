@@ -40,6 +40,11 @@ fn assert_within_margins(n: &Nesting, ring: &[DVec2], margin: f64) {
     }
 }
 
+/// Each sheet's width and height, in order.
+fn sheet_sizes(n: &Nesting) -> Vec<(f64, f64)> {
+    n.sheets.iter().map(|s| (s.width, s.height)).collect()
+}
+
 fn nest_all(parts: &[Part], settings: &CutSettings) -> Nesting {
     nested(parts, settings).expect("nests")
 }
@@ -226,7 +231,7 @@ fn parts_go_onto_the_stock_in_order_and_too_few_sheets_are_refused() {
         ..CutSettings::default()
     };
     let n = nest_all(&parts, &with("3:200x200x1, 3:600x400"));
-    let sizes: Vec<(f64, f64)> = n.sheets.iter().map(|s| (s.width, s.height)).collect();
+    let sizes = sheet_sizes(&n);
     assert_eq!(sizes[0], (200.0, 200.0), "the offcut first");
     assert_eq!(n.sheets[0].parts.len(), 4);
     assert!(sizes[1..].iter().all(|&s| s == (600.0, 400.0)));
@@ -273,7 +278,7 @@ fn the_last_sheet_goes_onto_a_smaller_size_in_stock() {
         .map(|id| part(id, Polygon::new(rect(0.0, 0.0, 180.0, 180.0))))
         .collect();
     let n = nest_all(&eight, &with("3:600x400, 3:400x200, 3:200x200"));
-    let sizes: Vec<(f64, f64)> = n.sheets.iter().map(|s| (s.width, s.height)).collect();
+    let sizes = sheet_sizes(&n);
     assert_eq!(
         sizes,
         [(600.0, 400.0), (400.0, 200.0)],
@@ -283,7 +288,7 @@ fn the_last_sheet_goes_onto_a_smaller_size_in_stock() {
     assert_within_margins(&n, &rect(0.0, 0.0, 180.0, 180.0), 5.0);
     // A small kind already used up is not taken; one with a count left is, once.
     let n = nest_all(&eight, &with("3:400x200x1, 3:600x400"));
-    let sizes: Vec<(f64, f64)> = n.sheets.iter().map(|s| (s.width, s.height)).collect();
+    let sizes = sheet_sizes(&n);
     assert_eq!(
         sizes,
         [(400.0, 200.0), (600.0, 400.0)],
@@ -293,7 +298,7 @@ fn the_last_sheet_goes_onto_a_smaller_size_in_stock() {
         .map(|id| part(id, Polygon::new(rect(0.0, 0.0, 180.0, 180.0))))
         .collect();
     let n = nest_all(&sixteen, &with("3:600x400, 3:400x200x1"));
-    let sizes: Vec<(f64, f64)> = n.sheets.iter().map(|s| (s.width, s.height)).collect();
+    let sizes = sheet_sizes(&n);
     assert_eq!(
         sizes,
         [(600.0, 400.0), (600.0, 400.0), (600.0, 400.0)],
